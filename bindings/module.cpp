@@ -1,0 +1,27 @@
+// The pamkit._core extension: one binding file per area, this file only assembles them and
+// maps pamkit's exceptions to Python ones.
+
+#include <pybind11/pybind11.h>
+
+#include "pamkit/error.hpp"
+
+namespace py = pybind11;
+
+namespace pamkit::python {
+void bind_muscle(py::module_& m);
+void bind_gas(py::module_& m);
+void bind_sim(py::module_& m);
+}  // namespace pamkit::python
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "pamkit's compiled core: the muscle model of the thesis and its CVODES simulator (SI units).";
+  // Bad parameters and inputs are ValueErrors; a failed integration is a RuntimeError.
+  // pybind11 tries the most recently registered translator first, so the base class goes first.
+  py::register_exception<pamkit::Error>(m, "Error", PyExc_RuntimeError);
+  py::register_exception<pamkit::SolverError>(m, "SolverError", PyExc_RuntimeError);
+  py::register_exception<pamkit::InvalidInput>(m, "InvalidInput", PyExc_ValueError);
+  py::register_exception<pamkit::InvalidParameter>(m, "InvalidParameter", PyExc_ValueError);
+  pamkit::python::bind_muscle(m);
+  pamkit::python::bind_gas(m);
+  pamkit::python::bind_sim(m);
+}

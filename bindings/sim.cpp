@@ -1,0 +1,130 @@
+// Bindings of include/pamkit/sim: the model, trajectories and the CVODES simulator. Results
+// come back as numpy arrays that view the C++ vectors (no copy); runs release the GIL.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bind_fields.hpp"
+#include "pamkit/sim/simulator.hpp"
+
+namespace py = pybind11;
+
+namespace pamkit::python {
+namespace {
+
+/// A read-only numpy view of `vector`, kept alive by `owner`.
+py::array_t<double> view(const std::vector<double>& vector, py::handle owner) {
+  py::array_t<double> array(static_cast<py::ssize_t>(vector.size()), vector.data(), owner);
+  array.attr("setflags")(py::arg("write") = false);
+  return array;
+}
+
+std::vector<double> to_vector(const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
+                              const char* name) {
+  if (a.ndim() != 1) throw py::value_error(std::string(name) + " must be a 1-D array, got " + std::to_string(a.ndim()) + " dimensions");
+  return {a.data(), a.data() + a.size()};
+}
+
+}  // namespace
+
+void bind_sim(py::module_& m) {
+  py::class_<MuscleParams>(m, "MuscleParams", "Everything that defines a muscle: build, bladder law, friction, gas.")
+      .def(py::init<>())
+      .def(py::init([](const MuscleBuild& build, const BladderLaw& bladder, const FrictionParams& friction,
+                       const GasParams& gas) { return MuscleParams{build, bladder, friction, gas}; }),
+           py::arg("build") = MuscleBuild{}, py::arg("bladder") = BladderLaw::thesis(),
+           py::arg("friction") = FrictionParams{}, py::arg("gas") = GasParams{})
+      .def_readwrite("build", &MuscleParams::build)
+      .def_readwrite("bladder", &MuscleParams::bladder)
+      .def_readwrite("friction", &MuscleParams::friction)
+      .def_readwrite("gas", &MuscleParams::gas)
+      .def("validate", &MuscleParams::validate);
+
+  py::class_<InitialState> initial(m, "InitialState", "The test at zero elongation: inflated, sealed, at rest.");
+  bind_fields(initial);
+
+  py::class_<MuscleOutputs>(m, "MuscleOutputs", "What the model says at one instant (SI units).")
+      .def_readonly("shape", &MuscleOutputs::shape)
+      .def_readonly("forces", &MuscleOutputs::forces)
+      .def_readonly("absolute_pressure_Pa", &MuscleOutputs::absolute_pressure_Pa)
+      .def_readonly("gauge_pressure_Pa", &MuscleOutputs::gauge_pressure_Pa)
+      .def_readonly("temperature_K", &MuscleOutputs::temperature_K)
+      .def_readonly("temperature_rate_K_per_s", &MuscleOutputs::temperature_rate_K_per_s)
+      .def_readonly("heat_loss_rate_W", &MuscleOutputs::heat_loss_rate_W);
+
+  py::class_<MuscleModel>(m, "MuscleModel", "A muscle in a test: parameters and the sealed gas mass. Immutable.")
+      .def(py::init<const MuscleParams&, const InitialState&>(), py::arg("params"), py::arg("initial"))
+      .def("evaluate", &MuscleModel::evaluate, py::arg("length_m"), py::arg("velocity_m_per_s"), py::arg("temperature_K"),
+           "Outputs and dT/dt at a length [m], elongation rate [m/s] and gas temperature [K].")
+      .def_property_readonly("gas_mass", &MuscleModel::gas_mass, "sealed air mass [kg]")
+      .def_property_readonly("initial_gas_volume", &MuscleModel::initial_gas_volume, "gas volume at zero elongation [m^3]")
+      .def_property_readonly("initial_temperature", &MuscleModel::initial_temperature, "gas temperature at the start [K]")
+      .def_property_readonly("params", &MuscleModel::params)
+      .def_property_readonly("initial_state", &MuscleModel::initial_state)
+      .def_property_readonly("geometry", &MuscleModel::geometry);
+
+  py::class_<ElongationTrajectory>(m, "ElongationTrajectory", "Elongation [m] against time [s], linear between samples.")
+      .def(py::init([](const py::array_t<double, py::array::c_style | py::array::forcecast>& time_s,
+                       const py::array_t<double, py::array::c_style | py::array::forcecast>& elongation_m) {
+             return ElongationTrajectory(to_vector(time_s, "time_s"), to_vector(elongation_m, "elongation_m"));
+           }),
+           py::arg("time_s"), py::arg("elongation_m"))
+      .def_property_readonly("time_s", [](py::object self) {
+        return view(self.cast<const ElongationTrajectory&>().time(), self);
+      })
+      .def_property_readonly("elongation_m", [](py::object self) {
+        return view(self.cast<const ElongationTrajectory&>().elongation(), self);
+      })
+      .def("__len__", &ElongationTrajectory::size);
+  m.def("thesis_protocol", &thesis_protocol, py::arg("max_elongation_m"), py::arg("speed_m_per_s") = 2.5e-3,
+        py::arg("cycles") = 10, py::arg("sample_period_s") = 0.1, py::arg("hold_s") = 0.0,
+        "The bench protocol of section 3.2.1: triangular stretch cycles at constant speed.");
+
+  py::class_<SimulatorConfig> config(m, "SimulatorConfig", "CVODES settings.");
+  bind_fields(config);
+
+  py::class_<SolverStatistics>(m, "SolverStatistics", "CVODES counters over one run.")
+      .def_readonly("steps", &SolverStatistics::steps)
+      .def_readonly("rhs_evaluations", &SolverStatistics::rhs_evaluations)
+      .def_readonly("jacobian_evaluations", &SolverStatistics::jacobian_evaluations)
+      .def_readonly("linear_solver_setups", &SolverStatistics::linear_solver_setups)
+      .def_readonly("error_test_failures", &SolverStatistics::error_test_failures)
+      .def_readonly("nonlinear_iterations", &SolverStatistics::nonlinear_iterations)
+      .def_readonly("nonlinear_convergence_failures", &SolverStatistics::nonlinear_convergence_failures)
+      .def_readonly("restarts", &SolverStatistics::restarts)
+      .def("__repr__", [](const SolverStatistics& s) {
+        return "SolverStatistics(steps=" + std::to_string(s.steps) + ", rhs_evaluations=" + std::to_string(s.rhs_evaluations) +
+               ", jacobian_evaluations=" + std::to_string(s.jacobian_evaluations) +
+               ", error_test_failures=" + std::to_string(s.error_test_failures) +
+               ", nonlinear_convergence_failures=" + std::to_string(s.nonlinear_convergence_failures) +
+               ", restarts=" + std::to_string(s.restarts) + ")";
+      });
+
+  py::class_<SimulationResult> result(m, "SimulationResult", "Time series of one run, one entry per trajectory sample.");
+#define PAMKIT_RESULT_COLUMN(name, doc)                                                                          \
+  result.def_property_readonly(#name, [](py::object self) { return view(self.cast<const SimulationResult&>().name, self); }, doc)
+  PAMKIT_RESULT_COLUMN(time_s, "sample times [s]");
+  PAMKIT_RESULT_COLUMN(elongation_m, "prescribed elongation [m]");
+  PAMKIT_RESULT_COLUMN(length_m, "muscle length [m]");
+  PAMKIT_RESULT_COLUMN(force_N, "axial force, tension > 0, friction included [N]");
+  PAMKIT_RESULT_COLUMN(friction_force_N, "friction part of the force [N]");
+  PAMKIT_RESULT_COLUMN(pressure_gauge_Pa, "gas pressure above ambient [Pa]");
+  PAMKIT_RESULT_COLUMN(temperature_K, "gas temperature [K]");
+  PAMKIT_RESULT_COLUMN(gas_volume_m3, "gas volume [m^3]");
+  PAMKIT_RESULT_COLUMN(braid_angle_rad, "braid angle of the cylinder [rad]");
+  PAMKIT_RESULT_COLUMN(diameter_m, "braid diameter [m]");
+  PAMKIT_RESULT_COLUMN(work_J, "work done on the muscle since the start [J]");
+  PAMKIT_RESULT_COLUMN(heat_lost_J, "heat from gas to wall since the start [J]");
+  PAMKIT_RESULT_COLUMN(friction_dissipated_J, "friction work since the start [J]");
+#undef PAMKIT_RESULT_COLUMN
+  result.def_readonly("statistics", &SimulationResult::statistics);
+
+  py::class_<Simulator>(m, "Simulator", "Integrates a MuscleModel along a trajectory with CVODES. Re-entrant.")
+      .def(py::init<SimulatorConfig>(), py::arg("config") = SimulatorConfig{})
+      .def("run", &Simulator::run, py::arg("model"), py::arg("trajectory"), py::call_guard<py::gil_scoped_release>(),
+           "Simulates the model along the trajectory; releases the GIL while it runs.")
+      .def_property_readonly("config", &Simulator::config);
+}
+
+}  // namespace pamkit::python

@@ -1,0 +1,48 @@
+#pragma once
+/// \file
+/// The exceptions pamkit throws. Every one derives from pamkit::Error so a caller can catch
+/// them all; the bindings map InvalidParameter and InvalidInput to Python's ValueError.
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace pamkit {
+
+/// Base of every pamkit exception.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A parameter is outside its allowed range. The message names the structure, the field,
+/// the value and the range, e.g. "MuscleBuild.fiber_count = -3 is outside [1, 2000]".
+class InvalidParameter : public Error {
+ public:
+  using Error::Error;
+};
+
+/// An input (a trajectory, a length, a pressure) cannot be used; the message says which and where.
+class InvalidInput : public Error {
+ public:
+  using Error::Error;
+};
+
+/// The integrator failed; the message carries the SUNDIALS flag name and the time reached.
+class SolverError : public Error {
+ public:
+  using Error::Error;
+};
+
+namespace detail {
+/// Builds a message from streamable parts: detail::message("x = ", x, " at t = ", t).
+template <class... Parts>
+std::string message(const Parts&... parts) {
+  std::ostringstream out;
+  out.precision(10);
+  (out << ... << parts);
+  return out.str();
+}
+}  // namespace detail
+
+}  // namespace pamkit

@@ -1,0 +1,51 @@
+#pragma once
+/// \file
+/// Parameter structures list their fields once, with unit, allowed range and meaning, in a
+/// static `for_each_field(visitor)` (the habit of Drake's `Serialize`). Validation, the Python
+/// bindings, `repr` and the experiment-file reader are all driven by that one list, so a field
+/// added there is checked, bound and read everywhere.
+
+#include <cmath>
+#include <string>
+
+#include "pamkit/error.hpp"
+
+namespace pamkit {
+
+/// What a structure says about one of its fields.
+struct FieldInfo {
+  const char* unit;         ///< SI unit, or "1" for a pure number
+  double min;               ///< smallest allowed value (inclusive)
+  double max;               ///< largest allowed value (inclusive)
+  const char* description;  ///< meaning and source (table or equation of the thesis)
+};
+
+namespace detail {
+
+/// Visitor that throws InvalidParameter for the first field out of its range (or not finite).
+template <class Struct>
+struct RangeChecker {
+  const Struct& object;
+  const char* struct_name;
+
+  template <class T>
+  void operator()(const char* name, T Struct::*member, const FieldInfo& info) const {
+    const double value = static_cast<double>(object.*member);
+    if (!std::isfinite(value) || value < info.min || value > info.max) {
+      throw InvalidParameter(message(struct_name, ".", name, " = ", value, " ", info.unit,
+                                     " is outside the allowed range [", info.min, ", ",
+                                     info.max, "] (", info.description, ")"));
+    }
+  }
+};
+
+}  // namespace detail
+
+/// Checks every field of `object` against the range its structure declares.
+/// \throws InvalidParameter naming the structure, field, value and range.
+template <class Struct>
+void validate_fields(const Struct& object) {
+  Struct::for_each_field(detail::RangeChecker<Struct>{object, Struct::kName});
+}
+
+}  // namespace pamkit

@@ -1,0 +1,77 @@
+#pragma once
+/// \file
+/// Braid kinematics and volumes of the muscle as functions of its length (thesis 3.1.1-3.1.3,
+/// 3.1.9-3.1.11): a cylinder of braided, inextensible fibers between two end cones of fixed
+/// slant length, closed by end caps of fixed diameter.
+
+#include "pamkit/muscle/build.hpp"
+
+namespace pamkit {
+
+/// Eq. 3.1.9: braid diameter D = Lym sin(theta) / (pi n) of a cylinder whose fibers have
+/// length Lym [m] over the cylinder and make n turns, at braid angle theta [rad].
+double braid_diameter(double fiber_length_m, double revolutions, double braid_angle_rad);
+
+/// Eq. 3.1.10: cylinder length Lm = Lym cos(theta) [m].
+double braid_cylinder_length(double fiber_length_m, double braid_angle_rad);
+
+/// Eq. 3.1.11 inverted: fiber length Lym = sqrt(Lm^2 + (pi n D)^2) [m] of a cylinder of
+/// length Lm [m] and diameter D [m] with n turns.
+double braid_fiber_length(double cylinder_length_m, double diameter_m, double revolutions);
+
+/// Shape of the muscle at one length, with the derivatives with respect to that length that
+/// the force (virtual work) and the gas equation need. Angles in rad, lengths in m, volumes in m^3.
+struct MuscleShape {
+  double length;           ///< L, between the end caps
+  double diameter;         ///< D, braid diameter of the cylinder
+  double cylinder_length;  ///< Lm = L - 2 LL
+  double cone_length;      ///< LL, axial length of one end cone
+  double braid_angle;      ///< theta of the cylinder, from the axis (eq. 3.1.9-3.1.10)
+  double end_braid_angle;  ///< theta_e at the end cap: sin(theta_e) = (d / D) sin(theta)
+  double cone_angle;       ///< beta, inclination of the cone's slant from the axis
+  double mean_braid_angle; ///< theta_a = (theta + theta_e) / 2 (section 3.1.1)
+  double total_volume;     ///< eq. 3.1.1, inside the braid, bladder included
+  double bladder_volume;   ///< eq. 3.1.3
+  double gas_volume;       ///< eq. 3.1.2: total minus bladder
+  double d_diameter;       ///< dD/dL [1]
+  double d_cylinder_length;///< dLm/dL [1]
+  double d_total_volume;   ///< dV_total/dL [m^2]
+  double d_bladder_volume; ///< dV_bladder/dL [m^2]
+  double d_gas_volume;     ///< dV_gas/dL [m^2]
+};
+
+/// The braid of one muscle build: fixed fiber length and turns, fixed cones. Immutable and
+/// cheap to copy; `shape(L)` is safe to call from many threads.
+class BraidGeometry {
+ public:
+  /// \param build validated muscle build; the fiber length is fixed by its deflated length
+  ///        and braid diameter.
+  /// \throws InvalidParameter if `build` is invalid.
+  explicit BraidGeometry(const MuscleBuild& build);
+
+  /// Shape of the muscle at length `length_m`. Solves the cone closure
+  /// (pi n D)^2 + (L - 2 LL(D))^2 = Lym^2 for D by bracketed Newton iteration.
+  /// \throws InvalidInput if `length_m` is outside `[min_length(), max_length()]`.
+  MuscleShape shape(double length_m) const;
+
+  /// Shortest length the model allows [m]: the cones flatten (D = d + 2 Lz) there.
+  double min_length() const { return min_length_; }
+  /// Longest length the model allows [m]: the braid closes onto the end diameter.
+  double max_length() const { return max_length_; }
+  /// Fiber length over the cylinder, Lym [m].
+  double fiber_length() const { return fiber_length_; }
+  /// Cylinder length of the deflated build, the bladder's longitudinal reference [m].
+  double deflated_cylinder_length() const { return deflated_cylinder_length_; }
+  const MuscleBuild& build() const { return build_; }
+
+ private:
+  MuscleBuild build_;
+  double fiber_length_;
+  double deflated_cylinder_length_;
+  double min_length_;
+  double max_length_;
+};
+
+}  // namespace pamkit
+
+#include "pamkit/muscle/geometry.hxx"

@@ -1,0 +1,132 @@
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include <boost/math/tools/roots.hpp>
+
+namespace pamkit {
+
+namespace detail {
+constexpr double kPi = 3.14159265358979323846;
+
+/// Axial length of a cone of slant `generator` joining diameters D and d.
+inline double cone_axial_length(double generator, double diameter, double end_diameter) {
+  const double c = 0.5 * (diameter - end_diameter);
+  return std::sqrt(std::max(generator * generator - c * c, 0.0));
+}
+}  // namespace detail
+
+inline double braid_diameter(double fiber_length_m, double revolutions, double braid_angle_rad) {
+  return fiber_length_m * std::sin(braid_angle_rad) / (detail::kPi * revolutions);
+}
+
+inline double braid_cylinder_length(double fiber_length_m, double braid_angle_rad) {
+  return fiber_length_m * std::cos(braid_angle_rad);
+}
+
+inline double braid_fiber_length(double cylinder_length_m, double diameter_m, double revolutions) {
+  return std::hypot(cylinder_length_m, detail::kPi * revolutions * diameter_m);
+}
+
+inline BraidGeometry::BraidGeometry(const MuscleBuild& build) : build_(build) {
+  build_.validate();
+  const double d = build_.end_diameter_m;
+  const double lz = build_.cone_generator_m;
+  const double turns = detail::kPi * build_.fiber_revolutions;
+  const bool has_cones = lz > 0.0;
+  deflated_cylinder_length_ =
+      build_.length_m - 2.0 * (has_cones ? detail::cone_axial_length(lz, build_.diameter_m, d) : 0.0);
+  fiber_length_ = braid_fiber_length(deflated_cylinder_length_, build_.diameter_m, build_.fiber_revolutions);
+  if (has_cones) {
+    // Shortest: the cones lie flat (D = d + 2 Lz, LL = 0). Longest: the braid narrows to d.
+    const double widest = d + 2.0 * lz;
+    if (turns * widest >= fiber_length_) {
+      min_length_ = 0.0;  // the braid reaches 90 degrees before the cones flatten
+    } else {
+      min_length_ = std::sqrt(fiber_length_ * fiber_length_ - turns * turns * widest * widest);
+    }
+    max_length_ = 2.0 * lz + std::sqrt(fiber_length_ * fiber_length_ - turns * turns * d * d);
+  } else {
+    min_length_ = 0.0;
+    max_length_ = fiber_length_;
+  }
+}
+
+inline MuscleShape BraidGeometry::shape(double length_m) const {
+  if (!(length_m > min_length_ && length_m < max_length_)) {
+    throw InvalidInput(detail::message("muscle length ", length_m, " m is outside the range the braid model allows (",
+                                       min_length_, ", ", max_length_, ") m for this build"));
+  }
+  const double n = build_.fiber_revolutions;
+  const double k2 = detail::kPi * detail::kPi * n * n;  // (pi n)^2
+  const double d = build_.end_diameter_m;
+  const double lz = build_.cone_generator_m;
+  const double lym = fiber_length_;
+
+  MuscleShape s{};
+  s.length = length_m;
+  if (lz > 0.0) {
+    // Closure of braid (eq. 3.1.11) and cones: G(D) = (pi n D)^2 + (L - 2 LL(D))^2 - Lym^2 = 0.
+    // G rises monotonically in D on (d, d + 2 Lz), so a bracketed Newton iteration converges.
+    auto closure = [&](double diameter) {
+      const double ll = detail::cone_axial_length(lz, diameter, d);
+      const double lm = length_m - 2.0 * ll;
+      const double c = 0.5 * (diameter - d);
+      const double g = k2 * diameter * diameter + lm * lm - lym * lym;
+      const double dg = 2.0 * k2 * diameter + (ll > 0.0 ? 2.0 * lm * c / ll : 1e30);
+      return std::make_pair(g, dg);
+    };
+    const double lower = d;
+    const double upper = d + 2.0 * lz;
+    const double cylinder_guess = std::sqrt(std::max(lym * lym - length_m * length_m, 0.0) / k2);
+    const double guess = std::clamp(cylinder_guess, lower + 1e-12, upper - 1e-12);
+    std::uintmax_t iterations = 100;
+    s.diameter = boost::math::tools::newton_raphson_iterate(closure, guess, lower, upper,
+                                                            std::numeric_limits<double>::digits - 6,
+                                                            iterations);
+    s.cone_length = detail::cone_axial_length(lz, s.diameter, d);
+  } else {
+    s.diameter = std::sqrt((lym * lym - length_m * length_m) / k2);
+    s.cone_length = 0.0;
+  }
+  const double D = s.diameter;
+  const double ll = s.cone_length;
+  const double lm = length_m - 2.0 * ll;
+  const double c = 0.5 * (D - d);
+  s.cylinder_length = lm;
+  s.braid_angle = std::atan2(detail::kPi * n * D, lm);
+  if (lz > 0.0) {
+    s.end_braid_angle = std::asin(std::min(1.0, d / D * std::sin(s.braid_angle)));
+    s.cone_angle = std::asin(std::min(1.0, c / lz));
+  } else {
+    s.end_braid_angle = s.braid_angle;
+    s.cone_angle = 0.0;
+  }
+  s.mean_braid_angle = 0.5 * (s.braid_angle + s.end_braid_angle);
+
+  // Derivatives from the implicit closure: dD/dL = -G_L / G_D.
+  const double cone_term = (lz > 0.0) ? lm * c / ll : 0.0;
+  s.d_diameter = -lm / (k2 * D + cone_term);
+  const double d_cone_length = (lz > 0.0) ? -c * s.d_diameter / (2.0 * ll) : 0.0;
+  s.d_cylinder_length = 1.0 - 2.0 * d_cone_length;
+
+  // Eq. 3.1.1: two frusta and a cylinder.
+  const double frustum = 0.25 * (D * D + d * d + d * D);
+  const double d_frustum = 0.25 * (2.0 * D + d) * s.d_diameter;
+  const double pi = detail::kPi;
+  s.total_volume = (2.0 / 3.0) * pi * ll * frustum + 0.25 * pi * D * D * lm;
+  s.d_total_volume = (2.0 / 3.0) * pi * (d_cone_length * frustum + ll * d_frustum) +
+                     0.25 * pi * (2.0 * D * s.d_diameter * lm + D * D * s.d_cylinder_length);
+  // Eq. 3.1.3: a tube of the full length with the braid's outer diameter.
+  const double tb = build_.bladder_thickness_m;
+  s.bladder_volume = pi * length_m * (D * tb - tb * tb);
+  s.d_bladder_volume = pi * (D * tb - tb * tb) + pi * length_m * tb * s.d_diameter;
+  s.gas_volume = s.total_volume - s.bladder_volume;
+  s.d_gas_volume = s.d_total_volume - s.d_bladder_volume;
+  return s;
+}
+
+}  // namespace pamkit

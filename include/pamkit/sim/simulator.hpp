@@ -1,0 +1,87 @@
+#pragma once
+/// \file
+/// Integrates a MuscleModel along a prescribed elongation with SUNDIALS CVODES (BDF, dense
+/// Newton), and accumulates the energy flows as CVODES quadratures.
+
+#include <string>
+#include <vector>
+
+#include "pamkit/fields.hpp"
+#include "pamkit/sim/model.hpp"
+#include "pamkit/sim/trajectory.hpp"
+
+namespace pamkit {
+
+/// Integrator settings.
+struct SimulatorConfig {
+  static constexpr const char* kName = "SimulatorConfig";
+
+  double relative_tolerance = 1e-8;    ///< CVODE relative tolerance [1]
+  double absolute_tolerance_K = 1e-8;  ///< CVODE absolute tolerance on the gas temperature [K]
+  double absolute_tolerance_J = 1e-8;  ///< absolute tolerance on the energy quadratures [J]
+  double max_steps = 50000;            ///< most internal steps between two samples [1]
+  double max_step_s = 0.0;             ///< largest internal step [s]; 0: no limit
+
+  template <class Visitor>
+  static void for_each_field(Visitor&& visit) {
+    visit("relative_tolerance", &SimulatorConfig::relative_tolerance, FieldInfo{"1", 1e-14, 1e-2, "relative tolerance"});
+    visit("absolute_tolerance_K", &SimulatorConfig::absolute_tolerance_K, FieldInfo{"K", 1e-16, 1.0, "absolute tolerance on temperature"});
+    visit("absolute_tolerance_J", &SimulatorConfig::absolute_tolerance_J, FieldInfo{"J", 1e-16, 1.0, "absolute tolerance on energies"});
+    visit("max_steps", &SimulatorConfig::max_steps, FieldInfo{"1", 10, 1e9, "most steps between samples"});
+    visit("max_step_s", &SimulatorConfig::max_step_s, FieldInfo{"s", 0.0, 1e9, "largest step (0: no limit)"});
+  }
+  void validate() const { validate_fields(*this); }
+};
+
+/// Counters CVODES kept over one run (CVodeGet* summed over the restarts at each corner of
+/// the trajectory, where the elongation rate jumps).
+struct SolverStatistics {
+  long steps = 0;                           ///< internal time steps
+  long rhs_evaluations = 0;                 ///< right-hand-side evaluations, Jacobian ones included
+  long jacobian_evaluations = 0;            ///< dense Jacobian evaluations
+  long linear_solver_setups = 0;            ///< Newton matrix factorisations
+  long error_test_failures = 0;             ///< steps rejected by the local error test
+  long nonlinear_iterations = 0;            ///< Newton iterations
+  long nonlinear_convergence_failures = 0;  ///< Newton failures
+  long restarts = 0;                        ///< CVodeReInit calls at trajectory corners
+};
+
+/// Time series of one run; every vector has one entry per trajectory sample.
+struct SimulationResult {
+  std::vector<double> time_s;                 ///< sample times
+  std::vector<double> elongation_m;           ///< prescribed elongation
+  std::vector<double> length_m;               ///< muscle length
+  std::vector<double> force_N;                ///< axial force (tension > 0), friction included
+  std::vector<double> friction_force_N;       ///< friction part of force_N
+  std::vector<double> pressure_gauge_Pa;      ///< gas pressure above ambient
+  std::vector<double> temperature_K;          ///< gas temperature
+  std::vector<double> gas_volume_m3;          ///< gas volume (eq. 3.1.2)
+  std::vector<double> braid_angle_rad;        ///< braid angle of the cylinder
+  std::vector<double> diameter_m;             ///< braid diameter
+  std::vector<double> work_J;                 ///< work done on the muscle since t0, integral of F dL
+  std::vector<double> heat_lost_J;            ///< heat from gas to wall since t0
+  std::vector<double> friction_dissipated_J;  ///< friction work since t0
+  SolverStatistics statistics;
+};
+
+/// Runs simulations. Holds only its configuration, so one Simulator may run many models at
+/// once from different threads; each run owns its own CVODES memory.
+class Simulator {
+ public:
+  /// \throws InvalidParameter for a bad configuration.
+  explicit Simulator(SimulatorConfig config = {});
+
+  /// Simulates `model` along `trajectory` (elongation from the model's initial length).
+  /// Samples are reported at the trajectory's times; the friction at a sample uses the
+  /// elongation rate of the segment that ends there (of the first segment at the start).
+  /// \throws InvalidInput if a sample's length is outside the braid's range (naming the
+  ///         sample), SolverError with the CVODES flag name and time if integration fails.
+  SimulationResult run(const MuscleModel& model, const ElongationTrajectory& trajectory) const;
+
+  const SimulatorConfig& config() const { return config_; }
+
+ private:
+  SimulatorConfig config_;
+};
+
+}  // namespace pamkit

@@ -1,0 +1,45 @@
+"""pamkit: simulate and diagnose pneumatic artificial muscles used as passive air springs.
+
+The compiled core (`pamkit._core`) holds the thesis's muscle model and its CVODES simulator;
+this package adds experiment files, the command line and plots. SI units throughout, except
+where a name carries its unit (``pressure_kPa``).
+"""
+
+from pamkit._core import (
+    BladderLaw,
+    BraidGeometry,
+    ElongationTrajectory,
+    Error,
+    FiberTensions,
+    FreeInflation,
+    FrictionParams,
+    GasParams,
+    GasProcess,
+    InitialState,
+    InvalidInput,
+    InvalidParameter,
+    MuscleBuild,
+    MuscleForces,
+    MuscleModel,
+    MuscleOutputs,
+    MuscleParams,
+    MuscleShape,
+    SimulationResult,
+    Simulator,
+    SimulatorConfig,
+    SolverError,
+    SolverStatistics,
+    braid_cylinder_length,
+    braid_diameter,
+    braid_fiber_length,
+    free_inflation,
+    muscle_forces,
+    newtonian_fiber_tensions,
+    polytropic_pressure,
+    polytropic_temperature,
+    thesis_protocol,
+)
+
+__version__ = "0.1.0"
+
+__all__ = [name for name in dir() if not name.startswith("_")]

@@ -1,0 +1,224 @@
+// CVODES glue for pamkit::Simulator: RAII handles for the SUNDIALS objects, every return flag
+// checked by name, the trajectory integrated segment by segment.
+
+#include "pamkit/sim/simulator.hpp"
+
+#include <cvodes/cvodes.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <memory>
+
+namespace pamkit {
+namespace {
+
+constexpr int kQuadratures = 3;  // work, heat lost, friction dissipated
+
+void check_flag(int flag, const char* call, double time) {
+  if (flag < 0) {
+    throw SolverError(detail::message(call, " failed with ", CVodeGetReturnFlagName(flag), " at t = ", time, " s"));
+  }
+}
+
+struct ContextDeleter {
+  void operator()(SUNContext* c) const {
+    SUNContext_Free(c);
+    delete c;
+  }
+};
+struct VectorDeleter {
+  void operator()(_generic_N_Vector* v) const { N_VDestroy(v); }
+};
+struct MatrixDeleter {
+  void operator()(_generic_SUNMatrix* m) const { SUNMatDestroy(m); }
+};
+struct LinearSolverDeleter {
+  void operator()(_generic_SUNLinearSolver* s) const { SUNLinSolFree(s); }
+};
+struct CvodeDeleter {
+  void operator()(void* mem) const { CVodeFree(&mem); }
+};
+
+std::unique_ptr<SUNContext, ContextDeleter> make_context() {
+  auto context = std::make_unique<SUNContext>();
+  if (SUNContext_Create(nullptr, context.get()) != 0) throw SolverError("SUNContext_Create failed");
+  return std::unique_ptr<SUNContext, ContextDeleter>(context.release());
+}
+
+/// Per-run mutable workspace handed to CVODES as user data.
+struct RunWorkspace {
+  const MuscleModel& model;
+  const ElongationTrajectory& trajectory;
+  std::size_t segment = 0;
+  std::exception_ptr error;  // an exception thrown inside a callback, rethrown after CVode returns
+
+  double length(double t) const {
+    const auto& time = trajectory.time();
+    const auto& elongation = trajectory.elongation();
+    return model.initial_state().length_m + elongation[segment] + velocity() * (t - time[segment]);
+  }
+  double velocity() const { return trajectory.segment_velocity(segment); }
+};
+
+int temperature_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
+  auto& w = *static_cast<RunWorkspace*>(user_data);
+  try {
+    const MuscleOutputs out = w.model.evaluate(w.length(t), w.velocity(), NV_Ith_S(y, 0));
+    NV_Ith_S(ydot, 0) = out.temperature_rate_K_per_s;
+    return 0;
+  } catch (...) {
+    w.error = std::current_exception();
+    return -1;
+  }
+}
+
+int energy_rhs(sunrealtype t, N_Vector y, N_Vector qdot, void* user_data) {
+  auto& w = *static_cast<RunWorkspace*>(user_data);
+  try {
+    const double v = w.velocity();
+    const MuscleOutputs out = w.model.evaluate(w.length(t), v, NV_Ith_S(y, 0));
+    NV_Ith_S(qdot, 0) = out.forces.total * v;
+    NV_Ith_S(qdot, 1) = out.heat_loss_rate_W;
+    NV_Ith_S(qdot, 2) = out.forces.friction * v;
+    return 0;
+  } catch (...) {
+    w.error = std::current_exception();
+    return -1;
+  }
+}
+
+/// True where the elongation rate changes by more than rounding: samples of one straight ramp
+/// give rates that differ in the last bits, and those need no restart.
+bool is_corner(double previous_velocity, double velocity) {
+  return std::abs(velocity - previous_velocity) > 1e-9 * std::max(std::abs(velocity), std::abs(previous_velocity));
+}
+
+void record(SimulationResult& r, const MuscleModel& model, double t, double elongation, double velocity,
+            double temperature, N_Vector q) {
+  const double length = model.initial_state().length_m + elongation;
+  const MuscleOutputs out = model.evaluate(length, velocity, temperature);
+  r.time_s.push_back(t);
+  r.elongation_m.push_back(elongation);
+  r.length_m.push_back(length);
+  r.force_N.push_back(out.forces.total);
+  r.friction_force_N.push_back(out.forces.friction);
+  r.pressure_gauge_Pa.push_back(out.gauge_pressure_Pa);
+  r.temperature_K.push_back(temperature);
+  r.gas_volume_m3.push_back(out.shape.gas_volume);
+  r.braid_angle_rad.push_back(out.shape.braid_angle);
+  r.diameter_m.push_back(out.shape.diameter);
+  r.work_J.push_back(NV_Ith_S(q, 0));
+  r.heat_lost_J.push_back(NV_Ith_S(q, 1));
+  r.friction_dissipated_J.push_back(NV_Ith_S(q, 2));
+}
+
+void add_statistics(void* mem, SolverStatistics& s) {
+  long value = 0;
+  check_flag(CVodeGetNumSteps(mem, &value), "CVodeGetNumSteps", 0.0);
+  s.steps += value;
+  long rhs = 0;
+  check_flag(CVodeGetNumRhsEvals(mem, &rhs), "CVodeGetNumRhsEvals", 0.0);
+  long jacobian_rhs = 0;
+  check_flag(CVodeGetNumLinRhsEvals(mem, &jacobian_rhs), "CVodeGetNumLinRhsEvals", 0.0);
+  s.rhs_evaluations += rhs + jacobian_rhs;
+  check_flag(CVodeGetNumJacEvals(mem, &value), "CVodeGetNumJacEvals", 0.0);
+  s.jacobian_evaluations += value;
+  check_flag(CVodeGetNumLinSolvSetups(mem, &value), "CVodeGetNumLinSolvSetups", 0.0);
+  s.linear_solver_setups += value;
+  check_flag(CVodeGetNumErrTestFails(mem, &value), "CVodeGetNumErrTestFails", 0.0);
+  s.error_test_failures += value;
+  check_flag(CVodeGetNumNonlinSolvIters(mem, &value), "CVodeGetNumNonlinSolvIters", 0.0);
+  s.nonlinear_iterations += value;
+  check_flag(CVodeGetNumNonlinSolvConvFails(mem, &value), "CVodeGetNumNonlinSolvConvFails", 0.0);
+  s.nonlinear_convergence_failures += value;
+}
+
+}  // namespace
+
+Simulator::Simulator(SimulatorConfig config) : config_(config) { config_.validate(); }
+
+SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajectory& trajectory) const {
+  const auto& time = trajectory.time();
+  const auto& elongation = trajectory.elongation();
+  const BraidGeometry& geometry = model.geometry();
+  for (std::size_t k = 0; k < trajectory.size(); ++k) {
+    const double length = model.initial_state().length_m + elongation[k];
+    if (!(length > geometry.min_length() && length < geometry.max_length())) {
+      throw InvalidInput(detail::message("trajectory sample ", k, " (t = ", time[k], " s, elongation ", elongation[k],
+                                         " m) gives muscle length ", length, " m, outside the braid's range (",
+                                         geometry.min_length(), ", ", geometry.max_length(), ") m"));
+    }
+  }
+
+  auto context = make_context();
+  SUNContext ctx = *context;
+  std::unique_ptr<_generic_N_Vector, VectorDeleter> y(N_VNew_Serial(MuscleModel::kStateSize, ctx));
+  std::unique_ptr<_generic_N_Vector, VectorDeleter> q(N_VNew_Serial(kQuadratures, ctx));
+  if (!y || !q) throw SolverError("N_VNew_Serial failed");
+  NV_Ith_S(y.get(), 0) = model.initial_temperature();
+  N_VConst(0.0, q.get());
+
+  std::unique_ptr<void, CvodeDeleter> mem(CVodeCreate(CV_BDF, ctx));
+  if (!mem) throw SolverError("CVodeCreate failed");
+  void* cv = mem.get();
+  RunWorkspace workspace{model, trajectory, 0, nullptr};
+  const double t0 = time.front();
+  check_flag(CVodeInit(cv, temperature_rhs, t0, y.get()), "CVodeInit", t0);
+  check_flag(CVodeSetUserData(cv, &workspace), "CVodeSetUserData", t0);
+  check_flag(CVodeSStolerances(cv, config_.relative_tolerance, config_.absolute_tolerance_K), "CVodeSStolerances", t0);
+  check_flag(CVodeSetMaxNumSteps(cv, static_cast<long>(config_.max_steps)), "CVodeSetMaxNumSteps", t0);
+  if (config_.max_step_s > 0.0) check_flag(CVodeSetMaxStep(cv, config_.max_step_s), "CVodeSetMaxStep", t0);
+  std::unique_ptr<_generic_SUNMatrix, MatrixDeleter> jacobian(
+      SUNDenseMatrix(MuscleModel::kStateSize, MuscleModel::kStateSize, ctx));
+  std::unique_ptr<_generic_SUNLinearSolver, LinearSolverDeleter> solver(
+      SUNLinSol_Dense(y.get(), jacobian.get(), ctx));
+  if (!jacobian || !solver) throw SolverError("SUNDenseMatrix or SUNLinSol_Dense failed");
+  check_flag(CVodeSetLinearSolver(cv, solver.get(), jacobian.get()), "CVodeSetLinearSolver", t0);
+  check_flag(CVodeQuadInit(cv, energy_rhs, q.get()), "CVodeQuadInit", t0);
+  check_flag(CVodeQuadSStolerances(cv, config_.relative_tolerance, config_.absolute_tolerance_J),
+             "CVodeQuadSStolerances", t0);
+  check_flag(CVodeSetQuadErrCon(cv, SUNTRUE), "CVodeSetQuadErrCon", t0);
+
+  SimulationResult result;
+  result.time_s.reserve(trajectory.size());
+  record(result, model, t0, elongation.front(), trajectory.segment_velocity(0), NV_Ith_S(y.get(), 0), q.get());
+
+  // Integrate piece by piece, a piece being a run of samples with one elongation rate. The
+  // rate jumps at a corner, so CVODES stops exactly there and restarts its BDF history;
+  // inside a piece the samples are interpolated from CVODES's steps.
+  double t = t0;
+  std::size_t k = 0;
+  while (k + 1 < trajectory.size()) {
+    std::size_t end = k + 1;
+    while (end + 1 < trajectory.size() &&
+           !is_corner(trajectory.segment_velocity(k), trajectory.segment_velocity(end))) {
+      ++end;
+    }
+    workspace.segment = k;
+    if (k > 0) {
+      add_statistics(cv, result.statistics);
+      check_flag(CVodeReInit(cv, t, y.get()), "CVodeReInit", t);
+      check_flag(CVodeQuadReInit(cv, q.get()), "CVodeQuadReInit", t);
+      ++result.statistics.restarts;
+    }
+    check_flag(CVodeSetStopTime(cv, time[end]), "CVodeSetStopTime", t);
+    const double velocity = trajectory.segment_velocity(k);
+    for (std::size_t sample = k + 1; sample <= end; ++sample) {
+      const int flag = CVode(cv, time[sample], y.get(), &t, CV_NORMAL);
+      if (workspace.error) std::rethrow_exception(workspace.error);
+      check_flag(flag, "CVode", t);
+      check_flag(CVodeGetQuad(cv, &t, q.get()), "CVodeGetQuad", t);
+      record(result, model, time[sample], elongation[sample], velocity, NV_Ith_S(y.get(), 0), q.get());
+    }
+    k = end;
+  }
+  add_statistics(cv, result.statistics);
+  return result;
+}
+
+}  // namespace pamkit
