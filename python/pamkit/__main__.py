@@ -1,0 +1,5 @@
+import sys
+
+from pamkit.cli import main
+
+sys.exit(main())

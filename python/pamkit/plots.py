@@ -1,0 +1,47 @@
+"""Plots people would rather look at than read."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+CHANNELS = (("force_N", "force [N]"), ("pressure_kPa", "gauge pressure [kPa]"), ("temperature_C", "gas temperature [°C]"))
+
+
+def plot_simulation(path: str | Path, predicted: dict[str, np.ndarray], measured: dict[str, np.ndarray] | None = None,
+                    title: str = "") -> Path:
+    """Writes a 2x2 figure: force, pressure and temperature against time, and force against
+    elongation (the hysteresis loop); measured channels, when given, are drawn under the
+    prediction."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    measured = measured or {}
+    figure, axes = plt.subplots(2, 2, figsize=(11, 7.5), constrained_layout=True)
+    time = predicted["time_s"]
+    for axis, (name, label) in zip(axes.flat[:3], CHANNELS):
+        if name in measured:
+            axis.plot(measured["time_s"], measured[name], color="0.6", lw=1.2, label="measured")
+        axis.plot(time, predicted[name], color="C0", lw=1.0, label="pamkit")
+        axis.set_xlabel("time [s]")
+        axis.set_ylabel(label)
+        axis.grid(alpha=0.3)
+        if name in measured:
+            axis.legend(loc="best", fontsize="small")
+    loop = axes.flat[3]
+    if "force_N" in measured:
+        loop.plot(measured["elongation_m"] * 1e3, measured["force_N"], color="0.6", lw=1.2, label="measured")
+    loop.plot(predicted["elongation_m"] * 1e3, predicted["force_N"], color="C0", lw=1.0, label="pamkit")
+    loop.set_xlabel("elongation [mm]")
+    loop.set_ylabel("force [N]")
+    loop.grid(alpha=0.3)
+    if title:
+        figure.suptitle(title)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    return path

@@ -1,0 +1,55 @@
+"""The Python face of the C++ core: exceptions, parameter structs, arrays, threads."""
+
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+import pytest
+
+import pamkit
+
+
+def test_invalid_parameter_is_a_value_error_naming_the_field():
+    with pytest.raises(ValueError, match=r"MuscleBuild\.fiber_count = -3"):
+        pamkit.MuscleBuild(fiber_count=-3).validate()
+    with pytest.raises(ValueError, match=r"GasParams\.polytropic_index"):
+        pamkit.MuscleModel(pamkit.MuscleParams(gas=pamkit.GasParams(polytropic_index=2.0)), pamkit.InitialState())
+
+
+def test_unknown_keyword_is_rejected():
+    with pytest.raises(TypeError, match="MuscleBuild has no field 'fibre_count'"):
+        pamkit.MuscleBuild(fibre_count=3)
+
+
+def test_fields_list_units_and_ranges():
+    fields = pamkit.MuscleBuild.fields()
+    assert fields["length_m"]["unit"] == "m"
+    assert set(fields) == set(pamkit.MuscleBuild().to_dict())
+    assert "fiber_count=216" in repr(pamkit.MuscleBuild())
+
+
+def test_trajectory_rejects_time_going_back():
+    with pytest.raises(ValueError, match=r"time_s\[2\] = 1 does not increase"):
+        pamkit.ElongationTrajectory(np.array([0.0, 1.0, 1.0]), np.zeros(3))
+    with pytest.raises(ValueError, match="1-D"):
+        pamkit.ElongationTrajectory(np.zeros((2, 2)), np.zeros((2, 2)))
+
+
+def test_results_are_read_only_views_that_outlive_their_run():
+    model = pamkit.MuscleModel(pamkit.MuscleParams(), pamkit.InitialState())
+    force = pamkit.Simulator().run(model, pamkit.thesis_protocol(0.05, cycles=1)).force_N
+    assert not force.flags.writeable
+    with pytest.raises(ValueError):
+        force[0] = 0.0
+    assert np.all(np.isfinite(force)) and force.max() > force[0]
+
+
+def test_runs_in_threads_match_serial_runs():
+    simulator = pamkit.Simulator()
+    models = [pamkit.MuscleModel(pamkit.MuscleParams(), pamkit.InitialState(gauge_pressure_Pa=p))
+              for p in (150e3, 200e3, 250e3, 300e3)]
+    trajectory = pamkit.thesis_protocol(0.05, cycles=2)
+    serial = [simulator.run(m, trajectory).force_N.copy() for m in models]
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        parallel = list(pool.map(lambda m: simulator.run(m, trajectory).force_N.copy(), models))
+    for a, b in zip(serial, parallel):
+        np.testing.assert_array_equal(a, b)

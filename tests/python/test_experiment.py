@@ -1,0 +1,104 @@
+"""Experiment files: what is read, and that every bad input names the file, line and column."""
+
+import numpy as np
+import pytest
+
+from pamkit.experiment import ExperimentError, load_experiment, read_series
+
+
+def test_reads_build_test_and_series(write_experiment):
+    experiment = load_experiment(write_experiment())
+    assert experiment.build.length_m == 0.225
+    assert experiment.inflation_pressure_kPa == 236.63
+    assert experiment.gas_params.ambient_temperature_K == pytest.approx(296.0)  # 22.85 °C, table C.4
+    assert experiment.gas == "sealed"
+    np.testing.assert_array_equal(experiment.elongation_m, [0, 0.0025, 0.005])
+    assert experiment.measured() == []
+
+
+def test_optional_sections_set_model_fields(write_experiment):
+    path = write_experiment(sections='[gas]\nprocess = "heat_transfer"\nheat_transfer_time_constant_s = 3.0\n'
+                                     "[friction]\nsharpness_s_per_m = 100.0\n")
+    experiment = load_experiment(path)
+    assert experiment.gas_params.process.name == "heat_transfer"
+    assert experiment.gas_params.heat_transfer_time_constant_s == 3.0
+    assert experiment.friction.sharpness_s_per_m == 100.0
+
+
+@pytest.mark.parametrize(
+    "kwargs, expected",
+    [
+        ({"muscle_extra": "fiber_angle = 3"}, "unknown key [muscle] fiber_angle"),
+        ({"toml_test_extra": "speed = 1"}, "unknown key [test] speed"),
+        ({"sections": "[model]\nx = 1\n"}, "unknown section [model]"),
+        ({"muscle_extra": "", "toml_test_extra": 'gas = "open"'}, "[test] gas = 'open'"),
+        ({"sections": '[gas]\nprocess = "magic"\n'}, "[gas] process = 'magic'"),
+        ({"sections": "[friction]\nsharpness_s_per_m = -1\n"}, "FrictionParams.sharpness_s_per_m = -1"),
+    ],
+)
+def test_bad_keys_and_values_are_named(write_experiment, kwargs, expected):
+    with pytest.raises(ExperimentError, match=None) as error:
+        load_experiment(write_experiment(**kwargs))
+    assert expected in str(error.value)
+    assert "run.toml" in str(error.value)
+
+
+def test_bad_build_names_the_field(write_experiment, tmp_path):
+    path = write_experiment()
+    path.write_text(path.read_text().replace("fiber_count = 216", "fiber_count = 0"))
+    with pytest.raises(ExperimentError, match=r"run.toml: \[muscle\] MuscleBuild.fiber_count = 0"):
+        load_experiment(path)
+
+
+def test_missing_required_key(write_experiment):
+    path = write_experiment()
+    path.write_text(path.read_text().replace("ambient_temperature_C = 22.85\n", ""))
+    with pytest.raises(ExperimentError, match=r"missing key \[test\] ambient_temperature_C"):
+        load_experiment(path)
+
+
+@pytest.mark.parametrize(
+    "csv_text, expected",
+    [
+        ("time_s,elongation_m\n0,0\n1,nan\n", r"run.csv:3: column 2 \(elongation_m\) = 'nan' is not finite"),
+        ("time_s,elongation_m\n0,0\n1,abc\n", r"run.csv:3: column 2 \(elongation_m\) = 'abc' is not a number"),
+        ("time_s,elongation_m\n0,0\n2,0.001\n2,0.002\n", r"run.csv:4: column 1 \(time_s\) = 2.0 does not increase"),
+        ("time_s,force_N\n0,0\n1,1\n", r"run.csv:1: required column 'elongation_m' is missing"),
+        ("time_s,elongation_m,force_kN\n0,0,1\n1,1,1\n", r"run.csv:1: column 3 'force_kN' is not a known channel"),
+        ("time_s,elongation_m\n0,0\n1\n", r"run.csv:3: 1 values, the header has 2"),
+        ("time_s,elongation_m\n0,0\n", r"needs at least 2 data rows"),
+        ("", r"empty file"),
+    ],
+)
+def test_bad_csv_names_line_and_column(write_experiment, csv_text, expected):
+    with pytest.raises(ExperimentError, match=expected):
+        load_experiment(write_experiment(csv_text=csv_text))
+
+
+def test_supplied_test_needs_pressure(write_experiment):
+    with pytest.raises(ExperimentError, match="supplied.*pressure_kPa"):
+        load_experiment(write_experiment(toml_test_extra='gas = "supplied"'))
+
+
+def test_missing_data_file(write_experiment, tmp_path):
+    path = write_experiment()
+    (tmp_path / "run.csv").unlink()
+    with pytest.raises(ExperimentError, match="no such data file"):
+        load_experiment(path)
+
+
+def test_every_thesis_experiment_loads(thesis_dir):
+    paths = sorted(thesis_dir.glob("*.toml"))
+    assert len(paths) == 15  # 6 low-pressure tests (table 3.5) + 3 x 3 high-pressure (tables C.1-C.3)
+    for path in paths:
+        experiment = load_experiment(path)
+        # Protocol of section 3.2.1: 10 cycles at 2.5 mm/s, so 20 ramps of max / speed seconds.
+        top = experiment.elongation_m.max()
+        assert experiment.time_s[-1] == pytest.approx(20 * top / 2.5e-3, rel=1e-9)
+
+
+def test_read_series_keeps_measured_channels(tmp_path):
+    path = tmp_path / "m.csv"
+    path.write_text("time_s,elongation_m,force_N,pressure_kPa,temperature_C\n0,0,1,2,3\n1,0.1,4,5,6\n")
+    columns = read_series(path)
+    np.testing.assert_array_equal(columns["temperature_C"], [3, 6])
