@@ -1,0 +1,38 @@
+"""pamkit simulate EXPERIMENT.toml -o OUT.csv [--plot OUT.png]"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from pamkit.experiment import load_experiment, write_series
+
+
+def register(subparsers) -> None:
+    parser = subparsers.add_parser(
+        "simulate",
+        help="predict force, pressure and temperature for an experiment",
+        description="Drives the muscle model with the experiment's time_s and elongation_m and writes the "
+        "predicted force_N, pressure_kPa (gauge) and temperature_C.",
+    )
+    parser.add_argument("experiment", help="experiment TOML file")
+    parser.add_argument("-o", "--output", required=True, help="CSV file to write")
+    parser.add_argument("--plot", help="also write a PNG figure of the prediction (and of the data, if measured)")
+    parser.set_defaults(run=run)
+
+
+def run(arguments: argparse.Namespace) -> int:
+    from pamkit.simulate import simulate_experiment
+
+    experiment = load_experiment(arguments.experiment)
+    predicted = simulate_experiment(experiment)
+    write_series(arguments.output, predicted)
+    print(f"wrote {arguments.output} ({len(predicted['time_s'])} samples: {', '.join(predicted)})")
+    if arguments.plot:
+        from pamkit.plots import plot_simulation
+
+        measured = experiment.columns if experiment.measured() else None
+        title = experiment.description or Path(arguments.experiment).stem
+        plot_simulation(arguments.plot, predicted, measured, title=title)
+        print(f"wrote {arguments.plot}")
+    return 0
