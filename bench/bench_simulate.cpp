@@ -133,8 +133,10 @@ int main(int argc, char** argv) try {
     const auto start = std::chrono::steady_clock::now();
     for (long i = 0; i < o.evaluations; ++i) {
       const std::size_t k = static_cast<std::size_t>(i) % samples;
-      const pamkit::MuscleOutputs out = model.evaluate(result.length_m[k], velocity[k], result.temperature_K[k]);
-      sink += out.forces.total + out.temperature_rate_K_per_s + out.heat_loss_rate_W;
+      pamkit::State state = model.initial();
+      state[pamkit::State::temperature_K] = result.temperature_K[k];
+      const pamkit::MuscleOutputs out = model.evaluate(result.length_m[k], velocity[k], state);
+      sink += out.forces.total + out.rate[pamkit::State::temperature_K] + out.heat_loss_rate_W;
     }
     best_evaluation = std::min(best_evaluation, seconds_since(start) / static_cast<double>(o.evaluations));
   }

@@ -35,28 +35,58 @@ void bind_sim(py::module_& m) {
                        const GasParams& gas) { return MuscleParams{build, bladder, friction, gas}; }),
            py::arg("build") = MuscleBuild{}, py::arg("bladder") = BladderLaw::thesis(),
            py::arg("friction") = FrictionParams{}, py::arg("gas") = GasParams{})
+      .def(py::init([](const MuscleBuild& build, const BladderLaw& bladder, const FrictionParams& friction,
+                       const GasParams& gas, const ModelExtensions& extensions) {
+             return MuscleParams{build, bladder, friction, gas, extensions};
+           }),
+           py::arg("build"), py::arg("bladder"), py::arg("friction"), py::arg("gas"), py::arg("extensions"))
       .def_readwrite("build", &MuscleParams::build)
       .def_readwrite("bladder", &MuscleParams::bladder)
       .def_readwrite("friction", &MuscleParams::friction)
       .def_readwrite("gas", &MuscleParams::gas)
+      .def_readwrite("extensions", &MuscleParams::extensions)
       .def("validate", &MuscleParams::validate);
+
+  py::class_<ModelExtensions> extensions(m, "ModelExtensions",
+                                         "Physics beyond the thesis's model, all off (zero) by default; effects switch them on.");
+  bind_fields(extensions);
 
   py::class_<InitialState> initial(m, "InitialState", "The test at zero elongation: inflated, sealed, at rest.");
   bind_fields(initial);
 
+  py::class_<State> state(m, "State", "ODE state: gas temperature and mass, bladder viscous stresses, energy integrals (SI).");
+  state.def(py::init<>())
+      .def(py::init([](const std::array<double, State::size>& values) { return State{values}; }), py::arg("values"))
+      .def_readwrite("values", &State::values, "the state as a list, in the order of the index constants")
+      .def("__getitem__", [](const State& s, int i) {
+        if (i < 0 || i >= State::size) throw py::index_error("State index " + std::to_string(i) + " out of range");
+        return s[i];
+      });
+  for (auto [name, index] : {std::pair{"temperature_K", State::temperature_K}, {"gas_mass_kg", State::gas_mass_kg},
+                             {"viscous_stress_l_Pa", State::viscous_stress_l_Pa},
+                             {"viscous_stress_h_Pa", State::viscous_stress_h_Pa}, {"work_J", State::work_J},
+                             {"heat_lost_J", State::heat_lost_J},
+                             {"friction_dissipated_J", State::friction_dissipated_J}}) {
+    state.attr(name) = static_cast<int>(index);
+  }
+
   py::class_<MuscleOutputs>(m, "MuscleOutputs", "What the model says at one instant (SI units).")
       .def_readonly("shape", &MuscleOutputs::shape)
       .def_readonly("forces", &MuscleOutputs::forces)
+      .def_readonly("braid_length_m", &MuscleOutputs::braid_length_m)
+      .def_readonly("braid_velocity_m_per_s", &MuscleOutputs::braid_velocity_m_per_s)
+      .def_readonly("gas_volume_m3", &MuscleOutputs::gas_volume_m3)
       .def_readonly("absolute_pressure_Pa", &MuscleOutputs::absolute_pressure_Pa)
       .def_readonly("gauge_pressure_Pa", &MuscleOutputs::gauge_pressure_Pa)
-      .def_readonly("temperature_K", &MuscleOutputs::temperature_K)
-      .def_readonly("temperature_rate_K_per_s", &MuscleOutputs::temperature_rate_K_per_s)
-      .def_readonly("heat_loss_rate_W", &MuscleOutputs::heat_loss_rate_W);
+      .def_readonly("heat_loss_rate_W", &MuscleOutputs::heat_loss_rate_W)
+      .def_readonly("rate", &MuscleOutputs::rate, "d(state)/dt");
 
   py::class_<MuscleModel>(m, "MuscleModel", "A muscle in a test: parameters and the sealed gas mass. Immutable.")
       .def(py::init<const MuscleParams&, const InitialState&>(), py::arg("params"), py::arg("initial"))
-      .def("evaluate", &MuscleModel::evaluate, py::arg("length_m"), py::arg("velocity_m_per_s"), py::arg("temperature_K"),
-           "Outputs and dT/dt at a length [m], elongation rate [m/s] and gas temperature [K].")
+      .def("evaluate", &MuscleModel::evaluate, py::arg("length_m"), py::arg("velocity_m_per_s"), py::arg("state"),
+           "Outputs and d(state)/dt at a length [m], elongation rate [m/s] and state.")
+      .def("initial", &MuscleModel::initial, "the state at zero elongation")
+      .def_property_readonly("dead_volume", &MuscleModel::dead_volume, "dead gas volume [m^3]")
       .def_property_readonly("gas_mass", &MuscleModel::gas_mass, "sealed air mass [kg]")
       .def_property_readonly("initial_gas_volume", &MuscleModel::initial_gas_volume, "gas volume at zero elongation [m^3]")
       .def_property_readonly("initial_temperature", &MuscleModel::initial_temperature, "gas temperature at the start [K]")
@@ -93,6 +123,7 @@ void bind_sim(py::module_& m) {
       .def_readonly("nonlinear_iterations", &SolverStatistics::nonlinear_iterations)
       .def_readonly("nonlinear_convergence_failures", &SolverStatistics::nonlinear_convergence_failures)
       .def_readonly("restarts", &SolverStatistics::restarts)
+      .def_readonly("output_evaluations", &SolverStatistics::output_evaluations)
       .def("__repr__", [](const SolverStatistics& s) {
         return "SolverStatistics(steps=" + std::to_string(s.steps) + ", rhs_evaluations=" + std::to_string(s.rhs_evaluations) +
                ", jacobian_evaluations=" + std::to_string(s.jacobian_evaluations) +
@@ -111,7 +142,8 @@ void bind_sim(py::module_& m) {
   PAMKIT_RESULT_COLUMN(friction_force_N, "friction part of the force [N]");
   PAMKIT_RESULT_COLUMN(pressure_gauge_Pa, "gas pressure above ambient [Pa]");
   PAMKIT_RESULT_COLUMN(temperature_K, "gas temperature [K]");
-  PAMKIT_RESULT_COLUMN(gas_volume_m3, "gas volume [m^3]");
+  PAMKIT_RESULT_COLUMN(gas_volume_m3, "gas volume, dead volume included [m^3]");
+  PAMKIT_RESULT_COLUMN(gas_mass_kg, "mass of air inside [kg]");
   PAMKIT_RESULT_COLUMN(braid_angle_rad, "braid angle of the cylinder [rad]");
   PAMKIT_RESULT_COLUMN(diameter_m, "braid diameter [m]");
   PAMKIT_RESULT_COLUMN(work_J, "work done on the muscle since the start [J]");

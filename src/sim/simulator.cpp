@@ -1,5 +1,5 @@
 // CVODES glue for pamkit::Simulator: RAII handles for the SUNDIALS objects, every return flag
-// checked by name, the trajectory integrated segment by segment.
+// checked by name, the trajectory integrated piece by piece between its corners.
 
 #include "pamkit/sim/simulator.hpp"
 
@@ -16,8 +16,6 @@
 
 namespace pamkit {
 namespace {
-
-constexpr int kQuadratures = 3;  // work, heat lost, friction dissipated
 
 void check_flag(int flag, const char* call, double time) {
   if (flag < 0) {
@@ -43,6 +41,7 @@ struct LinearSolverDeleter {
 struct CvodeDeleter {
   void operator()(void* mem) const { CVodeFree(&mem); }
 };
+using Vector = std::unique_ptr<_generic_N_Vector, VectorDeleter>;
 
 std::unique_ptr<SUNContext, ContextDeleter> make_context() {
   auto context = std::make_unique<SUNContext>();
@@ -50,45 +49,35 @@ std::unique_ptr<SUNContext, ContextDeleter> make_context() {
   return std::unique_ptr<SUNContext, ContextDeleter>(context.release());
 }
 
+State to_state(N_Vector v) {
+  State s;
+  std::copy(NV_DATA_S(v), NV_DATA_S(v) + State::size, s.values.begin());
+  return s;
+}
+
 /// Per-run mutable workspace handed to CVODES as user data.
 struct RunWorkspace {
   const MuscleModel& model;
   const ElongationTrajectory& trajectory;
-  std::size_t segment = 0;
-  std::exception_ptr error;  // an exception thrown inside a callback, rethrown after CVode returns
+  std::size_t piece_start;   // first sample of the straight piece being integrated
+  std::exception_ptr error;  // an exception thrown inside the callback, rethrown after CVode returns
 
+  double velocity() const { return trajectory.segment_velocity(piece_start); }
   double length(double t) const {
-    const auto& time = trajectory.time();
-    const auto& elongation = trajectory.elongation();
-    return model.initial_state().length_m + elongation[segment] + velocity() * (t - time[segment]);
+    return model.initial_state().length_m + trajectory.elongation()[piece_start] +
+           velocity() * (t - trajectory.time()[piece_start]);
   }
-  double velocity() const { return trajectory.segment_velocity(segment); }
 };
 
-int temperature_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
+int muscle_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto& w = *static_cast<RunWorkspace*>(user_data);
   try {
-    const MuscleOutputs out = w.model.evaluate(w.length(t), w.velocity(), NV_Ith_S(y, 0));
-    NV_Ith_S(ydot, 0) = out.temperature_rate_K_per_s;
+    const MuscleOutputs out = w.model.evaluate(w.length(t), w.velocity(), to_state(y));
+    std::copy(out.rate.values.begin(), out.rate.values.end(), NV_DATA_S(ydot));
     return 0;
   } catch (...) {
     w.error = std::current_exception();
-    return -1;
-  }
-}
-
-int energy_rhs(sunrealtype t, N_Vector y, N_Vector qdot, void* user_data) {
-  auto& w = *static_cast<RunWorkspace*>(user_data);
-  try {
-    const double v = w.velocity();
-    const MuscleOutputs out = w.model.evaluate(w.length(t), v, NV_Ith_S(y, 0));
-    NV_Ith_S(qdot, 0) = out.forces.total * v;
-    NV_Ith_S(qdot, 1) = out.heat_loss_rate_W;
-    NV_Ith_S(qdot, 2) = out.forces.friction * v;
-    return 0;
-  } catch (...) {
-    w.error = std::current_exception();
-    return -1;
+    return -1;  // unrecoverable: CVode returns CV_RHSFUNC_FAIL and run() rethrows
   }
 }
 
@@ -99,22 +88,24 @@ bool is_corner(double previous_velocity, double velocity) {
 }
 
 void record(SimulationResult& r, const MuscleModel& model, double t, double elongation, double velocity,
-            double temperature, N_Vector q) {
+            const State& y) {
   const double length = model.initial_state().length_m + elongation;
-  const MuscleOutputs out = model.evaluate(length, velocity, temperature);
+  const MuscleOutputs out = model.evaluate(length, velocity, y);
+  ++r.statistics.output_evaluations;
   r.time_s.push_back(t);
   r.elongation_m.push_back(elongation);
   r.length_m.push_back(length);
   r.force_N.push_back(out.forces.total);
   r.friction_force_N.push_back(out.forces.friction);
   r.pressure_gauge_Pa.push_back(out.gauge_pressure_Pa);
-  r.temperature_K.push_back(temperature);
-  r.gas_volume_m3.push_back(out.shape.gas_volume);
+  r.temperature_K.push_back(y[State::temperature_K]);
+  r.gas_volume_m3.push_back(out.gas_volume_m3);
+  r.gas_mass_kg.push_back(y[State::gas_mass_kg]);
   r.braid_angle_rad.push_back(out.shape.braid_angle);
   r.diameter_m.push_back(out.shape.diameter);
-  r.work_J.push_back(NV_Ith_S(q, 0));
-  r.heat_lost_J.push_back(NV_Ith_S(q, 1));
-  r.friction_dissipated_J.push_back(NV_Ith_S(q, 2));
+  r.work_J.push_back(y[State::work_J]);
+  r.heat_lost_J.push_back(y[State::heat_lost_J]);
+  r.friction_dissipated_J.push_back(y[State::friction_dissipated_J]);
 }
 
 void add_statistics(void* mem, SolverStatistics& s) {
@@ -157,36 +148,40 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
 
   auto context = make_context();
   SUNContext ctx = *context;
-  std::unique_ptr<_generic_N_Vector, VectorDeleter> y(N_VNew_Serial(MuscleModel::kStateSize, ctx));
-  std::unique_ptr<_generic_N_Vector, VectorDeleter> q(N_VNew_Serial(kQuadratures, ctx));
-  if (!y || !q) throw SolverError("N_VNew_Serial failed");
-  NV_Ith_S(y.get(), 0) = model.initial_temperature();
-  N_VConst(0.0, q.get());
+  Vector y(N_VNew_Serial(State::size, ctx));
+  Vector tolerances(N_VNew_Serial(State::size, ctx));
+  if (!y || !tolerances) throw SolverError("N_VNew_Serial failed");
+  const State initial = model.initial();
+  std::copy(initial.values.begin(), initial.values.end(), NV_DATA_S(y.get()));
+  // Absolute tolerances by each state's scale: the temperature's, relative to the ambient
+  // temperature, carried over to the gas mass and to stresses of order 1 MPa.
+  const double relative = config_.absolute_tolerance_K / model.initial_temperature();
+  NV_Ith_S(tolerances.get(), State::temperature_K) = config_.absolute_tolerance_K;
+  NV_Ith_S(tolerances.get(), State::gas_mass_kg) = relative * model.gas_mass();
+  NV_Ith_S(tolerances.get(), State::viscous_stress_l_Pa) = relative * 1e6;
+  NV_Ith_S(tolerances.get(), State::viscous_stress_h_Pa) = relative * 1e6;
+  for (int i : {State::work_J, State::heat_lost_J, State::friction_dissipated_J}) {
+    NV_Ith_S(tolerances.get(), i) = config_.absolute_tolerance_J;
+  }
 
   std::unique_ptr<void, CvodeDeleter> mem(CVodeCreate(CV_BDF, ctx));
   if (!mem) throw SolverError("CVodeCreate failed");
   void* cv = mem.get();
   RunWorkspace workspace{model, trajectory, 0, nullptr};
   const double t0 = time.front();
-  check_flag(CVodeInit(cv, temperature_rhs, t0, y.get()), "CVodeInit", t0);
+  check_flag(CVodeInit(cv, muscle_rhs, t0, y.get()), "CVodeInit", t0);
   check_flag(CVodeSetUserData(cv, &workspace), "CVodeSetUserData", t0);
-  check_flag(CVodeSStolerances(cv, config_.relative_tolerance, config_.absolute_tolerance_K), "CVodeSStolerances", t0);
+  check_flag(CVodeSVtolerances(cv, config_.relative_tolerance, tolerances.get()), "CVodeSVtolerances", t0);
   check_flag(CVodeSetMaxNumSteps(cv, static_cast<long>(config_.max_steps)), "CVodeSetMaxNumSteps", t0);
   if (config_.max_step_s > 0.0) check_flag(CVodeSetMaxStep(cv, config_.max_step_s), "CVodeSetMaxStep", t0);
-  std::unique_ptr<_generic_SUNMatrix, MatrixDeleter> jacobian(
-      SUNDenseMatrix(MuscleModel::kStateSize, MuscleModel::kStateSize, ctx));
-  std::unique_ptr<_generic_SUNLinearSolver, LinearSolverDeleter> solver(
-      SUNLinSol_Dense(y.get(), jacobian.get(), ctx));
+  std::unique_ptr<_generic_SUNMatrix, MatrixDeleter> jacobian(SUNDenseMatrix(State::size, State::size, ctx));
+  std::unique_ptr<_generic_SUNLinearSolver, LinearSolverDeleter> solver(SUNLinSol_Dense(y.get(), jacobian.get(), ctx));
   if (!jacobian || !solver) throw SolverError("SUNDenseMatrix or SUNLinSol_Dense failed");
   check_flag(CVodeSetLinearSolver(cv, solver.get(), jacobian.get()), "CVodeSetLinearSolver", t0);
-  check_flag(CVodeQuadInit(cv, energy_rhs, q.get()), "CVodeQuadInit", t0);
-  check_flag(CVodeQuadSStolerances(cv, config_.relative_tolerance, config_.absolute_tolerance_J),
-             "CVodeQuadSStolerances", t0);
-  check_flag(CVodeSetQuadErrCon(cv, SUNTRUE), "CVodeSetQuadErrCon", t0);
 
   SimulationResult result;
   result.time_s.reserve(trajectory.size());
-  record(result, model, t0, elongation.front(), trajectory.segment_velocity(0), NV_Ith_S(y.get(), 0), q.get());
+  record(result, model, t0, elongation.front(), trajectory.segment_velocity(0), initial);
 
   // Integrate piece by piece, a piece being a run of samples with one elongation rate. The
   // rate jumps at a corner, so CVODES stops exactly there and restarts its BDF history;
@@ -199,11 +194,10 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
            !is_corner(trajectory.segment_velocity(k), trajectory.segment_velocity(end))) {
       ++end;
     }
-    workspace.segment = k;
+    workspace.piece_start = k;
     if (k > 0) {
       add_statistics(cv, result.statistics);
       check_flag(CVodeReInit(cv, t, y.get()), "CVodeReInit", t);
-      check_flag(CVodeQuadReInit(cv, q.get()), "CVodeQuadReInit", t);
       ++result.statistics.restarts;
     }
     check_flag(CVodeSetStopTime(cv, time[end]), "CVodeSetStopTime", t);
@@ -212,8 +206,7 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
       const int flag = CVode(cv, time[sample], y.get(), &t, CV_NORMAL);
       if (workspace.error) std::rethrow_exception(workspace.error);
       check_flag(flag, "CVode", t);
-      check_flag(CVodeGetQuad(cv, &t, q.get()), "CVodeGetQuad", t);
-      record(result, model, time[sample], elongation[sample], velocity, NV_Ith_S(y.get(), 0), q.get());
+      record(result, model, time[sample], elongation[sample], velocity, to_state(y.get()));
     }
     k = end;
   }

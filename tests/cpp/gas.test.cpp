@@ -105,7 +105,7 @@ TEST_CASE("Gas: the sealed mass follows the ideal gas law at the start", "[gas][
   CHECK_REL(model.gas_mass(), p0 * model.initial_gas_volume() / (g.gas_constant_J_per_kgK * g.ambient_temperature_K),
             1e-15);
   CHECK_REL(model.initial_gas_volume(), model.geometry().shape(kInitial.length_m).gas_volume, 0.0);
-  const MuscleOutputs out = model.evaluate(kInitial.length_m, 0.0, model.initial_temperature());
+  const MuscleOutputs out = model.evaluate(kInitial.length_m, 0.0, model.initial());
   CHECK_REL(out.gauge_pressure_Pa, kInitial.gauge_pressure_Pa, 1e-12);
   // cv = R / (gamma - 1) = 287 / 0.4 J/(kg K) for air (table C.4's R).
   CHECK_REL(g.specific_heat_cv(), 717.5, 1e-15);

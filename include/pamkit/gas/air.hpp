@@ -27,7 +27,7 @@ struct GasParams {
   double atmospheric_pressure_Pa = 101e3;       ///< absolute ambient pressure [Pa] (Patm, table C.4)
   double ambient_temperature_K = 296.0;         ///< ambient, and initial gas, temperature [K] (Tatm, table C.4)
   double polytropic_index = 1.0;                ///< n of eq. 3.1.14 [1]; 1.0 fitted the thesis's tests best
-  double heat_transfer_time_constant_s = 10.0;  ///< tau of the gas-wall exchange [s] (heat_transfer only)
+  double heat_transfer_time_constant_s = 10.0;  ///< tau of the gas-wall exchange [s] (heat_transfer only); 0: instantaneous (isothermal)
   GasProcess process = GasProcess::polytropic;  ///< which law governs the gas temperature
 
   template <class Visitor>
@@ -37,7 +37,7 @@ struct GasParams {
     visit("atmospheric_pressure_Pa", &GasParams::atmospheric_pressure_Pa, FieldInfo{"Pa", 1e3, 1e6, "absolute ambient pressure"});
     visit("ambient_temperature_K", &GasParams::ambient_temperature_K, FieldInfo{"K", 150.0, 500.0, "ambient and initial gas temperature"});
     visit("polytropic_index", &GasParams::polytropic_index, FieldInfo{"1", 1.0, 1.7, "polytropic exponent n"});
-    visit("heat_transfer_time_constant_s", &GasParams::heat_transfer_time_constant_s, FieldInfo{"s", 1e-6, 1e9, "gas-wall heat exchange time constant"});
+    visit("heat_transfer_time_constant_s", &GasParams::heat_transfer_time_constant_s, FieldInfo{"s", 0.0, 1e9, "gas-wall heat exchange time constant (0: isothermal)"});
   }
   void validate() const { validate_fields(*this); }
 

@@ -32,11 +32,20 @@ struct BladderLaw {
 
   double longitudinal_stress(double strain) const { return evaluate(longitudinal_Pa, strain); }
   double hoop_stress(double strain) const { return evaluate(hoop_Pa, strain); }
+  /// Tangent modulus d sigma_l / d eps_l [Pa].
+  double longitudinal_modulus(double strain) const { return slope(longitudinal_Pa, strain); }
+  /// Tangent modulus d sigma_h / d eps_h [Pa].
+  double hoop_modulus(double strain) const { return slope(hoop_Pa, strain); }
 
  private:
   static double evaluate(const std::array<double, 7>& c, double x) {
     double value = 0.0;
     for (auto k = c.size(); k-- > 0;) value = value * x + c[k];
+    return value;
+  }
+  static double slope(const std::array<double, 7>& c, double x) {
+    double value = 0.0;
+    for (auto k = c.size(); k-- > 1;) value = value * x + static_cast<double>(k) * c[k];
     return value;
   }
 };

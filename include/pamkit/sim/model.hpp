@@ -1,8 +1,9 @@
 #pragma once
 /// \file
-/// The muscle as a dynamic system: parameters, the gas state, and the right-hand side of its
-/// ODE. The model only computes derivatives and outputs; `Simulator` integrates it.
+/// The muscle as a dynamic system: parameters, its state, and the right-hand side of its ODE.
+/// The model only computes derivatives and outputs; `Simulator` integrates it.
 
+#include <array>
 #include <cmath>
 
 #include "pamkit/gas/air.hpp"
@@ -10,18 +11,43 @@
 
 namespace pamkit {
 
+/// Physics beyond the thesis's model, all off (zero) by default. The effect catalog
+/// (include/pamkit/effects) switches them on; with every field at zero the model is the
+/// thesis's, operation for operation.
+struct ModelExtensions {
+  static constexpr const char* kName = "ModelExtensions";
+
+  double dead_volume_fraction = 0.0;          ///< gas volume outside the muscle (hose, transducer) over the initial gas volume [1]
+  double leak_rate_per_s = 0.0;               ///< 1/tau of the gauge pressure's decay through an orifice at fixed volume [1/s]
+  double viscoelastic_strength = 0.0;         ///< modulus of the bladder's Maxwell branch over the law's tangent modulus [1]
+  double viscoelastic_time_constant_s = 1.0;  ///< relaxation time of that branch [s]
+  double fiber_compliance_per_N = 0.0;        ///< 1 / axial stiffness EA of one fiber [1/N]; 0: inextensible
+
+  template <class Visitor>
+  static void for_each_field(Visitor&& visit) {
+    visit("dead_volume_fraction", &ModelExtensions::dead_volume_fraction, FieldInfo{"1", 0.0, 10.0, "dead gas volume / initial gas volume"});
+    visit("leak_rate_per_s", &ModelExtensions::leak_rate_per_s, FieldInfo{"1/s", 0.0, 1e3, "leak rate (1 / time constant)"});
+    visit("viscoelastic_strength", &ModelExtensions::viscoelastic_strength, FieldInfo{"1", 0.0, 100.0, "bladder Maxwell-branch modulus ratio"});
+    visit("viscoelastic_time_constant_s", &ModelExtensions::viscoelastic_time_constant_s, FieldInfo{"s", 1e-4, 1e6, "bladder relaxation time"});
+    visit("fiber_compliance_per_N", &ModelExtensions::fiber_compliance_per_N, FieldInfo{"1/N", 0.0, 1.0, "1 / fiber axial stiffness"});
+  }
+  void validate() const { validate_fields(*this); }
+};
+
 /// Everything that defines a muscle, constant during a simulation.
 struct MuscleParams {
   MuscleBuild build;                          ///< the build (deflated dimensions, braid)
   BladderLaw bladder = BladderLaw::thesis();  ///< bladder stress law (eqs. 3.1.12-3.1.13)
   FrictionParams friction;                    ///< friction (eqs. 3.1.19-3.1.24)
   GasParams gas;                              ///< air, ambient, gas process
+  ModelExtensions extensions;                 ///< physics beyond the thesis, off by default
 
   /// \throws InvalidParameter naming the first bad field.
   void validate() const {
     build.validate();
     friction.validate();
     gas.validate();
+    extensions.validate();
   }
 };
 
@@ -40,85 +66,81 @@ struct InitialState {
   void validate() const { validate_fields(*this); }
 };
 
+/// The ODE state. The energy integrals ride along as states so that one right-hand side
+/// evaluation serves them and the physics alike.
+struct State {
+  enum Index : int {
+    temperature_K,             ///< gas temperature
+    gas_mass_kg,               ///< mass of air inside (falls through a leak)
+    viscous_stress_l_Pa,       ///< bladder Maxwell-branch stress, longitudinal
+    viscous_stress_h_Pa,       ///< bladder Maxwell-branch stress, hoop
+    work_J,                    ///< work done on the muscle since the start, integral of F dL
+    heat_lost_J,               ///< heat from the gas to the wall since the start
+    friction_dissipated_J,     ///< friction work since the start
+    size
+  };
+  std::array<double, size> values{};
+
+  double& operator[](int i) { return values[static_cast<std::size_t>(i)]; }
+  double operator[](int i) const { return values[static_cast<std::size_t>(i)]; }
+};
+
 /// What the model says at one instant.
 struct MuscleOutputs {
-  MuscleShape shape;              ///< geometry at this length
-  MuscleForces forces;            ///< force and its parts [N]
+  MuscleShape shape;              ///< geometry of the braid
+  MuscleForces forces;            ///< force and its parts [N] (viscous bladder stress in `bladder`)
+  double braid_length_m;          ///< braid length: the muscle length less the fibers' stretch [m]
+  double braid_velocity_m_per_s;  ///< its rate [m/s]
+  double gas_volume_m3;           ///< gas volume including any dead volume [m^3]
   double absolute_pressure_Pa;    ///< gas pressure, absolute
   double gauge_pressure_Pa;       ///< gas pressure above ambient
-  double temperature_K;           ///< gas temperature
-  double temperature_rate_K_per_s;///< dT/dt
   double heat_loss_rate_W;        ///< heat flowing from the gas to the wall
+  State rate;                     ///< d(state)/dt
 };
 
 /// A muscle in a test: parameters plus the sealed gas mass. Immutable, so one model may be
 /// simulated from many threads at once.
 class MuscleModel {
  public:
-  /// Number of ODE states: the gas temperature [K].
-  static constexpr int kStateSize = 1;
-
   /// \throws InvalidParameter for bad parameters, InvalidInput if the initial length is
   ///         outside what the braid allows.
   MuscleModel(const MuscleParams& params, const InitialState& initial);
 
-  /// Outputs and derivative at muscle length `length_m`, elongation rate `velocity_m_per_s`
-  /// and gas temperature `temperature_K`.
-  MuscleOutputs evaluate(double length_m, double velocity_m_per_s, double temperature_K) const;
+  /// Outputs and state derivative at muscle length `length_m` and elongation rate
+  /// `velocity_m_per_s` (the crosshead's), in state `state`.
+  MuscleOutputs evaluate(double length_m, double velocity_m_per_s, const State& state) const;
+
+  /// The state at zero elongation: ambient temperature, the sealed mass, no viscous stress.
+  State initial() const;
 
   /// Gas temperature at the start [K]: the ambient temperature.
   double initial_temperature() const { return params_.gas.ambient_temperature_K; }
-  /// Sealed mass of air [kg], from the initial state by the ideal gas law (eq. 3.1.17).
+  /// Sealed mass of air at the start [kg], from the initial state by the ideal gas law (eq. 3.1.17).
   double gas_mass() const { return gas_mass_; }
-  /// Gas volume at the initial length [m^3].
+  /// Gas volume at the initial length [m^3], dead volume included.
   double initial_gas_volume() const { return initial_gas_volume_; }
+  /// Dead volume [m^3].
+  double dead_volume() const { return dead_volume_; }
 
   const MuscleParams& params() const { return params_; }
   const InitialState& initial_state() const { return initial_; }
   const BraidGeometry& geometry() const { return geometry_; }
 
  private:
+  /// Elastic force [N] (gas, bladder and its viscous branch; no friction) at braid length L_b.
+  double elastic_force(double braid_length, const State& state) const;
+  /// Braid length whose stretched fibers span the muscle length `length_m`.
+  double braid_length(double length_m, const State& state) const;
+
   MuscleParams params_;
   InitialState initial_;
   BraidGeometry geometry_;
+  double dead_volume_;
   double gas_mass_;
   double initial_gas_volume_;
+  double rubber_volume_;
 };
 
-inline MuscleModel::MuscleModel(const MuscleParams& params, const InitialState& initial)
-    : params_(params), initial_(initial), geometry_((params.validate(), params.build)) {
-  initial_.validate();
-  const MuscleShape s = geometry_.shape(initial_.length_m);
-  initial_gas_volume_ = s.gas_volume;
-  const GasParams& g = params_.gas;
-  gas_mass_ = (g.atmospheric_pressure_Pa + initial_.gauge_pressure_Pa) * s.gas_volume /
-              (g.gas_constant_J_per_kgK * g.ambient_temperature_K);
-}
-
-inline MuscleOutputs MuscleModel::evaluate(double length_m, double velocity_m_per_s, double temperature_K) const {
-  const GasParams& g = params_.gas;
-  MuscleOutputs out{};
-  out.shape = geometry_.shape(length_m);
-  const double volume = out.shape.gas_volume;
-  const double volume_rate = out.shape.d_gas_volume * velocity_m_per_s;
-  out.temperature_K = temperature_K;
-  out.absolute_pressure_Pa = gas_mass_ * g.gas_constant_J_per_kgK * temperature_K / volume;  // eq. 3.1.17
-  out.gauge_pressure_Pa = out.absolute_pressure_Pa - g.atmospheric_pressure_Pa;
-  const double cv = g.specific_heat_cv();
-  if (g.process == GasProcess::polytropic) {
-    // d/dt of T V^(n-1) = const (eq. 3.1.18).
-    out.temperature_rate_K_per_s = -(g.polytropic_index - 1.0) * temperature_K * volume_rate / volume;
-    // First law, m cv dT = dQ - p dV, solved for the heat the process must exchange.
-    out.heat_loss_rate_W = -(gas_mass_ * cv * out.temperature_rate_K_per_s + out.absolute_pressure_Pa * volume_rate);
-  } else {
-    const double tau = g.heat_transfer_time_constant_s;
-    out.heat_loss_rate_W = gas_mass_ * cv * (temperature_K - g.ambient_temperature_K) / tau;
-    out.temperature_rate_K_per_s =
-        -(out.absolute_pressure_Pa * volume_rate + out.heat_loss_rate_W) / (gas_mass_ * cv);
-  }
-  out.forces = muscle_forces(geometry_, out.shape, params_.bladder, params_.friction, out.absolute_pressure_Pa,
-                             g.atmospheric_pressure_Pa, velocity_m_per_s);
-  return out;
-}
-
 }  // namespace pamkit
+
+#include "pamkit/sim/model.hxx"

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Integrates a MuscleModel along a prescribed elongation with SUNDIALS CVODES (BDF, dense
-/// Newton), and accumulates the energy flows as CVODES quadratures.
+/// Newton); the energy flows are integrated with the state.
 
 #include <string>
 #include <vector>
@@ -17,8 +17,9 @@ struct SimulatorConfig {
   static constexpr const char* kName = "SimulatorConfig";
 
   double relative_tolerance = 1e-8;    ///< CVODE relative tolerance [1]
-  double absolute_tolerance_K = 1e-8;  ///< CVODE absolute tolerance on the gas temperature [K]
-  double absolute_tolerance_J = 1e-8;  ///< absolute tolerance on the energy quadratures [J]
+  double absolute_tolerance_K = 1e-8;  ///< CVODE absolute tolerance on the gas temperature [K]; gas mass and
+                                       ///< viscous stresses get the same tolerance relative to their scale
+  double absolute_tolerance_J = 1e-8;  ///< absolute tolerance on the energy integrals [J]
   double max_steps = 50000;            ///< most internal steps between two samples [1]
   double max_step_s = 0.0;             ///< largest internal step [s]; 0: no limit
 
@@ -38,6 +39,7 @@ struct SimulatorConfig {
 struct SolverStatistics {
   long steps = 0;                           ///< internal time steps
   long rhs_evaluations = 0;                 ///< right-hand-side evaluations, Jacobian ones included
+  long output_evaluations = 0;              ///< model evaluations to report the samples
   long jacobian_evaluations = 0;            ///< dense Jacobian evaluations
   long linear_solver_setups = 0;            ///< Newton matrix factorisations
   long error_test_failures = 0;             ///< steps rejected by the local error test
@@ -55,7 +57,8 @@ struct SimulationResult {
   std::vector<double> friction_force_N;       ///< friction part of force_N
   std::vector<double> pressure_gauge_Pa;      ///< gas pressure above ambient
   std::vector<double> temperature_K;          ///< gas temperature
-  std::vector<double> gas_volume_m3;          ///< gas volume (eq. 3.1.2)
+  std::vector<double> gas_volume_m3;          ///< gas volume (eq. 3.1.2, plus any dead volume)
+  std::vector<double> gas_mass_kg;            ///< mass of air inside
   std::vector<double> braid_angle_rad;        ///< braid angle of the cylinder
   std::vector<double> diameter_m;             ///< braid diameter
   std::vector<double> work_J;                 ///< work done on the muscle since t0, integral of F dL

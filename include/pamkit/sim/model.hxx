@@ -1,0 +1,135 @@
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include <boost/math/tools/roots.hpp>
+
+namespace pamkit {
+
+inline MuscleModel::MuscleModel(const MuscleParams& params, const InitialState& initial)
+    : params_(params), initial_(initial), geometry_((params.validate(), params.build)) {
+  initial_.validate();
+  const MuscleShape s = geometry_.shape(initial_.length_m);
+  dead_volume_ = params_.extensions.dead_volume_fraction * s.gas_volume;
+  initial_gas_volume_ = s.gas_volume + dead_volume_;
+  const GasParams& g = params_.gas;
+  gas_mass_ = (g.atmospheric_pressure_Pa + initial_.gauge_pressure_Pa) * initial_gas_volume_ /
+              (g.gas_constant_J_per_kgK * g.ambient_temperature_K);
+  rubber_volume_ = bladder_reference_volume(geometry_);
+}
+
+inline State MuscleModel::initial() const {
+  State y;
+  y[State::temperature_K] = initial_temperature();
+  y[State::gas_mass_kg] = gas_mass_;
+  return y;
+}
+
+inline double MuscleModel::elastic_force(double braid_length, const State& y) const {
+  const GasParams& g = params_.gas;
+  const MuscleShape shape = geometry_.shape(braid_length);
+  const double pressure = y[State::gas_mass_kg] * g.gas_constant_J_per_kgK * y[State::temperature_K] /
+                          (shape.gas_volume + dead_volume_);
+  const FrictionParams no_friction{0.0, 0.0, 0.0, 0.0, 0.0};
+  const MuscleForces f =
+      muscle_forces(geometry_, shape, params_.bladder, no_friction, pressure, g.atmospheric_pressure_Pa, 0.0);
+  const BladderState b = bladder_state(geometry_, shape, params_.bladder);
+  return f.total + rubber_volume_ * (y[State::viscous_stress_l_Pa] * b.d_longitudinal_strain +
+                                     y[State::viscous_stress_h_Pa] * b.d_hoop_strain);
+}
+
+inline double MuscleModel::braid_length(double length_m, const State& y) const {
+  // The fibers stretch by T Lym / EA; their tension sums to the force, so the braid is shorter
+  // than the muscle by F Lym / (N EA): a spring in series with the braid.
+  const double per_newton = params_.extensions.fiber_compliance_per_N * geometry_.fiber_length() /
+                            geometry_.build().fiber_count;
+  auto mismatch = [&](double braid) { return braid + per_newton * elastic_force(braid, y) - length_m; };
+  const double stretch = per_newton * elastic_force(length_m, y);
+  if (stretch == 0.0) return length_m;
+  // The force rises with the braid length, so the root lies between L - stretch(L) and L.
+  const double margin = 1e-12;
+  const double lower = std::max(std::min(length_m, length_m - stretch), geometry_.min_length() * (1.0 + margin));
+  const double upper = std::min(std::max(length_m, length_m - stretch), geometry_.max_length() * (1.0 - margin));
+  if (mismatch(lower) > 0.0 || mismatch(upper) < 0.0) {
+    throw InvalidInput(detail::message("fiber compliance: no braid length between ", lower, " and ", upper,
+                                       " m spans the muscle length ", length_m, " m"));
+  }
+  std::uintmax_t iterations = 100;
+  const auto root = boost::math::tools::toms748_solve(mismatch, lower, upper,
+                                                      boost::math::tools::eps_tolerance<double>(48), iterations);
+  return 0.5 * (root.first + root.second);
+}
+
+inline MuscleOutputs MuscleModel::evaluate(double length_m, double velocity_m_per_s, const State& y) const {
+  const GasParams& g = params_.gas;
+  const ModelExtensions& x = params_.extensions;
+  MuscleOutputs out{};
+  out.braid_length_m = length_m;
+  out.braid_velocity_m_per_s = velocity_m_per_s;
+  if (x.fiber_compliance_per_N > 0.0) {
+    out.braid_length_m = braid_length(length_m, y);
+    // dL/dL_b = 1 + c dF/dL_b, the slope by central differences (step well above rounding).
+    const double h = 1e-7;
+    const double per_newton = x.fiber_compliance_per_N * geometry_.fiber_length() / geometry_.build().fiber_count;
+    const double slope = (elastic_force(out.braid_length_m + h, y) - elastic_force(out.braid_length_m - h, y)) / (2.0 * h);
+    out.braid_velocity_m_per_s = velocity_m_per_s / (1.0 + per_newton * slope);
+  }
+  out.shape = geometry_.shape(out.braid_length_m);
+
+  const double temperature = y[State::temperature_K];
+  const double mass = y[State::gas_mass_kg];
+  const double R = g.gas_constant_J_per_kgK;
+  const double cv = g.specific_heat_cv();
+  const double volume = out.shape.gas_volume + dead_volume_;
+  const double volume_rate = out.shape.d_gas_volume * out.braid_velocity_m_per_s;
+  out.gas_volume_m3 = volume;
+  out.absolute_pressure_Pa = mass * R * temperature / volume;  // eq. 3.1.17
+  out.gauge_pressure_Pa = out.absolute_pressure_Pa - g.atmospheric_pressure_Pa;
+
+  // A small orifice: the excess mass escapes at a fixed rate, so at fixed volume and
+  // temperature the gauge pressure decays as exp(-rate t).
+  const double mass_rate = -x.leak_rate_per_s * out.gauge_pressure_Pa * volume / (R * temperature);
+  State& rate = out.rate;
+  rate[State::gas_mass_kg] = mass_rate;
+  // Energy of the gas: m cv dT/dt = dQ_in/dt - p dV/dt + R T dm/dt (escaping gas carries its
+  // enthalpy cp T out, which costs the rest R T per unit mass).
+  const bool exchanges_instantly = g.process == GasProcess::heat_transfer && g.heat_transfer_time_constant_s == 0.0;
+  if (g.process == GasProcess::polytropic || exchanges_instantly) {
+    const double n = exchanges_instantly ? 1.0 : g.polytropic_index;
+    // T rho^(1-n) = const (eq. 3.1.18 for the gas that stays inside).
+    rate[State::temperature_K] = -(n - 1.0) * temperature * (volume_rate / volume - mass_rate / mass);
+    out.heat_loss_rate_W = -(mass * cv * rate[State::temperature_K] + out.absolute_pressure_Pa * volume_rate -
+                             R * temperature * mass_rate);
+  } else {
+    out.heat_loss_rate_W = mass * cv * (temperature - g.ambient_temperature_K) / g.heat_transfer_time_constant_s;
+    rate[State::temperature_K] =
+        (-out.absolute_pressure_Pa * volume_rate - out.heat_loss_rate_W + R * temperature * mass_rate) / (mass * cv);
+  }
+
+  out.forces = muscle_forces(geometry_, out.shape, params_.bladder, params_.friction, out.absolute_pressure_Pa,
+                             g.atmospheric_pressure_Pa, out.braid_velocity_m_per_s);
+  // The bladder's Maxwell branch: its stress follows the tangent modulus times the strain rate
+  // and relaxes with its time constant; it acts through the same strains as the elastic law.
+  const BladderState b = bladder_state(geometry_, out.shape, params_.bladder);
+  const double viscous = rubber_volume_ * (y[State::viscous_stress_l_Pa] * b.d_longitudinal_strain +
+                                           y[State::viscous_stress_h_Pa] * b.d_hoop_strain);
+  out.forces.bladder += viscous;
+  out.forces.total += viscous;
+  const double relaxation = 1.0 / x.viscoelastic_time_constant_s;
+  rate[State::viscous_stress_l_Pa] =
+      x.viscoelastic_strength * params_.bladder.longitudinal_modulus(b.longitudinal_strain) * b.d_longitudinal_strain *
+          out.braid_velocity_m_per_s -
+      relaxation * y[State::viscous_stress_l_Pa];
+  rate[State::viscous_stress_h_Pa] =
+      x.viscoelastic_strength * params_.bladder.hoop_modulus(b.hoop_strain) * b.d_hoop_strain *
+          out.braid_velocity_m_per_s -
+      relaxation * y[State::viscous_stress_h_Pa];
+
+  rate[State::work_J] = out.forces.total * velocity_m_per_s;
+  rate[State::heat_lost_J] = out.heat_loss_rate_W;
+  rate[State::friction_dissipated_J] = out.forces.friction * out.braid_velocity_m_per_s;
+  return out;
+}
+
+}  // namespace pamkit
