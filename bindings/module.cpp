@@ -11,6 +11,7 @@ namespace pamkit::python {
 void bind_muscle(py::module_& m);
 void bind_gas(py::module_& m);
 void bind_sim(py::module_& m);
+void bind_effects(py::module_& m);
 }  // namespace pamkit::python
 
 PYBIND11_MODULE(_core, m) {
@@ -24,4 +25,5 @@ PYBIND11_MODULE(_core, m) {
   pamkit::python::bind_muscle(m);
   pamkit::python::bind_gas(m);
   pamkit::python::bind_sim(m);
+  pamkit::python::bind_effects(m);
 }

@@ -16,26 +16,30 @@ namespace pamkit {
 struct FieldInfo {
   const char* unit;         ///< SI unit, or "1" for a pure number
   double min;               ///< smallest allowed value (inclusive)
-  double max;               ///< largest allowed value (inclusive)
+  double max;               ///< largest allowed value (inclusive); +infinity allows infinity
   const char* description;  ///< meaning and source (table or equation of the thesis)
 };
 
 namespace detail {
 
-/// Visitor that throws InvalidParameter for the first field out of its range (or not finite).
+/// Throws InvalidParameter if `value` is NaN or outside `info`'s range.
+inline void check_range(const char* struct_name, const char* name, double value, const FieldInfo& info) {
+  if (std::isnan(value) || value < info.min || value > info.max) {
+    throw InvalidParameter(message(struct_name, ".", name, " = ", value, " ", info.unit,
+                                   " is outside the allowed range [", info.min, ", ", info.max, "] (",
+                                   info.description, ")"));
+  }
+}
+
+/// Visitor that throws InvalidParameter for the first field out of its range.
 template <class Struct>
 struct RangeChecker {
   const Struct& object;
   const char* struct_name;
 
-  template <class T>
-  void operator()(const char* name, T Struct::*member, const FieldInfo& info) const {
-    const double value = static_cast<double>(object.*member);
-    if (!std::isfinite(value) || value < info.min || value > info.max) {
-      throw InvalidParameter(message(struct_name, ".", name, " = ", value, " ", info.unit,
-                                     " is outside the allowed range [", info.min, ", ",
-                                     info.max, "] (", info.description, ")"));
-    }
+  template <class T, class... Extra>
+  void operator()(const char* name, T Struct::*member, const FieldInfo& info, const Extra&...) const {
+    check_range(struct_name, name, static_cast<double>(object.*member), info);
   }
 };
 

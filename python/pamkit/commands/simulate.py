@@ -1,4 +1,4 @@
-"""pamkit simulate EXPERIMENT.toml -o OUT.csv [--plot OUT.png]"""
+"""pamkit simulate EXPERIMENT.toml [--effect NAME[:key=value,...]]... -o OUT.csv [--plot OUT.png]"""
 
 from __future__ import annotations
 
@@ -16,16 +16,20 @@ def register(subparsers) -> None:
         "predicted force_N, pressure_kPa (gauge) and temperature_C.",
     )
     parser.add_argument("experiment", help="experiment TOML file")
+    parser.add_argument("--effect", action="append", default=[], metavar="NAME[:key=value,...]",
+                        help="extend the model with a catalog effect (repeatable); see `pamkit effects`")
     parser.add_argument("-o", "--output", required=True, help="CSV file to write")
     parser.add_argument("--plot", help="also write a PNG figure of the prediction (and of the data, if measured)")
     parser.set_defaults(run=run)
 
 
 def run(arguments: argparse.Namespace) -> int:
+    from pamkit.effects import parse_effects
     from pamkit.simulate import simulate_experiment
 
+    effects = parse_effects(arguments.effect)
     experiment = load_experiment(arguments.experiment)
-    predicted = simulate_experiment(experiment)
+    predicted = simulate_experiment(experiment, effects=effects)
     write_series(arguments.output, predicted)
     print(f"wrote {arguments.output} ({len(predicted['time_s'])} samples: {', '.join(predicted)})")
     if arguments.plot:
@@ -33,6 +37,8 @@ def run(arguments: argparse.Namespace) -> int:
 
         measured = experiment.columns if experiment.measured() else None
         title = experiment.description or Path(arguments.experiment).stem
+        if effects:
+            title += "\nwith " + ", ".join(repr(effect) for effect in effects)
         plot_simulation(arguments.plot, predicted, measured, title=title)
         print(f"wrote {arguments.plot}")
     return 0

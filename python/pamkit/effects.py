@@ -1,0 +1,47 @@
+"""The effect catalog from Python: parse ``--effect NAME:key=value`` specs, list effects, add
+your own.
+
+Built-in effects live in C++ (include/pamkit/effects/catalog.hpp). A Python effect derives
+from :class:`pamkit.Effect` and is added to a catalog with ``catalog.add(name, factory)``::
+
+    class Creep(pamkit.Effect):
+        def name(self): return "creep"
+        ...
+    catalog = pamkit.effects.catalog()
+    catalog.add("creep", Creep)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from pamkit._core import Effect, EffectCatalog
+
+
+def catalog() -> EffectCatalog:
+    """A new catalog holding the nine built-in effects."""
+    return EffectCatalog.builtin()
+
+
+def parse_effects(specs: Iterable[str], effect_catalog: EffectCatalog | None = None) -> list[Effect]:
+    """Configured effects from specs like ``"heat_transfer:time_constant_s=2"``.
+
+    Raises:
+        ValueError: naming the unknown effect, key or bad value.
+    """
+    effect_catalog = effect_catalog if effect_catalog is not None else catalog()
+    return [effect_catalog.parse(spec) for spec in specs]
+
+
+def describe(effect_catalog: EffectCatalog | None = None) -> str:
+    """A table of every effect: name, parameters (unit, realistic range), what gives it away."""
+    effect_catalog = effect_catalog if effect_catalog is not None else catalog()
+    lines = []
+    for name in effect_catalog.names():
+        effect = effect_catalog.make(name)
+        options = ", ".join(f"{key}={value}" for key, value in effect.options().items())
+        parameters = ", ".join(
+            f"{p.name}={p.value:g} {p.unit} (realistic {p.realistic_min:g}-{p.realistic_max:g})" for p in effect.parameters()
+        )
+        lines.append(f"{name}: {', '.join(filter(None, [options, parameters]))}\n    {effect.description()}")
+    return "\n".join(lines)
