@@ -43,6 +43,10 @@ struct CvodeDeleter {
 };
 using Vector = std::unique_ptr<_generic_N_Vector, VectorDeleter>;
 
+/// pamkit reports every failed flag itself, as an exception with the flag's name; CVODES's
+/// own printing to stderr would only repeat it (and cannot be caught).
+void silent_error_handler(int, const char*, const char*, char*, void*) {}
+
 std::unique_ptr<SUNContext, ContextDeleter> make_context() {
   auto context = std::make_unique<SUNContext>();
   if (SUNContext_Create(nullptr, context.get()) != 0) throw SolverError("SUNContext_Create failed");
@@ -171,6 +175,7 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
   const double t0 = time.front();
   check_flag(CVodeInit(cv, muscle_rhs, t0, y.get()), "CVodeInit", t0);
   check_flag(CVodeSetUserData(cv, &workspace), "CVodeSetUserData", t0);
+  check_flag(CVodeSetErrHandlerFn(cv, silent_error_handler, nullptr), "CVodeSetErrHandlerFn", t0);
   check_flag(CVodeSVtolerances(cv, config_.relative_tolerance, tolerances.get()), "CVodeSVtolerances", t0);
   check_flag(CVodeSetMaxNumSteps(cv, static_cast<long>(config_.max_steps)), "CVodeSetMaxNumSteps", t0);
   if (config_.max_step_s > 0.0) check_flag(CVodeSetMaxStep(cv, config_.max_step_s), "CVodeSetMaxStep", t0);

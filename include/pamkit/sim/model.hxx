@@ -46,7 +46,7 @@ inline double MuscleModel::braid_length(double length_m, const State& y) const {
                             geometry_.build().fiber_count;
   auto mismatch = [&](double braid) { return braid + per_newton * elastic_force(braid, y) - length_m; };
   const double stretch = per_newton * elastic_force(length_m, y);
-  if (stretch == 0.0) return length_m;
+  if (std::abs(stretch) <= 1e-14 * length_m) return length_m;  // unloaded: nothing to solve
   // The force rises with the braid length, so the root lies between L - stretch(L) and L.
   const double margin = 1e-12;
   const double lower = std::max(std::min(length_m, length_m - stretch), geometry_.min_length() * (1.0 + margin));

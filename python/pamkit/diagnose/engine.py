@@ -1,0 +1,367 @@
+"""Diagnosis: calibrate the baseline on some cycles, fit every candidate effect on the same
+cycles, score all of them on the cycles held out, and name a cause only when its gain is
+significant."""
+
+from __future__ import annotations
+
+import math
+import os
+import time as clock
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from pamkit._core import Effect, EffectCatalog, Measurement
+from pamkit.diagnose import evidence
+from pamkit.diagnose.cycles import find_cycles, split_cycles
+from pamkit.diagnose.model import Coordinate, Predictor, configure, effect_space
+from pamkit.effects import catalog as builtin_catalog
+from pamkit.experiment import Experiment, ExperimentError, load_experiment
+
+# Effects that act only on what the instruments read: fitted on the calibrated baseline's
+# prediction without simulating again.
+MEASUREMENT_ONLY = {"sensor_lag", "time_skew", "sensor_offset"}
+# A cause is named only if it cuts the held-out error by at least this fraction (combined over
+# channels, each weighted by its noise) with a 95 % interval above zero, and the information
+# criterion agrees. 0.1 is well above what fitting extra parameters to noise achieves on
+# held-out cycles (a fraction of a percent), and well below what a visible effect gives.
+MIN_GAIN = 0.10
+BOOTSTRAP_SAMPLES = 1000
+SCAN_POINTS = 5
+
+
+@dataclass
+class Fit:
+    """One fitted model: which effects, their parameters, and its predictions."""
+
+    name: str
+    effects: list[Effect]
+    baseline_x: np.ndarray
+    params: dict[str, float]
+    predicted: dict[str, np.ndarray]
+    training_chi2: float
+    parameter_count: int
+    evaluations: int = 0
+    error: str | None = None
+
+
+@dataclass
+class Problem:
+    """What the fits share: data, noise scales, masks."""
+
+    experiment: Experiment
+    channels: list[str]
+    measured: dict[str, np.ndarray]
+    sigma: dict[str, float]
+    fit_mask: np.ndarray
+    held_mask: np.ndarray
+    half_cycle: np.ndarray
+    cycle: np.ndarray
+    predictor: Predictor
+
+    def chi(self, predicted: dict[str, np.ndarray], mask: np.ndarray) -> np.ndarray:
+        return np.concatenate([((predicted[c] - self.measured[c]) / self.sigma[c])[mask] for c in self.channels])
+
+
+def _unit_to_x(space: list[Coordinate], u: np.ndarray) -> np.ndarray:
+    return np.array([c.lower + ui * (c.upper - c.lower) for c, ui in zip(space, u)])
+
+
+def _x_to_unit(space: list[Coordinate], x: np.ndarray) -> np.ndarray:
+    return np.array([(xi - c.lower) / (c.upper - c.lower) for c, xi in zip(space, x)])
+
+
+def _start_unit(space: list[Coordinate]) -> np.ndarray:
+    return np.clip(_x_to_unit(space, np.array([c.start for c in space])), 0.0, 1.0)
+
+
+def _least_squares(residual, u0: np.ndarray, max_evaluations: int) -> np.ndarray:
+    result = least_squares(residual, u0, bounds=(0.0, 1.0), method="trf", diff_step=1e-4,
+                           x_scale=1.0, max_nfev=max_evaluations)
+    return result.x
+
+
+def fit_baseline(problem: Problem) -> Fit:
+    space = problem.predictor.baseline.space
+    evaluations = 0
+
+    def residual(u):
+        nonlocal evaluations
+        evaluations += 1
+        return problem.chi(problem.predictor.predict(_unit_to_x(space, u), []), problem.fit_mask)
+
+    u = _least_squares(residual, _start_unit(space), 20 * (len(space) + 1))
+    x = _unit_to_x(space, u)
+    predicted = problem.predictor.predict(x, [])
+    chi2 = float(np.sum(problem.chi(predicted, problem.fit_mask) ** 2))
+    return Fit("none", [], x, problem.predictor.baseline.values(x), predicted, chi2, len(space), evaluations)
+
+
+def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str) -> Fit:
+    """Fits one candidate: a scan of its first parameter from the calibrated baseline, then all
+    its parameters (with the baseline's, unless it acts on the measurement only)."""
+    effect = make_effect()
+    space = effect_space(effect)
+    base_space = problem.predictor.baseline.space
+    measurement_only = effect.name() in MEASUREMENT_ONLY
+    evaluations = 0
+    if measurement_only:
+        base_measurement = problem.predictor.measurement(baseline.baseline_x, [])
+
+    def predict(base_x, effect_x):
+        nonlocal evaluations
+        evaluations += 1
+        configure(effect, space, effect_x)
+        if measurement_only:
+            m = Measurement()
+            for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C"):
+                setattr(m, name, getattr(base_measurement, name))
+            m = effect.apply_to_measurement(m)
+            return {c: getattr(m, c) for c in problem.channels}
+        return problem.predictor.predict(base_x, [effect])
+
+    penalty = None
+
+    def chi_or_penalty(base_x, effect_x):
+        # Parameters that drive the model out of its range (a braid too short, a root not
+        # bracketed) are a bad fit, not a failed diagnosis.
+        nonlocal penalty
+        try:
+            return problem.chi(predict(base_x, effect_x), problem.fit_mask)
+        except (ValueError, RuntimeError):
+            if penalty is None:
+                penalty = np.full(problem.chi(baseline.predicted, problem.fit_mask).size,
+                                  10.0 * (1.0 + np.sqrt(baseline.training_chi2 / max(problem.fit_mask.sum(), 1))))
+            return penalty
+
+    try:
+        # Scan the first coordinate over its range (the others at their starts).
+        start = _start_unit(space)
+        best_u, best_chi2 = start, math.inf
+        for point in np.linspace(0.0, 1.0, SCAN_POINTS):
+            u = start.copy()
+            u[0] = point
+            chi2 = float(np.sum(chi_or_penalty(baseline.baseline_x, _unit_to_x(space, u)) ** 2))
+            if chi2 < best_chi2:
+                best_u, best_chi2 = u, chi2
+        if measurement_only:
+            def residual(u):
+                return chi_or_penalty(baseline.baseline_x, _unit_to_x(space, u))
+
+            u = _least_squares(residual, best_u, 30 * (len(space) + 1))
+            base_x, effect_x = baseline.baseline_x, _unit_to_x(space, u)
+        else:
+            n_base = len(base_space)
+            base_u = np.clip(_x_to_unit(base_space, baseline.baseline_x), 0.0, 1.0)
+
+            def residual(u):
+                return chi_or_penalty(_unit_to_x(base_space, u[:n_base]), _unit_to_x(space, u[n_base:]))
+
+            u = _least_squares(residual, np.concatenate([base_u, best_u]), 12 * (n_base + len(space) + 1))
+            base_x, effect_x = _unit_to_x(base_space, u[:n_base]), _unit_to_x(space, u[n_base:])
+        configure(effect, space, effect_x)
+        predicted = predict(base_x, effect_x)
+        chi2 = float(np.sum(problem.chi(predicted, problem.fit_mask) ** 2))
+        params = {c.name: float(c.value(v)) for c, v in zip(space, effect_x)}
+        params.update(effect.options())
+        count = len(space) + (0 if measurement_only else len(base_space))
+        fit = Fit(label, [effect], base_x, params, predicted, chi2, count, evaluations)
+        fit.params_baseline = problem.predictor.baseline.values(base_x)
+        return fit
+    except (ValueError, RuntimeError) as error:  # the effect drove the model out of its range
+        return Fit(label, [effect], baseline.baseline_x, {}, baseline.predicted, math.inf, len(space), evaluations,
+                   error=str(error))
+
+
+@dataclass
+class Score:
+    rmse: dict[str, float]
+    gain: dict[str, float]
+    gain_ci95: dict[str, list[float]]
+    combined_gain: float
+    combined_ci95: list[float]
+    delta_bic: float
+
+
+def score(problem: Problem, baseline: Fit, fit: Fit, rng: np.random.Generator) -> Score:
+    """Held-out RMSE per channel, gain against the baseline, bootstrap intervals over held-out
+    half-cycles, and the change of the Bayesian information criterion on the fitted cycles."""
+    units = np.unique(problem.half_cycle[problem.held_mask])
+    sse_base = np.zeros((len(problem.channels), units.size))
+    sse_fit = np.zeros_like(sse_base)
+    counts = np.zeros(units.size)
+    for j, unit in enumerate(units):
+        mask = problem.held_mask & (problem.half_cycle == unit)
+        counts[j] = mask.sum()
+        for i, c in enumerate(problem.channels):
+            sse_base[i, j] = np.sum((baseline.predicted[c] - problem.measured[c])[mask] ** 2)
+            sse_fit[i, j] = np.sum((fit.predicted[c] - problem.measured[c])[mask] ** 2)
+    weights = np.array([1.0 / problem.sigma[c] ** 2 for c in problem.channels])[:, None]
+    n = counts.sum()
+    rmse = {c: float(np.sqrt(sse_fit[i].sum() / n)) for i, c in enumerate(problem.channels)}
+    gain = {c: _gain(sse_fit[i].sum(), sse_base[i].sum()) for i, c in enumerate(problem.channels)}
+    combined = _gain((weights * sse_fit).sum(), (weights * sse_base).sum())
+    draws = rng.integers(0, units.size, size=(BOOTSTRAP_SAMPLES, units.size))
+    boot_fit = sse_fit[:, draws].sum(axis=2)
+    boot_base = sse_base[:, draws].sum(axis=2)
+    gain_ci = {}
+    for i, c in enumerate(problem.channels):
+        gains = 1.0 - np.sqrt(boot_fit[i] / np.maximum(boot_base[i], 1e-300))
+        gain_ci[c] = [float(np.percentile(gains, 2.5)), float(np.percentile(gains, 97.5))]
+    combined_boot = 1.0 - np.sqrt((weights * boot_fit).sum(axis=0) / np.maximum((weights * boot_base).sum(axis=0), 1e-300))
+    combined_ci = [float(np.percentile(combined_boot, 2.5)), float(np.percentile(combined_boot, 97.5))]
+    n_fit = int(problem.fit_mask.sum()) * len(problem.channels)
+    delta_bic = (fit.training_chi2 - baseline.training_chi2) + (fit.parameter_count - baseline.parameter_count) * math.log(n_fit)
+    return Score(rmse, gain, gain_ci, combined, combined_ci, float(delta_bic))
+
+
+def _gain(sse_fit: float, sse_base: float) -> float:
+    return float(1.0 - math.sqrt(sse_fit / sse_base)) if sse_base > 0 else 0.0
+
+
+def significant(s: Score) -> bool:
+    return s.combined_gain >= MIN_GAIN and s.combined_ci95[0] > 0.0 and s.delta_bic < 0.0
+
+
+def candidates(effect_catalog: EffectCatalog, problem: Problem) -> list[tuple[str, object]]:
+    """(label, factory) for every catalog effect that can act in this test; effects with a
+    channel option become one candidate per measured channel."""
+    out = []
+    for name in effect_catalog.names():
+        probe = effect_catalog.make(name)
+        acts, _ = probe.acts_in(problem.predictor.mode)
+        if not acts:
+            continue
+        if "channel" in probe.options():
+            for channel in problem.channels:
+                out.append((f"{name}:channel={channel}", lambda n=name, c=channel: effect_catalog.parse(f"{n}:channel={c}")))
+        else:
+            out.append((name, lambda n=name: effect_catalog.make(n)))
+    return out
+
+
+# Units that cannot be right: (column, lowest, highest plausible value, what it looks like instead).
+PLAUSIBLE = {
+    "elongation_m": (-0.5, 0.5, "millimetres"),
+    "force_N": (-1e4, 1e5, "the wrong unit"),
+    "pressure_kPa": (-101.0, 2000.0, "pascals or psi"),
+    "temperature_C": (-50.0, 150.0, "kelvin"),
+}
+
+
+def check_units(experiment: Experiment) -> None:
+    """Raises ExperimentError naming the file, row and column of the first value whose size
+    says its unit is wrong (elongation in mm, pressure in Pa, temperature in K)."""
+    names = list(experiment.columns)
+    for name, (low, high, looks_like) in PLAUSIBLE.items():
+        if name not in experiment.columns:
+            continue
+        values = experiment.columns[name]
+        bad = np.flatnonzero((values < low) | (values > high))
+        if bad.size:
+            row = int(bad[0])
+            raise ExperimentError(
+                f"{experiment.data_path}:{row + 2}: column {names.index(name) + 1} ({name}) = {values[row]:g} is outside "
+                f"[{low:g}, {high:g}]: is it in {looks_like}?"
+            )
+
+
+def build_problem(experiment: Experiment) -> Problem:
+    check_units(experiment)
+    channels = experiment.measured()
+    if experiment.gas == "supplied":
+        channels = [c for c in channels if c != "pressure_kPa"]  # an input there, not a prediction
+    if not channels:
+        raise ExperimentError(
+            f"{experiment.data_path}: no measured channel to compare with (needs force_N, pressure_kPa or "
+            "temperature_C besides time_s and elongation_m)"
+        )
+    elongation = experiment.elongation_m
+    cycles = find_cycles(elongation)
+    try:
+        fit_cycles, held_cycles = split_cycles(cycles)
+    except ValueError as error:
+        raise ExperimentError(f"{experiment.data_path}: column elongation_m: {error}") from None
+    cycle = cycles.index(elongation.size)
+    measured = {c: experiment.columns[c] for c in channels}
+    sigma = {c: evidence.noise_scale(measured[c]) for c in channels}
+    return Problem(
+        experiment=experiment,
+        channels=channels,
+        measured=measured,
+        sigma=sigma,
+        fit_mask=np.isin(cycle, fit_cycles),
+        held_mask=np.isin(cycle, held_cycles),
+        half_cycle=cycles.half_cycle_index(elongation),
+        cycle=cycle,
+        predictor=Predictor(experiment, channels),
+    )
+
+
+@dataclass
+class Diagnosis:
+    """Everything the report says; see report.py for the JSON, text and plot."""
+
+    problem: Problem
+    baseline: Fit
+    candidates: list[tuple[Fit, Score]]
+    skipped: dict[str, str]
+    extended: Fit
+    extended_score: Score | None
+    cause: str
+    seconds: dict[str, float] = field(default_factory=dict)
+
+
+def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog | None = None, progress=None,
+             threads: int | None = None, seed: int = 0) -> Diagnosis:
+    """Diagnoses one experiment. `progress(message)` is called as work proceeds.
+
+    Raises:
+        ExperimentError: for data that cannot be diagnosed, naming file, row and column.
+    """
+    started = clock.perf_counter()
+    report = progress or (lambda message: None)
+    if not isinstance(experiment, Experiment):
+        experiment = load_experiment(experiment)
+    effect_catalog = effect_catalog if effect_catalog is not None else builtin_catalog()
+    problem = build_problem(experiment)
+    seconds = {}
+
+    report(f"calibrating the baseline on {len(np.unique(problem.cycle[problem.fit_mask]))} cycles "
+           f"({', '.join(problem.channels)})")
+    baseline = fit_baseline(problem)
+    seconds["baseline"] = clock.perf_counter() - started
+
+    skipped = {}
+    for name in effect_catalog.names():
+        acts, why_not = effect_catalog.make(name).acts_in(problem.predictor.mode)
+        if not acts:
+            skipped[name] = why_not
+    todo = candidates(effect_catalog, problem)
+    rng = np.random.default_rng(seed)
+    fitted: list[tuple[Fit, Score]] = []
+    phase = clock.perf_counter()
+    with ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
+        futures = [(label, pool.submit(fit_candidate, problem, baseline, factory, label)) for label, factory in todo]
+        for done, (label, future) in enumerate(futures, start=1):
+            fit = future.result()
+            if fit.error is None:
+                fitted.append((fit, score(problem, baseline, fit, rng)))
+            else:
+                skipped[label] = f"fit failed: {fit.error}"
+            report(f"[{done}/{len(futures)}] {label}: "
+                   + (f"held-out gain {fitted[-1][1].combined_gain:+.3f}" if fit.error is None else "failed"))
+    seconds["candidates"] = clock.perf_counter() - phase
+    fitted.sort(key=lambda item: (-item[1].combined_gain, item[1].delta_bic))
+
+    best = fitted[0] if fitted else None
+    if best is not None and significant(best[1]):
+        cause, extended, extended_score = best[0].name.split(":")[0], best[0], best[1]
+    else:
+        cause, extended, extended_score = "none", baseline, None
+    seconds["total"] = clock.perf_counter() - started
+    report(f"cause: {cause} ({seconds['total']:.1f} s)")
+    return Diagnosis(problem, baseline, fitted, skipped, extended, extended_score, cause, seconds)

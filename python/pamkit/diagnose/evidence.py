@@ -1,0 +1,81 @@
+"""What the residuals say: their size per channel (as the thesis's tables C.5-C.8), whether
+they look like noise (Ljung-Box), and what they move with (cross-correlation with elongation,
+velocity, |velocity|, time and cycle index)."""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.stats import chi2
+
+CHANNELS = ("force_N", "pressure_kPa", "temperature_C")
+
+
+def noise_scale(values: np.ndarray) -> float:
+    """Standard deviation of the white noise on a smooth signal, from the median absolute
+    second difference (which cancels the signal's slope), floored by the quantisation step's
+    uniform-noise standard deviation step / sqrt(12) (a quantised, slowly varying channel has
+    many zero differences)."""
+    v = np.asarray(values, dtype=float)
+    second = np.diff(v, 2)
+    # Var(second difference of white noise) = 6 sigma^2; 1.4826 MAD estimates a sigma.
+    sigma = 1.4826 * float(np.median(np.abs(second - np.median(second)))) / np.sqrt(6.0)
+    steps = np.abs(np.diff(np.unique(np.round(v, 12))))
+    step = float(np.min(steps)) if steps.size else 0.0
+    return max(sigma, step / np.sqrt(12.0), 1e-12)
+
+
+def rmse(residual: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(np.square(residual)))) if residual.size else float("nan")
+
+
+def peak_difference(measured: np.ndarray, predicted: np.ndarray, cycle_label: np.ndarray) -> float:
+    """Mean over cycles of (measured peak - predicted peak), as tables C.6 and C.8 (positive:
+    the measurement peaks higher)."""
+    differences = [
+        float(measured[cycle_label == k].max() - predicted[cycle_label == k].max())
+        for k in np.unique(cycle_label[cycle_label >= 0])
+    ]
+    return float(np.mean(differences)) if differences else float("nan")
+
+
+def ljung_box_p(residual: np.ndarray, lags: int = 20) -> float:
+    """p-value of the Ljung-Box test that the residual's first `lags` autocorrelations are zero
+    (small p: structure is left, not noise)."""
+    r = np.asarray(residual, dtype=float) - np.mean(residual)
+    n = r.size
+    denominator = float(np.dot(r, r))
+    if n <= lags + 1 or denominator == 0.0:
+        return float("nan")
+    k = np.arange(1, lags + 1)
+    rho = np.array([np.dot(r[:-j], r[j:]) for j in k]) / denominator
+    q = n * (n + 2) * float(np.sum(rho**2 / (n - k)))
+    return float(chi2.sf(q, lags))
+
+
+def correlations(residual: np.ndarray, regressors: dict[str, np.ndarray]) -> dict[str, float]:
+    """Pearson correlation of the residual with each regressor (0 where a regressor is constant)."""
+    out = {}
+    r = residual - residual.mean()
+    for name, x in regressors.items():
+        x = x - x.mean()
+        denominator = np.sqrt(np.dot(r, r) * np.dot(x, x))
+        out[name] = float(np.dot(r, x) / denominator) if denominator > 0 else 0.0
+    return out
+
+
+def lagged_correlation_peak(residual: np.ndarray, signal_rate: np.ndarray, time: np.ndarray,
+                            max_lag_s: float = 10.0) -> float:
+    """Lag [s] at which the residual correlates best (in magnitude) with the prediction's rate
+    of change: near zero for noise, at the offset for a skewed or lagging channel."""
+    dt = float(np.median(np.diff(time)))
+    max_lag = max(1, min(int(max_lag_s / dt), residual.size // 4))
+    r = residual - residual.mean()
+    x = signal_rate - signal_rate.mean()
+    best_lag, best = 0, 0.0
+    for lag in range(-max_lag, max_lag + 1):
+        a, b = (r[lag:], x[: x.size - lag]) if lag >= 0 else (r[:lag], x[-lag:])
+        denominator = np.sqrt(np.dot(a, a) * np.dot(b, b))
+        value = abs(float(np.dot(a, b) / denominator)) if denominator > 0 else 0.0
+        if value > best:
+            best_lag, best = lag, value
+    return best_lag * dt

@@ -1,0 +1,172 @@
+"""The calibrated baseline and the candidate extensions, as functions from a parameter vector
+to predicted channels.
+
+Baseline parameters (the model's own uncertainty, not a cause):
+  - the inflation pressure, within the transducer's tolerance (sealed tests only);
+  - a scale on both friction coefficients (eqs. 3.1.19-3.1.24 are the least certain part);
+  - a scale on the bladder stress law (eqs. 3.1.12-13 were fitted to one rubber sample).
+An effect adds its own physical parameters, fitted in a space where they move smoothly
+(log for time constants, rates for "infinite means off" constants).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from pamkit._core import (
+    BladderLaw,
+    BraidGeometry,
+    Effect,
+    ElongationTrajectory,
+    GasMode,
+    InitialState,
+    Measurement,
+    MuscleParams,
+    Simulator,
+    SimulatorConfig,
+    free_inflation,
+    simulate_measurement,
+)
+from pamkit.experiment import Experiment
+from pamkit.simulate import PASCAL_PER_KPA, muscle_params, simulate_experiment
+
+PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
+
+
+@dataclass(frozen=True)
+class Coordinate:
+    """One fitted coordinate: how it maps to a parameter value, its bounds and start."""
+
+    name: str
+    lower: float
+    upper: float
+    start: float
+    to_value: callable = staticmethod(lambda x: x)
+
+    def value(self, x: float) -> float:
+        return self.to_value(x)
+
+
+def _log(name, lower, upper, start):
+    return Coordinate(name, math.log(lower), math.log(upper), math.log(start), math.exp)
+
+
+def _linear(name, lower, upper, start):
+    return Coordinate(name, lower, upper, start)
+
+
+def _rate(name, largest_rate, start_value):
+    """Fits 1/value in [0, largest_rate]: 0 is 'infinite', the effect switched off."""
+    return Coordinate(name, 0.0, largest_rate, 1.0 / start_value, lambda x: 1.0 / x if x > 0 else math.inf)
+
+
+# Fit spaces of the built-in effects' parameters (bounds wider than the realistic ranges).
+BUILTIN_SPACES = {
+    "heat_transfer": lambda e: [_log("time_constant_s", 0.02, 200.0, 2.0)],
+    "dead_volume": lambda e: [_linear("volume_fraction", 0.0, 2.0, 0.1)],
+    "leak": lambda e: [_rate("time_constant_s", 0.2, 1000.0)],
+    "bladder_viscoelasticity": lambda e: [_log("time_constant_s", 0.05, 500.0, 2.0), _linear("strength", 0.0, 20.0, 0.5)],
+    "fiber_compliance": lambda e: [_rate("stiffness_N", 1.0 / 10.0, 300.0)],
+    "fixture_slack": lambda e: [_linear("slack_m", 0.0, 0.02, 1e-3)],
+    "sensor_lag": lambda e: [_log("time_constant_s", 1e-3, 300.0, 2.0)],
+    "time_skew": lambda e: [_linear("offset_s", -20.0, 20.0, 0.0)],
+    "sensor_offset": lambda e: [_linear("offset_kPa", -100.0, 100.0, 0.0), _linear("gain", 0.5, 1.5, 1.0)],
+}
+
+
+def effect_space(effect: Effect) -> list[Coordinate]:
+    """The fit coordinates of an effect: built-in spaces, else linear over its realistic
+    range widened by its width on each side, within the allowed range."""
+    if effect.name() in BUILTIN_SPACES:
+        return BUILTIN_SPACES[effect.name()](effect)
+    coordinates = []
+    for p in effect.parameters():
+        width = max(p.realistic_max - p.realistic_min, 1e-12)
+        lower = max(p.min, p.realistic_min - width)
+        upper = min(p.max, p.realistic_max + width)
+        coordinates.append(_linear(p.name, lower, upper, 0.5 * (p.realistic_min + p.realistic_max)))
+    return coordinates
+
+
+def configure(effect: Effect, space: list[Coordinate], x: np.ndarray) -> Effect:
+    for coordinate, value in zip(space, x):
+        effect.set(coordinate.name, repr(float(coordinate.value(value))))
+    return effect
+
+
+@dataclass
+class Baseline:
+    """Maps baseline coordinates (pressure, friction scale, bladder scale) to model inputs."""
+
+    experiment: Experiment
+    params: MuscleParams = field(init=False)
+    space: list[Coordinate] = field(init=False)
+
+    def __post_init__(self):
+        self.params = muscle_params(self.experiment)
+        p0 = self.experiment.inflation_pressure_kPa
+        self.space = [
+            _linear("friction_scale", 0.0, 50.0, 1.0),
+            _linear("bladder_scale", 0.0, 5.0, 1.0),
+        ]
+        if self.experiment.gas == "sealed":
+            self.space.insert(0, _linear("inflation_pressure_kPa", p0 * (1 - PRESSURE_TOLERANCE),
+                                         p0 * (1 + PRESSURE_TOLERANCE), p0))
+
+    def values(self, x: np.ndarray) -> dict[str, float]:
+        return {c.name: float(c.value(v)) for c, v in zip(self.space, x)}
+
+    def model_params(self, x: np.ndarray) -> tuple[MuscleParams, float]:
+        """Model parameters and inflation pressure [kPa] at baseline coordinates x."""
+        values = self.values(x)
+        params = muscle_params(self.experiment)
+        friction = params.friction
+        friction.fiber_fiber_coefficient *= values["friction_scale"]
+        friction.fiber_bladder_coefficient *= values["friction_scale"]
+        params.friction = friction
+        law = BladderLaw.thesis()
+        scale = values["bladder_scale"]
+        law.longitudinal_Pa = [scale * c for c in params.bladder.longitudinal_Pa]
+        law.hoop_Pa = [scale * c for c in params.bladder.hoop_Pa]
+        params.bladder = law
+        return params, values.get("inflation_pressure_kPa", self.experiment.inflation_pressure_kPa)
+
+
+class Predictor:
+    """Predicted channels for baseline coordinates and a list of effects; thread-safe."""
+
+    def __init__(self, experiment: Experiment, channels: list[str], config: SimulatorConfig | None = None):
+        self.experiment = experiment
+        self.channels = channels
+        self.baseline = Baseline(experiment)
+        self.trajectory = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
+        self.simulator = Simulator(config if config is not None else SimulatorConfig(relative_tolerance=1e-6,
+                                                                                      absolute_tolerance_K=1e-6))
+        self.mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
+
+    def measurement(self, x: np.ndarray, effects: list[Effect]) -> Measurement:
+        params, pressure_kPa = self.baseline.model_params(x)
+        if self.mode == GasMode.supplied:
+            columns = simulate_experiment(self.experiment, params=params, effects=effects)
+            m = Measurement()
+            for name, values in columns.items():
+                setattr(m, name, values)
+            return m
+        length = self._initial_length(params, pressure_kPa)
+        initial = InitialState(length_m=length, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KPA)
+        return simulate_measurement(params, initial, self.trajectory, effects, self.simulator)
+
+    def predict(self, x: np.ndarray, effects: list[Effect]) -> dict[str, np.ndarray]:
+        m = self.measurement(x, effects)
+        return {name: getattr(m, name) for name in self.channels}
+
+    def _initial_length(self, params: MuscleParams, pressure_kPa: float) -> float:
+        """As the experiment gives it, else the free inflated length (DESIGN.md's default)."""
+        if self.experiment.initial_length_m is not None:
+            return self.experiment.initial_length_m
+        inflated = free_inflation(BraidGeometry(params.build), params.bladder, params.gas.atmospheric_pressure_Pa,
+                                  pressure_kPa * PASCAL_PER_KPA)
+        return inflated.length_m
