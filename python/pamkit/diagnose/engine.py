@@ -30,7 +30,9 @@ MEASUREMENT_ONLY = {"sensor_lag", "time_skew", "sensor_offset"}
 # held-out cycles (a fraction of a percent), and well below what a visible effect gives.
 MIN_GAIN = 0.10
 BOOTSTRAP_SAMPLES = 1000
-SCAN_POINTS = 5
+SCAN_POINTS = 5              # simulations per physical effect's first parameter
+SCAN_POINTS_MEASUREMENT = 41  # no simulation needed: scan finely (a skew has one minimum per cycle)
+REFIT_LEADERS = 3             # leading candidates refitted jointly with the baseline
 
 
 @dataclass
@@ -46,6 +48,7 @@ class Fit:
     parameter_count: int
     evaluations: int = 0
     error: str | None = None
+    baseline_params: dict[str, float] = field(default_factory=dict)
 
 
 @dataclass
@@ -97,16 +100,20 @@ def fit_baseline(problem: Problem) -> Fit:
     x = _unit_to_x(space, u)
     predicted = problem.predictor.predict(x, [])
     chi2 = float(np.sum(problem.chi(predicted, problem.fit_mask) ** 2))
-    return Fit("none", [], x, problem.predictor.baseline.values(x), predicted, chi2, len(space), evaluations)
+    values = problem.predictor.baseline.values(x)
+    return Fit("none", [], x, values, predicted, chi2, len(space), evaluations, baseline_params=values)
 
 
-def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str) -> Fit:
+def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, joint: bool = False,
+                  start: Fit | None = None) -> Fit:
     """Fits one candidate: a scan of its first parameter from the calibrated baseline, then all
-    its parameters (with the baseline's, unless it acts on the measurement only)."""
+    its parameters with the baseline's. An effect on the measurement only is first fitted on
+    the calibrated baseline's prediction, with no simulation; `joint` then refits it with the
+    baseline too, from `start`."""
     effect = make_effect()
     space = effect_space(effect)
     base_space = problem.predictor.baseline.space
-    measurement_only = effect.name() in MEASUREMENT_ONLY
+    measurement_only = effect.name() in MEASUREMENT_ONLY and not joint
     evaluations = 0
     if measurement_only:
         base_measurement = problem.predictor.measurement(baseline.baseline_x, [])
@@ -138,15 +145,20 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str) -> F
             return penalty
 
     try:
-        # Scan the first coordinate over its range (the others at their starts).
-        start = _start_unit(space)
-        best_u, best_chi2 = start, math.inf
-        for point in np.linspace(0.0, 1.0, SCAN_POINTS):
-            u = start.copy()
-            u[0] = point
-            chi2 = float(np.sum(chi_or_penalty(baseline.baseline_x, _unit_to_x(space, u)) ** 2))
-            if chi2 < best_chi2:
-                best_u, best_chi2 = u, chi2
+        if start is not None:
+            best_u = np.clip(_x_to_unit(space, np.array([c.of(start.params[c.name]) for c in space])), 0, 1)
+            base_start = start.baseline_x
+        else:
+            # Scan the first coordinate over its range (the others at their starts).
+            base_start = baseline.baseline_x
+            first = _start_unit(space)
+            best_u, best_chi2 = first, math.inf
+            for point in np.linspace(0.0, 1.0, SCAN_POINTS_MEASUREMENT if measurement_only else SCAN_POINTS):
+                u = first.copy()
+                u[0] = point
+                chi2 = float(np.sum(chi_or_penalty(baseline.baseline_x, _unit_to_x(space, u)) ** 2))
+                if chi2 < best_chi2:
+                    best_u, best_chi2 = u, chi2
         if measurement_only:
             def residual(u):
                 return chi_or_penalty(baseline.baseline_x, _unit_to_x(space, u))
@@ -155,7 +167,7 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str) -> F
             base_x, effect_x = baseline.baseline_x, _unit_to_x(space, u)
         else:
             n_base = len(base_space)
-            base_u = np.clip(_x_to_unit(base_space, baseline.baseline_x), 0.0, 1.0)
+            base_u = np.clip(_x_to_unit(base_space, base_start), 0.0, 1.0)
 
             def residual(u):
                 return chi_or_penalty(_unit_to_x(base_space, u[:n_base]), _unit_to_x(space, u[n_base:]))
@@ -167,10 +179,9 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str) -> F
         chi2 = float(np.sum(problem.chi(predicted, problem.fit_mask) ** 2))
         params = {c.name: float(c.value(v)) for c, v in zip(space, effect_x)}
         params.update(effect.options())
-        count = len(space) + (0 if measurement_only else len(base_space))
-        fit = Fit(label, [effect], base_x, params, predicted, chi2, count, evaluations)
-        fit.params_baseline = problem.predictor.baseline.values(base_x)
-        return fit
+        count = len(space) + len(base_space)
+        return Fit(label, [effect], base_x, params, predicted, chi2, count, evaluations,
+                   baseline_params=problem.predictor.baseline.values(base_x))
     except (ValueError, RuntimeError) as error:  # the effect drove the model out of its range
         return Fit(label, [effect], baseline.baseline_x, {}, baseline.predicted, math.inf, len(space), evaluations,
                    error=str(error))
@@ -356,6 +367,20 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
                    + (f"held-out gain {fitted[-1][1].combined_gain:+.3f}" if fit.error is None else "failed"))
     seconds["candidates"] = clock.perf_counter() - phase
     fitted.sort(key=lambda item: (-item[1].combined_gain, item[1].delta_bic))
+    # The leading effects on the measurement were fitted on the baseline's prediction; refit
+    # them with the baseline too, so they compete on equal terms with the physical ones.
+    factories = dict(todo)
+    leaders = [i for i, (fit, _) in enumerate(fitted[:REFIT_LEADERS]) if fit.effects[0].name() in MEASUREMENT_ONLY]
+    if leaders:
+        report(f"refitting {', '.join(fitted[i][0].name for i in leaders)} with the baseline")
+        with ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
+            refits = {i: pool.submit(fit_candidate, problem, baseline, factories[fitted[i][0].name], fitted[i][0].name,
+                                     True, fitted[i][0]) for i in leaders}
+            for i, future in refits.items():
+                fit = future.result()
+                if fit.error is None and fit.training_chi2 < fitted[i][0].training_chi2:
+                    fitted[i] = (fit, score(problem, baseline, fit, rng))
+        fitted.sort(key=lambda item: (-item[1].combined_gain, item[1].delta_bic))
 
     best = fitted[0] if fitted else None
     if best is not None and significant(best[1]):

@@ -36,22 +36,34 @@ from pamkit.simulate import PASCAL_PER_KPA, muscle_params, simulate_experiment
 PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
 
 
+def _identity(x: float) -> float:
+    return x
+
+
+def _reciprocal(x: float) -> float:
+    return 1.0 / x if x > 0 else math.inf if x == 0 else -math.inf
+
+
 @dataclass(frozen=True)
 class Coordinate:
-    """One fitted coordinate: how it maps to a parameter value, its bounds and start."""
+    """One fitted coordinate: its bounds and start, and how it maps to a parameter's value."""
 
     name: str
     lower: float
     upper: float
     start: float
-    to_value: callable = staticmethod(lambda x: x)
+    to_value: callable = _identity
+    from_value: callable = _identity
 
     def value(self, x: float) -> float:
         return self.to_value(x)
 
+    def of(self, value: float) -> float:
+        return self.from_value(value)
+
 
 def _log(name, lower, upper, start):
-    return Coordinate(name, math.log(lower), math.log(upper), math.log(start), math.exp)
+    return Coordinate(name, math.log(lower), math.log(upper), math.log(start), math.exp, math.log)
 
 
 def _linear(name, lower, upper, start):
@@ -60,7 +72,7 @@ def _linear(name, lower, upper, start):
 
 def _rate(name, largest_rate, start_value):
     """Fits 1/value in [0, largest_rate]: 0 is 'infinite', the effect switched off."""
-    return Coordinate(name, 0.0, largest_rate, 1.0 / start_value, lambda x: 1.0 / x if x > 0 else math.inf)
+    return Coordinate(name, 0.0, largest_rate, 1.0 / start_value, _reciprocal, _reciprocal)
 
 
 # Fit spaces of the built-in effects' parameters (bounds wider than the realistic ranges).
@@ -72,7 +84,7 @@ BUILTIN_SPACES = {
     "fiber_compliance": lambda e: [_rate("stiffness_N", 1.0 / 10.0, 300.0)],
     "fixture_slack": lambda e: [_linear("slack_m", 0.0, 0.02, 1e-3)],
     "sensor_lag": lambda e: [_log("time_constant_s", 1e-3, 300.0, 2.0)],
-    "time_skew": lambda e: [_linear("offset_s", -20.0, 20.0, 0.0)],
+    "time_skew": lambda e: [_linear("offset_s", -6.0, 6.0, 0.0)],
     "sensor_offset": lambda e: [_linear("offset_kPa", -100.0, 100.0, 0.0), _linear("gain", 0.5, 1.5, 1.0)],
 }
 
@@ -109,7 +121,7 @@ class Baseline:
         self.params = muscle_params(self.experiment)
         p0 = self.experiment.inflation_pressure_kPa
         self.space = [
-            _linear("friction_scale", 0.0, 50.0, 1.0),
+            _linear("friction_scale", 0.0, 20.0, 1.0),
             _linear("bladder_scale", 0.0, 5.0, 1.0),
         ]
         if self.experiment.gas == "sealed":

@@ -69,8 +69,7 @@ def to_json(d: Diagnosis) -> dict:
         "cause": d.cause,
         "extended": {
             "effects": [e.name() for e in d.extended.effects],
-            "params": {**getattr(d.extended, "params_baseline", d.baseline.params), **d.extended.params}
-            if d.extended is not d.baseline else d.baseline.params,
+            "params": {**d.extended.baseline_params, **d.extended.params},
             "rmse": _heldout_rmse(d, d.extended),
         },
         "gain": d.extended_score.gain if d.extended_score else {c: 0.0 for c in p.channels},
