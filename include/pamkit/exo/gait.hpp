@@ -94,6 +94,13 @@ struct GaitCycle {
 /// \throws InvalidInput if points < 2, the mass is not > 0 or the stride runs past the data.
 GaitCycle resample_cycle(const GaitData& data, const GaitEvents& events, std::size_t points, double body_mass_kg);
 
+/// The cycle with the ankle angle's excursion scaled to `range_deg` about the middle of its
+/// range, everything else kept: the walking trials measured the wearer's ankle range falling
+/// from about 33 deg to 15 deg with the device on (section 5.3, figure 5.4). Only the
+/// shank-to-foot angle drives the device, so this is what the clutch and spring see.
+/// \throws InvalidInput if range_deg is not > 0 or the cycle's angle does not vary.
+GaitCycle with_ankle_range(GaitCycle cycle, double range_deg);
+
 /// Reads a gait table: a header naming the columns frame, hip_deg, leg_deg, foot_deg,
 /// ankle_moment_Nm (in any order; other columns are errors), then one row of numbers per frame.
 /// data/gait/winter_g3.csv is the thesis's table. (A plain numeric table: the one file format
