@@ -73,8 +73,7 @@ void bind_exo(py::module_& m) {
                                      std::pair{"ankle_moment_Nm", &GaitData::ankle_moment_Nm}}) {
     data.def_property_readonly(name, [getter = getter](py::object self) { return view((self.cast<const GaitData&>().*getter)(), self); });
   }
-  m.def("read_gait_csv", &read_gait_csv, py::arg("path"), py::arg("subject_mass_kg") = kWinterSubjectMass_kg,
-        "Reads a gait table (frame, hip_deg, leg_deg, foot_deg, ankle_moment_Nm), e.g. data/gait/winter_g3.csv.");
+  m.def("winter_appendix_g3", &winter_appendix_g3, "Winter's walking data as appendix G.3 prints it (56.7 kg subject).");
 
   py::class_<GaitEvents>(m, "GaitEvents", "Gait events found in the data (frame numbers as printed).")
       .def_readonly("heel_strike_frame", &GaitEvents::heel_strike_frame)

@@ -8,7 +8,6 @@ the slow bench test. SI units, except where a name carries its unit.
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -50,7 +49,7 @@ from pamkit._core import (
     fit_clutch,
     free_inflation,
     ideal_spring,
-    read_gait_csv,
+    winter_appendix_g3,
     reproduce_g3_script,
     resample_cycle,
     run_device,
@@ -60,7 +59,7 @@ from pamkit._core import (
     with_ankle_range,
 )
 
-GAIT_CSV = Path("data") / "gait" / "winter_g3.csv"
+GAIT_COLUMNS = ("frame", "hip_deg", "leg_deg", "foot_deg", "ankle_moment_Nm")
 
 # What chapter 4 states, with where it states it.
 THESIS_CHAPTER4 = {
@@ -86,22 +85,21 @@ PASCAL_PER_KPA = 1e3
 KELVIN_OFFSET = 273.15
 
 
-def find_gait_csv() -> Path:
-    """data/gait/winter_g3.csv: under $PAMKIT_SOURCE_DIR if set, else in the nearest folder
-    above this package that has it (the source tree, or a build tree inside it)."""
-    roots = []
-    if os.environ.get("PAMKIT_SOURCE_DIR"):
-        roots.append(Path(os.environ["PAMKIT_SOURCE_DIR"]))
-    roots.extend(Path(__file__).resolve().parents)
-    for root in roots:
-        if (root / GAIT_CSV).is_file():
-            return root / GAIT_CSV
-    raise FileNotFoundError(f"cannot find {GAIT_CSV}; set PAMKIT_SOURCE_DIR to the pamkit source tree or pass the file")
-
-
 def load_winter(path: str | Path | None = None) -> GaitData:
-    """Winter's walking data as printed in appendix G.3 (56.7 kg subject)."""
-    return read_gait_csv(str(path if path is not None else find_gait_csv()), WINTER_SUBJECT_MASS_KG)
+    """Winter's walking data as printed in appendix G.3 (56.7 kg subject; built into the
+    library from data/gait/winter_g3.csv), or a gait table of the same columns (frame,
+    hip_deg, leg_deg, foot_deg, ankle_moment_Nm) from `path`."""
+    if path is None:
+        return winter_appendix_g3()
+    table = np.genfromtxt(path, delimiter=",", names=True)
+    missing = [c for c in GAIT_COLUMNS if c not in (table.dtype.names or ())]
+    if missing:
+        raise ValueError(f"{path}: missing column(s) {', '.join(missing)} (needs {', '.join(GAIT_COLUMNS)})")
+    for column in GAIT_COLUMNS:
+        bad = np.flatnonzero(~np.isfinite(table[column]))
+        if bad.size:
+            raise ValueError(f"{path}:{bad[0] + 2}: column {column} is not a number")
+    return GaitData(*(np.asarray(table[c], dtype=float) for c in GAIT_COLUMNS), WINTER_SUBJECT_MASS_KG)
 
 
 def winter_cycle(mass_kg: float = THESIS_BODY_MASS_KG, points: int = 690, data: GaitData | None = None) -> GaitCycle:
@@ -361,4 +359,4 @@ def plot_exo(path: str | Path, study: ExoStudy, title: str = "") -> Path:
     return path
 
 
-__all__ = [name for name in dir() if not name.startswith("_") and name not in {"annotations", "os", "np", "dataclass", "Path"}]
+__all__ = [name for name in dir() if not name.startswith("_") and name not in {"annotations", "np", "dataclass", "Path"}]

@@ -12,8 +12,6 @@
 
 #include <cmath>
 #include <cstddef>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -101,12 +99,9 @@ GaitCycle resample_cycle(const GaitData& data, const GaitEvents& events, std::si
 /// \throws InvalidInput if range_deg is not > 0 or the cycle's angle does not vary.
 GaitCycle with_ankle_range(GaitCycle cycle, double range_deg);
 
-/// Reads a gait table: a header naming the columns frame, hip_deg, leg_deg, foot_deg,
-/// ankle_moment_Nm (in any order; other columns are errors), then one row of numbers per frame.
-/// data/gait/winter_g3.csv is the thesis's table. (A plain numeric table: the one file format
-/// the C++ side reads, so the tests and C++ users load the same file the Python package does.)
-/// \throws InvalidInput naming the file, line and column of the first problem.
-GaitData read_gait_csv(const std::string& path, double subject_mass_kg = kWinterSubjectMass_kg);
+/// Winter's data as appendix G.3 prints it (84 frames, 56.7 kg subject), embedded at build time
+/// from data/gait/winter_g3.csv (its columns: frame, hip_deg, leg_deg, foot_deg, ankle_moment_Nm).
+GaitData winter_appendix_g3();
 
 }  // namespace pamkit::exo
 

@@ -1,4 +1,6 @@
 #pragma once
+
+#include "pamkit/exo/winter_g3_table.hpp"
 // Bodies of include/pamkit/exo/gait.hpp.
 
 #include <algorithm>
@@ -127,57 +129,17 @@ inline GaitCycle with_ankle_range(GaitCycle cycle, double range_deg) {
   return cycle;
 }
 
-inline GaitData read_gait_csv(const std::string& path, double subject_mass_kg) {
-  std::ifstream in(path);
-  if (!in) throw InvalidInput(detail::message("read_gait_csv: cannot open ", path));
-  const std::array<const char*, 5> names{"frame", "hip_deg", "leg_deg", "foot_deg", "ankle_moment_Nm"};
-  std::array<std::vector<double>, 5> columns;
-  std::vector<int> order;  // header position -> index in `names`
-  std::string line;
-  std::size_t line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    std::stringstream fields(line);
-    std::string field;
-    std::size_t column = 0;
-    if (order.empty()) {
-      while (std::getline(fields, field, ',')) {
-        const auto it = std::find(names.begin(), names.end(), field);
-        if (it == names.end()) throw InvalidInput(detail::message(path, ":", line_number, ": unknown column '", field, "'"));
-        order.push_back(static_cast<int>(it - names.begin()));
-      }
-      for (int i = 0; i < 5; ++i) {
-        if (std::count(order.begin(), order.end(), i) != 1) {
-          throw InvalidInput(detail::message(path, ":", line_number, ": the header must name column '", names[static_cast<std::size_t>(i)], "' once"));
-        }
-      }
-      continue;
-    }
-    while (std::getline(fields, field, ',')) {
-      if (column >= order.size()) throw InvalidInput(detail::message(path, ":", line_number, ": more fields than the header's ", order.size()));
-      std::size_t used = 0;
-      double value = 0.0;
-      try {
-        value = std::stod(field, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != field.size()) {
-        throw InvalidInput(detail::message(path, ":", line_number, ": column ", names[static_cast<std::size_t>(order[column])],
-                                           ": '", field, "' is not a number"));
-      }
-      columns[static_cast<std::size_t>(order[column])].push_back(value);
-      ++column;
-    }
-    if (column != order.size()) {
-      throw InvalidInput(detail::message(path, ":", line_number, ": ", column, " fields, the header has ", order.size()));
-    }
+inline GaitData winter_appendix_g3() {
+  std::vector<double> frame, hip, leg, foot, moment;
+  for (const auto& row : data::kWinterAppendixG3) {
+    frame.push_back(row[0]);
+    hip.push_back(row[1]);
+    leg.push_back(row[2]);
+    foot.push_back(row[3]);
+    moment.push_back(row[4]);
   }
-  if (order.empty()) throw InvalidInput(detail::message(path, ": empty file"));
-  return GaitData(std::move(columns[0]), std::move(columns[1]), std::move(columns[2]), std::move(columns[3]),
-                  std::move(columns[4]), subject_mass_kg);
+  return GaitData(std::move(frame), std::move(hip), std::move(leg), std::move(foot), std::move(moment),
+                  kWinterSubjectMass_kg);
 }
 
 }  // namespace pamkit::exo

@@ -25,7 +25,7 @@ def register(subparsers) -> None:
     parser.add_argument("--cadence", type=float, default=105.0, help="walking cadence for the muscle run [steps/min]")
     parser.add_argument("--strides", type=int, default=10, help="strides of the walking-cadence muscle run")
     parser.add_argument("--time-constant", type=float, help="gas-wall heat exchange time constant [s] (default: GasParams's)")
-    parser.add_argument("--gait", help="gait table CSV (default: data/gait/winter_g3.csv)")
+    parser.add_argument("--gait", help="gait table CSV with the columns of data/gait/winter_g3.csv (default: that table, built in)")
     parser.add_argument("--json", dest="json_path", help="write the report as JSON")
     parser.add_argument("--plot", help="write a PNG: device torque over the gait cycle, and the walking-cadence run")
     parser.set_defaults(run=run)

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "approx.hpp"
-#include "exo_test_data.hpp"
 #include "pamkit/exo/device.hpp"
 #include "pamkit/exo/jig.hpp"
 #include "pamkit/exo/spring.hpp"
@@ -18,7 +17,7 @@ using namespace pamkit::exo;
 
 namespace {
 GaitCycle winter(std::size_t points = 690) {
-  const GaitData data = read_gait_csv(pamkit_test::winter_csv());
+  const GaitData data = winter_appendix_g3();
   return resample_cycle(data, detect_gait_events(data), points, 86.0);
 }
 bool never(const std::optional<double>& event) { return !event.has_value(); }

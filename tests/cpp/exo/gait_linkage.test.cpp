@@ -5,7 +5,6 @@
 #include <string>
 
 #include "approx.hpp"
-#include "exo_test_data.hpp"
 #include "pamkit/exo/device.hpp"
 
 using namespace pamkit;
@@ -22,7 +21,7 @@ double hand_length(const LinkageParams& p, double psi_deg) {
 }  // namespace
 
 TEST_CASE("Winter's table as printed in G.3 and its gait events", "[exo][gait]") {
-  const GaitData data = read_gait_csv(pamkit_test::winter_csv());
+  const GaitData data = winter_appendix_g3();
   REQUIRE(data.size() == 84);  // G.3 declares zeros(1,84)
   CHECK(data.leg_deg()[0] == 107.8);       // first value of legangleraw
   CHECK(data.ankle_moment_Nm()[35] == -89.8);  // the stance peak of anklemomentraw
@@ -56,7 +55,6 @@ TEST_CASE("Winter's table as printed in G.3 and its gait events", "[exo][gait]")
 TEST_CASE("bad gait input is named", "[exo][gait]") {
   CHECK_THROWS_WITH(GaitData({1, 2, 3}, {0, 0, 0}, {0, 0}, {0, 0, 0}, {0, 0, 0}), Catch::Contains("leg_deg"));
   CHECK_THROWS_WITH(GaitData({1, 2, 4}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}), Catch::Contains("frame[2]"));
-  CHECK_THROWS_WITH(read_gait_csv("/nonexistent/gait.csv"), Catch::Contains("cannot open"));
 }
 
 TEST_CASE("linkage: spring length by hand, moment arm = dL/dpsi (virtual work)", "[exo][linkage]") {
@@ -91,7 +89,7 @@ TEST_CASE("geometry that cannot work is rejected with the field's name", "[exo][
 TEST_CASE("the lab-frame script and the shank-frame linkage agree", "[exo][linkage]") {
   // G.3 computes points in the lab: knee from the hip, ankle from the knee, the anchors from
   // those. Redo it for a few rows and compare with the shank-frame linkage.
-  const GaitData data = read_gait_csv(pamkit_test::winter_csv());
+  const GaitData data = winter_appendix_g3();
   const Linkage linkage{LinkageParams{}};
   const ScriptKinematics script = reproduce_g3_script(data, linkage, 56.7);
   const double pi = 3.14159265358979323846;
@@ -115,7 +113,7 @@ TEST_CASE("the lab-frame script and the shank-frame linkage agree", "[exo][linka
 }
 
 TEST_CASE("chapter 4 kinematics: appendix G.3's parameters and the text's figures", "[exo][chapter4]") {
-  const GaitData data = read_gait_csv(pamkit_test::winter_csv());
+  const GaitData data = winter_appendix_g3();
   // Heel bar turned off the block by the ankle angle at row 12 (beginstretch) less the most
   // dorsiflexed angle of rows 13-42, both read from the printed table.
   double most = 1e9;

@@ -101,3 +101,23 @@ def test_cli_chapter5_never_releases(tmp_path):
 def test_cli_reports_bad_input(capsys):
     assert main(["exo", "--block-angle", "5", "--cadence", "105"]) == 2
     assert "block_angle_deg" in capsys.readouterr().err
+
+
+def test_built_in_gait_table_is_the_csv_in_data(tmp_path):
+    # The library embeds data/gait/winter_g3.csv at build time; reading the file gives the same numbers.
+    import os
+    from pathlib import Path
+
+    import numpy as np
+
+    from pamkit.exo import load_winter
+
+    source = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[3]))
+    from_file = load_winter(source / "data" / "gait" / "winter_g3.csv")
+    built_in = load_winter()
+    for column in ("frame", "hip_deg", "leg_deg", "foot_deg", "ankle_moment_Nm"):
+        np.testing.assert_array_equal(getattr(from_file, column), getattr(built_in, column))
+    bad = tmp_path / "bad.csv"
+    bad.write_text("frame,hip_deg,leg_deg,foot_deg,ankle_moment_Nm\n1,2,3,4,x\n2,2,3,4,5\n3,2,3,4,5\n")
+    with pytest.raises(ValueError, match=r"bad.csv:2: column ankle_moment_Nm is not a number"):
+        load_winter(bad)
