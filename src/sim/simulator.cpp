@@ -63,20 +63,30 @@ State to_state(N_Vector v) {
 struct RunWorkspace {
   const MuscleModel& model;
   const ElongationTrajectory& trajectory;
-  std::size_t piece_start;   // first sample of the straight piece being integrated
+  std::size_t piece_start;   // first sample of the piece being integrated
+  std::size_t piece_end;     // its last sample
   std::exception_ptr error;  // an exception thrown inside the callback, rethrown after CVode returns
 
-  double velocity() const { return trajectory.segment_velocity(piece_start); }
-  double length(double t) const {
-    return model.initial_state().length_m + trajectory.elongation()[piece_start] +
-           velocity() * (t - trajectory.time()[piece_start]);
+  /// The segment [t_k, t_k+1] of the piece that holds time t (CVODES may step past samples).
+  std::size_t segment(double t) const {
+    const auto& time = trajectory.time();
+    const auto first = time.begin() + static_cast<std::ptrdiff_t>(piece_start);
+    const auto last = time.begin() + static_cast<std::ptrdiff_t>(piece_end);
+    const auto upper = std::upper_bound(first, last, t);
+    const std::size_t k = static_cast<std::size_t>(upper - time.begin());
+    return std::clamp(k == 0 ? 0 : k - 1, piece_start, piece_end - 1);
+  }
+  double length(double t, std::size_t k) const {
+    return model.initial_state().length_m + trajectory.elongation()[k] +
+           trajectory.segment_velocity(k) * (t - trajectory.time()[k]);
   }
 };
 
 int muscle_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto& w = *static_cast<RunWorkspace*>(user_data);
   try {
-    const MuscleOutputs out = w.model.evaluate(w.length(t), w.velocity(), to_state(y));
+    const std::size_t k = w.segment(t);
+    const MuscleOutputs out = w.model.evaluate(w.length(t, k), w.trajectory.segment_velocity(k), to_state(y));
     std::copy(out.rate.values.begin(), out.rate.values.end(), NV_DATA_S(ydot));
     return 0;
   } catch (...) {
@@ -85,10 +95,12 @@ int muscle_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   }
 }
 
-/// True where the elongation rate changes by more than rounding: samples of one straight ramp
-/// give rates that differ in the last bits, and those need no restart.
-bool is_corner(double previous_velocity, double velocity) {
-  return std::abs(velocity - previous_velocity) > 1e-9 * std::max(std::abs(velocity), std::abs(previous_velocity));
+/// True where the elongation rate jumps by more than `threshold`: a turning point or the start
+/// of a hold, where CVODES restarts. Smaller changes (a sampled curve, encoder noise on a
+/// measured crosshead) are integrated through: the length stays continuous and the error
+/// test sees the kink.
+bool is_corner(double previous_velocity, double velocity, double threshold) {
+  return std::abs(velocity - previous_velocity) > threshold;
 }
 
 void record(SimulationResult& r, const MuscleModel& model, double t, double elongation, double velocity,
@@ -171,7 +183,7 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
   std::unique_ptr<void, CvodeDeleter> mem(CVodeCreate(CV_BDF, ctx));
   if (!mem) throw SolverError("CVodeCreate failed");
   void* cv = mem.get();
-  RunWorkspace workspace{model, trajectory, 0, nullptr};
+  RunWorkspace workspace{model, trajectory, 0, 1, nullptr};
   const double t0 = time.front();
   check_flag(CVodeInit(cv, muscle_rhs, t0, y.get()), "CVodeInit", t0);
   check_flag(CVodeSetUserData(cv, &workspace), "CVodeSetUserData", t0);
@@ -188,30 +200,36 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
   result.time_s.reserve(trajectory.size());
   record(result, model, t0, elongation.front(), trajectory.segment_velocity(0), initial);
 
-  // Integrate piece by piece, a piece being a run of samples with one elongation rate. The
-  // rate jumps at a corner, so CVODES stops exactly there and restarts its BDF history;
-  // inside a piece the samples are interpolated from CVODES's steps.
+  // Integrate piece by piece between corners, where the elongation rate jumps: CVODES stops
+  // exactly there and restarts its BDF history. Inside a piece the samples are interpolated
+  // from CVODES's steps.
+  double largest_rate = 0.0;
+  for (std::size_t k = 0; k + 1 < trajectory.size(); ++k) {
+    largest_rate = std::max(largest_rate, std::abs(trajectory.segment_velocity(k)));
+  }
+  const double corner = config_.corner_threshold * largest_rate;
   double t = t0;
   std::size_t k = 0;
   while (k + 1 < trajectory.size()) {
     std::size_t end = k + 1;
     while (end + 1 < trajectory.size() &&
-           !is_corner(trajectory.segment_velocity(k), trajectory.segment_velocity(end))) {
+           !is_corner(trajectory.segment_velocity(end - 1), trajectory.segment_velocity(end), corner)) {
       ++end;
     }
     workspace.piece_start = k;
+    workspace.piece_end = end;
     if (k > 0) {
       add_statistics(cv, result.statistics);
       check_flag(CVodeReInit(cv, t, y.get()), "CVodeReInit", t);
       ++result.statistics.restarts;
     }
     check_flag(CVodeSetStopTime(cv, time[end]), "CVodeSetStopTime", t);
-    const double velocity = trajectory.segment_velocity(k);
     for (std::size_t sample = k + 1; sample <= end; ++sample) {
       const int flag = CVode(cv, time[sample], y.get(), &t, CV_NORMAL);
       if (workspace.error) std::rethrow_exception(workspace.error);
       check_flag(flag, "CVode", t);
-      record(result, model, time[sample], elongation[sample], velocity, to_state(y.get()));
+      record(result, model, time[sample], elongation[sample], trajectory.segment_velocity(sample - 1),
+             to_state(y.get()));
     }
     k = end;
   }

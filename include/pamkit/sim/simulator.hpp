@@ -22,6 +22,9 @@ struct SimulatorConfig {
   double absolute_tolerance_J = 1e-8;  ///< absolute tolerance on the energy integrals [J]
   double max_steps = 50000;            ///< most internal steps between two samples [1]
   double max_step_s = 0.0;             ///< largest internal step [s]; 0: no limit
+  double corner_threshold = 0.2;       ///< a jump of the elongation rate above this share of the largest rate
+                                       ///< restarts the integrator (turning points, holds); smaller ones
+                                       ///< (sampled curves, encoder noise) are integrated through [1]
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
@@ -30,6 +33,7 @@ struct SimulatorConfig {
     visit("absolute_tolerance_J", &SimulatorConfig::absolute_tolerance_J, FieldInfo{"J", 1e-16, 1.0, "absolute tolerance on energies"});
     visit("max_steps", &SimulatorConfig::max_steps, FieldInfo{"1", 10, 1e9, "most steps between samples"});
     visit("max_step_s", &SimulatorConfig::max_step_s, FieldInfo{"s", 0.0, 1e9, "largest step (0: no limit)"});
+    visit("corner_threshold", &SimulatorConfig::corner_threshold, FieldInfo{"1", 0.0, 2.0, "rate jump that restarts, share of the largest rate"});
   }
   void validate() const { validate_fields(*this); }
 };
