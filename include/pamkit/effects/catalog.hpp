@@ -113,8 +113,8 @@ struct HeatTransferParams {
   static constexpr const char* kName = "heat_transfer";
   static constexpr const char* kDescription =
       "finite-rate heat exchange between gas and wall, in place of a fixed polytropic exponent. Gives it away: "
-      "pressure hysteresis that grows with rate, pressure that relaxes during holds, temperature swings far below "
-      "the polytropic ones.";
+      "pressure hysteresis that grows with rate while a cycle is slower than tau (and shrinks toward adiabatic "
+      "beyond), pressure that relaxes during holds, temperature swings far below the polytropic ones.";
   static constexpr bool kHasChannel = false;
   double time_constant_s = 2.0;  ///< gas-wall exchange time constant [s]
   template <class V>
@@ -175,8 +175,8 @@ struct BladderViscoelasticityParams {
   static constexpr const char* kDescription =
       "rate-dependent bladder stress: a Maxwell branch (modulus = strength x the law's tangent modulus, relaxation "
       "time tau) beside the elastic law of eqs. 3.1.12-13; the thesis's biaxial tests showed the hysteresis "
-      "(figure 3.5). Gives it away: force hysteresis that grows with rate, strongest at low pressure, with no "
-      "matching pressure hysteresis.";
+      "(figure 3.5). Gives it away: force hysteresis that grows with rate while a cycle is slower than tau, "
+      "strongest at low pressure, with no matching pressure hysteresis.";
   static constexpr bool kHasChannel = false;
   double time_constant_s = 2.0;  ///< relaxation time of the Maxwell branch [s]
   double strength = 0.5;         ///< branch modulus over the tangent modulus [1]
