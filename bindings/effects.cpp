@@ -134,7 +134,27 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
   py::class_<EffectCatalog>(m, "EffectCatalog", "Effect names mapped to factories.")
       .def(py::init<>())
       .def_static("builtin", &EffectCatalog::builtin, "the nine effects of the catalog")
-      .def("add", &EffectCatalog::add, py::arg("name"), py::arg("factory"), "adds a factory returning a new Effect")
+      .def("add", [](EffectCatalog& catalog, const std::string& name, const py::function& factory) {
+             // A Python subclass's overrides live in its Python object: each effect made here
+             // keeps that object alive as long as its C++ pointer lives, or the overrides
+             // vanish as soon as the factory's result is dropped ("Tried to call pure virtual
+             // function"). Both the factory and the kept objects are released under the GIL.
+             const std::shared_ptr<py::function> shared(new py::function(factory), [](py::function* f) {
+               py::gil_scoped_acquire gil;
+               delete f;
+             });
+             catalog.add(name, [shared]() -> EffectPtr {
+               py::gil_scoped_acquire gil;
+               py::object made = (*shared)();
+               Effect* effect = made.cast<Effect*>();
+               auto* keep = new py::object(std::move(made));
+               return EffectPtr(effect, [keep](Effect*) {
+                 py::gil_scoped_acquire release_gil;
+                 delete keep;
+               });
+             });
+           }, py::arg("name"), py::arg("factory"),
+           "adds a factory (e.g. a pamkit.Effect subclass) called with no arguments for each new effect")
       .def("make", &EffectCatalog::make, py::arg("name"))
       .def("parse", &EffectCatalog::parse, py::arg("spec"), "'NAME' or 'NAME:key=value,...'")
       .def("names", &EffectCatalog::names);

@@ -1,0 +1,286 @@
+"""Writes the effect gallery of docs/effects.md: one PNG per catalog effect in docs/effects/,
+the baseline model against the model with the effect at a clearly visible strength from its
+realistic range, drawn to show what gives the effect away (DESIGN.md, "The effect catalog").
+
+The curves are the model's clean predictions (no instrument noise), for PAM 2 of the thesis
+(pamkit.MuscleBuild's defaults) starting at its free inflated length, ambient 23 °C.
+
+Run with pamkit importable (e.g. PYTHONPATH=build/python):  python docs/effects/make_gallery.py
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+
+import pamkit
+from pamkit.effects import catalog, parse_effects
+
+HERE = Path(__file__).resolve().parent
+AMBIENT_C = 23.0
+SAMPLE_RATE_HZ = 20.0
+BASE = {"color": "0.2", "ls": "--", "lw": 1.2}
+COLORS = ("C0", "C3")
+
+
+def params() -> pamkit.MuscleParams:
+    gas = pamkit.GasParams()
+    gas.ambient_temperature_K = AMBIENT_C + 273.15
+    return pamkit.MuscleParams(build=pamkit.MuscleBuild(), bladder=pamkit.BladderLaw.thesis(),
+                               friction=pamkit.FrictionParams(), gas=gas)
+
+
+def free_length(pressure_kPa: float) -> float:
+    p = params()
+    return pamkit.free_inflation(pamkit.BraidGeometry(p.build), p.bladder, p.gas.atmospheric_pressure_Pa,
+                                 pressure_kPa * 1e3).length_m
+
+
+def stretch(pressure_kPa: float, fraction: float) -> float:
+    """`fraction` of the free contraction at this pressure [m]."""
+    return fraction * (pamkit.MuscleBuild().length_m - free_length(pressure_kPa))
+
+
+def corners(max_elongation_m: float, speed_m_per_s: float, cycles: int, hold_s: float = 0.0, rest_s: float = 1.0):
+    """Triangle cycles (with an optional hold at the top) after a rest: corner times and elongations."""
+    ramp = max_elongation_m / speed_m_per_s
+    t, e = [0.0, rest_s], [0.0, 0.0]
+    for _ in range(cycles):
+        t += [t[-1] + ramp] + ([t[-1] + ramp + hold_s] if hold_s else [])
+        e += [max_elongation_m] + ([max_elongation_m] if hold_s else [])
+        t.append(t[-1] + ramp)
+        e.append(0.0)
+    t.append(t[-1] + rest_s)
+    e.append(0.0)
+    return np.asarray(t), np.asarray(e)
+
+
+def simulate(pressure_kPa: float, path, specs=(), rate_Hz: float = SAMPLE_RATE_HZ) -> dict[str, np.ndarray]:
+    """The model's channels along the crosshead path `path` (corners), with effects `specs`."""
+    t_corner, e_corner = path
+    time = np.unique(np.concatenate([np.arange(0.0, t_corner[-1], 1.0 / rate_Hz), t_corner]))
+    crosshead = pamkit.ElongationTrajectory(time, np.interp(time, t_corner, e_corner))
+    initial = pamkit.InitialState(length_m=free_length(pressure_kPa), gauge_pressure_Pa=pressure_kPa * 1e3)
+    m = pamkit.simulate_measurement(params(), initial, crosshead, parse_effects(list(specs)), pamkit.Simulator())
+    return {name: np.asarray(getattr(m, name)) for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")}
+
+
+def last_cycle(run: dict[str, np.ndarray], path) -> np.ndarray:
+    """Samples of the last stretch-return cycle."""
+    t_corner, e_corner = path
+    tops = np.flatnonzero(e_corner > 0)
+    start = t_corner[tops[-1] - 1]
+    return run["time_s"] >= start - 1e-9
+
+
+def figure(title: str, panels: int = 2):
+    fig, axes = plt.subplots(1, panels, figsize=(9.0, 3.3), constrained_layout=True)
+    fig.suptitle(title, fontsize=10)
+    for axis in np.atleast_1d(axes):
+        axis.grid(alpha=0.3)
+        axis.tick_params(labelsize=8)
+    return fig, np.atleast_1d(axes)
+
+
+def label(axis, x: str, y: str, legend: bool = True) -> None:
+    axis.set_xlabel(x, fontsize=9)
+    axis.set_ylabel(y, fontsize=9)
+    if legend:
+        axis.legend(fontsize=7, loc="best")
+
+
+def save(fig, name: str) -> Path:
+    path = HERE / f"{name}.png"
+    fig.savefig(path, dpi=80)
+    plt.close(fig)
+    return path
+
+
+# ----------------------------------------------------------------------------------------------
+# one function per effect
+
+
+def heat_transfer() -> Path:
+    spec = "heat_transfer:time_constant_s=2"
+    p, e = 207.0, stretch(207.0, 0.9)
+    fig, (loops, hold) = figure(f"{spec} (PAM 2, 207 kPa, 90 %): pressure loops that grow with rate; "
+                                "pressure relaxes during a hold")
+    for color, speed in zip(COLORS, (2.5e-3, 25e-3)):
+        path = corners(e, speed, 2)
+        base, run = simulate(p, path), simulate(p, path, [spec])
+        k = last_cycle(run, path)
+        loops.plot(run["elongation_m"][k] * 1e3, run["pressure_kPa"][k], color=color, label=f"{speed * 1e3:g} mm/s")
+    loops.plot(base["elongation_m"][k] * 1e3, base["pressure_kPa"][k], **BASE, label="baseline (any rate)")
+    label(loops, "elongation [mm]", "gauge pressure [kPa]")
+    path = corners(e, 25e-3, 1, hold_s=20.0)
+    base, run = simulate(p, path), simulate(p, path, [spec])
+    hold.plot(base["time_s"], base["pressure_kPa"], **BASE, label="baseline")
+    hold.plot(run["time_s"], run["pressure_kPa"], color=COLORS[1], label="heat_transfer, 25 mm/s, 20 s hold")
+    label(hold, "time [s]", "gauge pressure [kPa]")
+    return save(fig, "heat_transfer")
+
+
+def dead_volume() -> Path:
+    spec = "dead_volume:volume_fraction=0.2"
+    p, e = 207.0, stretch(207.0, 0.9)
+    path = corners(e, 10e-3, 2)
+    base, run = simulate(p, path), simulate(p, path, [spec])
+    fig, (pressure, force) = figure(f"{spec} (PAM 2, 207 kPa, 90 %, 10 mm/s): the pressure swing is scaled down evenly")
+    pressure.plot(base["time_s"], base["pressure_kPa"], **BASE, label=f"baseline, swing {np.ptp(base['pressure_kPa']):.0f} kPa")
+    pressure.plot(run["time_s"], run["pressure_kPa"], color=COLORS[0], label=f"dead volume, swing {np.ptp(run['pressure_kPa']):.0f} kPa")
+    label(pressure, "time [s]", "gauge pressure [kPa]")
+    force.plot(base["elongation_m"] * 1e3, base["force_N"], **BASE, label="baseline")
+    force.plot(run["elongation_m"] * 1e3, run["force_N"], color=COLORS[0], label="dead volume")
+    label(force, "elongation [mm]", "force [N]")
+    return save(fig, "dead_volume")
+
+
+def leak() -> Path:
+    spec = "leak:time_constant_s=1000"
+    p, e = 207.0, stretch(207.0, 0.9)
+    path = corners(e, 2.5e-3, 10)
+    base, run = simulate(p, path, rate_Hz=5.0), simulate(p, path, [spec], rate_Hz=5.0)
+    fig, (pressure, peaks) = figure(f"{spec} (PAM 2, 207 kPa, 90 %, 2.5 mm/s, 10 cycles): peaks drift down cycle after cycle")
+    pressure.plot(base["time_s"], base["pressure_kPa"], **BASE, label="baseline")
+    pressure.plot(run["time_s"], run["pressure_kPa"], color=COLORS[1], lw=0.9, label="leak")
+    label(pressure, "time [s]", "gauge pressure [kPa]")
+    t_corner, e_corner = path
+    tops = t_corner[np.flatnonzero(e_corner > 0)]
+    for style, data, name in ((BASE, base, "baseline"), ({"color": COLORS[1], "marker": "o"}, run, "leak")):
+        values = np.interp(tops, data["time_s"], data["force_N"])
+        peaks.plot(np.arange(1, tops.size + 1), values, **style, label=name)
+    peaks.set_xticks(range(1, tops.size + 1))
+    label(peaks, "cycle", "force at the top of the stretch [N]")
+    return save(fig, "leak")
+
+
+def bladder_viscoelasticity() -> Path:
+    spec = "bladder_viscoelasticity:time_constant_s=2,strength=2"
+    fig, axes = figure(f"{spec}: force loops that grow with rate, strongest at low pressure")
+    for axis, p in zip(axes, (35.0, 276.0)):
+        e = stretch(p, 0.95)
+        for color, speed in zip(COLORS, (2.5e-3, 25e-3)):
+            path = corners(e, speed, 2)
+            base, run = simulate(p, path), simulate(p, path, [spec])
+            k = last_cycle(run, path)
+            axis.plot(run["elongation_m"][k] * 1e3, run["force_N"][k], color=color, label=f"{speed * 1e3:g} mm/s")
+            axis.plot(base["elongation_m"][k] * 1e3, base["force_N"][k], color=color, ls="--", lw=0.9,
+                      label=f"baseline, {speed * 1e3:g} mm/s")
+        axis.set_title(f"PAM 2, {p:g} kPa, 95 %", fontsize=9)
+        label(axis, "elongation [mm]", "force [N]")
+    return save(fig, "bladder_viscoelasticity")
+
+
+def fiber_compliance() -> Path:
+    spec = "fiber_compliance:stiffness_N=150"
+    p, e = 276.0, stretch(276.0, 0.95)
+    path = corners(e, 2.5e-3, 1)
+    base, run = simulate(p, path), simulate(p, path, [spec])
+    fig, (force, pressure) = figure(f"{spec} (PAM 2, 276 kPa, 95 %, 2.5 mm/s): force-elongation softens at high force")
+    force.plot(base["elongation_m"] * 1e3, base["force_N"], **BASE, label="baseline")
+    force.plot(run["elongation_m"] * 1e3, run["force_N"], color=COLORS[0], label="fiber compliance")
+    label(force, "crosshead elongation [mm]", "force [N]")
+    pressure.plot(base["elongation_m"] * 1e3, base["pressure_kPa"], **BASE, label="baseline")
+    pressure.plot(run["elongation_m"] * 1e3, run["pressure_kPa"], color=COLORS[0], label="fiber compliance")
+    label(pressure, "crosshead elongation [mm]", "gauge pressure [kPa]")
+    return save(fig, "fiber_compliance")
+
+
+def fixture_slack() -> Path:
+    spec = "fixture_slack:slack_m=0.002"
+    p, e = 207.0, stretch(207.0, 0.9)
+    path = corners(e, 2.5e-3, 2)
+    base, run = simulate(p, path), simulate(p, path, [spec])
+    fig, (force, loop) = figure(f"{spec} (PAM 2, 207 kPa, 90 %, 2.5 mm/s): force flat at the start of each stretch and return")
+    t_corner, e_corner = path
+    turn = t_corner[3]  # the end of the first return: the start of the second stretch
+    k = (base["time_s"] > turn - 3.0) & (base["time_s"] < turn + 5.0)
+    force.plot(base["time_s"][k], base["force_N"][k], **BASE, label="baseline")
+    force.plot(run["time_s"][k], run["force_N"][k], color=COLORS[0], label="slack")
+    force.axvline(turn, color="0.6", lw=0.8)
+    force.set_title("around the start of the second stretch", fontsize=9)
+    label(force, "time [s]", "force [N]")
+    loop.plot(base["elongation_m"] * 1e3, base["force_N"], **BASE, label="baseline")
+    loop.plot(run["elongation_m"] * 1e3, run["force_N"], color=COLORS[0], label="slack")
+    label(loop, "crosshead elongation [mm]", "force [N]")
+    return save(fig, "fixture_slack")
+
+
+def sensor_lag() -> Path:
+    p, e = 207.0, stretch(207.0, 0.9)
+    fig, (pressure, temperature) = figure("sensor_lag: the lagged channel trails its prediction and its swings shrink "
+                                          "(PAM 2, 207 kPa, 90 %, 25 mm/s)")
+    path = corners(e, 25e-3, 3)
+    spec = "sensor_lag:channel=pressure_kPa,time_constant_s=1"
+    base, run = simulate(p, path), simulate(p, path, [spec])
+    pressure.plot(base["time_s"], base["pressure_kPa"], **BASE, label="baseline")
+    pressure.plot(run["time_s"], run["pressure_kPa"], color=COLORS[0], label="channel=pressure_kPa, 1 s")
+    label(pressure, "time [s]", "gauge pressure [kPa]")
+    heat = "heat_transfer:time_constant_s=2"
+    spec = "sensor_lag:channel=temperature_C,time_constant_s=10"
+    base, run = simulate(p, path, [heat]), simulate(p, path, [heat, spec])
+    temperature.plot(base["time_s"], base["temperature_C"], **BASE, label="gas (with heat_transfer, 2 s)")
+    temperature.plot(run["time_s"], run["temperature_C"], color=COLORS[1], label="TMP36: channel=temperature_C, 10 s")
+    label(temperature, "time [s]", "temperature [°C]")
+    return save(fig, "sensor_lag")
+
+
+def time_skew() -> Path:
+    spec = "time_skew:channel=pressure_kPa,offset_s=1.5"
+    p, e = 207.0, stretch(207.0, 0.9)
+    path = corners(e, 10e-3, 3)
+    base, run = simulate(p, path), simulate(p, path, [spec])
+    fig, (pressure, correlation) = figure(f"{spec} (PAM 2, 207 kPa, 90 %, 10 mm/s): the channel is shifted in time")
+    pressure.plot(base["time_s"], base["pressure_kPa"], **BASE, label="baseline")
+    pressure.plot(run["time_s"], run["pressure_kPa"], color=COLORS[0], label="skewed by 1.5 s")
+    label(pressure, "time [s]", "gauge pressure [kPa]")
+    # Correlation of the reading with the prediction shifted by a lag: it peaks at the skew.
+    dt = 1.0 / SAMPLE_RATE_HZ
+    reading, prediction = run["pressure_kPa"], base["pressure_kPa"]
+    lags = np.arange(-80, 81)
+    values = [np.corrcoef(reading[max(lag, 0):reading.size + min(lag, 0)],
+                          prediction[max(-lag, 0):prediction.size - max(lag, 0)])[0, 1] for lag in lags]
+    correlation.plot(lags * dt, values, color=COLORS[0])
+    correlation.axvline(0.0, **BASE)
+    correlation.axvline(lags[int(np.argmax(values))] * dt, color=COLORS[0], ls=":")
+    label(correlation, "lag [s]", "corr(reading(t), prediction(t - lag))", legend=False)
+    return save(fig, "time_skew")
+
+
+def sensor_offset() -> Path:
+    spec = "sensor_offset:offset_kPa=8,gain=1.05"
+    p, e = 207.0, stretch(207.0, 0.9)
+    path = corners(e, 10e-3, 2)
+    base, run = simulate(p, path), simulate(p, path, [spec])
+    fig, (pressure, residual) = figure(f"{spec} (PAM 2, 207 kPa, 90 %, 10 mm/s): constant offset and scale in the pressure")
+    pressure.plot(base["time_s"], base["pressure_kPa"], **BASE, label="baseline")
+    pressure.plot(run["time_s"], run["pressure_kPa"], color=COLORS[0], label="offset and gain error")
+    label(pressure, "time [s]", "gauge pressure [kPa]")
+    residual.plot(base["pressure_kPa"], run["pressure_kPa"] - base["pressure_kPa"], color=COLORS[0], marker=".", ls="none", ms=2)
+    label(residual, "predicted gauge pressure [kPa]", "reading - prediction [kPa]", legend=False)
+    return save(fig, "sensor_offset")
+
+
+GALLERY = {f.__name__: f for f in (heat_transfer, dead_volume, leak, bladder_viscoelasticity, fiber_compliance,
+                                    fixture_slack, sensor_lag, time_skew, sensor_offset)}
+
+
+def main() -> int:
+    missing = sorted(set(catalog().names()) - set(GALLERY))
+    if missing:
+        print(f"no gallery plot for: {', '.join(missing)}", file=sys.stderr)
+        return 1
+    for name, make in GALLERY.items():
+        path = make()
+        print(f"wrote {path} ({path.stat().st_size / 1e3:.0f} kB)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,426 @@
+"""Synthetic measured datasets with one effect hidden in them (DESIGN.md, "Tests that hide an
+effect"): a random bench protocol, the model extended by the effect at a random realistic
+strength, read by the bench's instruments (:mod:`pamkit.instruments`) and written as an
+experiment (TOML + CSV, DESIGN.md "A measured dataset"). What was hidden goes to a separate
+``manifest.json`` that nothing in diagnosis may read.
+
+Random draws (one seeded ``numpy.random.Generator`` per concern, spawned from the seed, so
+that the same seed gives the same protocol, build and instrument noise whatever the effect):
+
+- build: PAM 2 of table 3.4 / C.4 (pamkit.MuscleBuild's defaults) with the two dimensions
+  measured per muscle varied within what building "identical" muscles gives: deflated length
+  +-1 mm (table 3.4's two muscles differ by 2 mm) and braid diameter +-0.1 mm; both are
+  written as measured (0.1 mm ruler, 0.01 mm calipers) and the simulation uses exactly the
+  written values, so the experiment file describes the muscle truly;
+- protocol: inflation 35-276 kPa gauge, stretch to 80-95 % of the free contraction (deflated
+  length minus free inflated length), 2.5-50 mm/s (log-uniform: equal weight to each decade
+  of rate), 5-10 triangle cycles from the free inflated length, ambient 20-25 °C; a rest of
+  1-3 s before the first stretch and 1 s after the last; in one dataset out of three a hold
+  of 5-20 s at the top of every stretch (bench programs often dwell there, and a hold is where
+  heat exchange, which settles, and a leak, which does not, tell themselves apart; the other
+  two thirds keep the thesis's hold-free protocol so that diagnosis cannot rely on holds);
+- effect strength: each parameter not given uniformly in the effect's realistic range,
+  log-uniformly for time constants; for effects acting on a channel, the channel at random
+  among pressure_kPa and temperature_C (the Arduino's), and time_skew's sign at random,
+  unless given. Only channels that move by more than one ADC count in the test are drawn:
+  the baseline's gas is isothermal (polytropic n = 1), so its temperature is constant, and a
+  lag or skew of a constant leaves the data bit for bit as without the effect;
+- instruments: see :func:`draw_instruments`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict, dataclass, replace
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+
+import pamkit
+from pamkit._core import (
+    BladderLaw,
+    BraidGeometry,
+    EffectCatalog,
+    ElongationTrajectory,
+    FrictionParams,
+    GasParams,
+    InitialState,
+    MuscleBuild,
+    MuscleParams,
+    Simulator,
+    free_inflation,
+    simulate_measurement,
+)
+from pamkit.effects import catalog as builtin_catalog
+from pamkit.experiment import KELVIN_OFFSET, write_series
+from pamkit.instruments import (
+    ArduinoLogger,
+    ArduinoLoggerSettings,
+    LoadCell,
+    PressureTransducer,
+    TensileMachine,
+    TensileMachineSettings,
+    merge_logs,
+)
+
+PASCAL_PER_KPA = 1e3
+NONE = "none"
+
+# Ranges of DESIGN.md, "Tests that hide an effect".
+INFLATION_KPA = (35.0, 276.0)
+STRETCH_FRACTION = (0.80, 0.95)
+SPEED_M_PER_S = (2.5e-3, 50e-3)
+CYCLES = (5, 10)
+# Choices of this module (see the module docstring).
+AMBIENT_C = (20.0, 25.0)
+REST_BEFORE_S = (1.0, 3.0)
+REST_AFTER_S = 1.0
+HOLD_PROBABILITY = 1.0 / 3.0
+HOLD_S = (5.0, 20.0)
+LENGTH_VARIATION_M = 1e-3
+DIAMETER_VARIATION_M = 0.1e-3
+# Channels a sensor_lag or time_skew is put on when not given (DESIGN.md: the Arduino's channels).
+LOGGED_CHANNELS = ("pressure_kPa", "temperature_C")
+# Instrument choices (see draw_instruments).
+MACHINE_RATES_HZ = (10.0, 20.0, 25.0, 50.0)
+LOGGER_RATES_HZ = (20.0, 50.0, 100.0)
+MIN_SAMPLES_PER_STRETCH = 25
+FORCE_NOISE_RMS_N = (0.5, 2.0)
+CLOCK_OFFSET_S = (2.0, 30.0)
+CLOCK_DRIFT_PPM = 50.0
+SYNC_ERROR_S = 0.005
+LOGGER_MARGIN_S = 1.0
+
+
+@dataclass(frozen=True)
+class Protocol:
+    """A bench test's plan: inflation, and triangle cycles of the crosshead."""
+
+    inflation_pressure_kPa: float  #: gauge, after inflation [kPa]
+    ambient_temperature_C: float  #: [°C]
+    free_length_m: float  #: free inflated length, where the test starts [m]
+    free_contraction_m: float  #: deflated length minus free inflated length [m]
+    stretch_fraction: float  #: of the free contraction [1]
+    max_elongation_m: float  #: top of each stretch [m]
+    speed_m_per_s: float  #: crosshead speed [m/s]
+    cycles: int  #: stretch-return cycles [1]
+    hold_top_s: float  #: hold at the top of each stretch [s] (0: none)
+    rest_before_s: float  #: at rest before the first stretch [s]
+    rest_after_s: float  #: at rest after the last return [s]
+
+    def breakpoints(self) -> tuple[np.ndarray, np.ndarray]:
+        """The crosshead's corners: times [s] and elongations [m], linear in between."""
+        ramp = self.max_elongation_m / self.speed_m_per_s
+        t, e = [0.0, self.rest_before_s], [0.0, 0.0]
+        for _ in range(self.cycles):
+            t.append(t[-1] + ramp)
+            e.append(self.max_elongation_m)
+            if self.hold_top_s > 0:
+                t.append(t[-1] + self.hold_top_s)
+                e.append(self.max_elongation_m)
+            t.append(t[-1] + ramp)
+            e.append(0.0)
+        t.append(t[-1] + self.rest_after_s)
+        e.append(0.0)
+        return np.asarray(t), np.asarray(e)
+
+    @property
+    def duration_s(self) -> float:
+        return float(self.breakpoints()[0][-1])
+
+    def on_samples(self, sample_rate_Hz: float) -> "Protocol":
+        """The same protocol with every corner on a sample of a machine logging at
+        `sample_rate_Hz`: ramp, hold and rests whole numbers of sample periods, the speed
+        adjusted (by less than half a period per ramp, kept within DESIGN.md's range).
+
+        A machine's controller reverses where it is told, not on a logging tick; but a corner
+        between two samples is cut by the data's straight line, and the model driven by the
+        data then meets a different velocity there than the muscle did (friction changes sign
+        at the corner): a difference in force that is the sampling's, not the muscle's.
+        """
+        period = 1.0 / sample_rate_Hz
+        steps = max(1, round(self.max_elongation_m / self.speed_m_per_s / period))
+        while self.max_elongation_m / (steps * period) > SPEED_M_PER_S[1]:
+            steps += 1
+        while self.max_elongation_m / (steps * period) < SPEED_M_PER_S[0] and steps > 1:
+            steps -= 1
+        return replace(
+            self,
+            speed_m_per_s=self.max_elongation_m / (steps * period),
+            hold_top_s=round(self.hold_top_s / period) * period,
+            rest_before_s=max(1, round(self.rest_before_s / period)) * period,
+            rest_after_s=max(1, round(self.rest_after_s / period)) * period,
+        )
+
+
+@dataclass(frozen=True)
+class SynthFiles:
+    """What :func:`synthesize` wrote."""
+
+    experiment: Path  #: the experiment TOML
+    data: Path  #: its CSV
+    manifest: Path  #: the hidden truth (JSON); not for diagnosis
+
+
+# ----------------------------------------------------------------------------------------------
+# random draws
+
+
+def draw_build(rng: np.random.Generator) -> MuscleBuild:
+    """PAM 2 with its measured length and diameter varied, rounded as measured (module docstring)."""
+    build = MuscleBuild()
+    build.length_m = round(build.length_m + rng.uniform(-LENGTH_VARIATION_M, LENGTH_VARIATION_M), 4)
+    build.diameter_m = round(build.diameter_m + rng.uniform(-DIAMETER_VARIATION_M, DIAMETER_VARIATION_M), 5)
+    build.validate()
+    return build
+
+
+def muscle_params(build: MuscleBuild, ambient_temperature_C: float) -> MuscleParams:
+    """The baseline model of a synthetic test: what ``load_experiment`` makes of its file."""
+    gas = GasParams()
+    gas.ambient_temperature_K = ambient_temperature_C + KELVIN_OFFSET
+    return MuscleParams(build=build, bladder=BladderLaw.thesis(), friction=FrictionParams(), gas=gas)
+
+
+def draw_protocol(rng: np.random.Generator, build: MuscleBuild) -> Protocol:
+    """A random protocol in DESIGN.md's ranges (module docstring)."""
+    pressure = round(rng.uniform(*INFLATION_KPA), 2)
+    ambient = round(rng.uniform(*AMBIENT_C), 2)
+    fraction = rng.uniform(*STRETCH_FRACTION)
+    speed = math.exp(rng.uniform(math.log(SPEED_M_PER_S[0]), math.log(SPEED_M_PER_S[1])))
+    cycles = int(rng.integers(CYCLES[0], CYCLES[1] + 1))
+    hold = rng.uniform(*HOLD_S) if rng.uniform() < HOLD_PROBABILITY else 0.0
+    rest = rng.uniform(*REST_BEFORE_S)
+    gas = GasParams()
+    free = free_inflation(BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure * PASCAL_PER_KPA)
+    contraction = build.length_m - free.length_m
+    return Protocol(
+        inflation_pressure_kPa=pressure,
+        ambient_temperature_C=ambient,
+        free_length_m=free.length_m,
+        free_contraction_m=contraction,
+        stretch_fraction=fraction,
+        max_elongation_m=round(fraction * contraction, 4),  # the machine is programmed in 0.1 mm
+        speed_m_per_s=round(speed, 5),
+        cycles=cycles,
+        hold_top_s=round(hold, 1),
+        rest_before_s=round(rest, 2),
+        rest_after_s=REST_AFTER_S,
+    )
+
+
+def draw_instruments(rng: np.random.Generator, protocol: Protocol) -> dict:
+    """The bench's instruments for one dataset.
+
+    - tensile machine: a rate among 10, 20, 25, 50 Hz giving at least 25 samples per stretch
+      (a lab sets the rate so that a stretch is a curve; 50 Hz otherwise); load-cell noise
+      0.5-2 N RMS (a 100 kN cell's floor, 0.5-2e-5 of capacity), 0.2 N resolution, 1 µm
+      displacement resolution;
+    - Arduino logger: a rate among 20, 50, 100 Hz, not below the machine's; clock started
+      2-30 s before the machine's, drifting +-50 ppm; one conversion per sample as the
+      thesis's CoolTerm logging; 2 mV RMS input noise; this unit's transducer offset
+      0.56 V +- 20 mV and sensitivity 0.04 V/psi +- 2 %, calibrated as in appendix B before
+      the test (exact reference pressures: a reference gauge's error is the catalog's
+      sensor_offset); ADC reference exactly the 5 V the host assumes (an AVCC error would shift
+      the TMP36's reading, an offset the catalog has no name for);
+    - hand synchronisation: the operator lines up the first pressure rise with the start of
+      the crosshead, both sharp, and is off by up to +-5 ms; the drift is left uncorrected.
+
+    The clock errors are kept small on purpose: at 50 mm/s the pressure moves by up to about
+    200 kPa/s, so 5 ms is one ADC count. A larger error is a real bench's time skew, which the
+    catalog's time_skew (0.3-3 s) names; in a dataset without that effect it must not show.
+    """
+    ramp = protocol.max_elongation_m / protocol.speed_m_per_s
+    machine_choices = [r for r in MACHINE_RATES_HZ if r * ramp >= MIN_SAMPLES_PER_STRETCH] or [MACHINE_RATES_HZ[-1]]
+    machine_rate = float(rng.choice(machine_choices))
+    logger_choices = [r for r in LOGGER_RATES_HZ if r >= machine_rate]
+    logger_rate = float(rng.choice(logger_choices))
+    machine = TensileMachineSettings(
+        sample_rate_Hz=machine_rate,
+        load_cell=LoadCell(noise_rms_N=round(rng.uniform(*FORCE_NOISE_RMS_N), 3)),
+    )
+    transducer = PressureTransducer(
+        offset_V=round(0.56 + rng.uniform(-0.02, 0.02), 5),
+        sensitivity_V_per_psi=round(0.04 * (1.0 + rng.uniform(-0.02, 0.02)), 7),
+    )
+    logger = ArduinoLoggerSettings(
+        sample_rate_Hz=logger_rate,
+        clock_offset_s=round(rng.uniform(*CLOCK_OFFSET_S), 6),
+        clock_drift_ppm=round(rng.uniform(-CLOCK_DRIFT_PPM, CLOCK_DRIFT_PPM), 2),
+        pressure=transducer,
+    )
+    sync_error = round(rng.uniform(-SYNC_ERROR_S, SYNC_ERROR_S), 4)
+    return {"machine": machine, "logger": logger, "sync_error_s": sync_error}
+
+
+def parse_spec(spec: str, effect_catalog: EffectCatalog) -> tuple[str, dict[str, str]]:
+    """Splits ``NAME[:key=value,...]`` after checking it with the catalog.
+
+    Raises:
+        ValueError: naming the unknown effect, the bad key or value (the catalog's message).
+    """
+    spec = spec.strip()
+    name, _, rest = spec.partition(":")
+    given: dict[str, str] = {}
+    for item in filter(None, rest.split(",")):
+        key, equals, value = item.partition("=")
+        if not equals or not key:
+            raise ValueError(f"effect '{spec}': '{item}' is not key=value")
+        given[key.strip()] = value.strip()
+    if name == NONE:
+        if given:
+            raise ValueError(f"effect 'none' takes no parameters (got {', '.join(given)})")
+        return name, given
+    effect_catalog.parse(spec)  # raises ValueError naming the effect, key or value
+    return name, given
+
+
+def configure_effect(spec: str, rng: np.random.Generator, effect_catalog: EffectCatalog | None = None,
+                     channels: Sequence[str] = LOGGED_CHANNELS):
+    """The effect of `spec` with every parameter not given drawn (module docstring); a channel
+    not given is drawn among `channels`.
+
+    Returns:
+        (effect or None for "none", {"name", "spec", "given", "drawn", "parameters", "options"}).
+    """
+    effect_catalog = effect_catalog if effect_catalog is not None else builtin_catalog()
+    name, given = parse_spec(spec, effect_catalog)
+    info = {"name": name, "spec": spec, "given": sorted(given), "drawn": [], "parameters": {}, "options": {}}
+    if name == NONE:
+        return None, info
+    effect = effect_catalog.make(name)
+    drawn = []
+    if "channel" in effect.options() and "channel" not in given:
+        given["channel"] = str(rng.choice(list(channels)))
+        drawn.append("channel")
+    for parameter in effect.parameters():
+        if parameter.name in given:
+            continue
+        lo, hi = parameter.realistic_min, parameter.realistic_max
+        if not (math.isfinite(lo) and math.isfinite(hi)) or hi <= lo:
+            continue
+        if "time_constant" in parameter.name and lo > 0:
+            value = math.exp(rng.uniform(math.log(lo), math.log(hi)))
+        else:
+            value = rng.uniform(lo, hi)
+        if name == "time_skew" and parameter.name == "offset_s":
+            value *= rng.choice((-1.0, 1.0))
+        given[parameter.name] = repr(float(value))
+        drawn.append(parameter.name)
+    for key, value in given.items():
+        effect.set(key, value)
+    info["drawn"] = drawn
+    info["parameters"] = {p.name: p.value for p in effect.parameters()}
+    info["options"] = dict(effect.options())
+    return effect, info
+
+
+# ----------------------------------------------------------------------------------------------
+# the dataset
+
+
+def synthesize(effect_spec: str, seed: int, out_dir: str | Path, effect_catalog: EffectCatalog | None = None) -> SynthFiles:
+    """Writes a synthetic experiment with the effect `effect_spec` (``"none"``, ``"NAME"`` or
+    ``"NAME:key=value,..."``) hidden in it: ``out_dir/experiment.toml``,
+    ``out_dir/experiment.csv`` and the truth in ``out_dir/manifest.json``.
+
+    The same seed gives byte-identical files; the protocol, build and instrument noise depend
+    on the seed only, not on the effect.
+
+    Raises:
+        ValueError: for a bad effect spec (naming the effect, key or value), or an effect that
+            cannot act on a sealed test.
+    """
+    effect_catalog = effect_catalog if effect_catalog is not None else builtin_catalog()
+    seed = int(seed)
+    if seed < 0:
+        raise ValueError(f"seed = {seed} must be >= 0")
+    build_rng, protocol_rng, effect_rng, instrument_rng = (
+        np.random.default_rng(child) for child in np.random.SeedSequence(seed).spawn(4)
+    )
+    parse_spec(effect_spec, effect_catalog)  # a bad spec fails before any work
+
+    build = draw_build(build_rng)
+    protocol = draw_protocol(protocol_rng, build)
+    instruments = draw_instruments(instrument_rng, protocol)
+    protocol = protocol.on_samples(instruments["machine"].sample_rate_Hz)
+    machine = TensileMachine(instruments["machine"])
+    logger = ArduinoLogger(instruments["logger"])
+    calibration = logger.calibrate(instrument_rng)
+
+    # The truth, sampled where either instrument samples it (and at the crosshead's corners),
+    # so that neither reads an interpolation of the simulation.
+    duration = protocol.duration_s
+    corners_t, corners_e = protocol.breakpoints()
+    logger_times = logger.sample_times(-LOGGER_MARGIN_S, duration + LOGGER_MARGIN_S)
+    times = np.concatenate([machine.sample_times(duration), logger_times[(logger_times > 0) & (logger_times < duration)], corners_t])
+    times = np.unique(times)
+    times = times[np.concatenate([[True], np.diff(times) > 1e-6])]
+    crosshead = ElongationTrajectory(times, np.interp(times, corners_t, corners_e))
+    params = muscle_params(build, protocol.ambient_temperature_C)
+    initial = InitialState(length_m=protocol.free_length_m, gauge_pressure_Pa=protocol.inflation_pressure_kPa * PASCAL_PER_KPA)
+    baseline = simulate_measurement(params, initial, crosshead, [], Simulator())
+
+    # A lag or skew of a channel that does not move cannot be seen (the temperature of the
+    # isothermal baseline, polytropic n = 1): the channel is drawn among those that move by
+    # more than one ADC count over the test.
+    step = {"pressure_kPa": logger.pressure_step_kPa(), "temperature_C": logger.temperature_step_C()}
+    moving = [name for name in LOGGED_CHANNELS if np.ptp(getattr(baseline, name)) > step[name]]
+    effect, effect_info = configure_effect(effect_spec, effect_rng, effect_catalog, moving or LOGGED_CHANNELS)
+    effects = [effect] if effect is not None else []
+    truth = simulate_measurement(params, initial, crosshead, effects, Simulator()) if effects else baseline
+    effect_info["largest_change"] = {
+        name: float(np.max(np.abs(np.asarray(getattr(truth, name)) - np.asarray(getattr(baseline, name)))))
+        for name in ("force_N", "pressure_kPa", "temperature_C")
+    }
+
+    machine_log = machine.record(truth, instrument_rng, duration)
+    logger_log = logger.record(truth, instrument_rng, -LOGGER_MARGIN_S, duration + LOGGER_MARGIN_S)
+    sync = instruments["logger"].clock_offset_s + instruments["sync_error_s"]
+    columns = merge_logs(machine_log, logger_log, sync)
+
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    files = SynthFiles(out_dir / "experiment.toml", out_dir / "experiment.csv", out_dir / "manifest.json")
+    write_series(files.data, columns)
+    files.experiment.write_text(_experiment_toml(build, protocol, files.data.name))
+    manifest = {
+        "about": "the truth hidden in experiment.toml/.csv; written by pamkit synth; not for diagnosis",
+        "pamkit_version": pamkit.__version__,
+        "seed": seed,
+        "effect": effect_info,
+        "protocol": asdict(protocol),
+        "muscle": build.to_dict(),
+        "instruments": {
+            "tensile_machine": asdict(instruments["machine"]),
+            "arduino_logger": asdict(instruments["logger"]),
+            "pressure_calibration": asdict(calibration),
+            "pressure_step_kPa": logger.pressure_step_kPa(),
+            "temperature_step_C": logger.temperature_step_C(),
+            "logger_clock_at_machine_zero_s": {"true": instruments["logger"].clock_offset_s, "used_to_merge": sync},
+        },
+        "samples": {"dense": int(times.size), "machine": int(machine_log.time_s.size), "logger": int(logger_log.time_s.size)},
+        "files": {"experiment": files.experiment.name, "data": files.data.name},
+    }
+    files.manifest.write_text(json.dumps(manifest, indent=2, sort_keys=True) + "\n")
+    return files
+
+
+def _experiment_toml(build: MuscleBuild, protocol: Protocol, data_name: str) -> str:
+    muscle = "\n".join(f"{key} = {_toml_number(value)}" for key, value in build.to_dict().items())
+    return (
+        "# A synthetic bench test (pamkit synth): PAM 2 on a tensile machine, pressure and temperature\n"
+        "# logged by an Arduino Mega, the two logs merged on the machine's time base.\n\n"
+        f"[muscle]\n{muscle}\n\n"
+        "[test]\n"
+        'description = "synthetic bench test (pamkit synth)"\n'
+        f"inflation_pressure_kPa = {_toml_number(protocol.inflation_pressure_kPa)}\n"
+        f"ambient_temperature_C = {_toml_number(protocol.ambient_temperature_C)}\n"
+        f'data = "{data_name}"\n'
+    )
+
+
+def _toml_number(value: float) -> str:
+    return str(int(value)) if float(value).is_integer() else repr(float(value))
