@@ -1,0 +1,110 @@
+"""Diagnosis over many synthetic datasets (DESIGN.md, "Tests that hide an effect"): a confusion
+matrix of hidden effect against named cause, the detection and false-alarm rates, the median
+held-out gain, and the time per diagnosis with its breakdown.
+
+    PYTHONPATH=build/python python3 bench/bench_diagnose.py --datasets 200 [--json OUT]
+
+Datasets cycle through the catalog and "none" (equal shares), seeds from --first-seed on. The
+time per diagnosis is machine-dependent: the breakdown (baseline calibration, candidate fits)
+and its ratio to one simulation of the same dataset are what carry over.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import tempfile
+import time
+from collections import Counter, defaultdict
+from pathlib import Path
+
+import numpy as np
+
+from pamkit.diagnose import diagnose
+from pamkit.diagnose.report import to_json
+from pamkit.effects import catalog
+from pamkit.experiment import load_experiment
+from pamkit.simulate import simulate_experiment
+from pamkit.synth import synthesize
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--datasets", type=int, default=200)
+    parser.add_argument("--first-seed", type=int, default=1000)
+    parser.add_argument("--threads", type=int, default=None)
+    parser.add_argument("--json", help="write every dataset's truth, cause, gain and timing")
+    arguments = parser.parse_args()
+
+    names = ["none"] + catalog().names()
+    rows = []
+    with tempfile.TemporaryDirectory() as scratch:
+        for i in range(arguments.datasets):
+            effect = names[i % len(names)]
+            seed = arguments.first_seed + i
+            folder = Path(scratch) / f"{i:04d}"
+            files = synthesize(effect, seed, folder)
+            truth = json.loads(files.manifest.read_text())["effect"]
+            experiment = load_experiment(files.experiment)
+            started = time.perf_counter()
+            simulate_experiment(experiment)
+            one_simulation = time.perf_counter() - started
+            started = time.perf_counter()
+            d = diagnose(experiment, threads=arguments.threads)
+            seconds = time.perf_counter() - started
+            report = to_json(d)
+            best_gain = max(report["gain"].values()) if report["gain"] else 0.0
+            rows.append({"seed": seed, "truth": truth["name"], "options": truth.get("options", {}),
+                         "parameters": truth.get("parameters", {}), "cause": report["cause"], "gain": best_gain,
+                         "seconds": seconds, "breakdown": d.seconds, "one_simulation_s": one_simulation,
+                         "samples": int(experiment.time_s.size), "verdict": report["verdict"]})
+            mark = "ok " if rows[-1]["cause"] == truth["name"] else "MISS"
+            print(f"{mark} {i + 1:4d}/{arguments.datasets} seed {seed}: hidden {truth['name']:<24} named "
+                  f"{report['cause']:<24} {seconds:5.2f} s", file=sys.stderr, flush=True)
+
+    print_summary(rows, names)
+    if arguments.json:
+        Path(arguments.json).write_text(json.dumps(rows, indent=2) + "\n")
+    return 0
+
+
+def print_summary(rows: list[dict], names: list[str]) -> None:
+    confusion = defaultdict(Counter)
+    for row in rows:
+        confusion[row["truth"]][row["cause"]] += 1
+    causes = names
+    width = max(len(n) for n in names) + 1
+    print(f"\nconfusion matrix ({len(rows)} datasets; rows: hidden effect, columns: named cause)\n")
+    print(" " * width + " ".join(f"{k[:6]:>6}" for k in causes))
+    for truth in names:
+        print(f"{truth:<{width}}" + " ".join(f"{confusion[truth][c]:>6d}" for c in causes))
+    effect_rows = [r for r in rows if r["truth"] != "none"]
+    null_rows = [r for r in rows if r["truth"] == "none"]
+    detected = sum(r["cause"] == r["truth"] for r in effect_rows)
+    wrong = sum(r["cause"] not in ("none", r["truth"]) for r in effect_rows)
+    false_alarms = sum(r["cause"] != "none" for r in null_rows)
+    gains = [r["gain"] for r in effect_rows if r["cause"] == r["truth"]]
+    seconds = np.array([r["seconds"] for r in rows])
+    ratio = np.array([r["seconds"] / r["one_simulation_s"] for r in rows])
+    baseline = np.array([r["breakdown"]["baseline"] for r in rows])
+    candidates = np.array([r["breakdown"]["candidates"] for r in rows])
+    print(f"\ndetection rate        {detected}/{len(effect_rows)} = {detected / max(len(effect_rows), 1):.3f}"
+          f"  (wrong cause named: {wrong})")
+    print(f"false-alarm rate      {false_alarms}/{len(null_rows)} = {false_alarms / max(len(null_rows), 1):.3f}")
+    print(f"median held-out gain  {np.median(gains) if gains else float('nan'):.3f} (correctly named causes, best channel)")
+    print(f"time per diagnosis    median {np.median(seconds):.2f} s, 90th percentile {np.percentile(seconds, 90):.2f} s, "
+          f"max {seconds.max():.2f} s")
+    print(f"                      = median {np.median(ratio):.0f} x one simulation of the same dataset")
+    print(f"breakdown (median)    baseline calibration {np.median(baseline):.2f} s, candidate fits "
+          f"{np.median(candidates):.2f} s")
+    misses = [r for r in rows if r["cause"] != r["truth"]]
+    if misses:
+        print("\nmisses:")
+        for r in misses:
+            print(f"  seed {r['seed']}: hidden {r['truth']} {r['options']} "
+                  f"{ {k: round(v, 4) for k, v in r['parameters'].items()} } -> {r['cause']}: {r['verdict'][:140]}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
