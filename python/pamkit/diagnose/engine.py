@@ -33,6 +33,9 @@ BOOTSTRAP_SAMPLES = 1000
 SCAN_POINTS = 5              # simulations per physical effect's first parameter
 SCAN_POINTS_MEASUREMENT = 41  # no simulation needed: scan finely (a skew has one minimum per cycle)
 REFIT_LEADERS = 3             # leading candidates refitted jointly with the baseline
+# Finite-difference step in the unit box of each coordinate: large enough that the
+# integrator's adaptive steps (relative error ~1e-7) do not swamp the slopes.
+DIFF_STEP = 1e-3
 
 
 @dataclass
@@ -82,7 +85,7 @@ def _start_unit(space: list[Coordinate]) -> np.ndarray:
 
 
 def _least_squares(residual, u0: np.ndarray, max_evaluations: int) -> np.ndarray:
-    result = least_squares(residual, u0, bounds=(0.0, 1.0), method="trf", diff_step=1e-4,
+    result = least_squares(residual, u0, bounds=(0.0, 1.0), method="trf", diff_step=DIFF_STEP,
                            x_scale=1.0, max_nfev=max_evaluations)
     return result.x
 

@@ -62,12 +62,21 @@ inline bool identical(const Measurement& a, const Measurement& b) {
          identical(a.pressure_kPa, b.pressure_kPa) && identical(a.temperature_C, b.temperature_C);
 }
 
+/// A simulator tight enough that its global error (~1e-9 relative over these runs) stays
+/// far below every tolerance the effect tests check against closed forms.
+inline Simulator precise_simulator() {
+  SimulatorConfig config;
+  config.relative_tolerance = 1e-10;
+  config.absolute_tolerance_K = 1e-10;
+  return Simulator(config);
+}
+
 /// The simulated bench test with `specs` parsed from text.
 inline Measurement measure(const MuscleParams& params, const InitialState& initial, const ElongationTrajectory& crosshead,
                            const std::vector<std::string>& specs) {
   std::vector<EffectPtr> effects;
   for (const std::string& spec : specs) effects.push_back(effect(spec));
-  return simulate_measurement(params, initial, crosshead, effects);
+  return simulate_measurement(params, initial, crosshead, effects, precise_simulator());
 }
 
 }  // namespace pamkit_test

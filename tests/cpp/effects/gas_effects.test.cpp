@@ -76,7 +76,7 @@ TEST_CASE("heat_transfer: during a hold the pressure relaxes to the isothermal v
       const double expected = excess0 * std::exp(-(m.time_s[k] - m.time_s[k0]) / tau);
       const double excess = m.pressure_kPa[k] - isothermal.pressure_kPa[k];
       INFO("t = " << m.time_s[k] << " s: excess " << excess << " kPa, expected " << expected);
-      // CVODES at rtol 1e-8 holds T to a few 1e-8 relative; on ~400 kPa absolute that is ~1e-5 kPa.
+      // CVODES at rtol 1e-10 holds T to ~1e-9 relative; on ~400 kPa absolute that is ~1e-5 kPa.
       CHECK(std::abs(excess - expected) < 1e-7 * (m.pressure_kPa[k] + kAtmosphere_kPa));
     }
   }
@@ -90,7 +90,7 @@ TEST_CASE("leak: at a fixed length the gauge pressure decays as exp(-t/tau)", "[
   const Measurement m = measure(MuscleParams(), table_c2_90(), still, {"leak:time_constant_s=50"});
   for (std::size_t k = 0; k < time.size(); ++k) {
     INFO("t = " << time[k] << " s");
-    // CVODES global error at rtol 1e-8 over 100 s, seen on a gauge pressure that falls to e^-2 of
+    // CVODES global error at rtol 1e-10 over 100 s, seen on a gauge pressure that falls to e^-2 of
     // an absolute one 1.4x larger: 1e-6 leaves two decades of margin.
     CHECK_REL(m.pressure_kPa[k], 236.63 * std::exp(-time[k] / tau), 1e-6);
   }
@@ -108,7 +108,7 @@ TEST_CASE("leak: successive peaks drift down, as exp(-t/tau) in the gas above th
   const double speed = 2.5e-3;
   const ElongationTrajectory crosshead = thesis_protocol(stroke, speed, 10, 0.1);
   const MuscleParams params;
-  const SimulationResult sealed = Simulator().run(MuscleModel(params, table_c2_90()), crosshead);
+  const SimulationResult sealed = precise_simulator().run(MuscleModel(params, table_c2_90()), crosshead);
   const std::vector<double>& t = sealed.time_s;
   const std::vector<double>& volume = sealed.gas_volume_m3;  // the leak changes the mass, not the volume
 

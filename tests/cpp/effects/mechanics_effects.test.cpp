@@ -122,9 +122,11 @@ TEST_CASE("bladder_viscoelasticity: force hysteresis grows with rate, is larger 
     CHECK(slow.viscous_area > 0.0);
     CHECK(fast.viscous_area > slow.viscous_area);
     // The branch acts on the force through the bladder's strains; the isothermal gas's pressure
-    // depends on the volume alone, which the branch does not change.
-    CHECK(slow.pressure_diff == 0.0);
-    CHECK(fast.pressure_diff == 0.0);
+    // depends on the volume alone, which the branch does not change. The runs' integrator steps
+    // differ (the branch's states join the error test), so the two agree to rounding: 1e-9 kPa
+    // is ~1e-11 of these pressures.
+    CHECK(slow.pressure_diff <= 1e-9);
+    CHECK(fast.pressure_diff <= 1e-9);
     relative_at_2_5[i++] = slow.viscous_area / slow.work_scale;
   }
   INFO("viscous hysteresis / (peak force x stroke): high pressure " << relative_at_2_5[0] << ", low pressure "
