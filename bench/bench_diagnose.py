@@ -51,14 +51,24 @@ def main() -> int:
             simulate_experiment(experiment)
             one_simulation = time.perf_counter() - started
             started = time.perf_counter()
-            d = diagnose(experiment, threads=arguments.threads)
+            try:
+                d = diagnose(experiment, threads=arguments.threads)
+            except Exception as error:  # a crash is a result of the sweep too: count it, go on
+                print(f"ERROR seed {seed}: hidden {truth['name']}: {error!r}", file=sys.stderr, flush=True)
+                rows.append({"seed": seed, "truth": truth["name"], "options": truth.get("options", {}),
+                             "parameters": truth.get("parameters", {}), "cause": "error", "gain": 0.0,
+                             "seconds": time.perf_counter() - started, "breakdown": {"baseline": 0.0, "candidates": 0.0},
+                             "one_simulation_s": one_simulation, "samples": int(experiment.time_s.size),
+                             "largest_change": truth.get("largest_change", {}), "verdict": repr(error)})
+                continue
             seconds = time.perf_counter() - started
             report = to_json(d)
             best_gain = max(report["gain"].values()) if report["gain"] else 0.0
             rows.append({"seed": seed, "truth": truth["name"], "options": truth.get("options", {}),
                          "parameters": truth.get("parameters", {}), "cause": report["cause"], "gain": best_gain,
                          "seconds": seconds, "breakdown": d.seconds, "one_simulation_s": one_simulation,
-                         "samples": int(experiment.time_s.size), "verdict": report["verdict"]})
+                         "samples": int(experiment.time_s.size), "largest_change": truth.get("largest_change", {}),
+                         "verdict": report["verdict"]})
             mark = "ok " if rows[-1]["cause"] == truth["name"] else "MISS"
             print(f"{mark} {i + 1:4d}/{arguments.datasets} seed {seed}: hidden {truth['name']:<24} named "
                   f"{report['cause']:<24} {seconds:5.2f} s", file=sys.stderr, flush=True)
@@ -73,7 +83,7 @@ def print_summary(rows: list[dict], names: list[str]) -> None:
     confusion = defaultdict(Counter)
     for row in rows:
         confusion[row["truth"]][row["cause"]] += 1
-    causes = names
+    causes = names + (["error"] if any(r["cause"] == "error" for r in rows) else [])
     width = max(len(n) for n in names) + 1
     print(f"\nconfusion matrix ({len(rows)} datasets; rows: hidden effect, columns: named cause)\n")
     print(" " * width + " ".join(f"{k[:6]:>6}" for k in causes))
@@ -102,8 +112,10 @@ def print_summary(rows: list[dict], names: list[str]) -> None:
     if misses:
         print("\nmisses:")
         for r in misses:
+            change = {k: round(v, 2) for k, v in r.get("largest_change", {}).items()}
             print(f"  seed {r['seed']}: hidden {r['truth']} {r['options']} "
-                  f"{ {k: round(v, 4) for k, v in r['parameters'].items()} } -> {r['cause']}: {r['verdict'][:140]}")
+                  f"{ {k: round(v, 4) for k, v in r['parameters'].items()} } (largest change {change}) -> "
+                  f"{r['cause']}: {r['verdict'][:140]}")
 
 
 if __name__ == "__main__":

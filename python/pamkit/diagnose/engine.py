@@ -90,14 +90,25 @@ def _least_squares(residual, u0: np.ndarray, max_evaluations: int) -> np.ndarray
     return result.x
 
 
+def _penalty(problem: Problem, scale: float) -> np.ndarray:
+    """The residual of parameters that drive the model out of its range (a braid stretched
+    past its fibers' length, a root not bracketed): a bad fit, not a failed diagnosis."""
+    return np.full(int(problem.fit_mask.sum()) * len(problem.channels), 10.0 * (1.0 + scale))
+
+
 def fit_baseline(problem: Problem) -> Fit:
     space = problem.predictor.baseline.space
     evaluations = 0
+    start_chi = problem.chi(problem.predictor.predict(_unit_to_x(space, _start_unit(space)), []), problem.fit_mask)
+    penalty = _penalty(problem, float(np.sqrt(np.mean(start_chi**2))))
 
     def residual(u):
         nonlocal evaluations
         evaluations += 1
-        return problem.chi(problem.predictor.predict(_unit_to_x(space, u), []), problem.fit_mask)
+        try:
+            return problem.chi(problem.predictor.predict(_unit_to_x(space, u), []), problem.fit_mask)
+        except (ValueError, RuntimeError):
+            return penalty
 
     u = _least_squares(residual, _start_unit(space), 20 * (len(space) + 1))
     x = _unit_to_x(space, u)
@@ -133,18 +144,12 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, join
             return {c: getattr(m, c) for c in problem.channels}
         return problem.predictor.predict(base_x, [effect])
 
-    penalty = None
+    penalty = _penalty(problem, float(np.sqrt(baseline.training_chi2 / max(problem.fit_mask.sum(), 1))))
 
     def chi_or_penalty(base_x, effect_x):
-        # Parameters that drive the model out of its range (a braid too short, a root not
-        # bracketed) are a bad fit, not a failed diagnosis.
-        nonlocal penalty
         try:
             return problem.chi(predict(base_x, effect_x), problem.fit_mask)
         except (ValueError, RuntimeError):
-            if penalty is None:
-                penalty = np.full(problem.chi(baseline.predicted, problem.fit_mask).size,
-                                  10.0 * (1.0 + np.sqrt(baseline.training_chi2 / max(problem.fit_mask.sum(), 1))))
             return penalty
 
     try:
