@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# The main job on bundled data: simulate the thesis's bench test of table C.2 (PAM 2 inflated to
-# 207 kPa, stretched to 90 %, 10 cycles at 2.5 mm/s) and write out/demo.csv and out/demo.png.
+# The main job on bundled data: diagnose a bench test with an effect hidden in it
+# (data/experiments/example) and write the report (out/report.json) and its figure
+# (out/report.png). The verdict is printed; data/experiments/example/manifest.json holds the truth.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
 mkdir -p out
-PYTHONPATH="$PWD/build/python" python3 -m pamkit simulate data/experiments/thesis/pam2_207kPa_90pct.toml \
-  -o out/demo.csv --plot out/demo.png
+PYTHONPATH="$PWD/build/python" python3 -m pamkit diagnose data/experiments/example/experiment.toml \
+  --json out/report.json --plot out/report.png
