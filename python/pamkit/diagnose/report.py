@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from pamkit.diagnose import evidence
-from pamkit.diagnose.engine import MIN_GAIN, Diagnosis, Fit
+from pamkit.diagnose.engine import MIN_BIC_DROP, MIN_GAIN, Diagnosis, Fit
 
 UNITS = {"force_N": "N", "pressure_kPa": "kPa", "temperature_C": "°C"}
 SIGNATURES = {
@@ -84,6 +84,7 @@ def to_json(d: Diagnosis) -> dict:
             "cycles": {"fitted": sorted(set(int(k) for k in p.cycle[p.fit_mask])),
                        "held_out": sorted(set(int(k) for k in p.cycle[p.held_mask]))},
             "min_gain": MIN_GAIN,
+            "min_bic_drop": MIN_BIC_DROP,
             "skipped": d.skipped,
         },
         "verdict": verdict(d),
@@ -99,8 +100,8 @@ def verdict(d: Diagnosis) -> str:
     if d.cause == "none":
         sizes = ", ".join(f"{c} {baseline_rmse[c]:.3g} {UNITS.get(c, '')} (noise {p.sigma[c]:.2g})" for c in p.channels)
         best = d.candidates[0] if d.candidates else None
-        tail = (f"; best candidate {best[0].name} gains only {best[1].combined_gain:.2f} (needs {MIN_GAIN:.2f}, "
-                f"95 % CI above 0)") if best else ""
+        tail = (f"; best candidate {best[0].name} gains {best[1].combined_gain:.3f} (a cause needs {MIN_GAIN:.2f} with "
+                "its 95 % CI above 0, the BIC down by 10 and parameters the sampling resolves)") if best else ""
         return f"no cause named: the calibrated model explains the data to within its noise (held-out RMSE {sizes}){tail}"
     fit, s = d.extended, d.extended_score
     channel = max(p.channels, key=lambda c: s.gain[c])
