@@ -35,6 +35,8 @@ BOOTSTRAP_SAMPLES = 1000
 SCAN_POINTS = 5              # simulations per physical effect's first parameter
 SCAN_POINTS_MEASUREMENT = 41  # no simulation needed: scan finely (a skew has one minimum per cycle)
 REFIT_LEADERS = 3             # leading candidates refitted jointly with the baseline
+PAIR_TRIGGER = 1.5            # a named cause leaving a channel this many noise sigmas off tries pairs
+PAIR_PARTNERS = 3             # the next candidates tried as its partner
 # Finite-difference step in the unit box of each coordinate: large enough that the
 # integrator's adaptive steps (relative error ~1e-7) do not swamp the slopes.
 DIFF_STEP = 1e-3
@@ -197,6 +199,69 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, join
                    error=str(error))
 
 
+def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) -> Fit:
+    """Adds a second effect to a fitted one: a scan of the second's first parameter from the
+    first's fit, then everything (baseline, both effects) jointly."""
+    effects = [make_first(), make_second()]
+    spaces = [effect_space(e) for e in effects]
+    base_space = problem.predictor.baseline.space
+    n_base, n_first = len(base_space), len(spaces[0])
+    evaluations = 0
+
+    def split(u):
+        return (_unit_to_x(base_space, u[:n_base]), _unit_to_x(spaces[0], u[n_base:n_base + n_first]),
+                _unit_to_x(spaces[1], u[n_base + n_first:]))
+
+    def predict(u):
+        nonlocal evaluations
+        evaluations += 1
+        base_x, x1, x2 = split(u)
+        configure(effects[0], spaces[0], x1)
+        configure(effects[1], spaces[1], x2)
+        return problem.predictor.predict(base_x, effects)
+
+    penalty = _penalty(problem, float(np.sqrt(first.training_chi2 / max(problem.fit_mask.sum(), 1))))
+
+    def residual(u):
+        try:
+            return problem.chi(predict(u), problem.fit_mask)
+        except (ValueError, RuntimeError):
+            return penalty
+
+    start = np.concatenate([
+        np.clip(_x_to_unit(base_space, first.baseline_x), 0, 1),
+        np.clip(_x_to_unit(spaces[0], np.array([c.of(first.params[c.name]) for c in spaces[0]])), 0, 1),
+        _start_unit(spaces[1]),
+    ])
+    best_u, best_chi2 = start, math.inf
+    # Finer than a single effect's scan: the first effect already absorbed part of the second.
+    for point in np.linspace(0.0, 1.0, 2 * SCAN_POINTS - 1):
+        u = start.copy()
+        u[n_base + n_first] = point
+        chi2 = float(np.sum(residual(u) ** 2))
+        if chi2 < best_chi2:
+            best_u, best_chi2 = u, chi2
+    u = _least_squares(residual, best_u, 10 * (len(start) + 1))
+    try:
+        predicted = predict(u)
+    except (ValueError, RuntimeError) as error:
+        return Fit(label, effects, first.baseline_x, {}, first.predicted, math.inf, len(start), evaluations, error=str(error))
+    base_x, x1, x2 = split(u)
+    params = {}
+    for effect, space, x in zip(effects, spaces, (x1, x2)):
+        params.update({f"{effect.name()}.{c.name}": float(c.value(v)) for c, v in zip(space, x)})
+        params.update({f"{effect.name()}.{k}": v for k, v in effect.options().items()})
+    chi2 = float(np.sum(problem.chi(predicted, problem.fit_mask) ** 2))
+    return Fit(label, effects, base_x, params, predicted, chi2, len(start), evaluations,
+               baseline_params=problem.predictor.baseline.values(base_x))
+
+
+def structured(problem: Problem, fit: Fit) -> list[str]:
+    """Channels whose held-out residual is still well above their noise (RMS > 1.5 sigma)."""
+    return [c for c in problem.channels
+            if evidence.rmse((fit.predicted[c] - problem.measured[c])[problem.held_mask]) > PAIR_TRIGGER * problem.sigma[c]]
+
+
 @dataclass
 class Score:
     rmse: dict[str, float]
@@ -345,6 +410,33 @@ def build_problem(experiment: Experiment) -> Problem:
     )
 
 
+def _try_pairs(problem, baseline, single, single_score, fitted, factories, rng, threads, report):
+    """The named cause leaves structure: pair it with the next candidates, and keep a pair
+    only if it beats the single cause as the single beat the baseline (significant gain over
+    it on held-out cycles, BIC, resolvable)."""
+    partners = [fit for fit, _ in fitted if fit.effects[0].name() != single.effects[0].name()][:PAIR_PARTNERS]
+    report(f"{single.name} leaves {', '.join(structured(problem, single))} above noise: trying it with "
+           f"{', '.join(p.name for p in partners)}")
+    best, best_score = single, single_score
+    with ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
+        futures = [pool.submit(fit_pair, problem, single, factories[single.name], factories[p.name],
+                               f"{single.name}+{p.name}") for p in partners]
+        for future in futures:
+            pair = future.result()
+            if pair.error is not None:
+                continue
+            over_single = score(problem, single, pair, rng)
+            second = pair.effects[1].name()
+            second_params = {k.split(".", 1)[1]: v for k, v in pair.params.items() if k.startswith(second + ".")}
+            resolvable = RESOLVABLE.get(second, lambda p, q: True)(second_params, problem)
+            if (over_single.combined_gain >= MIN_GAIN and over_single.combined_ci95[0] > 0
+                    and over_single.delta_bic < -MIN_BIC_DROP and resolvable):
+                pair_score = score(problem, baseline, pair, rng)
+                if pair_score.combined_gain > best_score.combined_gain:
+                    best, best_score = pair, pair_score
+    return best, best_score
+
+
 @dataclass
 class Diagnosis:
     """Everything the report says; see report.py for the JSON, text and plot."""
@@ -420,6 +512,10 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
         cause, extended, extended_score = named[0][0].effects[0].name(), named[0][0], named[0][1]
     else:
         cause, extended, extended_score = "none", baseline, None
+    if cause != "none" and structured(problem, extended):
+        extended, extended_score = _try_pairs(problem, baseline, extended, extended_score, fitted, factories, rng,
+                                              threads, report)
     seconds["total"] = clock.perf_counter() - started
-    report(f"cause: {cause} ({seconds['total']:.1f} s)")
+    report(f"cause: {cause}" + (f" with {extended.effects[1].name()}" if len(extended.effects) > 1 else "")
+           + f" ({seconds['total']:.1f} s)")
     return Diagnosis(problem, baseline, fitted, skipped, extended, extended_score, cause, seconds)

@@ -78,7 +78,7 @@ def _rate(name, largest_rate, start_value):
 # Fit spaces of the built-in effects' parameters (bounds wider than the realistic ranges).
 BUILTIN_SPACES = {
     "heat_transfer": lambda e: [_log("time_constant_s", 0.02, 200.0, 2.0)],
-    "dead_volume": lambda e: [_linear("volume_fraction", 0.0, 2.0, 0.1)],
+    "dead_volume": lambda e: [_linear("volume_fraction", 0.0, 1.0, 0.1)],
     "leak": lambda e: [_rate("time_constant_s", 0.2, 1000.0)],
     "bladder_viscoelasticity": lambda e: [_log("time_constant_s", 0.05, 500.0, 2.0), _linear("strength", 0.0, 20.0, 0.5)],
     "fiber_compliance": lambda e: [_rate("stiffness_N", 1.0 / 10.0, 300.0)],
