@@ -5,7 +5,7 @@ velocity, |velocity|, time and cycle index)."""
 from __future__ import annotations
 
 import numpy as np
-from scipy.signal import savgol_filter
+from scipy.signal import savgol_coeffs, savgol_filter
 from scipy.stats import chi2
 
 CHANNELS = ("force_N", "pressure_kPa", "temperature_C")
@@ -26,7 +26,8 @@ def noise_scale(values: np.ndarray) -> float:
     if v.size < NOISE_WINDOW + 2:
         return max(float(np.std(v)), 1e-12)
     residual = v - savgol_filter(v, NOISE_WINDOW, NOISE_POLYORDER)
-    followed = (NOISE_POLYORDER + 1) / NOISE_WINDOW  # of white noise's variance, at each point
+    # The cubic follows its centre weight's share of white noise's variance at each point.
+    followed = float(savgol_coeffs(NOISE_WINDOW, NOISE_POLYORDER)[NOISE_WINDOW // 2])
     typical = 1.4826 * float(np.median(np.abs(residual)))
     if typical == 0.0:
         typical = float(np.sqrt(np.mean(residual**2)))

@@ -1,0 +1,134 @@
+"""Diagnosis as a user meets it: the report's keys (DESIGN.md), the command line, the Python
+API, and bad input named by file, row and column."""
+
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from pamkit.diagnose import diagnose, to_json, verdict
+from pamkit.diagnose.cycles import find_cycles, split_cycles
+from pamkit.diagnose.evidence import ljung_box_p, noise_scale
+from pamkit.experiment import ExperimentError
+from pamkit.synth import synthesize
+
+DESIGN_KEYS = {"baseline", "candidates", "cause", "extended", "gain", "gain_ci95", "residuals"}
+
+
+@pytest.fixture(scope="module")
+def leak_dataset(tmp_path_factory):
+    # A leak strong enough to see (tau = 300 s against tests of one to several minutes).
+    return synthesize("leak:time_constant_s=300", 5, tmp_path_factory.mktemp("leak"))
+
+
+def run_pamkit(*arguments):
+    return subprocess.run([sys.executable, "-m", "pamkit", *map(str, arguments)], capture_output=True, text=True,
+                          env=os.environ.copy(), timeout=300)
+
+
+def test_report_has_the_design_keys_and_names_the_leak(leak_dataset, tmp_path):
+    report_path, plot_path = tmp_path / "r.json", tmp_path / "r.png"
+    done = run_pamkit("diagnose", leak_dataset.experiment, "--json", report_path, "--plot", plot_path)
+    assert done.returncode == 0, done.stderr
+    assert "leak" in done.stdout and "gain" in done.stdout  # the one-line verdict
+    assert "calibrating the baseline" in done.stderr        # progress on stderr
+    report = json.loads(report_path.read_text())
+    assert DESIGN_KEYS <= set(report)
+    assert report["cause"] == "leak"
+    assert report["extended"]["effects"] == ["leak"]
+    channels = set(report["baseline"]["rmse"])
+    assert channels == {"force_N", "pressure_kPa", "temperature_C"}
+    assert set(report["gain"]) == channels and set(report["gain_ci95"]) == channels
+    for candidate in report["candidates"]:
+        assert {"effect", "params", "heldout_rmse", "gain", "score"} <= set(candidate)
+    assert set(report["residuals"]) == {"baseline", "extended"}
+    assert set(report["residuals"]["baseline"]["ljung_box_p"]) == channels
+    # The gain is the held-out RMSE's fractional reduction: recompute it from the report.
+    for c in channels:
+        expected = 1 - report["extended"]["rmse"][c] / report["baseline"]["rmse"][c]
+        assert report["gain"][c] == pytest.approx(expected, rel=1e-9, abs=1e-12)
+    # The truth (manifest) says 300 s; the fitted time constant lands near it.
+    assert report["extended"]["params"]["time_constant_s"] == pytest.approx(300, rel=0.2)
+    assert plot_path.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_python_api_returns_the_diagnosis(leak_dataset):
+    d = diagnose(leak_dataset.experiment)
+    assert d.cause == "leak"
+    assert verdict(d).startswith("peaks drift down")
+    assert to_json(d)["cause"] == "leak"
+
+
+def write(tmp_path, csv_text):
+    (tmp_path / "run.csv").write_text(csv_text)
+    path = tmp_path / "run.toml"
+    path.write_text("[muscle]\nlength_m = 0.225\n[test]\ninflation_pressure_kPa = 200\nambient_temperature_C = 22\n"
+                    'data = "run.csv"\n')
+    return path
+
+
+def triangle_csv(cycles, columns="time_s,elongation_m,force_N", value="{f}", pressure=None):
+    rows = [columns]
+    t = 0.0
+    for _ in range(cycles):
+        for e in list(np.linspace(0, 0.04, 11)) + list(np.linspace(0.04, 0, 11))[1:]:
+            f = 100 * e / 0.04
+            rows.append(f"{t:.2f},{e:.5f}," + value.format(f=f, p=pressure if pressure is not None else 200 + f))
+            t += 0.5
+    return "\n".join(rows) + "\n"
+
+
+def test_too_few_cycles_is_named(tmp_path):
+    with pytest.raises(ExperimentError, match=r"run.csv: column elongation_m: found 3 stretch cycle\(s\); diagnosis needs at least 4"):
+        diagnose(write(tmp_path, triangle_csv(3)))
+
+
+def test_missing_channels_are_named(tmp_path):
+    path = write(tmp_path, triangle_csv(5, columns="time_s,elongation_m", value="").replace(",\n", "\n"))
+    with pytest.raises(ExperimentError, match="no measured channel"):
+        diagnose(path)
+
+
+def test_units_that_cannot_be_right_are_named(tmp_path):
+    # Pressure written in pascals: row 2 of the file (the first data row), column 4.
+    path = write(tmp_path, triangle_csv(5, columns="time_s,elongation_m,force_N,pressure_kPa", value="{f},{p}",
+                                        pressure=200000.0))
+    with pytest.raises(ExperimentError, match=r"run.csv:2: column 4 \(pressure_kPa\) = 200000 .* pascals"):
+        diagnose(path)
+
+
+def test_cli_reports_bad_input_without_traceback(tmp_path):
+    done = run_pamkit("diagnose", write(tmp_path, triangle_csv(5).replace("0.50,", "nan,", 1)))
+    assert done.returncode == 2
+    assert "run.csv:3: column 1 (time_s) = 'nan' is not finite" in done.stderr
+    assert "Traceback" not in done.stderr
+
+
+def test_cycles_are_found_through_encoder_noise():
+    # 7 triangle cycles of 40 mm with 5 um of noise: 7 cycles, split 4 fitted / 3 held out.
+    rng = np.random.default_rng(1)
+    e = np.tile(np.concatenate([np.linspace(0, 0.04, 50), np.linspace(0.04, 0, 50)[1:]]), 7)
+    cycles = find_cycles(e + rng.normal(0, 5e-6, e.size))
+    assert len(cycles) == 7
+    fit, held = split_cycles(cycles)
+    assert list(fit) == [0, 2, 4, 6] and list(held) == [1, 3, 5]
+
+
+def test_noise_scale_recovers_white_noise_on_a_curve():
+    # sigma = 0.7 on a smooth exponential: the estimate within 10 % (4000 samples: the
+    # median's own scatter is ~2 %).
+    rng = np.random.default_rng(2)
+    t = np.linspace(0, 40, 4000)
+    x = 100 * np.exp(np.sin(t / 3)) + rng.normal(0, 0.7, t.size)
+    assert noise_scale(x) == pytest.approx(0.7, rel=0.1)
+
+
+def test_ljung_box_tells_noise_from_structure():
+    rng = np.random.default_rng(3)
+    noise = rng.normal(size=2000)
+    walk = np.cumsum(noise)
+    assert ljung_box_p(noise) > 0.01  # white noise: no reason to reject (seeded: p is fixed)
+    assert ljung_box_p(walk) < 1e-10  # a random walk is anything but white
