@@ -13,6 +13,7 @@ void bind_gas(py::module_& m);
 void bind_sim(py::module_& m);
 void bind_effects(py::module_& m);
 void bind_exo(py::module_& m);
+void bind_logger(py::module_& m);
 }  // namespace pamkit::python
 
 PYBIND11_MODULE(_core, m) {
@@ -28,4 +29,5 @@ PYBIND11_MODULE(_core, m) {
   pamkit::python::bind_sim(m);
   pamkit::python::bind_effects(m);
   pamkit::python::bind_exo(m);
+  pamkit::python::bind_logger(m);
 }

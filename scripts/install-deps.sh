@@ -8,6 +8,7 @@ set -euo pipefail
 apt_packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libboost-dev libsundials-dev catch2 libserialport-dev
+  gcc-avr avr-libc arduino-core-avr simavr libsimavr-dev clang libclang-rt-14-dev arduino-builder  # logger firmware and its tests
 )
 # pybind11 comes from PyPI: Debian 12's 2.10 predates NumPy 2 support (2.12).
 python_packages=(

@@ -1,0 +1,414 @@
+"""The Arduino logger's files: its calibration file, its CSV, the tensile machine's export, and
+the join of the two into an experiment (DESIGN.md, "A measured dataset").
+
+The serial reading itself is C++ (``pamkit._core.logger.Reader``); this module holds what is
+file handling and signal processing.
+
+Every problem is a :class:`LoggerError` (a ``ValueError``) that names the file, and the line and
+column for CSV data.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python < 3.11
+    import tomli as tomllib
+
+from pamkit._core.logger import LoggerCalibration, fit_pressure
+
+KPA_PER_PSI = 6.894757293168361
+
+CALIBRATION_TEMPLATE = """\
+# pamkit logger calibration (thesis appendix B).
+#
+# Pressure: apply known gauge pressures to the 61CP transducer with a reference gauge, from
+# 0 to 80 psi in 10 psi steps, and write the voltage read at each step (the pressure_V column
+# of `pamkit log --uncalibrated`, averaged over a few seconds, or a multimeter on A0).
+# pamkit fits a straight line through the points and reports the worst residual.
+#
+# Temperature: the TMP36 needs no calibration: T = (V - offset_V) / V_per_C.
+
+[adc]
+reference_V = 5.0           # the Mega's 5 V pin (AVCC) as measured with a multimeter [V]
+
+[pressure]
+applied_psi = [0, 10, 20, 30, 40, 50, 60, 70, 80]
+measured_V = []             # fill in: one voltage per applied pressure [V]
+
+[temperature]
+offset_V = 0.5              # TMP36 output at 0 degC [V]
+V_per_C = 0.010             # TMP36 scale factor [V/degC]
+"""
+
+_CALIBRATION_KEYS = {
+    "adc": {"reference_V"},
+    "pressure": {"applied_psi", "measured_V"},
+    "temperature": {"offset_V", "V_per_C"},
+}
+
+
+class LoggerError(ValueError):
+    """A logger, machine or calibration file cannot be used; the message says where."""
+
+
+@dataclass
+class Calibration:
+    """A loaded calibration file: the C++ calibration, whether pressure is calibrated, and the fit."""
+
+    calibration: LoggerCalibration
+    pressure_calibrated: bool
+    max_residual_kPa: float = float("nan")
+
+
+def load_calibration(path: str | Path) -> Calibration:
+    """Reads a calibration file (see :data:`CALIBRATION_TEMPLATE`) and fits the pressure line.
+
+    Raises:
+        LoggerError: naming the file and the key of the first problem.
+    """
+    path = Path(path)
+    try:
+        with path.open("rb") as handle:
+            document = tomllib.load(handle)
+    except FileNotFoundError:
+        raise LoggerError(
+            f"{path}: no such calibration file (write one with `pamkit log --write-calibration-template {path}` "
+            "and fill in the voltages, or log volts only with --uncalibrated)"
+        ) from None
+    except tomllib.TOMLDecodeError as error:
+        raise LoggerError(f"{path}: not valid TOML: {error}") from None
+    for section, table in document.items():
+        if section not in _CALIBRATION_KEYS or not isinstance(table, dict):
+            raise LoggerError(f"{path}: unknown section [{section}] (known: {', '.join(_CALIBRATION_KEYS)})")
+        for key in table:
+            if key not in _CALIBRATION_KEYS[section]:
+                raise LoggerError(f"{path}: unknown key [{section}] {key} (known: {', '.join(sorted(_CALIBRATION_KEYS[section]))})")
+
+    def number(section: str, key: str, default: float) -> float:
+        value = document.get(section, {}).get(key, default)
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise LoggerError(f"{path}: [{section}] {key} = {value!r} must be a finite number")
+        return float(value)
+
+    calibration = LoggerCalibration()
+    calibration.adc_reference_V = number("adc", "reference_V", 5.0)
+    calibration.tmp36_offset_V = number("temperature", "offset_V", 0.5)
+    calibration.tmp36_V_per_C = number("temperature", "V_per_C", 0.010)
+    pressure = document.get("pressure", {})
+    psi, volts = pressure.get("applied_psi", []), pressure.get("measured_V", [])
+    for key, values in (("applied_psi", psi), ("measured_V", volts)):
+        if not isinstance(values, list) or not all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) for v in values
+        ):
+            raise LoggerError(f"{path}: [pressure] {key} must be a list of numbers")
+    if not volts:
+        raise LoggerError(
+            f"{path}: [pressure] measured_V is empty: fill in the voltage read at each of applied_psi "
+            f"({', '.join(str(p) for p in psi)} psi), or log volts only with --uncalibrated"
+        )
+    try:
+        fit = fit_pressure([float(p) for p in psi], [float(v) for v in volts])
+        calibration.pressure_kPa_per_V = fit["kPa_per_V"]
+        calibration.pressure_offset_kPa = fit["offset_kPa"]
+        calibration.validate()
+    except ValueError as error:
+        raise LoggerError(f"{path}: {error}") from None
+    return Calibration(calibration, True, fit["max_residual_kPa"])
+
+
+# --- reading the two logs ---------------------------------------------------------------------
+
+_UNITS = {
+    "time": {"s": 1.0, "sec": 1.0, "ms": 1e-3, "min": 60.0},
+    "extension": {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": 0.0254},
+    "load": {"n": 1.0, "kn": 1e3, "lbf": 4.4482216152605, "kgf": 9.80665},
+}
+_ALIASES = {
+    "time": ("time",),
+    "extension": ("extension", "displacement", "position", "elongation"),
+    "load": ("load", "force"),
+}
+_UNIT_PATTERN = re.compile(r"^\s*([A-Za-z ]+?)\s*(?:[(\[]\s*([A-Za-z]+)\s*[)\]]|_([A-Za-z]+))?\s*$")
+
+
+def _split_header(cell: str) -> tuple[str, str | None]:
+    match = _UNIT_PATTERN.match(cell)
+    if not match:
+        return cell.strip().lower(), None
+    return match.group(1).strip().lower(), (match.group(2) or match.group(3))
+
+
+def read_machine_csv(path: str | Path) -> dict[str, np.ndarray]:
+    """Reads a tensile machine's export: a header row naming time, extension (or displacement)
+    and load (or force) with their units - in the name ("Time (s)", "Extension [mm]",
+    "load_kN") or in a units row below it ("(s)", "(mm)", "(N)"). Lines before the header
+    (the machine's preamble) are skipped. Returns time_s, extension_m and force_N.
+
+    Raises:
+        LoggerError: naming the file, line and column of the first problem.
+    """
+    path = Path(path)
+    try:
+        with path.open(newline="") as handle:
+            rows = list(csv.reader(handle))
+    except FileNotFoundError:
+        raise LoggerError(f"{path}: no such machine export") from None
+    header_line = None
+    for index, row in enumerate(rows):
+        names = [_split_header(cell)[0] for cell in row]
+        if all(any(alias in names for alias in aliases) for aliases in _ALIASES.values()):
+            header_line = index
+            break
+    if header_line is None:
+        raise LoggerError(f"{path}: no header row naming time, extension (or displacement) and load (or force)")
+    header = rows[header_line]
+    units_row = None
+    if header_line + 1 < len(rows) and rows[header_line + 1] and all(
+        re.fullmatch(r"\s*[(\[]?\s*[A-Za-z]*\s*[)\]]?\s*", cell) for cell in rows[header_line + 1]
+    ):
+        units_row = [cell.strip().strip("()[] ") for cell in rows[header_line + 1]]
+    columns: dict[str, tuple[int, float]] = {}
+    for number, cell in enumerate(header):
+        name, unit = _split_header(cell)
+        for quantity, aliases in _ALIASES.items():
+            if name in aliases and quantity not in columns:
+                if units_row is not None and number < len(units_row) and units_row[number]:
+                    unit = units_row[number]
+                if unit is None:
+                    raise LoggerError(f"{path}:{header_line + 1}: column {number + 1} '{cell}' has no unit "
+                                      "(write it as 'Name (unit)' or in a units row below the header)")
+                factor = _UNITS[quantity].get(unit.lower())
+                if factor is None:
+                    raise LoggerError(f"{path}:{header_line + 1}: column {number + 1} '{cell}': unknown unit '{unit}' "
+                                      f"for {quantity} (known: {', '.join(_UNITS[quantity])})")
+                columns[quantity] = (number, factor)
+    first = header_line + (2 if units_row is not None else 1)
+    values = {quantity: [] for quantity in columns}
+    for line, row in enumerate(rows[first:], start=first + 1):
+        if not row or all(not cell.strip() for cell in row):
+            continue
+        for quantity, (number, factor) in columns.items():
+            try:
+                value = float(row[number]) * factor
+            except (ValueError, IndexError):
+                cell = row[number] if number < len(row) else ""
+                raise LoggerError(f"{path}:{line}: column {number + 1} ({quantity}) = {cell.strip()!r} is not a number") from None
+            if not math.isfinite(value):
+                raise LoggerError(f"{path}:{line}: column {number + 1} ({quantity}) is not finite")
+            values[quantity].append(value)
+    out = {
+        "time_s": np.asarray(values["time"]),
+        "extension_m": np.asarray(values["extension"]),
+        "force_N": np.asarray(values["load"]),
+    }
+    _check_time(path, out["time_s"])
+    return out
+
+
+def read_logger_csv(path: str | Path) -> dict[str, np.ndarray]:
+    """Reads a `pamkit log` CSV (time_s, pressure_kPa, temperature_C, ...). Raises LoggerError."""
+    path = Path(path)
+    try:
+        handle = path.open(newline="")
+    except FileNotFoundError:
+        raise LoggerError(f"{path}: no such logger file") from None
+    with handle:
+        reader = csv.reader(handle)
+        header = [name.strip() for name in next(reader, [])]
+        if "time_s" not in header:
+            raise LoggerError(f"{path}:1: no time_s column: is this a `pamkit log` file?")
+        table = []
+        for row in reader:
+            if not row:
+                continue
+            try:
+                table.append([float(cell) for cell in row])
+            except ValueError:
+                raise LoggerError(f"{path}:{reader.line_num}: a value is not a number: {row}") from None
+            if len(row) != len(header):
+                raise LoggerError(f"{path}:{reader.line_num}: {len(row)} values, the header has {len(header)}")
+    if len(table) < 2:
+        raise LoggerError(f"{path}: needs at least 2 rows, found {len(table)}")
+    data = np.asarray(table)
+    out = {name: data[:, i].copy() for i, name in enumerate(header)}
+    _check_time(path, out["time_s"])
+    return out
+
+
+def _check_time(path: Path, time: np.ndarray) -> None:
+    if time.size < 2:
+        raise LoggerError(f"{path}: needs at least 2 samples")
+    steps = np.diff(time)
+    if np.any(steps <= 0):
+        index = int(np.argmax(steps <= 0)) + 1
+        raise LoggerError(f"{path}: time does not increase at sample {index + 1} ({time[index - 1]} -> {time[index]} s)")
+
+
+# --- alignment ----------------------------------------------------------------------------------
+
+
+@dataclass
+class Alignment:
+    """How the logger's clock relates to the machine's: logger time = machine time + offset_s."""
+
+    offset_s: float
+    correlation: float         # Pearson r of the two signals at that offset, over their overlap
+    next_best_ratio: float     # height of the next-best cross-correlation peak relative to the chosen one
+    next_best_offset_s: float  # where that peak is
+    step_s: float              # resolution of the search grid (one logger sample)
+    logger_signal: str
+    machine_signal: str
+    notes: list[str] = field(default_factory=list)
+
+
+def _zscore(values: np.ndarray) -> np.ndarray:
+    spread = values.std()
+    if not spread > 0:
+        raise LoggerError("a signal used for alignment is constant: nothing to align on")
+    return (values - values.mean()) / spread
+
+
+def find_offset(logger_time: np.ndarray, logger_values: np.ndarray, machine_time: np.ndarray,
+                machine_values: np.ndarray, step_s: float, max_offset_s: float | None = None) -> tuple[float, float, float, float]:
+    """Offset between two signals of the same process by cross-correlation: returns
+    (offset_s, r, next_best_ratio, next_best_offset_s) with logger time = machine time + offset_s,
+    r the Pearson correlation over the overlap at that offset, and next_best_ratio the height of
+    the best other peak of the cross-correlation relative to the chosen one (near 1: ambiguous).
+
+    Both signals are resampled on a grid of `step_s`, standardised, and cross-correlated (FFT);
+    the peak is refined by a parabola through its three grid points. The plain (not
+    overlap-normalised) correlation favours the lag with the most overlap, so that a cyclic test
+    does not lock onto a neighbouring cycle.
+    """
+    from scipy.signal import correlate
+
+    grid_l = np.arange(logger_time[0], logger_time[-1], step_s)
+    grid_m = np.arange(machine_time[0], machine_time[-1], step_s)
+    if grid_l.size < 3 or grid_m.size < 3:
+        raise LoggerError("the logs are too short to align")
+    a = _zscore(np.interp(grid_l, logger_time, logger_values))
+    b = _zscore(np.interp(grid_m, machine_time, machine_values))
+    c = correlate(a, b, mode="full", method="fft") / min(a.size, b.size)
+    # c[k] pairs a[i + lag] with b[i], lag = k - (b.size - 1): logger grid index = machine index + lag
+    lags = np.arange(c.size) - (b.size - 1)
+    offsets = grid_l[0] - grid_m[0] + lags * step_s
+    allowed = np.ones(c.size, bool) if max_offset_s is None else np.abs(offsets) <= max_offset_s
+    if not allowed.any():
+        raise LoggerError(f"no offset within ±{max_offset_s} s overlaps the two logs")
+    masked = np.where(allowed, c, -np.inf)
+    k = int(np.argmax(masked))
+    shift = 0.0
+    if 0 < k < c.size - 1 and np.isfinite(masked[k - 1]) and np.isfinite(masked[k + 1]):
+        denominator = masked[k - 1] - 2 * masked[k] + masked[k + 1]
+        if denominator < 0:
+            shift = 0.5 * (masked[k - 1] - masked[k + 1]) / denominator
+    offset = offsets[k] + shift * step_s
+
+    # the main lobe: down to where the correlation falls to half its peak on either side
+    low, high = k, k
+    while low > 0 and masked[low - 1] > 0.5 * masked[k]:
+        low -= 1
+    while high < c.size - 1 and masked[high + 1] > 0.5 * masked[k]:
+        high += 1
+    outside = masked.copy()
+    outside[low : high + 1] = -np.inf
+    peaks = (outside[1:-1] >= outside[:-2]) & (outside[1:-1] >= outside[2:]) & np.isfinite(outside[1:-1])
+    candidates = np.flatnonzero(peaks) + 1
+    if candidates.size:
+        j = candidates[np.argmax(outside[candidates])]
+        next_offset, next_ratio = float(offsets[j]), float(outside[j] / masked[k])
+    else:
+        next_offset, next_ratio = float("nan"), 0.0
+    r = _pearson_at(logger_time, logger_values, machine_time, machine_values, offset, step_s)
+    return float(offset), r, next_ratio, next_offset
+
+
+def _pearson_at(logger_time, logger_values, machine_time, machine_values, offset, step_s) -> float:
+    start = max(machine_time[0], logger_time[0] - offset)
+    stop = min(machine_time[-1], logger_time[-1] - offset)
+    if stop - start < 3 * step_s:
+        return float("nan")
+    t = np.arange(start, stop, step_s)
+    x = np.interp(t + offset, logger_time, logger_values)
+    y = np.interp(t, machine_time, machine_values)
+    if x.std() == 0 or y.std() == 0:
+        return float("nan")
+    return float(np.corrcoef(x, y)[0, 1])
+
+
+def align(logger: dict[str, np.ndarray], machine: dict[str, np.ndarray], logger_signal: str = "pressure_kPa",
+          machine_signal: str = "extension_m", max_offset_s: float | None = None) -> Alignment:
+    """Finds the offset between a logger file and a machine export (see :func:`find_offset`).
+
+    The default pairs pressure with extension: in a sealed muscle the pressure follows the volume,
+    a function of the length, without lag; the load also carries friction and bladder hysteresis,
+    which shift its peaks against the pressure's (by 0.1 s in a simulated thesis test)."""
+    if logger_signal not in logger:
+        raise LoggerError(f"the logger file has no {logger_signal} column (has: {', '.join(logger)})")
+    if machine_signal not in machine:
+        raise LoggerError(f"the machine export has no {machine_signal} (has: {', '.join(machine)})")
+    step = float(np.median(np.diff(logger["time_s"])))
+    offset, r, next_ratio, next_offset = find_offset(logger["time_s"], logger[logger_signal], machine["time_s"],
+                                                     machine[machine_signal], step, max_offset_s)
+    return Alignment(offset, r, next_ratio, next_offset, step, logger_signal, machine_signal)
+
+
+# --- writing the experiment ---------------------------------------------------------------------
+
+
+def _toml_value(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    raise LoggerError(f"cannot write {value!r} to TOML")
+
+
+def read_muscle_source(path: str | Path) -> dict[str, dict]:
+    """The [muscle] table (and [friction], [gas] if present) of a TOML file: an experiment, or a
+    file holding only the muscle (its keys at the top level or under [muscle])."""
+    path = Path(path)
+    try:
+        with path.open("rb") as handle:
+            document = tomllib.load(handle)
+    except FileNotFoundError:
+        raise LoggerError(f"{path}: no such muscle file") from None
+    except tomllib.TOMLDecodeError as error:
+        raise LoggerError(f"{path}: not valid TOML: {error}") from None
+    if "muscle" in document:
+        return {section: document[section] for section in ("muscle", "friction", "gas") if section in document}
+    if all(not isinstance(value, dict) for value in document.values()) and document:
+        return {"muscle": document}
+    raise LoggerError(f"{path}: no [muscle] section and no muscle keys at the top level")
+
+
+def write_experiment(path: str | Path, columns: dict[str, np.ndarray], sections: dict[str, dict],
+                     test: dict, comments: list[str]) -> Path:
+    """Writes EXPERIMENT.toml and EXPERIMENT.csv (same stem) in the DESIGN.md format."""
+    from pamkit.experiment import write_series
+
+    path = Path(path)
+    data = path.with_suffix(".csv")
+    write_series(data, columns)
+    lines = [f"# {comment}" for comment in comments] + [""]
+    for section in ("muscle", "friction", "gas"):
+        if section in sections:
+            lines.append(f"[{section}]")
+            lines += [f"{key} = {_toml_value(value)}" for key, value in sections[section].items()]
+            lines.append("")
+    lines.append("[test]")
+    lines += [f"{key} = {_toml_value(value)}" for key, value in {**test, "data": data.name}.items()]
+    path.write_text("\n".join(lines) + "\n")
+    return data

@@ -1,0 +1,198 @@
+"""`pamkit log` on a simulated board (the real sketch in simavr, through a pty) and `pamkit align`
+on synthetic logs with a known offset. Run by ctest as python_firmware (labels firmware, python);
+PAMKIT_SIMAVR_HARNESS and PAMKIT_FIRMWARE_ELF come from tests/firmware/CMakeLists.txt."""
+
+from __future__ import annotations
+
+import csv
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from pamkit.cli import main
+from pamkit.experiment import load_experiment
+
+SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+THESIS = SOURCE_DIR / "data" / "experiments" / "thesis" / "pam1_035kPa_95pct.toml"
+HARNESS = os.environ.get("PAMKIT_SIMAVR_HARNESS")
+FIRMWARE = os.environ.get("PAMKIT_FIRMWARE_ELF")
+needs_simavr = pytest.mark.skipif(not (HARNESS and FIRMWARE), reason="built without avr-gcc or libsimavr")
+
+
+def write_calibration(path: Path) -> Path:
+    # 0.5 V at 0 psi to 4.5 V at 80 psi, as a user would fill in the template
+    from pamkit.logger import CALIBRATION_TEMPLATE
+
+    assert "measured_V = []" in CALIBRATION_TEMPLATE
+    path.write_text(CALIBRATION_TEMPLATE.replace("measured_V = []", "measured_V = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5]"))
+    return path
+
+
+def start_board(tmp_path: Path, seconds: float, realtime: bool = True) -> tuple[subprocess.Popen, Path, Path]:
+    link, summary = tmp_path / "ttyPAMKIT", tmp_path / "summary.txt"
+    command = [HARNESS, "--firmware", FIRMWARE, "--link", str(link), "--seconds", str(seconds), "--summary", str(summary)]
+    with (tmp_path / "harness.log").open("w") as log:
+        board = subprocess.Popen(command + (["--realtime"] if realtime else []), stdout=log, stderr=subprocess.STDOUT)
+    deadline = time.monotonic() + 20
+    while not link.exists():
+        assert time.monotonic() < deadline, "the simulated board did not come up"
+        time.sleep(0.01)
+    return board, link, summary
+
+
+def totals(summary: Path) -> dict[str, float]:
+    return {k: float(v) for k, v in (line.split("=") for line in summary.read_text().split())}
+
+
+def log_command(link: Path, output: Path, calibration: Path, *extra: str) -> list[str]:
+    return [sys.executable, "-m", "pamkit", "log", "--port", str(link), "-o", str(output),
+            "--calibration", str(calibration), *extra]
+
+
+def read_rows(path: Path) -> list[dict[str, float]]:
+    with path.open(newline="") as handle:
+        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(handle)]
+
+
+@needs_simavr
+def test_log_records_every_frame_of_a_simulated_board(tmp_path):
+    calibration = write_calibration(tmp_path / "cal.toml")
+    board, link, summary = start_board(tmp_path, seconds=4.0)
+    output = tmp_path / "log.csv"
+    result = subprocess.run(log_command(link, output, calibration, "--duration", "7"), capture_output=True, text=True,
+                            timeout=60, env={**os.environ, "PYTHONUNBUFFERED": "1"})
+    assert result.returncode == 0, result.stderr
+    assert board.wait(timeout=30) == 0
+    frames = totals(summary)["frames"]
+    rows = read_rows(output)
+    assert frames >= 395  # 4 s at 100 Hz, less the start-up
+    assert len(rows) == frames
+    assert [row["seq"] for row in rows] == list(range(len(rows)))
+    assert "checksum errors 0" in result.stdout and "gaps 0 (0 frames lost" in result.stdout
+    assert "board: pamkit logger 1.0.0, 100 Hz, 16x oversampling, 115200 baud" in result.stderr
+    # calibrated: kPa from the fitted line (0.5 V = 0 psi, 0.05 V/psi), TMP36 from (V - 0.5) / 0.01
+    for row in rows[:50]:
+        assert row["pressure_kPa"] == pytest.approx((row["pressure_V"] - 0.5) / 0.05 * 6.894757293168361, abs=2e-4)
+        assert row["temperature_C"] == pytest.approx((row["temperature_V"] - 0.5) / 0.01, abs=1e-3)
+
+
+@needs_simavr
+@pytest.mark.parametrize("how", [signal.SIGINT, signal.SIGKILL], ids=["ctrl-c", "killed"])
+def test_log_keeps_what_arrived_when_stopped(tmp_path, how):
+    calibration = write_calibration(tmp_path / "cal.toml")
+    board, link, _ = start_board(tmp_path, seconds=30.0)
+    output = tmp_path / "log.csv"
+    process = subprocess.Popen(log_command(link, output, calibration), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               text=True)
+    deadline = time.monotonic() + 30
+    while (not output.exists() or len(output.read_text().splitlines()) < 151) and time.monotonic() < deadline:  # header + 150 rows
+        time.sleep(0.05)
+    process.send_signal(how)
+    stdout, _ = process.communicate(timeout=20)
+    board.kill()
+    board.wait()
+    rows = read_rows(output)  # every line complete: rows are flushed whole, after each read
+    assert len(rows) >= 150
+    assert [row["seq"] for row in rows] == list(range(len(rows)))
+    if how == signal.SIGINT:
+        assert process.returncode == 0
+        assert f"interrupted; wrote {len(rows)} rows" in stdout
+
+
+# --- align --------------------------------------------------------------------------------------
+
+
+def synthetic_logs(tmp_path: Path, offset_s: float, seed: int) -> tuple[Path, Path]:
+    """A thesis bench test (PAM 1, 35 kPa, 10 cycles at 2.5 mm/s) simulated by pamkit, recorded by
+    a tensile machine at 10 Hz (mm, N) and by the logger at 100 Hz, whose clock reads
+    machine time + offset_s. Both with noise; the logger's pressure quantised like the ADC."""
+    from pamkit.simulate import simulate_experiment
+
+    truth = simulate_experiment(load_experiment(THESIS))
+    rng = np.random.default_rng(seed)
+    t = truth["time_s"]
+    machine = tmp_path / "machine.csv"
+    with machine.open("w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["Instron export"])  # a preamble line, as Bluehill writes
+        writer.writerow(["Time", "Extension", "Load"])
+        writer.writerow(["(s)", "(mm)", "(N)"])
+        for i in range(t.size):
+            writer.writerow([f"{t[i]:.2f}", f"{truth['elongation_m'][i] * 1e3:.4f}",
+                             f"{truth['force_N'][i] + rng.normal(0, 0.2):.3f}"])
+    # the logger runs from 20 s before the machine to 10 s after (cut to what overlaps for a
+    # negative offset), 100 Hz, on its own clock
+    machine_time = np.arange(-20.0, t[-1] + 10.0, 0.01)
+    step_kPa = 5.0 / 1024 / 0.05 * 6.894757293168361 / 16  # one count of 16x oversampling
+    pressure = np.interp(machine_time, t, truth["pressure_kPa"]) + rng.normal(0, 0.3, machine_time.size)
+    pressure = np.round(pressure / step_kPa) * step_kPa
+    temperature = np.interp(machine_time, t, truth["temperature_C"]) + rng.normal(0, 0.05, machine_time.size)
+    logger_time = machine_time + offset_s
+    keep = logger_time >= 0
+    logger = tmp_path / "logger.csv"
+    with logger.open("w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(["time_s", "pressure_kPa", "temperature_C", "pressure_V", "temperature_V", "boot", "seq"])
+        for k, (tl, p, c) in enumerate(zip(logger_time[keep], pressure[keep], temperature[keep])):
+            writer.writerow([f"{tl - logger_time[keep][0]:.6f}", f"{p:.4f}", f"{c:.3f}", "0", "0", "0", k % 65536])
+    # the logger's file starts at its first row: shift the true offset accordingly
+    return logger, machine, float(offset_s - logger_time[keep][0])
+
+
+@pytest.mark.parametrize("offset_s,seed", [(27.345, 1), (4.71, 2)])
+def test_align_recovers_a_known_offset_within_one_sample(tmp_path, capsys, offset_s, seed):
+    logger, machine, true_offset = synthetic_logs(tmp_path, offset_s, seed)
+    output = tmp_path / "aligned.toml"
+    assert main(["align", str(logger), str(machine), "-o", str(output), "--muscle", str(THESIS)]) == 0
+    printed = capsys.readouterr().out
+    found = float(printed.split("logger time = machine time ")[1].split(" s")[0].replace(" ", ""))
+    assert abs(found - true_offset) <= 0.01, printed  # one logger sample (100 Hz)
+    assert "r = 0.9" in printed
+
+    experiment = load_experiment(output)
+    assert set(experiment.measured()) == {"force_N", "pressure_kPa", "temperature_C"}
+    # the thesis test was inflated to 35 kPa; the logger's second before the first stretch says so
+    # (100 samples with 0.3 kPa noise: the mean is good to 0.1 kPa)
+    assert experiment.inflation_pressure_kPa == pytest.approx(35.0, abs=0.1)
+    assert experiment.ambient_temperature_C == pytest.approx(22.85, abs=0.05)
+    assert experiment.elongation_m[0] == 0.0
+    assert "before the first stretch" in output.read_text()
+
+
+def test_aligned_experiment_is_accepted_by_simulate(tmp_path):
+    logger, machine, _ = synthetic_logs(tmp_path, 12.5, 3)
+    output = tmp_path / "aligned.toml"
+    assert main(["align", str(logger), str(machine), "-o", str(output), "--muscle", str(THESIS),
+                 "--initial-length-m", "0.185"]) == 0
+    predicted = tmp_path / "predicted.csv"
+    assert main(["simulate", str(output), "-o", str(predicted)]) == 0
+    rows = read_rows(predicted)
+    assert len(rows) > 2000 and max(row["force_N"] for row in rows) > 50
+
+
+def test_align_and_calibration_errors_name_the_problem(tmp_path, capsys):
+    from pamkit.logger import CALIBRATION_TEMPLATE, LoggerError, load_calibration, read_machine_csv
+
+    template = tmp_path / "cal.toml"
+    template.write_text(CALIBRATION_TEMPLATE)
+    with pytest.raises(LoggerError, match=r"cal.toml: \[pressure\] measured_V is empty"):
+        load_calibration(template)
+    template.write_text(CALIBRATION_TEMPLATE.replace("measured_V = []", "measured_V = [1, 2]"))
+    with pytest.raises(LoggerError, match="9 applied pressures but 2 measured voltages"):
+        load_calibration(template)
+    machine = tmp_path / "machine.csv"
+    machine.write_text("Time (s),Extension (furlong),Load (N)\n0,0,0\n1,1,1\n")
+    with pytest.raises(LoggerError, match=r"machine.csv:1: column 2 'Extension \(furlong\)': unknown unit 'furlong'"):
+        read_machine_csv(machine)
+    machine.write_text("Time (s),Extension (mm),Load (kN)\n0,0,0\n1,abc,1\n")
+    with pytest.raises(LoggerError, match=r"machine.csv:3: column 2 \(extension\) = 'abc' is not a number"):
+        read_machine_csv(machine)
+    assert main(["log", "--port", "/dev/nonexistent", "-o", str(tmp_path / "x.csv"),
+                 "--calibration", str(tmp_path / "missing.toml")]) == 2
+    assert "no such calibration file" in capsys.readouterr().err
