@@ -27,7 +27,8 @@ struct GasParams {
   double atmospheric_pressure_Pa = 101e3;       ///< absolute ambient pressure [Pa] (Patm, table C.4)
   double ambient_temperature_K = 296.0;         ///< ambient, and initial gas, temperature [K] (Tatm, table C.4)
   double polytropic_index = 1.0;                ///< n of eq. 3.1.14 [1]; 1.0 fitted the thesis's tests best
-  double heat_transfer_time_constant_s = 10.0;  ///< tau of the gas-wall exchange [s] (heat_transfer only); 0: instantaneous (isothermal)
+  double heat_transfer_time_constant_s = 0.38;  ///< tau of the gas-wall exchange [s] (heat_transfer only); 0: instantaneous
+                                                ///< (isothermal). 0.38 s reproduces table 3.6 (docs/table_3_6.md)
   GasProcess process = GasProcess::polytropic;  ///< which law governs the gas temperature
 
   template <class Visitor>
