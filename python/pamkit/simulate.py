@@ -22,7 +22,7 @@ from pamkit._core import (
     muscle_forces,
     simulate_measurement,
 )
-from pamkit.experiment import KELVIN_OFFSET, Experiment, ExperimentError
+from pamkit.experiment import Experiment, ExperimentError
 
 PASCAL_PER_KPA = 1e3
 
