@@ -144,8 +144,7 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, join
             m = Measurement()
             for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C"):
                 setattr(m, name, getattr(base_measurement, name))
-            m = effect.apply_to_measurement(m)
-            return {c: getattr(m, c) for c in problem.channels}
+            return problem.predictor.select(effect.apply_to_measurement(m))
         return problem.predictor.predict(base_x, [effect])
 
     penalty = _penalty(problem, float(np.sqrt(baseline.training_chi2 / max(problem.fit_mask.sum(), 1))))

@@ -30,6 +30,7 @@ from pamkit._core import (
     free_inflation,
     simulate_measurement,
 )
+from pamkit.diagnose.motion import measured_motion, programmed_motion
 from pamkit.experiment import Experiment
 from pamkit.simulate import PASCAL_PER_KPA, muscle_params, simulate_experiment
 
@@ -80,7 +81,7 @@ BUILTIN_SPACES = {
     "heat_transfer": lambda e: [_log("time_constant_s", 0.02, 200.0, 2.0)],
     "dead_volume": lambda e: [_linear("volume_fraction", 0.0, 1.0, 0.1)],
     "leak": lambda e: [_rate("time_constant_s", 0.2, 1000.0)],
-    "bladder_viscoelasticity": lambda e: [_log("time_constant_s", 0.05, 500.0, 2.0), _linear("strength", 0.0, 20.0, 0.5)],
+    "bladder_viscoelasticity": lambda e: [_log("time_constant_s", 0.1, 200.0, 2.0), _linear("strength", 0.0, 20.0, 0.5)],
     "fiber_compliance": lambda e: [_rate("stiffness_N", 1.0 / 10.0, 300.0)],
     "fixture_slack": lambda e: [_linear("slack_m", 0.0, 0.02, 1e-3)],
     "sensor_lag": lambda e: [_log("time_constant_s", 1e-3, 300.0, 2.0)],
@@ -154,10 +155,12 @@ class Predictor:
         self.experiment = experiment
         self.channels = channels
         self.baseline = Baseline(experiment)
-        self.trajectory = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
+        self.mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
+        self.motion = (programmed_motion(experiment.time_s, experiment.elongation_m) if self.mode == GasMode.sealed
+                       else measured_motion(experiment.time_s, experiment.elongation_m))
+        self.trajectory = ElongationTrajectory(self.motion.time_s, self.motion.elongation_m)
         self.simulator = Simulator(config if config is not None else SimulatorConfig(relative_tolerance=1e-6,
                                                                                       absolute_tolerance_K=1e-6))
-        self.mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
 
     def measurement(self, x: np.ndarray, effects: list[Effect]) -> Measurement:
         params, pressure_kPa = self.baseline.model_params(x)
@@ -171,9 +174,12 @@ class Predictor:
         initial = InitialState(length_m=length, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KPA)
         return simulate_measurement(params, initial, self.trajectory, effects, self.simulator)
 
+    def select(self, m: Measurement) -> dict[str, np.ndarray]:
+        """The measured channels of a simulated measurement, at the data's samples."""
+        return {name: np.asarray(getattr(m, name))[self.motion.sample_rows] for name in self.channels}
+
     def predict(self, x: np.ndarray, effects: list[Effect]) -> dict[str, np.ndarray]:
-        m = self.measurement(x, effects)
-        return {name: getattr(m, name) for name in self.channels}
+        return self.select(self.measurement(x, effects))
 
     def _initial_length(self, params: MuscleParams, pressure_kPa: float) -> float:
         """As the experiment gives it, else the free inflated length (DESIGN.md's default)."""
