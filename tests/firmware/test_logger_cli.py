@@ -22,6 +22,8 @@ SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().p
 THESIS = SOURCE_DIR / "data" / "experiments" / "thesis" / "pam1_035kPa_95pct.toml"
 HARNESS = os.environ.get("PAMKIT_SIMAVR_HARNESS")
 FIRMWARE = os.environ.get("PAMKIT_FIRMWARE_ELF")
+# Without avr-gcc or libsimavr, CMake warns that the end-to-end tests are not built, and pytest
+# (run with -rs) prints this reason for each skipped test.
 needs_simavr = pytest.mark.skipif(not (HARNESS and FIRMWARE), reason="built without avr-gcc or libsimavr")
 
 

@@ -14,8 +14,6 @@ import pytest
 
 import pamkit
 
-pytest.importorskip("scipy")  # the reference needs SciPy (the "test" extra)
-
 
 def _load_reference():
     root = os.environ.get("PAMKIT_SOURCE_DIR") or pathlib.Path(__file__).resolve().parents[2]
