@@ -6,6 +6,8 @@
 #include <pybind11/stl.h>
 #include <pybind11/functional.h>
 
+#include <optional>
+
 #include "pamkit/effects/catalog.hpp"
 #include "pamkit/effects/pipeline.hpp"
 
@@ -26,6 +28,21 @@ class PyEffect : public Effect {
     PYBIND11_OVERRIDE(PYBIND11_TYPE(std::map<std::string, std::string>), Effect, options, );
   }
   void set(const std::string& key, const std::string& value) override { PYBIND11_OVERRIDE_PURE(void, Effect, set, key, value); }
+  std::string signature() const override { PYBIND11_OVERRIDE(std::string, Effect, signature, ); }
+  std::vector<std::string> channels_changed() const override {
+    PYBIND11_OVERRIDE(std::vector<std::string>, Effect, channels_changed, );
+  }
+  /// A Python effect may say its stage ("physics", "motion", "measurement"); if it does not,
+  /// the stage is the earliest one it overrides.
+  EffectStage stage() const override {
+    py::gil_scoped_acquire gil;
+    const auto* self = static_cast<const Effect*>(this);
+    if (py::function override = py::get_override(self, "stage")) return override().cast<EffectStage>();
+    if (py::get_override(self, "apply_to_params")) return EffectStage::physics;
+    if (py::get_override(self, "apply_to_elongation")) return EffectStage::motion;
+    if (py::get_override(self, "apply_to_measurement")) return EffectStage::measurement;
+    return EffectStage::physics;
+  }
   bool acts_in(GasMode mode, std::string* why_not) const override {
     py::gil_scoped_acquire gil;
     py::function override = py::get_override(static_cast<const Effect*>(this), "why_not");
@@ -77,18 +94,67 @@ void bind_effects(py::module_& m) {
 #undef PAMKIT_CHANNEL
   m.def("measured_channels", &measured_channels, "names of the channels effects may act on");
 
-  py::class_<EffectParameter>(m, "EffectParameter", "One parameter of an effect.")
-      .def(py::init<std::string, double, std::string, double, double, double, double, std::string>(), py::arg("name"),
-           py::arg("value"), py::arg("unit"), py::arg("min"), py::arg("max"), py::arg("realistic_min"),
-           py::arg("realistic_max"), py::arg("description") = "")
+  py::enum_<EffectStage>(m, "EffectStage", "Where an effect acts in a simulated measurement.")
+      .value("physics", EffectStage::physics, "the model's parameters and states")
+      .value("motion", EffectStage::motion, "the motion between crosshead and muscle")
+      .value("measurement", EffectStage::measurement, "what the instruments read");
+  py::enum_<FitScale>(m, "FitScale", "The scale on which a diagnosis moves a parameter.")
+      .value("linear", FitScale::linear)
+      .value("log", FitScale::log, "time constants and stiffnesses that span decades")
+      .value("reciprocal", FitScale::reciprocal, "'infinity means off' constants, fitted as a rate");
+  py::enum_<Resolution>(m, "Resolution", "What a record must resolve for a fitted value to mean something.")
+      .value("any", Resolution::any)
+      .value("sample_interval", Resolution::sample_interval, "|value| [s] at least the sample interval")
+      .value("travel_per_sample", Resolution::travel_per_sample, "value [m] at least the travel between samples");
+
+  py::class_<EffectParameter>(m, "EffectParameter", R"doc(One parameter of an effect.
+
+A Python effect declares at least name, value, unit, the allowed range (min, max) and the
+realistic range synthetic benches draw from. It may also declare the physically plausible range
+with its source (a fitted value outside it is reported, never named as a cause) and the
+diagnosis's search (fit_scale, fit_min, fit_max, fit_start); left out, plausible is the allowed
+range and the search is linear over the realistic range widened by its width on each side.)doc")
+      .def(py::init([](std::string name, double value, std::string unit, double min, double max, double realistic_min,
+                       double realistic_max, std::string description, bool either_sign,
+                       std::optional<double> plausible_min, std::optional<double> plausible_max,
+                       std::string plausible_source, std::optional<FitScale> fit_scale, std::optional<double> fit_min,
+                       std::optional<double> fit_max, std::optional<double> fit_start, Resolution resolution) {
+             EffectParameter p = EffectParameter::declared(std::move(name), value, std::move(unit), min, max,
+                                                           realistic_min, realistic_max, std::move(description));
+             p.either_sign = either_sign;
+             if (plausible_min) p.plausible_min = *plausible_min;
+             if (plausible_max) p.plausible_max = *plausible_max;
+             if (!plausible_source.empty()) p.plausible_source = std::move(plausible_source);
+             if (fit_scale) p.fit_scale = *fit_scale;
+             if (fit_min) p.fit_min = *fit_min;
+             if (fit_max) p.fit_max = *fit_max;
+             if (fit_start) p.fit_start = *fit_start;
+             p.resolution = resolution;
+             return p;
+           }),
+           py::arg("name"), py::arg("value"), py::arg("unit"), py::arg("min"), py::arg("max"), py::arg("realistic_min"),
+           py::arg("realistic_max"), py::arg("description") = "", py::kw_only(), py::arg("either_sign") = false,
+           py::arg("plausible_min") = py::none(), py::arg("plausible_max") = py::none(),
+           py::arg("plausible_source") = "", py::arg("fit_scale") = py::none(), py::arg("fit_min") = py::none(),
+           py::arg("fit_max") = py::none(), py::arg("fit_start") = py::none(),
+           py::arg("resolution") = Resolution::any)
       .def_readonly("name", &EffectParameter::name)
       .def_readonly("value", &EffectParameter::value)
       .def_readonly("unit", &EffectParameter::unit)
-      .def_readonly("min", &EffectParameter::min)
-      .def_readonly("max", &EffectParameter::max)
-      .def_readonly("realistic_min", &EffectParameter::realistic_min)
-      .def_readonly("realistic_max", &EffectParameter::realistic_max)
+      .def_readonly("min", &EffectParameter::min, "smallest allowed value")
+      .def_readonly("max", &EffectParameter::max, "largest allowed value")
+      .def_readonly("realistic_min", &EffectParameter::realistic_min, "smallest value synthetic benches draw")
+      .def_readonly("realistic_max", &EffectParameter::realistic_max, "largest value synthetic benches draw")
       .def_readonly("description", &EffectParameter::description)
+      .def_readonly("either_sign", &EffectParameter::either_sign, "the realistic range bounds |value|")
+      .def_readonly("plausible_min", &EffectParameter::plausible_min, "smallest physically plausible value")
+      .def_readonly("plausible_max", &EffectParameter::plausible_max, "largest physically plausible value")
+      .def_readonly("plausible_source", &EffectParameter::plausible_source, "why that range")
+      .def_readonly("fit_scale", &EffectParameter::fit_scale, "the diagnosis's search scale")
+      .def_readonly("fit_min", &EffectParameter::fit_min, "the search's lower end (a fit ending here is at a bound)")
+      .def_readonly("fit_max", &EffectParameter::fit_max, "the search's upper end")
+      .def_readonly("fit_start", &EffectParameter::fit_start, "where the search starts")
+      .def_readonly("resolution", &EffectParameter::resolution, "what one sample must resolve")
       .def("__repr__", [](const EffectParameter& p) { return p.name + "=" + std::to_string(p.value) + " " + p.unit; });
 
   py::class_<Effect, PyEffect, EffectPtr>(m, "Effect", R"doc(A model extension with physical parameters.
@@ -102,7 +168,11 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
       .def("description", &Effect::description)
       .def("parameters", &Effect::parameters)
       .def("options", &Effect::options)
-      .def("set", &Effect::set, py::arg("key"), py::arg("value"))
+      .def("set", &Effect::set_value, py::arg("key"), py::arg("value"), "sets a numeric parameter")
+      .def("set", &Effect::set, py::arg("key"), py::arg("value"), "sets a parameter or option from text")
+      .def("stage", &Effect::stage, "where the effect acts: physics, motion or measurement")
+      .def("channels_changed", &Effect::channels_changed, "the measured channels it changes ([]: all)")
+      .def("signature", &Effect::signature, "a short phrase for a verdict (may name {channel})")
       .def("acts_in", [](const Effect& e, GasMode mode) {
              std::string why;
              const bool ok = e.acts_in(mode, &why);
@@ -160,8 +230,21 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
       .def("names", &EffectCatalog::names);
 
   m.def("simulate_measurement", &simulate_measurement, py::arg("params"), py::arg("initial"), py::arg("crosshead"),
-        py::arg("effects"), py::arg("simulator") = Simulator(),
-        "Simulates a sealed test as its instruments read it, with the effects applied at every stage.");
+        py::arg("effects"), py::arg("simulator") = Simulator(), py::call_guard<py::gil_scoped_release>(),
+        "Simulates a sealed test as its instruments read it, with the effects applied at every stage. Releases "
+        "the GIL: diagnosis fits run in parallel threads (a Python effect takes the GIL for its own calls).");
+  m.def("simulate_supplied_measurement",
+        [](const MuscleParams& params, double length_m, const ElongationTrajectory& crosshead,
+           const py::array_t<double, py::array::c_style | py::array::forcecast>& pressure_kPa,
+           double ambient_temperature_C, const std::vector<EffectPtr>& effects) {
+          const std::vector<double> pressure = vector(pressure_kPa);
+          py::gil_scoped_release release;
+          return simulate_supplied_measurement(params, length_m, crosshead, pressure, ambient_temperature_C, effects);
+        },
+        py::arg("params"), py::arg("length_m"), py::arg("crosshead"), py::arg("pressure_kPa"),
+        py::arg("ambient_temperature_C"), py::arg("effects"),
+        "Simulates a supplied-pressure test: the measured gauge pressure [kPa] drives the static model at each "
+        "sample of crosshead (lengths from length_m [m]); force is predicted. Releases the GIL.");
 }
 
 }  // namespace pamkit::python

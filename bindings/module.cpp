@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 
 #include "pamkit/error.hpp"
+#include "pamkit/units.hpp"
 
 namespace py = pybind11;
 
@@ -30,4 +31,10 @@ PYBIND11_MODULE(_core, m) {
   pamkit::python::bind_effects(m);
   pamkit::python::bind_exo(m);
   pamkit::python::bind_logger(m);
+
+  py::module_ units = m.def_submodule("units", "Conversions for quantities that cross a boundary in other units (units.hpp).");
+  units.attr("PASCAL_PER_KILOPASCAL") = pamkit::units::kPascalPerKilopascal;
+  units.attr("KILOPASCAL_PER_PSI") = pamkit::units::kKilopascalPerPsi;
+  units.attr("KELVIN_AT_ZERO_CELSIUS") = pamkit::units::kKelvinAtZeroCelsius;
+  units.attr("MILLIMETRE_PER_METRE") = pamkit::units::kMillimetrePerMetre;
 }

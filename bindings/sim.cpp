@@ -53,6 +53,8 @@ void bind_sim(py::module_& m) {
 
   py::class_<InitialState> initial(m, "InitialState", "The test at zero elongation: inflated, sealed, at rest.");
   bind_fields(initial);
+  m.def("inflated_and_sealed", &inflated_and_sealed, py::arg("params"), py::arg("gauge_pressure_Pa"),
+        "The start of a sealed test: inflated freely to gauge_pressure_Pa [Pa], sealed at the free length it gives.");
 
   py::class_<State> state(m, "State", "ODE state: gas temperature and mass, bladder viscous stresses, energy integrals (SI).");
   state.def(py::init<>())

@@ -58,6 +58,7 @@ from pamkit._core import (
     walking_trajectory,
     with_ankle_range,
 )
+from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
 
 GAIT_COLUMNS = ("frame", "hip_deg", "leg_deg", "foot_deg", "ankle_moment_Nm")
 
@@ -81,8 +82,6 @@ TRIAL_ANKLE_RANGE_DEG = 15.0
 WALKING_CADENCE_STEPS_PER_MIN = 105.0
 # Section 3.2.1: the bench tests stretched at 2.5 mm/s.
 BENCH_SPEED_M_PER_S = 2.5e-3
-PASCAL_PER_KPA = 1e3
-KELVIN_OFFSET = 273.15
 
 
 def load_winter(path: str | Path | None = None) -> GaitData:
@@ -173,8 +172,8 @@ def pam_spring(pressure_kPa: float, build: MuscleBuild | None = None, gas: GasPa
     sealed, isothermal (n = 1, the thesis's best fit): the static spring and that free length."""
     build = build if build is not None else MuscleBuild()
     gas = gas if gas is not None else GasParams()
-    free = free_inflation(BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure_kPa * PASCAL_PER_KPA)
-    spring = PamStaticSpring(build, BladderLaw.thesis(), gas, free.length_m, pressure_kPa * PASCAL_PER_KPA, pretension_m, 1.0)
+    free = free_inflation(BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure_kPa * PASCAL_PER_KILOPASCAL)
+    spring = PamStaticSpring(build, BladderLaw.thesis(), gas, free.length_m, pressure_kPa * PASCAL_PER_KILOPASCAL, pretension_m, 1.0)
     return spring, free.length_m
 
 
@@ -195,7 +194,7 @@ def walking_cadence_run(run: DeviceRun, pressure_kPa: float, cadence_steps_per_m
         gas.heat_transfer_time_constant_s = time_constant_s
     build = MuscleBuild()
     _, free_length = pam_spring(pressure_kPa, build, gas)
-    model = MuscleModel(MuscleParams(build=build, gas=gas), InitialState(length_m=free_length, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KPA))
+    model = MuscleModel(MuscleParams(build=build, gas=gas), InitialState(length_m=free_length, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL))
     stride_s = 120.0 / cadence_steps_per_min  # two steps per stride
     gait = walking_trajectory(run, stride_s, strides, pretension_m)
     peak = float(np.max(gait.elongation_m))
@@ -213,8 +212,8 @@ def walking_cadence_run(run: DeviceRun, pressure_kPa: float, cadence_steps_per_m
             "elongation_m": np.array(result.elongation_m),
             "force_N": np.array(result.force_N),
             "elastic_force_N": np.array(result.force_N) - np.array(result.friction_force_N),
-            "pressure_kPa": np.array(result.pressure_gauge_Pa) / PASCAL_PER_KPA,
-            "temperature_C": np.array(result.temperature_K) - KELVIN_OFFSET,
+            "pressure_kPa": np.array(result.pressure_gauge_Pa) / PASCAL_PER_KILOPASCAL,
+            "temperature_C": np.array(result.temperature_K) - KELVIN_AT_ZERO_CELSIUS,
         }
         out[name] = series
         # The last stride (cycle) once the first ones have settled the gas's mean temperature.

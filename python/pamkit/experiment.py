@@ -20,8 +20,8 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 from pamkit._core import FrictionParams, GasParams, GasProcess, MuscleBuild
+from pamkit.units import KELVIN_AT_ZERO_CELSIUS
 
-KELVIN_OFFSET = 273.15
 REQUIRED_COLUMNS = ("time_s", "elongation_m")
 OPTIONAL_COLUMNS = ("force_N", "pressure_kPa", "temperature_C")
 GAS_MODES = ("sealed", "supplied")
@@ -150,7 +150,7 @@ def load_experiment(path: str | Path) -> Experiment:
     ambient = _number(path, "test", "ambient_temperature_C", test["ambient_temperature_C"])
     if ambient < -50 or ambient > 150:
         raise _fail(path, f"[test] ambient_temperature_C = {ambient} is outside [-50, 150] °C")
-    gas_params.ambient_temperature_K = ambient + KELVIN_OFFSET
+    gas_params.ambient_temperature_K = ambient + KELVIN_AT_ZERO_CELSIUS
     gas = test.get("gas", "sealed")
     if gas not in GAS_MODES:
         raise _fail(path, f"[test] gas = {gas!r} must be one of {', '.join(GAS_MODES)}")

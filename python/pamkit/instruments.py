@@ -24,7 +24,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-KPA_PER_PSI = 6.894757293168  # 1 psi = 6894.757293168 Pa (NIST SP 811); appendix G.2 rounds it to 6895
+from pamkit.units import KILOPASCAL_PER_PSI
+
 
 
 # ----------------------------------------------------------------------------------------------
@@ -147,7 +148,7 @@ class PressureTransducer:
 
     def voltage(self, gauge_kPa: np.ndarray) -> np.ndarray:
         """Noise-free output for a gauge pressure [V]."""
-        return self.offset_V + self.sensitivity_V_per_psi * np.asarray(gauge_kPa, dtype=float) / KPA_PER_PSI
+        return self.offset_V + self.sensitivity_V_per_psi * np.asarray(gauge_kPa, dtype=float) / KILOPASCAL_PER_PSI
 
 
 @dataclass(frozen=True)
@@ -182,7 +183,7 @@ class PressureCalibration:
 
     def gauge_kPa(self, volts: np.ndarray) -> np.ndarray:
         """Gauge pressure for transducer volts [kPa]."""
-        return (self.slope_psi_per_V * np.asarray(volts, dtype=float) + self.intercept_psi) * KPA_PER_PSI
+        return (self.slope_psi_per_V * np.asarray(volts, dtype=float) + self.intercept_psi) * KILOPASCAL_PER_PSI
 
 
 @dataclass(frozen=True)
@@ -312,7 +313,7 @@ class ArduinoLogger:
 
     def pressure_step_kPa(self) -> float:
         """The calibrated pressure's quantum: one count of a sample's sum [kPa]."""
-        return self.calibration.slope_psi_per_V * self.settings.volts_per_count * KPA_PER_PSI
+        return self.calibration.slope_psi_per_V * self.settings.volts_per_count * KILOPASCAL_PER_PSI
 
     def temperature_step_C(self) -> float:
         """The TMP36 reading's quantum: one count of a sample's sum [°C]."""
@@ -328,7 +329,7 @@ class ArduinoLogger:
         s = self.settings
         volts = []
         for psi in points_psi:
-            true = np.full(readings_per_point, s.pressure.voltage(psi * KPA_PER_PSI))
+            true = np.full(readings_per_point, s.pressure.voltage(psi * KILOPASCAL_PER_PSI))
             volts.append(self.volts(self.counts(true, s.pressure.noise_rms_V, rng)).mean())
         slope, intercept = np.polyfit(np.asarray(volts), np.asarray(points_psi, dtype=float), 1)
         self.calibration = PressureCalibration(slope_psi_per_V=float(slope), intercept_psi=float(intercept))

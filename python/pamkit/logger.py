@@ -26,7 +26,6 @@ except ModuleNotFoundError:  # Python < 3.11
 
 from pamkit._core.logger import LoggerCalibration, fit_pressure
 
-KPA_PER_PSI = 6.894757293168361
 
 CALIBRATION_TEMPLATE = """\
 # pamkit logger calibration (thesis appendix B).

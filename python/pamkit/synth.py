@@ -54,7 +54,7 @@ from pamkit._core import (
     simulate_measurement,
 )
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.experiment import KELVIN_OFFSET, write_series
+from pamkit.experiment import write_series
 from pamkit.instruments import (
     ArduinoLogger,
     ArduinoLoggerSettings,
@@ -64,8 +64,8 @@ from pamkit.instruments import (
     TensileMachineSettings,
     merge_logs,
 )
+from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
 
-PASCAL_PER_KPA = 1e3
 NONE = "none"
 
 # Ranges of DESIGN.md, "Tests that hide an effect".
@@ -180,7 +180,7 @@ def draw_build(rng: np.random.Generator) -> MuscleBuild:
 def muscle_params(build: MuscleBuild, ambient_temperature_C: float) -> MuscleParams:
     """The baseline model of a synthetic test: what ``load_experiment`` makes of its file."""
     gas = GasParams()
-    gas.ambient_temperature_K = ambient_temperature_C + KELVIN_OFFSET
+    gas.ambient_temperature_K = ambient_temperature_C + KELVIN_AT_ZERO_CELSIUS
     return MuscleParams(build=build, bladder=BladderLaw.thesis(), friction=FrictionParams(), gas=gas)
 
 
@@ -194,7 +194,7 @@ def draw_protocol(rng: np.random.Generator, build: MuscleBuild) -> Protocol:
     hold = rng.uniform(*HOLD_S) if rng.uniform() < HOLD_PROBABILITY else 0.0
     rest = rng.uniform(*REST_BEFORE_S)
     gas = GasParams()
-    free = free_inflation(BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure * PASCAL_PER_KPA)
+    free = free_inflation(BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure * PASCAL_PER_KILOPASCAL)
     contraction = build.length_m - free.length_m
     return Protocol(
         inflation_pressure_kPa=pressure,
@@ -360,7 +360,7 @@ def synthesize(effect_spec: str, seed: int, out_dir: str | Path, effect_catalog:
     times = times[np.concatenate([[True], np.diff(times) > 1e-6])]
     crosshead = ElongationTrajectory(times, np.interp(times, corners_t, corners_e))
     params = muscle_params(build, protocol.ambient_temperature_C)
-    initial = InitialState(length_m=protocol.free_length_m, gauge_pressure_Pa=protocol.inflation_pressure_kPa * PASCAL_PER_KPA)
+    initial = InitialState(length_m=protocol.free_length_m, gauge_pressure_Pa=protocol.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL)
     baseline = simulate_measurement(params, initial, crosshead, [], Simulator())
 
     # A lag or skew of a channel that does not move cannot be seen (the temperature of the

@@ -31,18 +31,21 @@ inline double parse_number(const std::string& effect, const std::string& key, co
 }
 
 /// Common parts of the built-in effects: numeric parameters declared once in a struct whose
-/// `for_each_field` visits (name, member, FieldInfo, realistic min, realistic max), and an
-/// optional measured channel.
+/// `for_each_field` visits (name, member, FieldInfo, EffectFieldInfo), the stage the effect
+/// acts at (`kStage`), a verdict phrase (`kSignature`), and an optional measured channel.
 template <class Params>
 class ParametricEffect : public Effect {
  public:
   std::string name() const override { return Params::kName; }
   std::string description() const override { return Params::kDescription; }
+  std::string signature() const override { return Params::kSignature; }
+  EffectStage stage() const override { return Params::kStage; }
 
   std::vector<EffectParameter> parameters() const override {
     std::vector<EffectParameter> out;
-    Params::for_each_field([&](const char* key, double Params::*member, const FieldInfo& info, double lo, double hi) {
-      out.push_back({key, params_.*member, info.unit, info.min, info.max, lo, hi, info.description});
+    Params::for_each_field([&](const char* key, double Params::*member, const FieldInfo& field,
+                               const EffectFieldInfo& info) {
+      out.push_back(EffectParameter::declared(key, params_.*member, field, info));
     });
     return out;
   }
@@ -50,6 +53,16 @@ class ParametricEffect : public Effect {
   std::map<std::string, std::string> options() const override {
     if constexpr (Params::kHasChannel) return {{"channel", params_.channel}};
     return {};
+  }
+
+  std::vector<std::string> channels_changed() const override {
+    if constexpr (Params::kHasChannel) {
+      return {params_.channel};
+    } else if constexpr (Params::kStage == EffectStage::measurement) {
+      return {Params::kChannel};
+    } else {
+      return {};
+    }
   }
 
   void set(const std::string& key, const std::string& value) override {
@@ -64,27 +77,43 @@ class ParametricEffect : public Effect {
         return;
       }
     }
+    if (!has_field(key)) throw unknown_key(key);
+    set_value(key, parse_number(Params::kName, key, value));
+  }
+
+  void set_value(const std::string& key, double value) override {
     bool found = false;
-    Params::for_each_field([&](const char* field, double Params::*member, const FieldInfo& info, double, double) {
+    Params::for_each_field([&](const char* field, double Params::*member, const FieldInfo& info,
+                               const EffectFieldInfo&) {
       if (key != field) return;
-      const double number = parse_number(Params::kName, key, value);
-      check_range(Params::kName, field, number, info);
-      params_.*member = number;
+      check_range(Params::kName, field, value, info);
+      params_.*member = value;
       found = true;
     });
-    if (!found) {
-      std::string known = Params::kHasChannel ? "channel" : "";
-      Params::for_each_field([&](const char* field, double Params::*, const FieldInfo&, double, double) {
-        known += (known.empty() ? "" : ", ") + std::string(field);
-      });
-      throw InvalidParameter(message("effect ", Params::kName, " has no parameter '", key, "' (", known, ")"));
-    }
+    if (!found) throw unknown_key(key);
   }
 
   const Params& params() const { return params_; }
 
  protected:
   Params params_;
+
+ private:
+  static bool has_field(const std::string& key) {
+    bool found = false;
+    Params::for_each_field([&](const char* field, double Params::*, const FieldInfo&, const EffectFieldInfo&) {
+      found = found || key == field;
+    });
+    return found;
+  }
+
+  static InvalidParameter unknown_key(const std::string& key) {
+    std::string known = Params::kHasChannel ? "channel" : "";
+    Params::for_each_field([&](const char* field, double Params::*, const FieldInfo&, const EffectFieldInfo&) {
+      known += (known.empty() ? "" : ", ") + std::string(field);
+    });
+    return InvalidParameter(message("effect ", Params::kName, " has no parameter '", key, "' (", known, ")"));
+  }
 };
 
 inline bool sealed_only(const char* effect, GasMode mode, std::string* why_not) {
@@ -115,11 +144,21 @@ struct HeatTransferParams {
       "finite-rate heat exchange between gas and wall, in place of a fixed polytropic exponent. Gives it away: "
       "pressure hysteresis that grows with rate while a cycle is slower than tau (and shrinks toward adiabatic "
       "beyond), pressure that relaxes during holds, temperature swings far below the polytropic ones.";
+  static constexpr const char* kSignature = "pressure loops open up with rate and the gas exchanges heat with the wall";
+  static constexpr EffectStage kStage = EffectStage::physics;
   static constexpr bool kHasChannel = false;
-  double time_constant_s = 2.0;  ///< gas-wall exchange time constant [s]
+  /// gas-wall exchange time constant [s]; the gas model's own default (table 3.6)
+  double time_constant_s = GasParams{}.heat_transfer_time_constant_s;
   template <class V>
   static void for_each_field(V&& visit) {
-    visit("time_constant_s", &HeatTransferParams::time_constant_s, FieldInfo{"s", 0.0, 1e9, "gas-wall heat exchange time constant"}, 0.5, 10.0);
+    visit("time_constant_s", &HeatTransferParams::time_constant_s,
+          FieldInfo{"s", 0.0, 1e9, "gas-wall heat exchange time constant"},
+          EffectFieldInfo{{0.5, 10.0}, false,
+                          {0.05, 30.0,
+                           "0.38 s reproduces table 3.6 on the thesis muscle (forced flow into the cones); natural "
+                           "convection in a 20-30 mm muscle gives 0.8-3.8 s (docs/table_3_6.md); a factor 8 below "
+                           "for small muscles and above for thick, slow walls"},
+                          {FitScale::log, 0.02, 200.0, 2.0}});
   }
 };
 class HeatTransferEffect : public detail::ParametricEffect<HeatTransferParams> {
@@ -137,11 +176,19 @@ struct DeadVolumeParams {
   static constexpr const char* kDescription =
       "gas volume outside the muscle that does not change with stretch (hose and transducer: about 5 % in the "
       "thesis, appendix B). Gives it away: the pressure swing is scaled down evenly, at every rate.";
+  static constexpr const char* kSignature = "the pressure swings less than the muscle's volume change implies, evenly";
+  static constexpr EffectStage kStage = EffectStage::physics;
   static constexpr bool kHasChannel = false;
   double volume_fraction = 0.05;  ///< dead volume over the muscle's initial gas volume [1]
   template <class V>
   static void for_each_field(V&& visit) {
-    visit("volume_fraction", &DeadVolumeParams::volume_fraction, FieldInfo{"1", 0.0, 10.0, "dead volume / initial gas volume"}, 0.03, 0.3);
+    visit("volume_fraction", &DeadVolumeParams::volume_fraction,
+          FieldInfo{"1", 0.0, 10.0, "dead volume / initial gas volume"},
+          EffectFieldInfo{{0.03, 0.3}, false,
+                          {0.0, 0.6,
+                           "hose and transducer: 5 % in the thesis (appendix B); a metre of 4 mm hose is 9 % of the "
+                           "thesis muscle's 140 cm^3; more than 60 % needs a reservoir the test would declare"},
+                          {FitScale::linear, 0.0, 1.0, 0.1}});
   }
 };
 class DeadVolumeEffect : public detail::ParametricEffect<DeadVolumeParams> {
@@ -156,11 +203,19 @@ struct LeakParams {
   static constexpr const char* kDescription =
       "gas escaping through an orifice (a seal, the sensor's wires): the gauge pressure decays with a time constant. "
       "Gives it away: pressure and force peaks drift down cycle after cycle.";
+  static constexpr const char* kSignature = "peaks drift down cycle after cycle";
+  static constexpr EffectStage kStage = EffectStage::physics;
   static constexpr bool kHasChannel = false;
   double time_constant_s = 1000.0;  ///< decay time of the gauge pressure at fixed volume [s]; inf: sealed
   template <class V>
   static void for_each_field(V&& visit) {
-    visit("time_constant_s", &LeakParams::time_constant_s, FieldInfo{"s", 1e-3, detail::kInfinity, "leak time constant (inf: none)"}, 100.0, 3000.0);
+    visit("time_constant_s", &LeakParams::time_constant_s,
+          FieldInfo{"s", 1e-3, detail::kInfinity, "leak time constant (inf: none)"},
+          EffectFieldInfo{{100.0, 3000.0}, false,
+                          {20.0, detail::kInfinity,
+                           "a sealed test runs 5-10 stretch cycles of 2-200 s after one inflation; a muscle that "
+                           "loses 63 % of its gauge pressure in under 20 s could not be tested sealed"},
+                          {FitScale::reciprocal, 5.0, detail::kInfinity, 1000.0}});
   }
 };
 class LeakEffect : public detail::ParametricEffect<LeakParams> {
@@ -177,13 +232,27 @@ struct BladderViscoelasticityParams {
       "time tau) beside the elastic law of eqs. 3.1.12-13; the thesis's biaxial tests showed the hysteresis "
       "(figure 3.5). Gives it away: force hysteresis that grows with rate while a cycle is slower than tau, "
       "strongest at low pressure, with no matching pressure hysteresis.";
+  static constexpr const char* kSignature = "force hysteresis that pressure does not share";
+  static constexpr EffectStage kStage = EffectStage::physics;
   static constexpr bool kHasChannel = false;
   double time_constant_s = 2.0;  ///< relaxation time of the Maxwell branch [s]
   double strength = 0.5;         ///< branch modulus over the tangent modulus [1]
   template <class V>
   static void for_each_field(V&& visit) {
-    visit("time_constant_s", &BladderViscoelasticityParams::time_constant_s, FieldInfo{"s", 1e-4, 1e6, "relaxation time"}, 0.5, 20.0);
-    visit("strength", &BladderViscoelasticityParams::strength, FieldInfo{"1", 0.0, 100.0, "branch modulus / tangent modulus"}, 0.3, 3.0);
+    visit("time_constant_s", &BladderViscoelasticityParams::time_constant_s,
+          FieldInfo{"s", 1e-4, 1e6, "relaxation time"},
+          EffectFieldInfo{{0.5, 20.0}, false,
+                          {0.2, 100.0,
+                           "the thesis's biaxial tests show the hysteresis at cycle times of seconds (figure 3.5); a "
+                           "branch relaxing in under 0.2 s is elastic at bench rates, over 100 s a drift"},
+                          {FitScale::log, 0.1, 200.0, 2.0}});
+    visit("strength", &BladderViscoelasticityParams::strength,
+          FieldInfo{"1", 0.0, 100.0, "branch modulus / tangent modulus"},
+          EffectFieldInfo{{0.3, 3.0}, false,
+                          {0.0, 3.0,
+                           "a branch stiffer than 3x the elastic tangent modulus means a loss tangent above 1, "
+                           "beyond the most damped butyl compounds"},
+                          {FitScale::linear, 0.0, 20.0, 0.5}});
   }
 };
 class BladderViscoelasticityEffect : public detail::ParametricEffect<BladderViscoelasticityParams> {
@@ -204,11 +273,19 @@ struct FiberComplianceParams {
       "braid fibers that stretch under tension (axial stiffness EA of one fiber): a spring in series with the "
       "braid. Gives it away: the force-elongation curve softens at high force; the pressure peaks less than the "
       "crosshead's travel implies.";
+  static constexpr const char* kSignature = "force softens at high stretch";
+  static constexpr EffectStage kStage = EffectStage::physics;
   static constexpr bool kHasChannel = false;
   double stiffness_N = 300.0;  ///< axial stiffness EA of one fiber [N]; inf: inextensible
   template <class V>
   static void for_each_field(V&& visit) {
-    visit("stiffness_N", &FiberComplianceParams::stiffness_N, FieldInfo{"N", 1.0, detail::kInfinity, "fiber axial stiffness EA (inf: rigid)"}, 100.0, 600.0);
+    visit("stiffness_N", &FiberComplianceParams::stiffness_N,
+          FieldInfo{"N", 1.0, detail::kInfinity, "fiber axial stiffness EA (inf: rigid)"},
+          EffectFieldInfo{{100.0, 600.0}, false,
+                          {50.0, detail::kInfinity,
+                           "a braid strand of 0.1-0.5 mm^2 polyester or nylon (E = 2-5 GPa) has EA = 200-2500 N; "
+                           "below 50 N the braid would stretch by several per cent at bench tensions"},
+                          {FitScale::reciprocal, 10.0, detail::kInfinity, 300.0}});
   }
 };
 class FiberComplianceEffect : public detail::ParametricEffect<FiberComplianceParams> {
@@ -224,11 +301,19 @@ struct FixtureSlackParams {
       "slack between crosshead and muscle (pins in loose holes): the muscle moves only once the crosshead has "
       "taken up the play, at each reversal. Gives it away: force stays flat at the start of each stretch and "
       "each return; the force-elongation loop is shifted and widened by the slack.";
+  static constexpr const char* kSignature = "force stays flat at the start of each stretch";
+  static constexpr EffectStage kStage = EffectStage::motion;
   static constexpr bool kHasChannel = false;
   double slack_m = 1e-3;  ///< total play [m]
   template <class V>
   static void for_each_field(V&& visit) {
-    visit("slack_m", &FixtureSlackParams::slack_m, FieldInfo{"m", 0.0, 0.05, "play between crosshead and muscle"}, 0.5e-3, 3e-3);
+    visit("slack_m", &FixtureSlackParams::slack_m, FieldInfo{"m", 0.0, 0.05, "play between crosshead and muscle"},
+          EffectFieldInfo{{0.5e-3, 3e-3}, false,
+                          {0.0, 5e-3,
+                           "pins in loose holes: two clearance fits of 0.1-1 mm each; 5 mm of play is a visibly "
+                           "loose fixture"},
+                          {FitScale::linear, 0.0, 0.02, 1e-3},
+                          Resolution::travel_per_sample});
   }
 };
 class FixtureSlackEffect : public detail::ParametricEffect<FixtureSlackParams> {
@@ -252,12 +337,20 @@ struct SensorLagParams {
   static constexpr const char* kDescription =
       "first-order lag of one channel (a TMP36 in still air is slow; a long hose slows a pressure transducer). "
       "Gives it away: that channel lags its prediction and its swings are attenuated, more so at higher rates.";
+  static constexpr const char* kSignature = "{channel} lags its prediction and swings less";
+  static constexpr EffectStage kStage = EffectStage::measurement;
   static constexpr bool kHasChannel = true;
   std::string channel = "temperature_C";
   double time_constant_s = 5.0;  ///< time constant of the lag [s]; 0: none
   template <class V>
   static void for_each_field(V&& visit) {
-    visit("time_constant_s", &SensorLagParams::time_constant_s, FieldInfo{"s", 0.0, 1e4, "sensor time constant"}, 0.5, 20.0);
+    visit("time_constant_s", &SensorLagParams::time_constant_s, FieldInfo{"s", 0.0, 1e4, "sensor time constant"},
+          EffectFieldInfo{{0.5, 20.0}, false,
+                          {0.0, 60.0,
+                           "a TMP36 in still air: 9-32 s from its thermal resistance and capacity "
+                           "(docs/table_3_6.md); transducers and load cells respond in milliseconds"},
+                          {FitScale::log, 1e-3, 300.0, 2.0},
+                          Resolution::sample_interval});
   }
 };
 class SensorLagEffect : public detail::ParametricEffect<SensorLagParams> {
@@ -287,12 +380,20 @@ struct TimeSkewParams {
       "constant time offset between channels logged by different instruments (the Arduino's pressure and "
       "temperature against the tensile machine's force), left after a synchronisation by hand. Gives it away: "
       "the cross-correlation of that channel's residual with the prediction's rate peaks away from zero lag.";
+  static constexpr const char* kSignature = "{channel} is shifted in time against the machine's channels";
+  static constexpr EffectStage kStage = EffectStage::measurement;
   static constexpr bool kHasChannel = true;
   std::string channel = "pressure_kPa";
   double offset_s = 1.0;  ///< the channel reads at t what happened at t - offset [s]
   template <class V>
   static void for_each_field(V&& visit) {
-    visit("offset_s", &TimeSkewParams::offset_s, FieldInfo{"s", -600.0, 600.0, "time offset of the channel"}, 0.3, 3.0);
+    visit("offset_s", &TimeSkewParams::offset_s, FieldInfo{"s", -600.0, 600.0, "time offset of the channel"},
+          EffectFieldInfo{{0.3, 3.0}, true,
+                          {-5.0, 5.0,
+                           "two instruments started by hand and aligned by eye or by cross-correlation "
+                           "(pamkit align): seconds at most"},
+                          {FitScale::linear, -6.0, 6.0, 0.0},
+                          Resolution::sample_interval});
   }
 };
 class TimeSkewEffect : public detail::ParametricEffect<TimeSkewParams> {
@@ -324,13 +425,24 @@ struct SensorOffsetParams {
   static constexpr const char* kDescription =
       "offset and gain error of the pressure transducer's calibration (appendix B's linear fit, redone by hand). "
       "Gives it away: a constant offset, or a residual proportional to the pressure, at every rate and in holds.";
+  static constexpr const char* kSignature = "pressure reads off by a constant or a scale";
+  static constexpr EffectStage kStage = EffectStage::measurement;
+  static constexpr const char* kChannel = "pressure_kPa";
   static constexpr bool kHasChannel = false;
   double offset_kPa = 5.0;  ///< reading at zero gauge pressure [kPa]
   double gain = 1.0;        ///< reading per true kPa [1]
   template <class V>
   static void for_each_field(V&& visit) {
-    visit("offset_kPa", &SensorOffsetParams::offset_kPa, FieldInfo{"kPa", -500.0, 500.0, "pressure offset"}, -12.0, 12.0);
-    visit("gain", &SensorOffsetParams::gain, FieldInfo{"1", 0.1, 10.0, "pressure gain"}, 0.93, 1.07);
+    visit("offset_kPa", &SensorOffsetParams::offset_kPa, FieldInfo{"kPa", -500.0, 500.0, "pressure offset"},
+          EffectFieldInfo{{-12.0, 12.0}, false,
+                          {-15.0, 15.0,
+                           "2 % of the 61CP transducer's 0-100 psi span (689 kPa) after a calibration by hand "
+                           "(appendix B)"},
+                          {FitScale::linear, -100.0, 100.0, 0.0}});
+    visit("gain", &SensorOffsetParams::gain, FieldInfo{"1", 0.1, 10.0, "pressure gain"},
+          EffectFieldInfo{{0.93, 1.07}, false,
+                          {0.9, 1.1, "a calibration line through appendix B's points off by at most 10 % in slope"},
+                          {FitScale::linear, 0.5, 1.5, 1.0}});
   }
 };
 class SensorOffsetEffect : public detail::ParametricEffect<SensorOffsetParams> {

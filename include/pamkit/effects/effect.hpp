@@ -10,6 +10,7 @@
 /// `EffectCatalog`.
 
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -39,17 +40,86 @@ inline const std::vector<std::string>& measured_channels() {
   return names;
 }
 
-/// One parameter of an effect: its value, unit, allowed range, and the range it takes in
-/// real benches (what synthetic data draws from).
+/// Where an effect acts in a simulated measurement: the three stages of `Effect`.
+enum class EffectStage {
+  physics,      ///< the model's parameters and states (new physics)
+  motion,       ///< the motion between crosshead and muscle
+  measurement,  ///< what the instruments read; the muscle is untouched
+};
+
+/// The scale on which a diagnosis moves a parameter while fitting it.
+enum class FitScale {
+  linear,
+  log,         ///< time constants and stiffnesses that span decades
+  reciprocal,  ///< "infinity means off" constants, fitted as a rate (0: the effect is off)
+};
+
+/// What a record must resolve for a fitted value to mean something.
+enum class Resolution {
+  any,                ///< every value is resolvable
+  sample_interval,    ///< |value| [s] at least the record's sample interval (a skew, a lag)
+  travel_per_sample,  ///< value [m] at least the crosshead's travel between two samples (slack)
+};
+
+/// A closed interval.
+struct ValueRange {
+  double min;  ///< lower end
+  double max;  ///< upper end (may be infinity)
+};
+
+/// The values a parameter takes in real muscles and rigs, with the reason.
+struct PlausibleRange {
+  double min;          ///< smallest physically plausible value
+  double max;          ///< largest physically plausible value (may be infinity)
+  const char* source;  ///< why: a material property, a datasheet, a geometric limit
+};
+
+/// Where a diagnosis searches a parameter, in the parameter's own unit.
+struct FitSpace {
+  FitScale scale;  ///< how the search moves it
+  double min;      ///< search interval's lower end; ending here is "at a bound"
+  double max;      ///< search interval's upper end (for `reciprocal`, infinity is the rate 0)
+  double start;    ///< where a fit starts
+};
+
+/// What an effect declares about a parameter beside its allowed range (`FieldInfo`): declared
+/// once in the effect's field list and read by synthetic data, diagnosis and reports alike.
+struct EffectFieldInfo {
+  ValueRange realistic;       ///< strengths synthetic benches draw (a detectable, typical effect)
+  bool either_sign;           ///< `realistic` bounds |value|; the sign is drawn too
+  PlausibleRange plausible;   ///< a fitted value outside it is reported, never named as a cause
+  FitSpace fit;               ///< the diagnosis's search
+  Resolution resolution = Resolution::any;
+};
+
+/// One parameter of an effect: its value, unit, allowed range, and what `EffectFieldInfo`
+/// declares about it.
 struct EffectParameter {
   std::string name;
   double value;
   std::string unit;         ///< SI unit, "1" for a pure number
   double min;               ///< smallest allowed value
   double max;               ///< largest allowed value (may be infinity)
-  double realistic_min;     ///< smallest value seen on real benches
-  double realistic_max;     ///< largest value seen on real benches
+  double realistic_min;     ///< smallest value synthetic benches draw
+  double realistic_max;     ///< largest value synthetic benches draw
   std::string description;  ///< meaning
+  bool either_sign = false;                   ///< realistic range bounds |value|
+  double plausible_min = -std::numeric_limits<double>::infinity();  ///< physically plausible range
+  double plausible_max = std::numeric_limits<double>::infinity();
+  std::string plausible_source;                ///< why that range
+  FitScale fit_scale = FitScale::linear;       ///< diagnosis's search scale
+  double fit_min = 0.0;                        ///< diagnosis's search interval
+  double fit_max = 0.0;
+  double fit_start = 0.0;                      ///< where the search starts
+  Resolution resolution = Resolution::any;     ///< what one sample must resolve
+
+  /// A parameter with only an allowed and a realistic range (a user effect that declares no
+  /// more): plausible is the allowed range, the search is linear over the realistic range
+  /// widened by its width on each side, within the allowed range.
+  static EffectParameter declared(std::string name, double value, std::string unit, double min, double max,
+                                  double realistic_min, double realistic_max, std::string description);
+  /// A parameter with everything declared.
+  static EffectParameter declared(std::string name, double value, const FieldInfo& field, const EffectFieldInfo& info);
 };
 
 /// How the muscle's gas is held during a test (DESIGN.md, "A measured dataset").
@@ -72,6 +142,17 @@ class Effect {
   /// Sets one parameter or option from text ("time_constant_s", "2.5").
   /// \throws InvalidParameter naming the effect, key and allowed values.
   virtual void set(const std::string& key, const std::string& value) = 0;
+  /// Sets one numeric parameter; by default through `set` with the number printed exactly.
+  /// \throws InvalidParameter naming the effect, key and allowed values.
+  virtual void set_value(const std::string& key, double value);
+  /// The stage the effect acts at; a diagnosis fits a measurement effect on the calibrated
+  /// model's prediction without moving the model.
+  virtual EffectStage stage() const { return EffectStage::physics; }
+  /// The measured channels the effect changes; empty: every channel (physics and motion).
+  virtual std::vector<std::string> channels_changed() const { return {}; }
+  /// A short phrase for a verdict: what the data shows when this is the cause ("peaks drift
+  /// down cycle after cycle"); may name "{channel}". Empty: the description is used.
+  virtual std::string signature() const { return {}; }
   /// Whether the effect can act in a test of this kind; `why_not` says why when it cannot.
   virtual bool acts_in(GasMode mode, std::string* why_not) const;
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <sstream>
 
 namespace pamkit {
@@ -12,6 +13,45 @@ inline std::vector<double>& Measurement::channel(const std::string& name) {
 }
 
 inline bool Effect::acts_in(GasMode, std::string*) const { return true; }
+inline void Effect::set_value(const std::string& key, double value) {
+  std::ostringstream text;
+  text.precision(17);
+  text << value;
+  set(key, text.str());
+}
+
+inline EffectParameter EffectParameter::declared(std::string name, double value, std::string unit, double min,
+                                                 double max, double realistic_min, double realistic_max,
+                                                 std::string description) {
+  const double width = std::max(realistic_max - realistic_min, 1e-12);
+  const double fit_min = std::max(min, realistic_min - width);
+  const double fit_max = std::min(max, realistic_max + width);
+  EffectParameter p{std::move(name), value, std::move(unit), min, max, realistic_min, realistic_max,
+                    std::move(description)};
+  p.plausible_min = min;
+  p.plausible_max = max;
+  p.plausible_source = "not declared by the effect: its allowed range";
+  p.fit_min = fit_min;
+  p.fit_max = fit_max;
+  p.fit_start = 0.5 * (realistic_min + realistic_max);
+  return p;
+}
+
+inline EffectParameter EffectParameter::declared(std::string name, double value, const FieldInfo& field,
+                                                 const EffectFieldInfo& info) {
+  EffectParameter p{std::move(name), value, field.unit, field.min, field.max, info.realistic.min,
+                    info.realistic.max, field.description};
+  p.either_sign = info.either_sign;
+  p.plausible_min = info.plausible.min;
+  p.plausible_max = info.plausible.max;
+  p.plausible_source = info.plausible.source;
+  p.fit_scale = info.fit.scale;
+  p.fit_min = info.fit.min;
+  p.fit_max = info.fit.max;
+  p.fit_start = info.fit.start;
+  p.resolution = info.resolution;
+  return p;
+}
 inline void Effect::apply_to_params(MuscleParams&) const {}
 inline std::vector<double> Effect::apply_to_elongation(const std::vector<double>&,
                                                        const std::vector<double>& crosshead_m) const {

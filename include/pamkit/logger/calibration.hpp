@@ -7,12 +7,12 @@
 #include <vector>
 
 #include "pamkit/fields.hpp"
+#include "pamkit/units.hpp"
 #include "pamkit_frame.h"  // PAMKIT_ADC_FULL_SCALE
 
 namespace pamkit::logger {
 
-/// 1 psi in kPa (exact: 0.45359237 kg * 9.80665 m/s^2 / 0.0254^2 m^2).
-constexpr double kKilopascalPerPsi = 6.894757293168361;
+using units::kKilopascalPerPsi;
 
 /// The conversion of one logger's readings. Pressure is gauge pressure.
 struct LoggerCalibration {

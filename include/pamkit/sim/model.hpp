@@ -8,6 +8,7 @@
 
 #include "pamkit/gas/air.hpp"
 #include "pamkit/muscle/force.hpp"
+#include "pamkit/muscle/free_inflation.hpp"
 
 namespace pamkit {
 
@@ -65,6 +66,15 @@ struct InitialState {
   }
   void validate() const { validate_fields(*this); }
 };
+
+/// The thesis's protocol at the start of a sealed test: inflated freely (no force) to
+/// `gauge_pressure_Pa`, then sealed, at the free length that pressure gives (table 3.4).
+/// \throws InvalidInput if the muscle cannot inflate freely to that pressure.
+inline InitialState inflated_and_sealed(const MuscleParams& params, double gauge_pressure_Pa) {
+  const FreeInflation free = free_inflation(BraidGeometry(params.build), params.bladder,
+                                            params.gas.atmospheric_pressure_Pa, gauge_pressure_Pa);
+  return InitialState{free.length_m, gauge_pressure_Pa};
+}
 
 /// The ODE state. The energy integrals ride along as states so that one right-hand side
 /// evaluation serves them and the physics alike.

@@ -18,21 +18,24 @@ import numpy as np
 
 from pamkit._core import (
     BladderLaw,
-    BraidGeometry,
     Effect,
+    EffectParameter,
     ElongationTrajectory,
+    FitScale,
     GasMode,
     InitialState,
     Measurement,
     MuscleParams,
     Simulator,
     SimulatorConfig,
-    free_inflation,
+    inflated_and_sealed,
     simulate_measurement,
+    simulate_supplied_measurement,
 )
 from pamkit.diagnose.motion import measured_motion, programmed_motion
 from pamkit.experiment import Experiment
-from pamkit.simulate import PASCAL_PER_KPA, muscle_params, simulate_experiment
+from pamkit.simulate import initial_length, muscle_params
+from pamkit.units import PASCAL_PER_KILOPASCAL
 
 PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
 
@@ -76,37 +79,24 @@ def _rate(name, largest_rate, start_value):
     return Coordinate(name, 0.0, largest_rate, 1.0 / start_value, _reciprocal, _reciprocal)
 
 
-# Fit spaces of the built-in effects' parameters (bounds wider than the realistic ranges).
-BUILTIN_SPACES = {
-    "heat_transfer": lambda e: [_log("time_constant_s", 0.02, 200.0, 2.0)],
-    "dead_volume": lambda e: [_linear("volume_fraction", 0.0, 1.0, 0.1)],
-    "leak": lambda e: [_rate("time_constant_s", 0.2, 1000.0)],
-    "bladder_viscoelasticity": lambda e: [_log("time_constant_s", 0.1, 200.0, 2.0), _linear("strength", 0.0, 20.0, 0.5)],
-    "fiber_compliance": lambda e: [_rate("stiffness_N", 1.0 / 10.0, 300.0)],
-    "fixture_slack": lambda e: [_linear("slack_m", 0.0, 0.02, 1e-3)],
-    "sensor_lag": lambda e: [_log("time_constant_s", 1e-3, 300.0, 2.0)],
-    "time_skew": lambda e: [_linear("offset_s", -6.0, 6.0, 0.0)],
-    "sensor_offset": lambda e: [_linear("offset_kPa", -100.0, 100.0, 0.0), _linear("gain", 0.5, 1.5, 1.0)],
-}
+def parameter_coordinate(p: EffectParameter) -> Coordinate:
+    """The fit coordinate of an effect parameter, from what the effect declares (its search
+    scale, interval and start: catalog.hpp, or a Python effect's EffectParameter)."""
+    if p.fit_scale == FitScale.log:
+        return _log(p.name, p.fit_min, p.fit_max, p.fit_start)
+    if p.fit_scale == FitScale.reciprocal:
+        return _rate(p.name, 1.0 / p.fit_min, p.fit_start)
+    return _linear(p.name, p.fit_min, p.fit_max, p.fit_start)
 
 
 def effect_space(effect: Effect) -> list[Coordinate]:
-    """The fit coordinates of an effect: built-in spaces, else linear over its realistic
-    range widened by its width on each side, within the allowed range."""
-    if effect.name() in BUILTIN_SPACES:
-        return BUILTIN_SPACES[effect.name()](effect)
-    coordinates = []
-    for p in effect.parameters():
-        width = max(p.realistic_max - p.realistic_min, 1e-12)
-        lower = max(p.min, p.realistic_min - width)
-        upper = min(p.max, p.realistic_max + width)
-        coordinates.append(_linear(p.name, lower, upper, 0.5 * (p.realistic_min + p.realistic_max)))
-    return coordinates
+    """The fit coordinates of an effect, one per numeric parameter."""
+    return [parameter_coordinate(p) for p in effect.parameters()]
 
 
 def configure(effect: Effect, space: list[Coordinate], x: np.ndarray) -> Effect:
     for coordinate, value in zip(space, x):
-        effect.set(coordinate.name, repr(float(coordinate.value(value))))
+        effect.set(coordinate.name, float(coordinate.value(value)))
     return effect
 
 
@@ -165,13 +155,15 @@ class Predictor:
     def measurement(self, x: np.ndarray, effects: list[Effect]) -> Measurement:
         params, pressure_kPa = self.baseline.model_params(x)
         if self.mode == GasMode.supplied:
-            columns = simulate_experiment(self.experiment, params=params, effects=effects)
-            m = Measurement()
-            for name, values in columns.items():
-                setattr(m, name, values)
-            return m
-        length = self._initial_length(params, pressure_kPa)
-        initial = InitialState(length_m=length, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KPA)
+            # The measured motion (not the programmed one): samples and pressures line up.
+            return simulate_supplied_measurement(params, initial_length(self.experiment, params), self.trajectory,
+                                                 self.experiment.columns["pressure_kPa"],
+                                                 self.experiment.ambient_temperature_C, effects)
+        if self.experiment.initial_length_m is not None:
+            initial = InitialState(length_m=self.experiment.initial_length_m,
+                                   gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL)
+        else:
+            initial = inflated_and_sealed(params, pressure_kPa * PASCAL_PER_KILOPASCAL)
         return simulate_measurement(params, initial, self.trajectory, effects, self.simulator)
 
     def select(self, m: Measurement) -> dict[str, np.ndarray]:
@@ -180,11 +172,3 @@ class Predictor:
 
     def predict(self, x: np.ndarray, effects: list[Effect]) -> dict[str, np.ndarray]:
         return self.select(self.measurement(x, effects))
-
-    def _initial_length(self, params: MuscleParams, pressure_kPa: float) -> float:
-        """As the experiment gives it, else the free inflated length (DESIGN.md's default)."""
-        if self.experiment.initial_length_m is not None:
-            return self.experiment.initial_length_m
-        inflated = free_inflation(BraidGeometry(params.build), params.bladder, params.gas.atmospheric_pressure_Pa,
-                                  pressure_kPa * PASCAL_PER_KPA)
-        return inflated.length_m

@@ -2,7 +2,9 @@
 // part, which tests an effect can act in, a user's own C++ effect, effects combined, and every
 // effect at zero strength giving the baseline bit for bit.
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -93,6 +95,78 @@ TEST_CASE("catalog: holds the nine effects of DESIGN.md", "[effects][catalog]") 
       CHECK(p.realistic_max <= p.max);
     }
   }
+}
+
+// What an effect declares beside its allowed range is read by synthetic data (realistic), the
+// diagnosis's search (fit) and its decision (plausible); these are the orderings that make the
+// three agree: synthetic data never draws an implausible value, every plausible value can be
+// reached by a fit, and a fit that ends at its bound is outside the plausible interior.
+TEST_CASE("catalog: realistic inside plausible, plausible reachable by the fit, fit inside allowed",
+          "[effects][catalog]") {
+  for (const std::string& name : EffectCatalog::builtin().names()) {
+    const EffectPtr e = EffectCatalog::builtin().make(name);
+    INFO(name);
+    CHECK_FALSE(e->signature().empty());
+    for (const EffectParameter& p : e->parameters()) {
+      INFO(p.name);
+      CHECK_FALSE(p.plausible_source.empty());
+      const double realistic_low = p.either_sign ? -p.realistic_max : p.realistic_min;
+      CHECK(p.plausible_min <= realistic_low);
+      CHECK(p.realistic_max <= p.plausible_max);
+      CHECK(p.min <= p.fit_min);
+      CHECK(p.fit_max <= p.max);
+      CHECK(p.fit_min < p.fit_start);
+      CHECK(p.fit_start < p.fit_max);
+      CHECK(p.plausible_max <= p.fit_max);  // plausible values are reachable: the bound lies beyond
+      if (p.fit_scale != FitScale::linear) CHECK(p.fit_min > 0.0);  // log and reciprocal need a positive end
+    }
+  }
+}
+
+TEST_CASE("catalog: measurement effects change only the channels they name", "[effects][catalog]") {
+  const Measurement truth = measure(MuscleParams(), table_c2_90(), bench(), {});
+  for (const std::string& spec : {"sensor_lag:channel=pressure_kPa,time_constant_s=2",
+                                  "time_skew:channel=force_N,offset_s=0.7", "sensor_offset:offset_kPa=3,gain=1.02"}) {
+    INFO(spec);
+    const EffectPtr e = effect(spec);
+    CHECK(e->stage() == EffectStage::measurement);
+    const std::vector<std::string> changed = e->channels_changed();
+    REQUIRE(changed.size() == 1);
+    Measurement read = truth;
+    Measurement original = truth;
+    e->apply_to_measurement(read);
+    for (const std::string& channel : measured_channels()) {
+      INFO(channel);
+      CHECK((read.channel(channel) != original.channel(channel)) == (channel == changed.front()));
+    }
+  }
+  for (const std::string& name : {"heat_transfer", "dead_volume", "leak", "bladder_viscoelasticity",
+                                  "fiber_compliance", "fixture_slack"}) {
+    CHECK(effect(name)->channels_changed().empty());  // every channel
+    CHECK(effect(name)->stage() != EffectStage::measurement);
+  }
+}
+
+TEST_CASE("catalog: a number set as a number equals the same number set as text", "[effects][catalog]") {
+  for (const std::string& name : EffectCatalog::builtin().names()) {
+    for (const EffectParameter& p : EffectCatalog::builtin().make(name)->parameters()) {
+      // A value with no short decimal form, inside every allowed range.
+      const double value = p.fit_start != 0.0 ? p.fit_start * 4.0 / 3.0 : 1.0 / 7.0;
+      const EffectPtr typed = EffectCatalog::builtin().make(name);
+      const EffectPtr text = EffectCatalog::builtin().make(name);
+      typed->set_value(p.name, value);
+      std::ostringstream printed;
+      printed.precision(17);
+      printed << value;
+      text->set(p.name, printed.str());
+      INFO(name << "." << p.name);
+      CHECK(parameter(*typed, p.name) == parameter(*text, p.name));
+    }
+  }
+  CHECK_THROWS_WITH(EffectCatalog::builtin().make("leak")->set_value("tau", 1.0),
+                    Catch::Matchers::Contains("has no parameter 'tau'"));
+  CHECK_THROWS_WITH(EffectCatalog::builtin().make("leak")->set_value("time_constant_s", -1.0),
+                    Catch::Matchers::Contains("outside the allowed range"));
 }
 
 TEST_CASE("catalog: parse sets the values written in the text", "[effects][catalog]") {
@@ -245,8 +319,8 @@ TEST_CASE("catalog: effects combine, each at its stage and in order", "[effects]
     by_hand.elongation_m = crosshead.elongation();
     by_hand.force_N = r.force_N;
     for (std::size_t k = 0; k < r.time_s.size(); ++k) {
-      by_hand.pressure_kPa.push_back(r.pressure_gauge_Pa[k] * 1e-3);
-      by_hand.temperature_C.push_back(r.temperature_K[k] - 273.15);
+      by_hand.pressure_kPa.push_back(units::kilopascal_from_pascal(r.pressure_gauge_Pa[k]));
+      by_hand.temperature_C.push_back(units::celsius_from_kelvin(r.temperature_K[k]));
     }
     effect(specs[2])->apply_to_measurement(by_hand);
     CHECK(identical(combined, by_hand));

@@ -1,0 +1,8 @@
+"""Unit conversions, declared once in C++ (include/pamkit/units.hpp) and read from there."""
+
+from pamkit._core import units as _units
+
+PASCAL_PER_KILOPASCAL: float = _units.PASCAL_PER_KILOPASCAL
+KILOPASCAL_PER_PSI: float = _units.KILOPASCAL_PER_PSI
+KELVIN_AT_ZERO_CELSIUS: float = _units.KELVIN_AT_ZERO_CELSIUS
+MILLIMETRE_PER_METRE: float = _units.MILLIMETRE_PER_METRE
