@@ -48,9 +48,14 @@ def _reciprocal(x: float) -> float:
     return 1.0 / x if x > 0 else math.inf if x == 0 else -math.inf
 
 
+# A fitted coordinate within this share of its interval's width from an end is "at a bound".
+AT_BOUND = 1e-3
+
+
 @dataclass(frozen=True)
 class Coordinate:
-    """One fitted coordinate: its bounds and start, and how it maps to a parameter's value."""
+    """One fitted coordinate: its bounds and start, how it maps to a parameter's value, and the
+    parameter's physically plausible range (in value units) with its source."""
 
     name: str
     lower: float
@@ -58,6 +63,8 @@ class Coordinate:
     start: float
     to_value: callable = _identity
     from_value: callable = _identity
+    plausible: tuple[float, float] = (-math.inf, math.inf)
+    source: str = ""
 
     def value(self, x: float) -> float:
         return self.to_value(x)
@@ -65,28 +72,45 @@ class Coordinate:
     def of(self, value: float) -> float:
         return self.from_value(value)
 
+    def at_bound(self, x: float) -> str | None:
+        """"lower" or "upper" when x ended at an end of the search interval, else None."""
+        margin = AT_BOUND * (self.upper - self.lower)
+        if x <= self.lower + margin:
+            return "lower"
+        if x >= self.upper - margin:
+            return "upper"
+        return None
 
-def _log(name, lower, upper, start):
-    return Coordinate(name, math.log(lower), math.log(upper), math.log(start), math.exp, math.log)
+    def bound_value(self, side: str) -> float:
+        return float(self.value(self.lower if side == "lower" else self.upper))
+
+    def implausible(self, value: float) -> bool:
+        return not (self.plausible[0] <= value <= self.plausible[1])
 
 
-def _linear(name, lower, upper, start):
-    return Coordinate(name, lower, upper, start)
+def _log(name, lower, upper, start, plausible=(-math.inf, math.inf), source=""):
+    return Coordinate(name, math.log(lower), math.log(upper), math.log(start), math.exp, math.log, plausible, source)
 
 
-def _rate(name, largest_rate, start_value):
+def _linear(name, lower, upper, start, plausible=(-math.inf, math.inf), source=""):
+    return Coordinate(name, lower, upper, start, plausible=plausible, source=source)
+
+
+def _rate(name, largest_rate, start_value, plausible=(-math.inf, math.inf), source=""):
     """Fits 1/value in [0, largest_rate]: 0 is 'infinite', the effect switched off."""
-    return Coordinate(name, 0.0, largest_rate, 1.0 / start_value, _reciprocal, _reciprocal)
+    return Coordinate(name, 0.0, largest_rate, 1.0 / start_value, _reciprocal, _reciprocal, plausible, source)
 
 
 def parameter_coordinate(p: EffectParameter) -> Coordinate:
     """The fit coordinate of an effect parameter, from what the effect declares (its search
-    scale, interval and start: catalog.hpp, or a Python effect's EffectParameter)."""
+    scale, interval and start, its plausible range: catalog.hpp, or a Python effect's
+    EffectParameter)."""
+    plausible = (p.plausible_min, p.plausible_max)
     if p.fit_scale == FitScale.log:
-        return _log(p.name, p.fit_min, p.fit_max, p.fit_start)
+        return _log(p.name, p.fit_min, p.fit_max, p.fit_start, plausible, p.plausible_source)
     if p.fit_scale == FitScale.reciprocal:
-        return _rate(p.name, 1.0 / p.fit_min, p.fit_start)
-    return _linear(p.name, p.fit_min, p.fit_max, p.fit_start)
+        return _rate(p.name, 1.0 / p.fit_min, p.fit_start, plausible, p.plausible_source)
+    return _linear(p.name, p.fit_min, p.fit_max, p.fit_start, plausible, p.plausible_source)
 
 
 def effect_space(effect: Effect) -> list[Coordinate]:
@@ -112,12 +136,18 @@ class Baseline:
         self.params = muscle_params(self.experiment)
         p0 = self.experiment.inflation_pressure_kPa
         self.space = [
-            _linear("friction_scale", 0.0, 20.0, 1.0),
-            _linear("bladder_scale", 0.0, 5.0, 1.0),
+            _linear("friction_scale", 0.0, 20.0, 1.0, (0.1, 10.0),
+                    "eqs. 3.1.19-24 with the thesis's coefficients; a tenfold error either way is another "
+                    "friction mechanism, not a coefficient"),
+            _linear("bladder_scale", 0.0, 5.0, 1.0, (0.33, 3.0),
+                    "eqs. 3.1.12-13 fitted to one butyl sample; rubbers of one nominal grade differ in modulus by "
+                    "well under 3x"),
         ]
         if self.experiment.gas == "sealed":
             self.space.insert(0, _linear("inflation_pressure_kPa", p0 * (1 - PRESSURE_TOLERANCE),
-                                         p0 * (1 + PRESSURE_TOLERANCE), p0))
+                                         p0 * (1 + PRESSURE_TOLERANCE), p0,
+                                         (p0 * (1 - PRESSURE_TOLERANCE), p0 * (1 + PRESSURE_TOLERANCE)),
+                                         "the declared inflation pressure within the hand-read transducer's 5 %"))
 
     def values(self, x: np.ndarray) -> dict[str, float]:
         return {c.name: float(c.value(v)) for c, v in zip(self.space, x)}

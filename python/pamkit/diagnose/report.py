@@ -8,20 +8,11 @@ from pathlib import Path
 import numpy as np
 
 from pamkit.diagnose import evidence
-from pamkit.diagnose.engine import MIN_BIC_DROP, MIN_GAIN, Diagnosis, Fit
+from pamkit.diagnose.calibrate import Fit
+from pamkit.diagnose.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Judgement
+from pamkit.diagnose.engine import Diagnosis
 
 UNITS = {"force_N": "N", "pressure_kPa": "kPa", "temperature_C": "°C"}
-SIGNATURES = {
-    "heat_transfer": "pressure loops open up with rate and the gas exchanges heat with the wall",
-    "dead_volume": "the pressure swings less than the muscle's volume change implies, evenly",
-    "leak": "peaks drift down cycle after cycle",
-    "bladder_viscoelasticity": "force hysteresis that pressure does not share",
-    "fiber_compliance": "force softens at high stretch",
-    "fixture_slack": "force stays flat at the start of each stretch",
-    "sensor_lag": "{channel} lags its prediction and swings less",
-    "time_skew": "{channel} is shifted in time against the machine's channels",
-    "sensor_offset": "pressure reads off by a constant or a scale",
-}
 
 
 def _heldout_rmse(d: Diagnosis, fit: Fit) -> dict[str, float]:
@@ -51,20 +42,24 @@ def to_json(d: Diagnosis) -> dict:
     """The report, with DESIGN.md's keys (and a few more: noise, evidence, verdict, timing)."""
     p = d.problem
     baseline_rmse = _heldout_rmse(d, d.baseline)
+    named = d.extended_judgement
     report = {
         "baseline": {"params": d.baseline.params, "rmse": baseline_rmse},
         "candidates": [
             {
-                "effect": fit.name,
-                "params": fit.params,
-                "heldout_rmse": s.rmse,
-                "gain": s.gain,
-                "gain_ci95": s.gain_ci95,
-                "score": s.combined_gain,
-                "score_ci95": s.combined_ci95,
-                "delta_bic": s.delta_bic,
+                "effect": j.fit.name,
+                "params": j.fit.params,
+                "heldout_rmse": j.score.rmse,
+                "gain": j.score.gain,
+                "gain_ci95": j.score.gain_ci95,
+                "score": j.score.combined_gain,
+                "score_ci95": j.score.combined_ci95,
+                "delta_bic": j.score.delta_bic,
+                "significant": j.significant,
+                "credible": j.credible,
+                "not_credible_because": j.reasons(),
             }
-            for fit, s in d.candidates
+            for j in d.candidates
         ],
         "cause": d.cause,
         "extended": {
@@ -72,8 +67,8 @@ def to_json(d: Diagnosis) -> dict:
             "params": {**d.extended.baseline_params, **d.extended.params},
             "rmse": _heldout_rmse(d, d.extended),
         },
-        "gain": d.extended_score.gain if d.extended_score else {c: 0.0 for c in p.channels},
-        "gain_ci95": d.extended_score.gain_ci95 if d.extended_score else {c: [0.0, 0.0] for c in p.channels},
+        "gain": named.score.gain if named else {c: 0.0 for c in p.channels},
+        "gain_ci95": named.score.gain_ci95 if named else {c: [0.0, 0.0] for c in p.channels},
         "residuals": {"baseline": _residual_evidence(d, d.baseline), "extended": _residual_evidence(d, d.extended)},
         "evidence": {
             "noise": p.sigma,
@@ -81,37 +76,72 @@ def to_json(d: Diagnosis) -> dict:
                 c: evidence.peak_difference(p.measured[c][p.held_mask], d.baseline.predicted[c][p.held_mask],
                                             p.cycle[p.held_mask]) for c in p.channels
             },
+            "units": p.unit_name,
             "cycles": {"fitted": sorted(set(int(k) for k in p.cycle[p.fit_mask])),
                        "held_out": sorted(set(int(k) for k in p.cycle[p.held_mask]))},
             "min_gain": MIN_GAIN,
             "min_bic_drop": MIN_BIC_DROP,
+            "none_within_noise": NONE_WITHIN_NOISE,
             "skipped": d.skipped,
         },
+        "decision": {
+            "margins": d.decision.margins,
+            "left_above_noise": d.decision.left_structure,
+            "rejected": ({"effect": d.decision.rejected.fit.name, "params": d.decision.rejected.fit.params,
+                          "score": d.decision.rejected.score.combined_gain, "because": d.decision.rejected.reasons()}
+                         if d.decision.rejected else None),
+        },
+        "discovered": d.discovered,
+        "warnings": [f.to_json() for f in d.warnings],
         "verdict": verdict(d),
         "timing_s": d.seconds,
     }
     return report
 
 
+def _phrase(j: Judgement, channel: str) -> str:
+    effect = j.fit.effects[0]
+    options = {k: v for k, v in j.fit.params.items() if isinstance(v, str)}
+    phrase = effect.signature() or effect.description().split(".")[0]
+    return phrase.format(channel=options.get("channel", channel))
+
+
+def _sizes(d: Diagnosis, fit: Fit) -> str:
+    rmse = _heldout_rmse(d, fit)
+    return ", ".join(f"{c} {rmse[c]:.3g} {UNITS.get(c, '')} (noise {d.problem.sigma[c]:.2g})" for c in d.problem.channels)
+
+
 def verdict(d: Diagnosis) -> str:
     """One sentence a person reads in ten seconds."""
     p = d.problem
     baseline_rmse = _heldout_rmse(d, d.baseline)
-    if d.cause == "none":
-        sizes = ", ".join(f"{c} {baseline_rmse[c]:.3g} {UNITS.get(c, '')} (noise {p.sigma[c]:.2g})" for c in p.channels)
+    decision = d.decision
+    baseline_findings = [f.sentence() for f in d.warnings if f.parameter in d.baseline.coordinates]
+    bounds = f"; the base model strains to fit: {'; '.join(baseline_findings)}" if baseline_findings else ""
+    if decision.cause == "none":
         best = d.candidates[0] if d.candidates else None
-        tail = (f"; best candidate {best[0].name} gains {best[1].combined_gain:.3f} (a cause needs {MIN_GAIN:.2f} with "
-                "its 95 % CI above 0, the BIC down by 10 and parameters the sampling resolves)") if best else ""
-        return f"no cause named: the calibrated model explains the data to within its noise (held-out RMSE {sizes}){tail}"
-    fit, s = d.extended, d.extended_score
+        tail = (f"; best candidate {best.fit.name} gains {best.score.combined_gain:.3f} (a cause needs {MIN_GAIN:.2f} "
+                "with its 95 % CI above 0 and the BIC down by 10)") if best else ""
+        return (f"no cause named: the calibrated model explains the data to within its noise (held-out RMSE "
+                f"{_sizes(d, d.baseline)}){tail}{bounds}")
+    if decision.cause == "unexplained":
+        left = ", ".join(decision.left_structure) or "the residual"
+        if decision.rejected is not None:
+            j = decision.rejected
+            channel = max(p.channels, key=lambda c: j.score.gain[c])
+            looks = (f"it looks like {_phrase(j, channel)} ({j.fit.name} gains {j.score.combined_gain:.2f}), but "
+                     f"{'; '.join(j.reasons())}")
+        else:
+            looks = "no catalog effect gains significantly on the held-out units"
+        return (f"unexplained: structure is left in {left} (held-out RMSE {_sizes(d, d.baseline)}); {looks}{bounds}")
+    j = d.extended_judgement
+    fit, s = j.fit, j.score
     channel = max(p.channels, key=lambda c: s.gain[c])
-    options = {e: v for e, v in fit.params.items() if isinstance(v, str)}
-    phrase = SIGNATURES.get(d.cause, fit.effects[0].description().split(".")[0]).format(channel=options.get("channel", channel))
     numbers = ", ".join(f"{k} = {v:.3g}" for k, v in fit.params.items() if not isinstance(v, str))
     lo, hi = s.gain_ci95[channel]
     unit = UNITS.get(channel, "")
-    return (f"{phrase}: {fit.name}, {numbers}; held-out {channel} RMSE {baseline_rmse[channel]:.3g} → "
-            f"{s.rmse[channel]:.3g} {unit} (gain {s.gain[channel]:.2f}, 95 % CI {lo:.2f}–{hi:.2f})")
+    return (f"{_phrase(j, channel)}: {fit.name}, {numbers}; held-out {channel} RMSE {baseline_rmse[channel]:.3g} → "
+            f"{s.rmse[channel]:.3g} {unit} (gain {s.gain[channel]:.2f}, 95 % CI {lo:.2f}–{hi:.2f}){bounds}")
 
 
 def plot(d: Diagnosis, path: str | Path) -> Path:
@@ -151,10 +181,11 @@ def plot(d: Diagnosis, path: str | Path) -> Path:
             signal.set_xlabel("time [s]")
             residual.set_xlabel("time [s]")
     ranking = figure.add_subplot(grid[rows, :])
-    labels = [fit.name for fit, _ in d.candidates]
-    gains = [s.combined_gain for _, s in d.candidates]
-    errors = np.array([[s.combined_gain - s.combined_ci95[0], s.combined_ci95[1] - s.combined_gain] for _, s in d.candidates]).T
-    colors = ["C0" if fit.name == d.extended.name else "0.6" for fit, _ in d.candidates]
+    labels = [j.fit.name + ("" if j.credible else " (not credible)") for j in d.candidates]
+    gains = [j.score.combined_gain for j in d.candidates]
+    errors = np.array([[j.score.combined_gain - j.score.combined_ci95[0], j.score.combined_ci95[1] - j.score.combined_gain]
+                       for j in d.candidates]).T
+    colors = ["C0" if j.fit.name == d.extended.name else "0.6" if j.credible else "0.85" for j in d.candidates]
     ranking.bar(range(len(labels)), gains, yerr=errors if len(labels) else None, color=colors, capsize=3)
     ranking.axhline(MIN_GAIN, color="C3", ls="--", lw=1, label=f"needed to name a cause ({MIN_GAIN:.2f})")
     ranking.set_xticks(range(len(labels)))

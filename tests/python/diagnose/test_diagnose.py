@@ -82,7 +82,7 @@ def triangle_csv(cycles, columns="time_s,elongation_m,force_N", value="{f}", pre
 
 
 def test_too_few_cycles_is_named(tmp_path):
-    with pytest.raises(ExperimentError, match=r"run.csv: column elongation_m: found 3 stretch cycle\(s\); diagnosis needs at least 4"):
+    with pytest.raises(ExperimentError, match=r"run.csv: column elongation_m: found 3 stretch cycle\(s\); diagnosis fits on some and holds others out, so it needs at least 4"):
         diagnose(write(tmp_path, triangle_csv(3)))
 
 

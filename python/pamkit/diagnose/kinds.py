@@ -1,0 +1,127 @@
+"""What was measured and what is held out.
+
+The unit a diagnosis fits on and holds out follows the test: the stretch cycles of a cyclic
+test, the pressurise/vent sweeps of a supplied-pressure test whose length the rig holds
+(isometric). The units are found from the commanded signal's structure — the crosshead's
+elongation, or the supplied pressure when the length is held — never from noise: a held
+length's encoder noise has no cycles.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from pamkit.diagnose import evidence
+from pamkit.diagnose.cycles import Cycles, find_cycles, split_cycles
+from pamkit.diagnose.model import Predictor
+from pamkit.experiment import Experiment, ExperimentError
+
+# A length counts as held when its whole travel is within this many noise sigmas of the
+# encoder (Gaussian noise over 10^4 samples spans about 8 sigma peak to peak).
+HELD_TRAVEL_NOISE = 20.0
+
+# Units that cannot be right: (column, lowest, highest plausible value, what it looks like instead).
+PLAUSIBLE_VALUES = {
+    "elongation_m": (-0.5, 0.5, "millimetres"),
+    "force_N": (-1e4, 1e5, "the wrong unit"),
+    "pressure_kPa": (-101.0, 2000.0, "pascals or psi"),
+    "temperature_C": (-50.0, 150.0, "kelvin"),
+}
+
+
+@dataclass
+class Problem:
+    """What the fits share: data, noise scales, the units fitted and held out."""
+
+    experiment: Experiment
+    channels: list[str]
+    measured: dict[str, np.ndarray]
+    sigma: dict[str, float]
+    fit_mask: np.ndarray
+    held_mask: np.ndarray
+    half_cycle: np.ndarray  # the bootstrap's unit: half a cycle (stretch / return, pressurise / vent)
+    cycle: np.ndarray       # cycle number of every sample, -1 outside any
+    unit_name: str          # what a cycle is in this test: "stretch cycle" or "pressurise/vent sweep"
+    predictor: Predictor
+
+    def chi(self, predicted: dict[str, np.ndarray], mask: np.ndarray) -> np.ndarray:
+        return np.concatenate([((predicted[c] - self.measured[c]) / self.sigma[c])[mask] for c in self.channels])
+
+    def chi2_by_channel(self, predicted: dict[str, np.ndarray]) -> dict[str, float]:
+        """Sum of squared noise-weighted residuals per channel on the fitted units."""
+        return {c: float(np.sum((((predicted[c] - self.measured[c]) / self.sigma[c])[self.fit_mask]) ** 2))
+                for c in self.channels}
+
+
+def check_units(experiment: Experiment) -> None:
+    """Raises ExperimentError naming the file, row and column of the first value whose size
+    says its unit is wrong (elongation in mm, pressure in Pa, temperature in K)."""
+    names = list(experiment.columns)
+    for name, (low, high, looks_like) in PLAUSIBLE_VALUES.items():
+        if name not in experiment.columns:
+            continue
+        values = experiment.columns[name]
+        bad = np.flatnonzero((values < low) | (values > high))
+        if bad.size:
+            row = int(bad[0])
+            raise ExperimentError(
+                f"{experiment.data_path}:{row + 2}: column {names.index(name) + 1} ({name}) = {values[row]:g} is outside "
+                f"[{low:g}, {high:g}]: is it in {looks_like}?"
+            )
+
+
+def length_is_held(experiment: Experiment) -> bool:
+    """Whether the rig holds the length: the elongation moves by no more than its own noise."""
+    elongation = experiment.elongation_m
+    return float(np.ptp(elongation)) <= HELD_TRAVEL_NOISE * evidence.noise_scale(elongation)
+
+
+def driving_signal(experiment: Experiment) -> tuple[str, np.ndarray, str]:
+    """The commanded signal whose cycles are the test's units: (column, values, unit name)."""
+    if experiment.gas == "supplied" and length_is_held(experiment):
+        return "pressure_kPa", experiment.columns["pressure_kPa"], "pressurise/vent sweep"
+    return "elongation_m", experiment.elongation_m, "stretch cycle"
+
+
+def build_problem(experiment: Experiment) -> Problem:
+    """The data, its noise and its units, checked.
+
+    Raises:
+        ExperimentError: for values in the wrong unit, no channel to compare, or too few units to
+            hold any out (saying what would do).
+    """
+    check_units(experiment)
+    channels = experiment.measured()
+    if experiment.gas == "supplied":
+        channels = [c for c in channels if c != "pressure_kPa"]  # an input there, not a prediction
+    if not channels:
+        raise ExperimentError(
+            f"{experiment.data_path}: no measured channel to compare with (needs force_N, pressure_kPa or "
+            "temperature_C besides time_s and elongation_m)"
+        )
+    column, signal, unit_name = driving_signal(experiment)
+    cycles: Cycles = find_cycles(signal)
+    try:
+        fit_cycles, held_cycles = split_cycles(cycles)
+    except ValueError:
+        raise ExperimentError(
+            f"{experiment.data_path}: column {column}: found {len(cycles)} {unit_name}(s); diagnosis fits on some "
+            f"and holds others out, so it needs at least 4 (2 to fit, 2 to hold out): record more {unit_name}s"
+        ) from None
+    cycle = cycles.index(signal.size)
+    measured = {c: experiment.columns[c] for c in channels}
+    sigma = {c: evidence.noise_scale(measured[c]) for c in channels}
+    return Problem(
+        experiment=experiment,
+        channels=channels,
+        measured=measured,
+        sigma=sigma,
+        fit_mask=np.isin(cycle, fit_cycles),
+        held_mask=np.isin(cycle, held_cycles),
+        half_cycle=cycles.half_cycle_index(signal),
+        cycle=cycle,
+        unit_name=unit_name,
+        predictor=Predictor(experiment, channels),
+    )
