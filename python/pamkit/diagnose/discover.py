@@ -20,9 +20,9 @@ lasso) the coefficients are not shrunk and read directly as physical constants, 
 sparsity is an integer (the number of terms) whose whole path costs one call. The number of
 terms is chosen on held-out samples only: the fewest terms whose held-out error is within one
 standard error of the best (the "one-standard-error rule", Hastie, Tibshirani & Friedman, The
-Elements of Statistical Learning, 2nd ed., sec. 7.10), and nothing at all unless the best
-beats zero by ``MIN_Z`` standard errors, the errors taken paired over held-out units
-(half-cycles, sweeps) so that noise correlated within a unit is not counted as evidence.
+Elements of Statistical Learning, 2nd ed., sec. 7.10) and that beat no term at all by
+``MIN_Z`` standard errors — the errors paired over held-out units (half-cycles, sweeps) so
+that noise correlated within a unit is not counted as evidence — and by a tenth of the noise.
 """
 
 from __future__ import annotations
@@ -44,7 +44,7 @@ FORMAT_VERSION = 1
 
 MAX_TERMS = 5             # an explanation with more terms is not one a reader can check
 MIN_Z = 2.0               # the best path step must beat "no term" by 2 standard errors (one-sided ~2 %)
-MIN_TERM_GAIN = 0.01      # ... and a term must take at least 1 % off the residual's held-out RMS to be read
+MIN_RMSE_DROP = 0.1       # ... and terms must lower the held-out RMSE by a tenth of the noise to be worth reading
 BOOTSTRAP_SAMPLES = 1000  # as the diagnosis's own gain intervals (engine.BOOTSTRAP_SAMPLES)
 
 DERIVATIVE_WINDOW_S = 0.05   # a tensile machine turns round within tens of ms
@@ -366,16 +366,18 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
         return float(math.sqrt(units.size) * np.std(difference, ddof=1))
 
     rmse = np.sqrt(total / held_residual.size)
-    material = MIN_TERM_GAIN * rmse[0]
+    material = MIN_RMSE_DROP * noise_sigma
 
-    def as_good_as(k: int, best: int) -> bool:
-        """Step k is within one standard error of the best, or within what is not material."""
+    def as_good_as_best(k: int) -> bool:
+        """Step k is within one standard error of the best, or short of it by less than matters."""
         return total[k] - total[best] <= standard_error(k, best) or rmse[k] - rmse[best] <= material
 
+    def beats_nothing(k: int) -> bool:
+        return total[0] - total[k] > MIN_Z * standard_error(0, k) and rmse[0] - rmse[k] > material
+
     best = int(np.argmin(total))
-    chosen = 0
-    if best > 0 and total[0] - total[best] > MIN_Z * standard_error(0, best) and rmse[0] - rmse[best] > material:
-        chosen = next(k for k in range(1, best + 1) if as_good_as(k, best))
+    # The fewest terms that are as good as the best and beat no term at all.
+    chosen = next((k for k in range(1, best + 1) if as_good_as_best(k) and beats_nothing(k)), 0)
 
     attainable = 1.0 - noise_sigma / rmse[0] if rmse[0] > 0 else 0.0
     result = {"channel": channel, "channel_unit": channel_unit, "terms": [], "gain": {channel: 0.0},
