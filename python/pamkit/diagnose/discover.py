@@ -127,20 +127,36 @@ def _coulomb_scale(speed_mm_s: np.ndarray, elongation_noise_mm: float, window: i
     return max(COULOMB_FRACTION * typical, 3.0 * speed_noise)
 
 
+def _first_move(pressure_kPa: np.ndarray, start: int, state: float, deadband_kPa: float) -> tuple[int, float]:
+    """(index, new state) of the first reversal at or after `start`: the pressure more than the
+    deadband below its running maximum since `start` while not venting, or above its running
+    minimum while not pressurising; (size, state) if there is none. Searched in windows that
+    double, so a record with many reversals is not scanned to its end for each."""
+    window = 256
+    while True:
+        segment = pressure_kPa[start:start + window]
+        fall = np.maximum.accumulate(segment) - segment > deadband_kPa if state >= 0.0 else np.zeros(0, bool)
+        rise = segment - np.minimum.accumulate(segment) > deadband_kPa if state <= 0.0 else np.zeros(0, bool)
+        first_fall = int(np.argmax(fall)) if fall.any() else segment.size
+        first_rise = int(np.argmax(rise)) if rise.any() else segment.size
+        if min(first_fall, first_rise) < segment.size:
+            return (start + first_fall, -1.0) if first_fall < first_rise else (start + first_rise, 1.0)
+        if start + window >= pressure_kPa.size:
+            return pressure_kPa.size, state
+        window *= 2
+
+
 def _pressure_branch(pressure_kPa: np.ndarray, deadband_kPa: float) -> np.ndarray:
     """+1 while the last pressure change larger than the deadband was a rise (pressurising), -1
     after a fall (venting), held through plateaus — the state a friction element between
     bladder and braid remembers. Before the first such change: 0 (the record does not say).
     The deadband keeps noise on a plateau from flipping it."""
     branch = np.zeros(pressure_kPa.size)
-    state, low, high = 0.0, pressure_kPa[0], pressure_kPa[0]  # the extremes since the last reversal
-    for i, p in enumerate(pressure_kPa):
-        low, high = min(low, p), max(high, p)
-        if state <= 0.0 and p > low + deadband_kPa:
-            state, high = 1.0, p
-        elif state >= 0.0 and p < high - deadband_kPa:
-            state, low = -1.0, p
-        branch[i] = state
+    start, state = 0, 0.0
+    while start < pressure_kPa.size:
+        reversal, new_state = _first_move(pressure_kPa, start, state, deadband_kPa)
+        branch[start:reversal] = state
+        start, state = reversal, new_state
     return branch
 
 
@@ -249,18 +265,19 @@ def feature_library(time_s, elongation_m, pressure_kPa=None, temperature_C=None,
     moves = bool(np.ptp(x_mm) > 10.0 * _white_noise(x_mm))
     columns = _feature_columns(time_s, arrays["elongation_m"], arrays["pressure_kPa"], arrays["temperature_C"],
                                ambient_C, arrays["cycle"], include_motion=moves)
-    kept: dict[Term, np.ndarray] = {}
-    directions: list[np.ndarray] = []
-    for term, values in columns:
-        if term.name != "offset" and np.ptp(values) <= 1e-12 * max(float(np.max(np.abs(values))), 1e-300):
-            continue  # constant: the offset already says it
-        norm = float(np.linalg.norm(values))
-        direction = values / norm
-        if any(abs(float(direction @ other)) > 1.0 - 1e-10 for other in directions):
-            continue  # the same column as an earlier term (e.g. p·tanh(v/v0) at constant p)
-        directions.append(direction)
-        kept[term] = values
-    return kept
+    # Constant columns say what the offset says.
+    varying = [(term, values) for term, values in columns
+               if term.name == "offset" or np.ptp(values) > 1e-12 * max(float(np.max(np.abs(values))), 1e-300)]
+    # Of columns that are the same up to a factor (p·tanh(v/v0) at constant p), keep the first.
+    matrix = np.column_stack([values for _, values in varying])
+    gram = matrix.T @ matrix  # one product: a BLAS call per pair is slow on a busy machine
+    norms = np.sqrt(np.diag(gram))
+    cosine = np.abs(gram) / np.outer(norms, norms)
+    kept: list[int] = []
+    for j in range(len(varying)):
+        if all(cosine[j, i] <= 1.0 - 1e-10 for i in kept):
+            kept.append(j)
+    return dict(varying[j] for j in kept)
 
 
 # --------------------------------------------------------------------------- the regression
