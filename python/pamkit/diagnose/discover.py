@@ -13,16 +13,18 @@ gain and the mechanism each term resembles::
     print(result["equation"])   # force_N residual ≈ 0.3 N/kPa · p · tanh(v / 2.1 mm/s)
     save_effect(result, "friction.json")  # a pamkit.Effect for the next run: load_effect(path)
 
-Method: orthogonal matching pursuit (scikit-learn's ``orthogonal_mp``) on columns scaled to
-unit norm over the fitted samples. OMP adds one term at a time — the one that best explains
-what the terms so far leave — and refits all chosen terms by least squares, so (unlike the
-lasso) the coefficients are not shrunk and read directly as physical constants, and the
-sparsity is an integer (the number of terms) whose whole path costs one call. The number of
-terms is chosen on held-out samples only: the fewest terms whose held-out error is within one
+Method: orthogonal matching pursuit (scikit-learn's ``orthogonal_mp``) on columns centred and
+scaled to unit norm over the fitted samples, the offset taken as the intercept (on raw columns
+any term of positive mean, such as p or x², stands in for an offset). OMP adds one term at a
+time — the one that best explains what the terms so far leave — and refits all chosen terms by
+least squares, so (unlike the lasso) the coefficients are not shrunk and read directly as
+physical constants, and the sparsity is an integer (the number of terms) whose whole path
+costs one call. The number of terms is chosen on held-out samples only: the fewest terms whose held-out error is within one
 standard error of the best (the "one-standard-error rule", Hastie, Tibshirani & Friedman, The
 Elements of Statistical Learning, 2nd ed., sec. 7.10) and that beat no term at all by
 ``MIN_Z`` standard errors — the errors paired over held-out units (half-cycles, sweeps) so
 that noise correlated within a unit is not counted as evidence — and by a tenth of the noise.
+The offset stays only if dropping it costs more than that tenth on held-out data.
 """
 
 from __future__ import annotations
@@ -43,8 +45,8 @@ FORMAT = "pamkit.discovered_effect"
 FORMAT_VERSION = 1
 
 MAX_TERMS = 5             # an explanation with more terms is not one a reader can check
-MIN_Z = 2.0               # the best path step must beat "no term" by 2 standard errors (one-sided ~2 %)
-MIN_RMSE_DROP = 0.1       # ... and terms must lower the held-out RMSE by a tenth of the noise to be worth reading
+MIN_Z = 2.0               # the chosen terms must beat "no term" by 2 standard errors (one-sided ~2 %) ...
+MIN_RMSE_DROP = 0.1       # ... and lower the held-out RMSE by a tenth of the noise to be worth reading
 BOOTSTRAP_SAMPLES = 1000  # as the diagnosis's own gain intervals (engine.BOOTSTRAP_SAMPLES)
 
 DERIVATIVE_WINDOW_S = 0.05   # a tensile machine turns round within tens of ms
@@ -73,12 +75,12 @@ class DiscoveryError(ValueError):
 # --------------------------------------------------------------------------- the feature library
 
 
-def _as_column(name: str, values, n: int | None) -> np.ndarray:
+def _as_column(name: str, values, n: int | None, reference: str = "time_s") -> np.ndarray:
     array = np.asarray(values, dtype=float)
     if array.ndim != 1:
         raise DiscoveryError(f"{name} must be one-dimensional, got shape {array.shape}")
     if n is not None and array.size != n:
-        raise DiscoveryError(f"{name} has {array.size} samples, time_s has {n}")
+        raise DiscoveryError(f"{name} has {array.size} samples, {reference} has {n}")
     if not np.all(np.isfinite(array)):
         raise DiscoveryError(f"{name} has {int(np.sum(~np.isfinite(array)))} non-finite value(s)")
     return array
@@ -287,6 +289,8 @@ def _per(channel_unit: str, term_unit: str) -> str:
     """Unit of a coefficient: channel unit per term unit."""
     if term_unit == "1":
         return channel_unit
+    if term_unit == channel_unit:
+        return "1"  # a gain error: the pressure channel against p
     return f"{channel_unit}/({term_unit})" if "/" in term_unit else f"{channel_unit}/{term_unit}"
 
 
@@ -298,7 +302,8 @@ def _equation(channel: str, terms: list[dict]) -> str:
         coefficient = term["coefficient"]
         sign = ("- " if coefficient < 0 else "+ ") if k else ("-" if coefficient < 0 else "")
         factor = "" if term["name"] == "offset" else f" · {term['expression']}"
-        parts.append(f"{sign}{abs(coefficient):.3g} {term['unit']}{factor}")
+        unit = "" if term["unit"] == "1" else f" {term['unit']}"
+        parts.append(f"{sign}{abs(coefficient):.3g}{unit}{factor}")
     return f"{channel} residual ≈ " + " ".join(parts)
 
 
@@ -307,6 +312,42 @@ def _check_mask(name: str, mask, n: int) -> np.ndarray:
     if array.dtype != bool or array.shape != (n,):
         raise DiscoveryError(f"{name} must be a boolean array of {n} samples, got {array.dtype} of shape {array.shape}")
     return array
+
+
+def _least_squares(design: np.ndarray, target: np.ndarray) -> np.ndarray:
+    return np.linalg.lstsq(design, target, rcond=None)[0]
+
+
+def _candidate_models(terms: list[Term], X_fit: np.ndarray, residual_fit: np.ndarray) -> list[list[int]]:
+    """Nested models, fewest terms first: none; the offset alone; then the offset with the
+    first 1, 2, ... MAX_TERMS terms that orthogonal matching pursuit picks from the other
+    columns centred on the fitted samples. Centring leaves the offset to the intercept: with raw
+    columns every term of positive mean (pressure, x²) would stand in for an offset before the
+    offset itself is picked. Without an offset column: none, then the pursuit on raw columns."""
+    offset = next((j for j, t in enumerate(terms) if t.name == "offset"), None)
+    others = np.array([j for j in range(len(terms)) if j != offset])
+    columns = X_fit[:, others]
+    target = residual_fit
+    if offset is not None:
+        columns = columns - columns.mean(axis=0)
+        target = residual_fit - residual_fit.mean()
+    # OMP assumes unit-norm columns; a column constant on the fitted samples cannot be picked.
+    norms = np.linalg.norm(columns, axis=0)
+    usable = norms > 1e-12 * max(float(norms.max(initial=0.0)), 1e-300)
+    candidates = others[usable]
+    models: list[list[int]] = [[]] + ([[offset]] if offset is not None else [])
+    if candidates.size:
+        with warnings.catch_warnings():
+            # Ending early because the rest is linearly dependent is a shorter path, not an error.
+            warnings.filterwarnings("ignore", message="Orthogonal matching pursuit ended prematurely",
+                                    category=RuntimeWarning)
+            path = orthogonal_mp(columns[:, usable] / norms[usable], target,
+                                 n_nonzero_coefs=min(MAX_TERMS, int(candidates.size)), return_path=True)
+        path = path.reshape(candidates.size, -1)
+        for step in range(path.shape[1]):
+            chosen = candidates[np.flatnonzero(path[:, step])].tolist()
+            models.append(chosen + ([offset] if offset is not None else []))
+    return models
 
 
 def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma: float, fit_mask: np.ndarray,
@@ -328,9 +369,9 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
         A JSON-ready dict: channel; terms, each with expression, coefficient, unit (of the
         coefficient), resembles, standard_error, name, parameters; gain and gain_ci95 per
         channel (held-out, 1 - rmse(residual - fit) / rmse(residual)); gain_attainable (1 -
-        noise_sigma / rmse(residual), the gain of a perfect explanation); the held-out RMSE
-        along the OMP path; equation. No term that beats zero on held-out data: terms [],
-        gain 0.
+        noise_sigma / rmse(residual), the gain of a perfect explanation); heldout_rmse_path,
+        the held-out RMSE of the candidates (no term, the offset, then the offset with 1, 2, ...
+        terms); equation. No term that beats zero on held-out data: terms [], gain 0.
 
     Raises:
         DiscoveryError: naming the argument of the wrong size or type, or too few held-out units.
@@ -349,33 +390,19 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
     terms = list(features)
     if not terms:
         raise DiscoveryError("features is empty: feature_library found no term to try")
-    X = np.column_stack([_as_column(f"feature {t.name}", features[t], n) for t in terms])
+    X = np.column_stack([_as_column(f"feature {t.name}", features[t], n, "residual") for t in terms])
     units, unit_of_sample = np.unique(held_units[held_mask], return_inverse=True)
     if units.size < 2:
         raise DiscoveryError(f"held_mask covers {units.size} unit(s); judging a term needs at least 2 held-out units")
     if int(fit_mask.sum()) <= len(terms):
         raise DiscoveryError(f"fit_mask has {int(fit_mask.sum())} samples for {len(terms)} terms")
 
-    # OMP assumes unit-norm columns: scale over the fitted samples, and back afterwards.
-    norms = np.linalg.norm(X[fit_mask], axis=0)
-    usable = norms > 0.0
-    scaled = X[:, usable] / norms[usable]
-    usable_terms = [t for t, ok in zip(terms, usable) if ok]
-    steps = min(MAX_TERMS, len(usable_terms))
-    with warnings.catch_warnings():
-        # Ending early because the rest is linearly dependent is a shorter path, not an error.
-        warnings.filterwarnings("ignore", message="Orthogonal matching pursuit ended prematurely",
-                                category=RuntimeWarning)
-        path = orthogonal_mp(scaled[fit_mask], residual[fit_mask], n_nonzero_coefs=steps, return_path=True)
-    path = path.reshape(len(usable_terms), -1)
-    coefficients = np.column_stack([np.zeros(len(usable_terms)), path])  # step 0: no term
-
+    models = _candidate_models(terms, X[fit_mask], residual[fit_mask])
+    fits = [_least_squares(X[fit_mask][:, model], residual[fit_mask]) for model in models]
     held_residual = residual[held_mask]
-    # Sum of squared held-out errors per step and unit.
-    errors = held_residual[:, None] - scaled[held_mask] @ coefficients
-    unit_sse = np.zeros((coefficients.shape[1], units.size))
-    for step in range(coefficients.shape[1]):
-        unit_sse[step] = np.bincount(unit_of_sample, weights=errors[:, step] ** 2, minlength=units.size)
+    # Sum of squared held-out errors per candidate and unit.
+    unit_sse = np.array([np.bincount(unit_of_sample, weights=(held_residual - X[held_mask][:, model] @ c) ** 2,
+                                     minlength=units.size) for model, c in zip(models, fits)])
     total = unit_sse.sum(axis=1)
 
     def standard_error(a: int, b: int) -> float:
@@ -386,7 +413,7 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
     material = MIN_RMSE_DROP * noise_sigma
 
     def as_good_as_best(k: int) -> bool:
-        """Step k is within one standard error of the best, or short of it by less than matters."""
+        """Candidate k is within one standard error of the best, or short of it by less than matters."""
         return total[k] - total[best] <= standard_error(k, best) or rmse[k] - rmse[best] <= material
 
     def beats_nothing(k: int) -> bool:
@@ -403,21 +430,30 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
     if chosen == 0:
         return result
 
-    support = np.flatnonzero(coefficients[:, chosen])
-    design = scaled[fit_mask][:, support]
-    # White-noise standard errors of the least-squares coefficients on the chosen support.
+    model, coefficients, chosen_sse = models[chosen], fits[chosen], unit_sse[chosen]
+    offset = next((j for j, t in enumerate(terms) if t.name == "offset"), None)
+    if offset in model and len(model) > 1:
+        # The path carries an offset with every model; keep it only if it matters on held-out data.
+        without = [j for j in model if j != offset]
+        c = _least_squares(X[fit_mask][:, without], residual[fit_mask])
+        sse = np.bincount(unit_of_sample, weights=(held_residual - X[held_mask][:, without] @ c) ** 2,
+                          minlength=units.size)
+        if math.sqrt(sse.sum() / held_residual.size) - rmse[chosen] <= material:
+            model, coefficients, chosen_sse = without, c, sse
+
+    design = X[fit_mask][:, model]
+    # White-noise standard errors of the least-squares coefficients.
     covariance = noise_sigma**2 * np.linalg.inv(design.T @ design)
     found = []
-    for j, column in enumerate(support):
-        term, scale = usable_terms[column], norms[usable][column]
-        coefficient = float(coefficients[column, chosen] / scale)
-        size = abs(coefficient) * float(np.sqrt(np.mean(X[held_mask, terms.index(term)] ** 2)))
+    for j, column in enumerate(model):
+        term, coefficient = terms[column], float(coefficients[j])
+        size = abs(coefficient) * float(np.sqrt(np.mean(X[held_mask, column] ** 2)))
         found.append((size, {
             "expression": term.expression,
             "coefficient": coefficient,
             "unit": _per(channel_unit, term.unit),
             "resembles": term.resembles,
-            "standard_error": float(math.sqrt(covariance[j, j]) / scale),
+            "standard_error": float(math.sqrt(covariance[j, j])),
             "name": term.name,
             "parameters": dict(term.parameters),
         }))
@@ -425,12 +461,12 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
 
     rng = np.random.default_rng(seed)
     draws = rng.integers(0, units.size, size=(BOOTSTRAP_SAMPLES, units.size))
-    boot_fit = unit_sse[chosen][draws].sum(axis=1)
+    boot_fit = chosen_sse[draws].sum(axis=1)
     boot_zero = unit_sse[0][draws].sum(axis=1)
     boot_gain = 1.0 - np.sqrt(boot_fit / np.maximum(boot_zero, 1e-300))
     result.update({
         "terms": reported,
-        "gain": {channel: float(1.0 - math.sqrt(total[chosen] / total[0]))},
+        "gain": {channel: float(1.0 - math.sqrt(chosen_sse.sum() / total[0]))},
         "gain_ci95": {channel: [float(np.percentile(boot_gain, 2.5)), float(np.percentile(boot_gain, 97.5))]},
         "equation": _equation(channel, reported),
     })
