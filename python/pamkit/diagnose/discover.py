@@ -19,11 +19,12 @@ any term of positive mean, such as p or x², stands in for an offset). OMP adds 
 time — the one that best explains what the terms so far leave — and refits all chosen terms by
 least squares, so (unlike the lasso) the coefficients are not shrunk and read directly as
 physical constants, and the sparsity is an integer (the number of terms) whose whole path
-costs one call. The number of terms is chosen on held-out samples only: the fewest terms whose held-out error is within one
-standard error of the best (the "one-standard-error rule", Hastie, Tibshirani & Friedman, The
-Elements of Statistical Learning, 2nd ed., sec. 7.10) and that beat no term at all by
-``MIN_Z`` standard errors — the errors paired over held-out units (half-cycles, sweeps) so
-that noise correlated within a unit is not counted as evidence — and by a tenth of the noise.
+costs one call. The number of terms is chosen on held-out samples only: the fewest terms
+whose held-out error is within one standard error of the best (the "one-standard-error rule",
+Hastie, Tibshirani & Friedman, The Elements of Statistical Learning, 2nd ed., sec. 7.10) and
+that beat no term at all by ``MIN_Z`` standard errors — the errors paired over held-out units
+(half-cycles, sweeps) so that noise correlated within a unit is not counted as evidence — and
+by a tenth of the noise.
 The offset stays only if dropping it costs more than that tenth on held-out data.
 """
 
