@@ -38,7 +38,6 @@ from pathlib import Path
 
 import numpy as np
 from scipy.signal import savgol_coeffs, savgol_filter
-from sklearn.linear_model import orthogonal_mp
 
 import pamkit
 
@@ -325,6 +324,10 @@ def _candidate_models(terms: list[Term], X_fit: np.ndarray, residual_fit: np.nda
     columns centred on the fitted samples. Centring leaves the offset to the intercept: with raw
     columns every term of positive mean (pressure, x²) would stand in for an offset before the
     offset itself is picked. Without an offset column: none, then the pursuit on raw columns."""
+    # Imported here: scikit-learn takes about a second to import, and most diagnoses end with a
+    # named cause or none and never get here.
+    from sklearn.linear_model import orthogonal_mp
+
     offset = next((j for j, t in enumerate(terms) if t.name == "offset"), None)
     others = np.array([j for j in range(len(terms)) if j != offset])
     columns = X_fit[:, others]
