@@ -165,7 +165,7 @@ def _pressure_branch(pressure_kPa: np.ndarray, deadband_kPa: float) -> np.ndarra
 MOTION_TERMS = ("tanh(v/v0)*p", "tanh(v/v0)", "v", "|v|")
 
 
-def _feature_columns(time_s, elongation_m, pressure_kPa, temperature_C, ambient_C, cycle, include_motion: bool,
+def _feature_columns(time_s, elongation_m, pressure_kPa, temperature_C, ambient_C, cycle, force_N, include_motion: bool,
                      scales: dict[str, float] | None = None) -> list[tuple[Term, np.ndarray]]:
     """Every library column the inputs allow, in a fixed order (of duplicates, feature_library
     keeps the first). `scales` (from Term.parameters) reuses a fitted record's v0, derivative
@@ -217,6 +217,11 @@ def _feature_columns(time_s, elongation_m, pressure_kPa, temperature_C, ambient_
                   "pressurise/vent hysteresis growing with pressure (bladder-braid friction at fixed length)",
                   with_deadband), pressure_kPa * branch),
         ]
+    if force_N is not None:
+        columns += [
+            (Term("F", "F", "N", "a load-cell gain error (calibration scale)"), force_N),
+            (Term("F^2", "F²", "N²", "a nonlinear load cell (reading curving with load)"), force_N**2),
+        ]
     columns.append((Term("t", "t", "s", "a drift in time (creep, load-cell thermal drift, a slow leak)"), time_s))
     if cycle is not None:
         columns.append((Term("cycle", "cycle", "cycle",
@@ -230,7 +235,7 @@ def _feature_columns(time_s, elongation_m, pressure_kPa, temperature_C, ambient_
 
 
 def feature_library(time_s, elongation_m, pressure_kPa=None, temperature_C=None, ambient_C=None,
-                    cycle=None) -> dict[Term, np.ndarray]:
+                    cycle=None, force_N=None) -> dict[Term, np.ndarray]:
     """Physically meaningful features of a record, one array per library term.
 
     Args:
@@ -239,6 +244,8 @@ def feature_library(time_s, elongation_m, pressure_kPa=None, temperature_C=None,
         pressure_kPa: gauge pressure [kPa] (measured, or the supply), or None.
         temperature_C, ambient_C: gas and ambient temperature [°C]; both or the term is skipped.
         cycle: cycle index of every sample, or None.
+        force_N: the model's predicted force [N], or None: F and F² stand for the load cell's
+            gain and nonlinearity (the effect reads the simulated force in their place).
 
     The velocity is a Savitzky-Golay derivative (local quadratic over 50 ms, at least 5
     samples) so that encoder counts are not differenced; v0 is 5 % of the typical moving speed,
@@ -257,7 +264,7 @@ def feature_library(time_s, elongation_m, pressure_kPa=None, temperature_C=None,
     if not_increasing.size:
         raise DiscoveryError(f"time_s must increase strictly (sample {int(not_increasing[0]) + 1} does not)")
     inputs = {"elongation_m": elongation_m, "pressure_kPa": pressure_kPa, "temperature_C": temperature_C,
-              "cycle": cycle}
+              "cycle": cycle, "force_N": force_N}
     arrays = {key: None if value is None else _as_column(key, value, time_s.size) for key, value in inputs.items()}
     if ambient_C is not None and not math.isfinite(float(ambient_C)):
         raise DiscoveryError(f"ambient_C = {ambient_C} is not a finite temperature")
@@ -266,7 +273,7 @@ def feature_library(time_s, elongation_m, pressure_kPa=None, temperature_C=None,
     # "velocity" would be differentiated noise.
     moves = bool(np.ptp(x_mm) > 10.0 * _white_noise(x_mm))
     columns = _feature_columns(time_s, arrays["elongation_m"], arrays["pressure_kPa"], arrays["temperature_C"],
-                               ambient_C, arrays["cycle"], include_motion=moves)
+                               ambient_C, arrays["cycle"], arrays["force_N"], include_motion=moves)
     # Constant columns say what the offset says.
     varying = [(term, values) for term, values in columns
                if term.name == "offset" or np.ptp(values) > 1e-12 * max(float(np.max(np.abs(values))), 1e-300)]
@@ -291,6 +298,8 @@ def _per(channel_unit: str, term_unit: str) -> str:
         return channel_unit
     if term_unit == channel_unit:
         return "1"  # a gain error: the pressure channel against p
+    if term_unit == f"{channel_unit}²":
+        return f"1/{channel_unit}"  # the force channel against F²
     return f"{channel_unit}/({term_unit})" if "/" in term_unit else f"{channel_unit}/{term_unit}"
 
 
@@ -480,8 +489,8 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
 # --------------------------------------------------------------------------- as a user effect
 
 CHANNELS = ("force_N", "pressure_kPa", "temperature_C")
-TERM_NAMES = ("offset", *MOTION_TERMS, "x", "x^2", "x^3", "p", "dp/dt", "sign(dp/dt)", "sign(dp/dt)*p", "t", "cycle",
-              "T-T_ambient")
+TERM_NAMES = ("offset", *MOTION_TERMS, "x", "x^2", "x^3", "p", "dp/dt", "sign(dp/dt)", "sign(dp/dt)*p", "F", "F^2", "t",
+              "cycle", "T-T_ambient")
 
 
 def _default_cycle_index(time_s: np.ndarray, elongation_m: np.ndarray) -> np.ndarray:
@@ -556,7 +565,7 @@ class DiscoveredEffect(pamkit.Effect):
             raise ValueError(f"effect {self._name}: {key} = {number} is outside [{low:g}, {high:g}]")
         self.coefficients[keys.index(key)] = number
 
-    def correction(self, time_s, elongation_m, pressure_kPa=None, temperature_C=None) -> np.ndarray:
+    def correction(self, time_s, elongation_m, pressure_kPa=None, temperature_C=None, force_N=None) -> np.ndarray:
         """Σ coefficient · feature on a record [the channel's unit]."""
         time_s = np.asarray(time_s, dtype=float)
         elongation_m = np.asarray(elongation_m, dtype=float)
@@ -564,9 +573,10 @@ class DiscoveredEffect(pamkit.Effect):
         scales = {key: value for term in self.terms for key, value in term.get("parameters", {}).items()}
         pressure = None if pressure_kPa is None else np.asarray(pressure_kPa, dtype=float)
         temperature = None if temperature_C is None else np.asarray(temperature_C, dtype=float)
+        force = None if force_N is None else np.asarray(force_N, dtype=float)
         cycle = self._cycle_index(time_s, elongation_m) if "cycle" in names else None
         columns = {term.name: values for term, values in _feature_columns(
-            time_s, elongation_m, pressure, temperature, scales.get("ambient_C"), cycle,
+            time_s, elongation_m, pressure, temperature, scales.get("ambient_C"), cycle, force,
             include_motion=bool(names & set(MOTION_TERMS)), scales=scales)}
         total = np.zeros(time_s.size)
         for term, coefficient in zip(self.terms, self.coefficients):
@@ -576,8 +586,9 @@ class DiscoveredEffect(pamkit.Effect):
         return total
 
     def apply_to_measurement(self, measurement):
+        # Every feature is read before the channel changes (the force terms read the model's force).
         correction = self.correction(measurement.time_s, measurement.elongation_m, measurement.pressure_kPa,
-                                     measurement.temperature_C)
+                                     measurement.temperature_C, measurement.force_N)
         setattr(measurement, self.channel, getattr(measurement, self.channel) + correction)
         return measurement
 

@@ -165,6 +165,21 @@ def test_an_offset_is_not_taken_for_terms_of_positive_mean(coulomb_case):
         assert found[name]["coefficient"] == pytest.approx(value, abs=4 * found[name]["standard_error"])
 
 
+def test_a_nonlinear_load_cell_is_found_from_the_model_force(coulomb_case):
+    """A load cell reading 0.02 % per newton high (the quadratic load cell of issue 9): the
+    residual is 2e-4 N⁻¹ · F² of the model's force F, here 1 N/kPa · p + 8 N/mm · x."""
+    time_s, elongation_m, pressure = (coulomb_case[key] for key in ("time_s", "elongation_m", "pressure_kPa"))
+    force = 1.0 * pressure + 8.0 * 1e3 * elongation_m
+    features = feature_library(time_s, elongation_m, pressure, force_N=force)
+    residual = 2e-4 * force**2 + np.random.default_rng(6).normal(0, SIGMA_N, force.size)
+    fit, held = coulomb_case["fit"], coulomb_case["held"]
+    result = discover(features, residual, SIGMA_N, fit, held, coulomb_case["half_cycle"], "force_N", "N")
+    (term,) = result["terms"]
+    assert (term["name"], term["unit"]) == ("F^2", "1/N") and "nonlinear load cell" in term["resembles"]
+    standard_error = SIGMA_N / np.linalg.norm(force[fit] ** 2)  # one term, white noise
+    assert term["coefficient"] == pytest.approx(2e-4, abs=4 * standard_error)
+
+
 @pytest.mark.parametrize("correlation", [0.0, 0.9])
 def test_noise_alone_is_not_a_discovery(correlation):
     """White noise, and noise correlated from sample to sample (AR(1), 0.9: what a load cell's
