@@ -3,9 +3,10 @@ physically meaningful terms, chosen by held-out error.
 
 When no catalog effect explains the residual (``cause`` is ``"unexplained"``), the residual
 ``measured - predicted`` of a channel is fitted as a sum of a few terms from a library built
-from the record itself — Coulomb friction ``p · tanh(v / v0)``, viscous ``v``, stiffness errors
-``x, x², x³``, pressure, its rate and the pressurise/vent branch, drifts in time and cycle,
-the gas temperature above ambient — and reported as an equation with units, with its held-out
+from the record itself — Coulomb friction ``p · tanh(v / v0)``, Dahl friction, viscous ``v``,
+stiffness errors ``x, x², x³``, pressure, its rate and the pressurise/vent branch, the load
+cell's gain and nonlinearity (F, F²), drifts in time and cycle, the gas temperature above
+ambient — and reported as an equation with units, with its held-out
 gain and the mechanism each term resembles::
 
     features = feature_library(time_s, elongation_m, pressure_kPa)
@@ -52,6 +53,7 @@ BOOTSTRAP_SAMPLES = 1000  # as the diagnosis's own gain intervals (engine.BOOTST
 DERIVATIVE_WINDOW_S = 0.05   # a tensile machine turns round within tens of ms
 DERIVATIVE_MIN_SAMPLES = 5   # fewest samples of the local quadratic behind a derivative
 COULOMB_FRACTION = 0.05      # v0 as a share of the typical moving speed (see _coulomb_scale)
+DAHL_STROKE_FRACTION = 0.05  # Dahl's slip distance as a share of the stroke: friction settles within a tenth
 BRANCH_NOISE_MULTIPLE = 10.0  # pressurise/vent deadband in multiples of the pressure's noise (the range of
                               # 10^5 Gaussian samples is 9.6 σ: a plateau's noise does not flip it) ...
 BRANCH_SPAN_FRACTION = 0.005  # ... and at least this share of its span (a noiseless simulated pressure)
@@ -129,40 +131,52 @@ def _coulomb_scale(speed_mm_s: np.ndarray, elongation_noise_mm: float, window: i
     return max(COULOMB_FRACTION * typical, 3.0 * speed_noise)
 
 
-def _first_move(pressure_kPa: np.ndarray, start: int, state: float, deadband_kPa: float) -> tuple[int, float]:
-    """(index, new state) of the first reversal at or after `start`: the pressure more than the
-    deadband below its running maximum since `start` while not venting, or above its running
-    minimum while not pressurising; (size, state) if there is none. Searched in windows that
-    double, so a record with many reversals is not scanned to its end for each."""
+def _first_reversal(signal: np.ndarray, start: int, state: float, deadband: float) -> tuple[int, float]:
+    """(index, new state) of the first reversal at or after `start`: the signal more than the
+    deadband below its running maximum since `start` while not falling, or above its running
+    minimum while not rising; (size, state) if there is none. Searched in windows that double,
+    so a record with many reversals is not scanned to its end for each."""
     window = 256
     while True:
-        segment = pressure_kPa[start:start + window]
-        fall = np.maximum.accumulate(segment) - segment > deadband_kPa if state >= 0.0 else np.zeros(0, bool)
-        rise = segment - np.minimum.accumulate(segment) > deadband_kPa if state <= 0.0 else np.zeros(0, bool)
+        segment = signal[start:start + window]
+        fall = np.maximum.accumulate(segment) - segment > deadband if state >= 0.0 else np.zeros(0, bool)
+        rise = segment - np.minimum.accumulate(segment) > deadband if state <= 0.0 else np.zeros(0, bool)
         first_fall = int(np.argmax(fall)) if fall.any() else segment.size
         first_rise = int(np.argmax(rise)) if rise.any() else segment.size
         if min(first_fall, first_rise) < segment.size:
             return (start + first_fall, -1.0) if first_fall < first_rise else (start + first_rise, 1.0)
-        if start + window >= pressure_kPa.size:
-            return pressure_kPa.size, state
+        if start + window >= signal.size:
+            return signal.size, state
         window *= 2
 
 
-def _pressure_branch(pressure_kPa: np.ndarray, deadband_kPa: float) -> np.ndarray:
-    """+1 while the last pressure change larger than the deadband was a rise (pressurising), -1
-    after a fall (venting), held through plateaus — the state a friction element between
-    bladder and braid remembers. Before the first such change: 0 (the record does not say).
-    The deadband keeps noise on a plateau from flipping it."""
-    branch = np.zeros(pressure_kPa.size)
+def _branch(signal: np.ndarray, deadband: float) -> np.ndarray:
+    """+1 while the signal's last change larger than the deadband was a rise, -1 after a fall,
+    held through plateaus; 0 before the first such change (the record does not say). For the
+    pressure: pressurising or venting, the state a friction element between bladder and braid
+    remembers. The deadband keeps noise on a plateau from flipping it."""
+    branch = np.zeros(signal.size)
     start, state = 0, 0.0
-    while start < pressure_kPa.size:
-        reversal, new_state = _first_move(pressure_kPa, start, state, deadband_kPa)
+    while start < signal.size:
+        reversal, new_state = _first_reversal(signal, start, state, deadband)
         branch[start:reversal] = state
         start, state = reversal, new_state
     return branch
 
 
-MOTION_TERMS = ("tanh(v/v0)*p", "tanh(v/v0)", "v", "|v|")
+def _slip_since_reversal(x_mm: np.ndarray, branch: np.ndarray) -> np.ndarray:
+    """Travel [mm] since the last turning point: from the lowest point of the previous stretch
+    while rising, from the highest while falling; 0 before the first reversal."""
+    slip = np.zeros(x_mm.size)
+    bounds = np.r_[0, np.flatnonzero(np.diff(branch) != 0) + 1, x_mm.size]
+    for previous, start, end in zip(bounds[:-2], bounds[1:-1], bounds[2:]):
+        before = x_mm[previous:start]
+        turn = before.min() if branch[start] > 0 else before.max()
+        slip[start:end] = np.abs(x_mm[start:end] - turn)
+    return slip
+
+
+MOTION_TERMS = ("tanh(v/v0)*p", "tanh(v/v0)", "dahl(x; xc)", "v", "|v|")
 
 
 def _feature_columns(time_s, elongation_m, pressure_kPa, temperature_C, ambient_C, cycle, force_N, include_motion: bool,
@@ -190,6 +204,18 @@ def _feature_columns(time_s, elongation_m, pressure_kPa, temperature_C, ambient_
                                 pressure_kPa * coulomb))
             columns.append((Term("tanh(v/v0)", f"tanh(v / {v0:.3g} mm/s)", "1",
                                  "Coulomb friction of constant size (fixture, guides, seals)", with_v0), coulomb))
+        # Dahl friction: after each reversal it goes from -Fc to +Fc over a slip distance xc,
+        # F = Fc · d · (1 - 2 exp(-s / xc)), the exact solution of dF/dx = (Fc - d F) / xc.
+        slip_deadband = scales.get("slip_deadband_mm") or max(BRANCH_SPAN_FRACTION * float(np.ptp(x_mm)),
+                                                               BRANCH_NOISE_MULTIPLE * _white_noise(x_mm))
+        xc = scales.get("xc_mm") or DAHL_STROKE_FRACTION * float(np.ptp(x_mm))
+        if slip_deadband > 0.0 and xc > 0.0:
+            stretching = _branch(x_mm, slip_deadband)
+            dahl = stretching * (1.0 - 2.0 * np.exp(-_slip_since_reversal(x_mm, stretching) / xc))
+            columns.append((Term("dahl(x; xc)", f"dahl(x; {xc:.3g} mm)", "1",
+                                 "friction that builds up over a slip distance after each reversal (Dahl, "
+                                 "pre-sliding)", (("slip_deadband_mm", float(slip_deadband)), ("xc_mm", float(xc)))),
+                            dahl))
         columns += [
             (Term("v", "v", "mm/s", "viscous damping (force proportional to the stretch rate)", with_window), v_mm_s),
             (Term("|v|", "|v|", "mm/s", "a direction-independent rate effect (rate-dependent stiffening)", with_window),
@@ -204,7 +230,7 @@ def _feature_columns(time_s, elongation_m, pressure_kPa, temperature_C, ambient_
     if pressure_kPa is not None:
         deadband = scales.get("deadband_kPa") or max(BRANCH_SPAN_FRACTION * float(np.ptp(pressure_kPa)),
                                                      BRANCH_NOISE_MULTIPLE * _white_noise(pressure_kPa))
-        branch = _pressure_branch(pressure_kPa, deadband) if deadband > 0.0 else np.zeros(n)
+        branch = _branch(pressure_kPa, deadband) if deadband > 0.0 else np.zeros(n)
         with_deadband = (("deadband_kPa", float(deadband)),)
         columns += [
             (Term("p", "p", "kPa", "proportional to pressure (effective area; a transducer's gain error)"),

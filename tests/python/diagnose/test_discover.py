@@ -76,7 +76,7 @@ def coulomb_case():
 
 def test_the_library_holds_the_physical_terms_a_stretch_record_allows(coulomb_case):
     names = [term.name for term in coulomb_case["features"]]
-    assert names == ["offset", "tanh(v/v0)*p", "tanh(v/v0)", "v", "|v|", "x", "x^2", "x^3", "p", "dp/dt",
+    assert names == ["offset", "tanh(v/v0)*p", "tanh(v/v0)", "dahl(x; xc)", "v", "|v|", "x", "x^2", "x^3", "p", "dp/dt",
                      "sign(dp/dt)", "sign(dp/dt)*p", "t", "cycle"]
     # The velocity of a 25 mm sinusoid over 20 s peaks at 25 mm · 2π / 20 s = 7.85 mm/s; the
     # smoothed derivative of the 10 µm encoder record must follow it.
@@ -163,6 +163,33 @@ def test_an_offset_is_not_taken_for_terms_of_positive_mean(coulomb_case):
     assert (found["p"]["unit"], found["offset"]["unit"]) == ("1", "kPa")
     for name, value in (("p", -0.02), ("offset", 3.0)):
         assert found[name]["coefficient"] == pytest.approx(value, abs=4 * found[name]["standard_error"])
+
+
+def test_dahl_friction_is_told_from_coulomb_friction(coulomb_case):
+    """Dahl friction (issue 9's "different friction law"), integrated here sample by sample from
+    dF/dx = (Fc / xc) (1 - F sign(dx) / Fc) on the true stretch, Fc = 20 N, xc = 2 mm (the
+    library's own slip distance is 5 % of the 50 mm stroke, 2.5 mm)."""
+    time_s, fit, held = coulomb_case["time_s"], coulomb_case["fit"], coulomb_case["held"]
+    true_mm = 25 * (1 - np.cos(2 * np.pi * 10 * time_s / time_s[-1]))
+    dahl = np.zeros(time_s.size)
+    for i in range(1, time_s.size):
+        step = true_mm[i] - true_mm[i - 1]
+        dahl[i] = dahl[i - 1] + (20.0 / 2.0) * (1 - dahl[i - 1] * np.sign(step) / 20.0) * step
+    residual = dahl + np.random.default_rng(7).normal(0, SIGMA_N, time_s.size)
+    features = coulomb_case["features"]
+    result = discover(features, residual, SIGMA_N, fit, held, coulomb_case["half_cycle"], "force_N", "N")
+    (term,) = result["terms"]
+    assert (term["name"], term["unit"]) == ("dahl(x; xc)", "N") and "Dahl" in term["resembles"]
+    # The least-squares coefficient of the true friction on the found feature, within 4
+    # standard errors; and that feature explains it better than Coulomb's tanh(v/v0) would.
+    feature, coulomb = by_name(features, "dahl(x; xc)")[fit], by_name(features, "tanh(v/v0)")[fit]
+    expected = np.dot(dahl[fit], feature) / np.dot(feature, feature)
+    assert term["coefficient"] == pytest.approx(expected, abs=4 * SIGMA_N / np.linalg.norm(feature))
+
+    def left(column):
+        return np.linalg.norm(dahl[fit] - np.dot(dahl[fit], column) / np.dot(column, column) * column)
+
+    assert left(feature) < left(coulomb)
 
 
 def test_a_nonlinear_load_cell_is_found_from_the_model_force(coulomb_case):
