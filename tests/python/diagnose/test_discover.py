@@ -82,7 +82,8 @@ def test_the_library_holds_the_physical_terms_a_stretch_record_allows(coulomb_ca
     # The smoothed derivative of the 10 µm encoder record follows the sinusoid's velocity
     # (peak 25 mm · 2π / 20 s = 7.85 mm/s) to within what the encoder's rounding leaves: white
     # noise of q / sqrt(12) through the derivative's weights (the quadratic's own error on a
-    # 20 s sinusoid is 1000 times smaller); 1.2 times that leaves room for the RMS's scatter.
+    # 20 s sinusoid, x''' h² · 34/60 = 2e-4 mm/s, is 250 times smaller); 1.2 times that leaves
+    # room for the RMS's scatter.
     time_s = coulomb_case["time_s"]
     v = by_name(coulomb_case["features"], "v")
     true_v = 25 * 2 * np.pi / 20 * np.sin(2 * np.pi * time_s / 20)
