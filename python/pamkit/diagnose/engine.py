@@ -27,6 +27,7 @@ from pamkit.diagnose.decide import (
     decide,
     findings,
     judge,
+    noise_ratios,
     score,
     significant,
     structured,
@@ -101,6 +102,37 @@ def _try_pairs(problem: Problem, baseline: Fit, single: Judgement, judged: list[
     return best
 
 
+CHANNEL_UNITS = {"force_N": "N", "pressure_kPa": "kPa", "temperature_C": "degC"}
+
+
+def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
+    """Sparse regression of what `fit` leaves in the channel furthest above its noise, on the
+    physical feature library (discover.py): what the catalog lacks, as an equation."""
+    from pamkit.diagnose.discover import DiscoveryError, discover, feature_library
+
+    ratios = noise_ratios(problem, fit)
+    channel = max(problem.channels, key=lambda c: ratios[c])
+    experiment = problem.experiment
+    # The model's own channels where the data has none (a sealed test logged without pressure).
+    simulated = problem.predictor.select(problem.predictor.measurement(fit.baseline_x, fit.effects)) \
+        if set(problem.channels) != {"force_N", "pressure_kPa", "temperature_C"} else {}
+    simulated = {**simulated, **fit.predicted}
+
+    def column(name):
+        return experiment.columns[name] if name in experiment.columns else simulated.get(name)
+
+    try:
+        features = feature_library(experiment.time_s, experiment.elongation_m, pressure_kPa=column("pressure_kPa"),
+                                   temperature_C=column("temperature_C"),
+                                   ambient_C=experiment.ambient_temperature_C if "temperature_C" in experiment.columns
+                                   else None, cycle=problem.cycle.astype(float), force_N=fit.predicted.get("force_N"))
+        residual = problem.measured[channel] - fit.predicted[channel]
+        return discover(features, residual, problem.sigma[channel], problem.fit_mask, problem.held_mask,
+                        problem.half_cycle, channel, CHANNEL_UNITS[channel], seed=seed % 2**32)
+    except DiscoveryError as error:
+        return {"channel": channel, "terms": [], "error": str(error)}
+
+
 def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog | None = None, progress=None,
              threads: int | None = None, seed: int | None = None) -> Diagnosis:
     """Diagnoses one experiment. `progress(message)` is called as work proceeds; `seed` (by
@@ -173,7 +205,13 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
     if decision.rejected is not None:
         warnings += [replace(f, parameter=f"{decision.rejected.fit.name}: {f.parameter}")
                      for f in decision.rejected.findings]
+    discovered = {}
+    if decision.cause == "unexplained" or decision.left_structure:
+        report("looking for what the catalog lacks in the residual (sparse regression)")
+        phase = clock.perf_counter()
+        discovered = discover_remainder(problem, extended, seed)
+        seconds["discover"] = clock.perf_counter() - phase
     seconds["total"] = clock.perf_counter() - started
     report(f"cause: {decision.cause}" + (f" with {extended.effects[1].name()}" if len(extended.effects) > 1 else "")
            + f" ({seconds['total']:.1f} s)")
-    return Diagnosis(problem, baseline, judged, skipped, decision, extended, named, warnings, seconds=seconds)
+    return Diagnosis(problem, baseline, judged, skipped, decision, extended, named, warnings, discovered, seconds)

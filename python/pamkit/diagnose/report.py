@@ -133,7 +133,12 @@ def verdict(d: Diagnosis) -> str:
                      f"{'; '.join(j.reasons())}")
         else:
             looks = "no catalog effect gains significantly on the held-out units"
-        return (f"unexplained: structure is left in {left} (held-out RMSE {_sizes(d, d.baseline)}); {looks}{bounds}")
+        found = d.discovered.get("terms") if d.discovered else None
+        discovered = (f"; sparse regression finds {d.discovered['equation']} (held-out gain "
+                      f"{d.discovered['gain'][d.discovered['channel']]:.2f}), which resembles "
+                      f"{found[0]['resembles']}") if found else ""
+        return (f"unexplained: structure is left in {left} (held-out RMSE {_sizes(d, d.baseline)}); "
+                f"{looks}{discovered}{bounds}")
     j = d.extended_judgement
     fit, s = j.fit, j.score
     channel = max(p.channels, key=lambda c: s.gain[c])
