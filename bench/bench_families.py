@@ -14,7 +14,8 @@ files only, as a user would. Per family, the verdicts are counted as
   (the factor of issue #17's rule 3; ``baseline.rmse`` against ``evidence.noise``);
 - error: a non-zero exit or a timeout, with the last line of stderr.
 
-The median decision margin is printed when the report has a ``margin``. Datasets are generated
+The median decision margin is printed when the report has a ``margin``, and the median held-out
+RMSE of the calibrated baseline over the noise for force (F/σ) and pressure (p/σ). Datasets are generated
 into a temporary directory and deleted.
 """
 
@@ -33,7 +34,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from independent.families import FAMILIES, HONEST  # noqa: E402
+from independent.families import FAMILIES, HONEST
 
 STRUCTURE_FACTOR = 1.5  # issue #17, rule 3: "within a stated factor of its estimated noise (say 1.5x)"
 HONEST_CAUSES = ("none", "unexplained")
@@ -45,7 +46,7 @@ def diagnose(toml: Path, timeout_s: float, threads: int) -> dict:
     started = time.perf_counter()
     try:
         done = subprocess.run([sys.executable, "-m", "pamkit", "diagnose", str(toml), "--json", str(report_path), "--quiet",
-                               "--threads", str(threads)], capture_output=True, text=True, timeout=timeout_s)
+                               "--threads", str(threads)], check=False, capture_output=True, text=True, timeout=timeout_s)
     except subprocess.TimeoutExpired:
         return {"error": f"timeout after {timeout_s:.0f} s", "seconds": time.perf_counter() - started}
     seconds = time.perf_counter() - started
@@ -74,7 +75,9 @@ def classify(expected: str, outcome: dict) -> dict:
         return {"outcome": "error", "cause": None, "message": outcome["error"]}
     report = outcome["report"]
     cause = report["cause"]
-    row = {"cause": cause, "margin": margin_of(report), "verdict": report.get("verdict", "")}
+    rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
+    row = {"cause": cause, "margin": margin_of(report), "verdict": report.get("verdict", ""),
+           "baseline_rmse_over_noise": {c: rmse[c] / noise[c] for c in rmse if noise.get(c, 0) > 0}}
     if cause in HONEST_CAUSES:
         row["outcome"] = "honest"
         if cause == "none":
@@ -101,6 +104,9 @@ def summarise(rows: list[dict]) -> dict:
         "error_messages": sorted({r["message"] for r in rows if r["outcome"] == "error"}),
         "median_margin": statistics.median(margins) if margins else None,
         "median_seconds": statistics.median(r["seconds"] for r in rows),
+        "median_baseline_rmse_over_noise": {
+            c: statistics.median(r["baseline_rmse_over_noise"][c] for r in rows if c in r.get("baseline_rmse_over_noise", {}))
+            for c in sorted({c for r in rows for c in r.get("baseline_rmse_over_noise", {})})},
     }
 
 
@@ -140,16 +146,18 @@ def main() -> int:
             rows = list(pool.map(run, work))
 
     table = {name: summarise([r for r in rows if r["family"] == name]) for name in names}
-    header = f"{'family':28s} {'expected':14s} {'n':>2s} {'right':>5s} {'honest':>6s} {'wrong':>5s} {'none+str':>8s} {'err':>3s} {'margin':>6s} {'s':>5s}  wrong names / errors"
+    header = f"{'family':28s} {'expected':14s} {'n':>2s} {'right':>5s} {'honest':>6s} {'wrong':>5s} {'none+str':>8s} {'err':>3s} {'margin':>6s} {'s':>5s} {'F/σ':>5s} {'p/σ':>5s}  wrong names / errors"
     print(header)
     print("-" * len(header))
     for name, s in table.items():
         margin = "-" if s["median_margin"] is None else f"{s['median_margin']:.3f}"
         notes = ", ".join(f"{k}×{v}" for k, v in s["wrong_names"].items())
+        ratio = s["median_baseline_rmse_over_noise"]
+        force, pressure = (f"{ratio[c]:5.1f}" if c in ratio else "    -" for c in ("force_N", "pressure_kPa"))
         if s["error_messages"]:
             notes += ("; " if notes else "") + " | ".join(m[:90] for m in s["error_messages"])
         print(f"{name:28s} {s['expected']:14s} {s['datasets']:2d} {s['right']:5d} {s['honest']:6d} {s['wrong']:5d} "
-              f"{s['none_with_structure']:8d} {s['errors']:3d} {margin:>6s} {s['median_seconds']:5.1f}  {notes}")
+              f"{s['none_with_structure']:8d} {s['errors']:3d} {margin:>6s} {s['median_seconds']:5.1f} {force} {pressure}  {notes}")
     total = Counter()
     for s in table.values():
         total.update({k: s[k] for k in ("datasets", "right", "honest", "wrong", "none_with_structure", "errors")})

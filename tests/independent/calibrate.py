@@ -22,12 +22,12 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from independent import bench  # noqa: E402
-from independent.families import SealedPlan, crosshead  # noqa: E402
-from independent.physics import Build, Physics, SealedMuscle  # noqa: E402
+from independent import bench
+from independent.families import SealedPlan, crosshead
+from independent.physics import Build, Physics, SealedMuscle
 
 # Thesis table C.2: PAM 2 at 236.63 kPa, stretched 52.3 mm (90 %), 10 cycles, ambient 296 K.
-THESIS = dict(gauge_kPa=236.63, ambient_C=22.85, top_m=0.0523, cycles=10)
+THESIS = {"gauge_kPa": 236.63, "ambient_C": 22.85, "top_m": 0.0523, "cycles": 10}
 
 
 def pamkit_prediction(folder: Path, physics: Physics, speed: float) -> tuple[dict, dict]:
@@ -38,11 +38,11 @@ def pamkit_prediction(folder: Path, physics: Physics, speed: float) -> tuple[dic
     times = np.arange(0.0, motion.corner_t[-1] + 1e-9, 0.1)
     run = muscle.run(motion, times)
     truth = {"force_N": run.force_N, "pressure_kPa": run.gauge_kPa}
-    path = bench.write_experiment(folder, "cal", dict(vars(Build())), {
+    path = bench.write_experiment(folder, "cal", vars(Build()).copy(), {
         "inflation_pressure_kPa": plan.gauge_kPa, "ambient_temperature_C": plan.ambient_C,
         "initial_length_m": muscle.free_length_m}, {"time_s": times, "elongation_m": run.elongation_m}, "calibration")
     out = folder / "cal_pamkit.csv"
-    done = subprocess.run([sys.executable, "-m", "pamkit", "simulate", str(path), "-o", str(out)], capture_output=True, text=True)
+    done = subprocess.run([sys.executable, "-m", "pamkit", "simulate", str(path), "-o", str(out)], check=False, capture_output=True, text=True)
     if done.returncode != 0:
         raise SystemExit(done.stderr)
     predicted = np.genfromtxt(out, delimiter=",", names=True)

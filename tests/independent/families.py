@@ -94,7 +94,7 @@ def crosshead(plan: SealedPlan, top_m: float, rate: float) -> Motion:
     return Motion(np.asarray(t), np.asarray(x))
 
 
-def sealed_test(seed: int, folder: Path, *, physics: Physics = Physics(), plan_change=None, record=None,
+def sealed_test(seed: int, folder: Path, *, physics: Physics | None = None, plan_change=None, record=None,
                 expected: str = HONEST, truth: dict | None = None, declared_length_m: float | None = None) -> Dataset:
     """One sealed test. `plan_change(plan, rng)` alters the protocol; `record(run, motion,
     muscle, rate, rngs)` turns the truth into the columns (default: the bench's instruments)."""
@@ -103,7 +103,7 @@ def sealed_test(seed: int, folder: Path, *, physics: Physics = Physics(), plan_c
     plan = draw_sealed_plan(rng.protocol)
     if plan_change is not None:
         plan = plan_change(plan, rng.effect)
-    muscle = SealedMuscle(build, physics, plan.gauge_kPa, plan.ambient_C)
+    muscle = SealedMuscle(build, physics or Physics(), plan.gauge_kPa, plan.ambient_C)
     top = round(plan.fraction * (build.length_m - muscle.free_length_m), 4)  # programmed in 0.1 mm
     rate = sample_rate(top, plan.speeds)
     motion = crosshead(plan, top, rate)
@@ -116,7 +116,7 @@ def sealed_test(seed: int, folder: Path, *, physics: Physics = Physics(), plan_c
             "ambient_temperature_C": plan.ambient_C, "initial_length_m": round(muscle.free_length_m, 4)}
     path = bench.write_experiment(folder, "test", muscle_toml, test, columns,
                                   "Written by tests/independent (not pamkit): a sealed muscle stretched on a tensile machine.")
-    info = {"gauge_kPa": plan.gauge_kPa, "speeds_mm_per_s": sorted({s * 1e3 for s in plan.speeds}), "cycles": len(plan.speeds),
+    info = {"gauge_kPa": plan.gauge_kPa, "speeds_mm_per_s": sorted({round(s * 1e3, 3) for s in plan.speeds}), "cycles": len(plan.speeds),
             "top_mm": top * 1e3, "rate_Hz": rate, **(truth or {})}
     return Dataset(path, expected, info)
 

@@ -20,8 +20,8 @@ import pytest
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[3]))
 sys.path.insert(0, str(SOURCE_DIR / "tests"))
 
-from independent.families import FAMILIES, HONEST  # noqa: E402
-from independent.physics import Build, Geometry, Motion, Physics, SealedMuscle  # noqa: E402
+from independent.families import FAMILIES, HONEST
+from independent.physics import Build, Geometry, Motion, Physics, SealedMuscle
 
 SEED = 1
 STRUCTURE_FACTOR = 1.5  # issue #17, rule 3
@@ -30,7 +30,7 @@ STRUCTURE_FACTOR = 1.5  # issue #17, rule 3
 def diagnose(toml: Path) -> dict:
     report = toml.with_name("report.json")
     done = subprocess.run([sys.executable, "-m", "pamkit", "diagnose", str(toml), "--json", str(report), "--quiet"],
-                          capture_output=True, text=True, env=os.environ.copy(), timeout=600)
+                          check=False, capture_output=True, text=True, env=os.environ.copy(), timeout=600)
     assert done.returncode == 0, f"diagnose failed: {done.stderr.strip()[-500:]}"
     return json.loads(report.read_text())
 
@@ -63,7 +63,7 @@ def test_the_generator_never_imports_pamkit(tmp_path):
               "for name, make in FAMILIES.items(): make(3, Path(sys.argv[1]) / name)\n"
               "assert not any(m == 'pamkit' or m.startswith('pamkit.') for m in sys.modules), 'pamkit was imported'\n")
     env = {**os.environ, "PYTHONPATH": str(SOURCE_DIR / "tests")}
-    done = subprocess.run([sys.executable, "-c", script, str(tmp_path)], capture_output=True, text=True, env=env, timeout=300)
+    done = subprocess.run([sys.executable, "-c", script, str(tmp_path)], check=False, capture_output=True, text=True, env=env, timeout=300)
     assert done.returncode == 0, done.stderr
 
 
