@@ -9,7 +9,8 @@ files only, as a user would. Per family, the verdicts are counted as
 
 - right: the hidden catalog effect is the cause;
 - honest: ``none`` or ``unexplained`` (for a catalog family this is a miss, counted here too);
-- wrong: any other catalog name (listed);
+- wrong: any other catalog name (listed; "truth_only_as_partner" in the JSON counts those whose
+  extended model pairs the wrong cause with the true effect);
 - none+structure: ``none`` while some channel's held-out baseline RMSE exceeds 1.5x its noise
   (the factor of issue #17's rule 3; ``baseline.rmse`` against ``evidence.noise``);
 - error: a non-zero exit or a timeout, with the last line of stderr.
@@ -76,7 +77,8 @@ def classify(expected: str, outcome: dict) -> dict:
     report = outcome["report"]
     cause = report["cause"]
     rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
-    row = {"cause": cause, "margin": margin_of(report), "verdict": report.get("verdict", ""),
+    row = {"cause": cause, "effects": report.get("extended", {}).get("effects", []), "margin": margin_of(report),
+           "verdict": report.get("verdict", ""),
            "baseline_rmse_over_noise": {c: rmse[c] / noise[c] for c in rmse if noise.get(c, 0) > 0}}
     if cause in HONEST_CAUSES:
         row["outcome"] = "honest"
@@ -99,6 +101,7 @@ def summarise(rows: list[dict]) -> dict:
         "honest": counts["honest"],
         "wrong": counts["wrong"],
         "wrong_names": dict(Counter(r["cause"] for r in rows if r["outcome"] == "wrong")),
+        "truth_only_as_partner": sum(1 for r in rows if r["outcome"] == "wrong" and r["expected"] in r.get("effects", [])),
         "none_with_structure": sum(1 for r in rows if r.get("cause") == "none" and r.get("structure")),
         "errors": counts["error"],
         "error_messages": sorted({r["message"] for r in rows if r["outcome"] == "error"}),
