@@ -95,9 +95,10 @@ def crosshead(plan: SealedPlan, top_m: float, rate: float) -> Motion:
 
 
 def sealed_test(seed: int, folder: Path, *, physics: Physics | None = None, plan_change=None, record=None,
-                expected: str = HONEST, truth: dict | None = None, declared_length_m: float | None = None) -> Dataset:
-    """One sealed test. `plan_change(plan, rng)` alters the protocol; `record(run, motion,
-    muscle, rate, rngs)` turns the truth into the columns (default: the bench's instruments)."""
+                expected: str = HONEST, truth: dict | None = None, muscle_change: dict | None = None) -> Dataset:
+    """One sealed test. `plan_change(plan, rng)` alters the protocol; `record(muscle, motion,
+    times, rate, rngs)` turns the truth into the columns (default: the bench's instruments);
+    `muscle_change` overrides [muscle] keys in the TOML only (a declared build that is off)."""
     rng = draws(seed)
     build = Build()
     plan = draw_sealed_plan(rng.protocol)
@@ -109,9 +110,7 @@ def sealed_test(seed: int, folder: Path, *, physics: Physics | None = None, plan
     motion = crosshead(plan, top, rate)
     times = np.arange(0.0, motion.corner_t[-1] + 1e-9, 1.0 / rate)
     columns = (record or record_sealed)(muscle, motion, times, rate, rng)
-    muscle_toml = _muscle_toml(build)
-    if declared_length_m is not None:
-        muscle_toml["length_m"] = declared_length_m
+    muscle_toml = {**_muscle_toml(build), **(muscle_change or {})}
     test = {"description": "independent model, sealed cyclic test", "inflation_pressure_kPa": plan.gauge_kPa,
             "ambient_temperature_C": plan.ambient_C, "initial_length_m": round(muscle.free_length_m, 4)}
     path = bench.write_experiment(folder, "test", muscle_toml, test, columns,
@@ -183,7 +182,14 @@ def travel_scale(seed, folder):
 
 def declared_length(seed, folder):
     error = _signed(np.random.default_rng([seed, 7]), 1e-3, 2e-3)
-    return sealed_test(seed, folder, declared_length_m=round(Build().length_m + error, 4), truth={"error_m": error})
+    return sealed_test(seed, folder, muscle_change={"length_m": round(Build().length_m + error, 4)}, truth={"error_m": error})
+
+
+def declared_diameter(seed, folder):
+    """The TOML's braid diameter 0.3-0.6 mm off (a caliper on a soft braid)."""
+    error = _signed(np.random.default_rng([seed, 14]), 0.3e-3, 0.6e-3)
+    return sealed_test(seed, folder, muscle_change={"diameter_m": round(Build().diameter_m + error, 5)},
+                       truth={"error_m": error})
 
 
 def mullins(seed, folder):
@@ -318,6 +324,6 @@ def isometric_transducer_offset(seed, folder):
 
 FAMILIES = {f.__name__: f for f in (
     independent_null, independent_heat_transfer, independent_dead_volume, independent_leak,
-    load_cell_tare, load_cell_nonlinear, travel_scale, declared_length, mullins, coulomb_alternating, dahl,
+    load_cell_tare, load_cell_nonlinear, travel_scale, declared_length, declared_diameter, mullins, coulomb_alternating, dahl,
     subsample_skew, subsample_lag, subsample_slack, isometric_null, isometric_transducer_offset,
 )}
