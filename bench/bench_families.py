@@ -53,7 +53,8 @@ def diagnose(toml: Path, timeout_s: float, threads: int) -> dict:
     seconds = time.perf_counter() - started
     if done.returncode != 0:
         lines = [line for line in done.stderr.strip().splitlines() if line.strip()]
-        return {"error": lines[-1] if lines else f"exit {done.returncode}", "seconds": seconds}
+        message = lines[-1].replace(str(toml.parent), "DATASET") if lines else f"exit {done.returncode}"
+        return {"error": message, "seconds": seconds}
     return {"report": json.loads(report_path.read_text()), "seconds": seconds}
 
 
@@ -158,7 +159,7 @@ def main() -> int:
         ratio = s["median_baseline_rmse_over_noise"]
         force, pressure = (f"{ratio[c]:5.1f}" if c in ratio else "    -" for c in ("force_N", "pressure_kPa"))
         if s["error_messages"]:
-            notes += ("; " if notes else "") + " | ".join(m[:90] for m in s["error_messages"])
+            notes += ("; " if notes else "") + " | ".join(m[:120] for m in s["error_messages"])
         print(f"{name:28s} {s['expected']:14s} {s['datasets']:2d} {s['right']:5d} {s['honest']:6d} {s['wrong']:5d} "
               f"{s['none_with_structure']:8d} {s['errors']:3d} {margin:>6s} {s['median_seconds']:5.1f} {force} {pressure}  {notes}")
     total = Counter()

@@ -284,7 +284,7 @@ ISOMETRIC_RATE_HZ = 20.0
 ENCODER_NOISE_M = 2e-6  # a held crosshead still dithers by a couple of encoder counts
 
 
-def isometric_sweep(seed, folder, *, transducer=None, expected=HONEST, truth=None):
+def isometric_sweep(seed, folder, *, transducer=None, expected=HONEST, truth=None, encoder_noise_m=ENCODER_NOISE_M):
     """Length held at 92-97 % of the deflated length; pressure stepped up to 150-300 kPa in
     5-8 plateaus of 5-10 s, then down the same steps and vented to 0; force measured."""
     rng = draws(seed)
@@ -304,7 +304,7 @@ def isometric_sweep(seed, folder, *, transducer=None, expected=HONEST, truth=Non
         pressure[i] = decay * pressure[i - 1] + (1 - decay) * command[i - 1]
     force = supplied_tension(build, Physics(), held, pressure)
     read = pressure if transducer is None else transducer(pressure)
-    columns = {"time_s": times, "elongation_m": bench.encoder(np.zeros_like(times), rng.noise, ENCODER_NOISE_M),
+    columns = {"time_s": times, "elongation_m": bench.encoder(np.zeros_like(times), rng.noise, encoder_noise_m),
                "force_N": bench.load_cell(force, rng.noise), "pressure_kPa": bench.pressure_logger(read, rng.noise)}
     test = {"description": "independent model, isometric supplied-pressure sweep", "gas": "supplied",
             "inflation_pressure_kPa": 0.0, "ambient_temperature_C": ambient, "initial_length_m": held}
@@ -317,6 +317,11 @@ def isometric_null(seed, folder):
     return isometric_sweep(seed, folder)
 
 
+def isometric_held_exactly(seed, folder):
+    """The null sweep with the elongation column exactly 0 (an export of the commanded position)."""
+    return isometric_sweep(seed, folder, encoder_noise_m=0.0)
+
+
 def isometric_transducer_offset(seed, folder):
     """The supplied pressure's transducer reads 0.96 p − 10 kPa."""
     return isometric_sweep(seed, folder, transducer=lambda p: 0.96 * p - 10.0, truth={"gain": 0.96, "offset_kPa": -10.0})
@@ -325,5 +330,5 @@ def isometric_transducer_offset(seed, folder):
 FAMILIES = {f.__name__: f for f in (
     independent_null, independent_heat_transfer, independent_dead_volume, independent_leak,
     load_cell_tare, load_cell_nonlinear, travel_scale, declared_length, declared_diameter, mullins, coulomb_alternating, dahl,
-    subsample_skew, subsample_lag, subsample_slack, isometric_null, isometric_transducer_offset,
+    subsample_skew, subsample_lag, subsample_slack, isometric_null, isometric_held_exactly, isometric_transducer_offset,
 )}
