@@ -1,0 +1,176 @@
+"""Diagnosis on families of tests made outside pamkit (issues #9 and #17, "Checks").
+
+    PYTHONPATH=build/python python3 bench/bench_families.py [--per-family 3] [--families a,b]
+        [--jobs 1] [--first-seed 1] [--json OUT.json] [--timeout 900]
+
+Every dataset is written by tests/independent (an independent model of a braided muscle and the
+bench's instruments; it never imports pamkit) and handed to ``python -m pamkit diagnose`` through
+files only, as a user would. Per family, the verdicts are counted as
+
+- right: the hidden catalog effect is the cause;
+- honest: ``none`` or ``unexplained`` (for a catalog family this is a miss, counted here too);
+- wrong: any other catalog name (listed; "truth_only_as_partner" in the JSON counts those whose
+  extended model pairs the wrong cause with the true effect);
+- none+structure: ``none`` while some channel's held-out baseline RMSE exceeds 1.5x its noise
+  (the factor of issue #17's rule 3; ``baseline.rmse`` against ``evidence.noise``);
+- error: a non-zero exit or a timeout, with the last line of stderr.
+
+The median decision margin is printed when the report has a ``margin``, and the median held-out
+RMSE of the calibrated baseline over the noise for force (F/σ) and pressure (p/σ). Datasets are generated
+into a temporary directory and deleted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from collections import Counter
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+
+from independent.families import FAMILIES, HONEST
+
+STRUCTURE_FACTOR = 1.5  # issue #17, rule 3: "within a stated factor of its estimated noise (say 1.5x)"
+HONEST_CAUSES = ("none", "unexplained")
+
+
+def diagnose(toml: Path, timeout_s: float, threads: int) -> dict:
+    """Runs the command line on one experiment; the report, or the error."""
+    report_path = toml.with_name("report.json")
+    started = time.perf_counter()
+    try:
+        done = subprocess.run([sys.executable, "-m", "pamkit", "diagnose", str(toml), "--json", str(report_path), "--quiet",
+                               "--threads", str(threads)], check=False, capture_output=True, text=True, timeout=timeout_s)
+    except subprocess.TimeoutExpired:
+        return {"error": f"timeout after {timeout_s:.0f} s", "seconds": time.perf_counter() - started}
+    seconds = time.perf_counter() - started
+    if done.returncode != 0:
+        lines = [line for line in done.stderr.strip().splitlines() if line.strip()]
+        message = lines[-1].replace(str(toml.parent), "DATASET") if lines else f"exit {done.returncode}"
+        return {"error": message, "seconds": seconds}
+    return {"report": json.loads(report_path.read_text()), "seconds": seconds}
+
+
+def margin_of(report: dict):
+    """The decision's margin, where the report gives one (issue #17, rule 2)."""
+    for holder in (report, report.get("decision", {}) if isinstance(report.get("decision"), dict) else {}):
+        if isinstance(holder.get("margin"), (int, float)):
+            return float(holder["margin"])
+    return None
+
+
+def structure_left(report: dict) -> dict:
+    """Channels whose held-out baseline RMSE exceeds STRUCTURE_FACTOR x their noise: ratio."""
+    rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
+    return {c: rmse[c] / noise[c] for c in rmse if c in noise and noise[c] > 0 and rmse[c] > STRUCTURE_FACTOR * noise[c]}
+
+
+def classify(expected: str, outcome: dict) -> dict:
+    if "error" in outcome:
+        return {"outcome": "error", "cause": None, "message": outcome["error"]}
+    report = outcome["report"]
+    cause = report["cause"]
+    rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
+    row = {"cause": cause, "effects": report.get("extended", {}).get("effects", []), "margin": margin_of(report),
+           "verdict": report.get("verdict", ""),
+           "baseline_rmse_over_noise": {c: rmse[c] / noise[c] for c in rmse if noise.get(c, 0) > 0}}
+    if cause in HONEST_CAUSES:
+        row["outcome"] = "honest"
+        if cause == "none":
+            row["structure"] = structure_left(report)
+    elif expected != HONEST and cause == expected:
+        row["outcome"] = "right"
+    else:
+        row["outcome"] = "wrong"
+    return row
+
+
+def summarise(rows: list[dict]) -> dict:
+    counts = Counter(r["outcome"] for r in rows)
+    margins = [r["margin"] for r in rows if r.get("margin") is not None]
+    return {
+        "expected": rows[0]["expected"],
+        "datasets": len(rows),
+        "right": counts["right"],
+        "honest": counts["honest"],
+        "wrong": counts["wrong"],
+        "wrong_names": dict(Counter(r["cause"] for r in rows if r["outcome"] == "wrong")),
+        "truth_only_as_partner": sum(1 for r in rows if r["outcome"] == "wrong" and r["expected"] in r.get("effects", [])),
+        "none_with_structure": sum(1 for r in rows if r.get("cause") == "none" and r.get("structure")),
+        "errors": counts["error"],
+        "error_messages": sorted({r["message"] for r in rows if r["outcome"] == "error"}),
+        "median_margin": statistics.median(margins) if margins else None,
+        "median_seconds": statistics.median(r["seconds"] for r in rows),
+        "median_baseline_rmse_over_noise": {
+            c: statistics.median(r["baseline_rmse_over_noise"][c] for r in rows if c in r.get("baseline_rmse_over_noise", {}))
+            for c in sorted({c for r in rows for c in r.get("baseline_rmse_over_noise", {})})},
+    }
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--per-family", type=int, default=3)
+    parser.add_argument("--families", help=f"comma-separated, of: {', '.join(FAMILIES)}")
+    parser.add_argument("--first-seed", type=int, default=1)
+    parser.add_argument("--jobs", type=int, default=1, help="diagnoses at once (default 1: CPU is scarce)")
+    parser.add_argument("--threads", type=int, default=1, help="--threads of each diagnosis")
+    parser.add_argument("--timeout", type=float, default=900.0, help="seconds per diagnosis")
+    parser.add_argument("--json", help="write every dataset's row and the table")
+    arguments = parser.parse_args()
+    names = arguments.families.split(",") if arguments.families else list(FAMILIES)
+    unknown = [n for n in names if n not in FAMILIES]
+    if unknown:
+        parser.error(f"unknown famil{'y' if len(unknown) == 1 else 'ies'} {', '.join(unknown)}; known: {', '.join(FAMILIES)}")
+
+    with tempfile.TemporaryDirectory() as scratch:
+        work = []
+        for name in names:
+            for seed in range(arguments.first_seed, arguments.first_seed + arguments.per_family):
+                dataset = FAMILIES[name](seed, Path(scratch) / f"{name}-{seed}")
+                work.append((name, seed, dataset))
+
+        def run(item):
+            name, seed, dataset = item
+            outcome = diagnose(dataset.experiment, arguments.timeout, arguments.threads)
+            row = {"family": name, "seed": seed, "expected": dataset.expected, "truth": dataset.truth,
+                   "seconds": outcome["seconds"], **classify(dataset.expected, outcome)}
+            extra = f" ({row['message']})" if row["outcome"] == "error" else ""
+            print(f"{name:28s} seed {seed:3d}: {row['outcome']:6s} cause {row['cause']}{extra} [{row['seconds']:.1f} s]",
+                  file=sys.stderr, flush=True)
+            return row
+
+        with ThreadPoolExecutor(max_workers=max(1, arguments.jobs)) as pool:
+            rows = list(pool.map(run, work))
+
+    table = {name: summarise([r for r in rows if r["family"] == name]) for name in names}
+    header = f"{'family':28s} {'expected':14s} {'n':>2s} {'right':>5s} {'honest':>6s} {'wrong':>5s} {'none+str':>8s} {'err':>3s} {'margin':>6s} {'s':>5s} {'F/σ':>5s} {'p/σ':>5s}  wrong names / errors"
+    print(header)
+    print("-" * len(header))
+    for name, s in table.items():
+        margin = "-" if s["median_margin"] is None else f"{s['median_margin']:.3f}"
+        notes = ", ".join(f"{k}×{v}" for k, v in s["wrong_names"].items())
+        ratio = s["median_baseline_rmse_over_noise"]
+        force, pressure = (f"{ratio[c]:5.1f}" if c in ratio else "    -" for c in ("force_N", "pressure_kPa"))
+        if s["error_messages"]:
+            notes += ("; " if notes else "") + " | ".join(m[:120] for m in s["error_messages"])
+        print(f"{name:28s} {s['expected']:14s} {s['datasets']:2d} {s['right']:5d} {s['honest']:6d} {s['wrong']:5d} "
+              f"{s['none_with_structure']:8d} {s['errors']:3d} {margin:>6s} {s['median_seconds']:5.1f} {force} {pressure}  {notes}")
+    total = Counter()
+    for s in table.values():
+        total.update({k: s[k] for k in ("datasets", "right", "honest", "wrong", "none_with_structure", "errors")})
+    print(f"{'all':28s} {'':14s} {total['datasets']:2d} {total['right']:5d} {total['honest']:6d} {total['wrong']:5d} "
+          f"{total['none_with_structure']:8d} {total['errors']:3d}")
+    if arguments.json:
+        Path(arguments.json).write_text(json.dumps({"table": table, "total": dict(total), "rows": rows}, indent=2, default=float) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
