@@ -20,8 +20,9 @@ that the same seed gives the same protocol, build and instrument noise whatever 
   heat exchange, which settles, and a leak, which does not, tell themselves apart; the other
   two thirds keep the thesis's hold-free protocol so that diagnosis cannot rely on holds);
 - effect strength: each parameter not given uniformly in the effect's realistic range,
-  log-uniformly for time constants; for effects acting on a channel, the channel at random
-  among pressure_kPa and temperature_C (the Arduino's), and time_skew's sign at random,
+  log-uniformly where that range spans more than a decade (the time constants); for effects
+  acting on a channel, the channel at random among pressure_kPa and temperature_C (the
+  Arduino's), and the sign at random where the effect declares `either_sign` (time_skew),
   unless given. Only channels that move by more than one ADC count in the test are drawn:
   the baseline's gas is isothermal (polytropic n = 1), so its temperature is constant, and a
   lag or skew of a constant leaves the data bit for bit as without the effect;
@@ -67,6 +68,7 @@ from pamkit.instruments import (
 from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
 
 NONE = "none"
+LOG_DRAW_SPAN = 10.0  # a realistic range wider than this ratio is drawn log-uniformly
 
 # Ranges of DESIGN.md, "Tests that hide an effect".
 INFLATION_KPA = (35.0, 276.0)
@@ -301,11 +303,12 @@ def configure_effect(spec: str, rng: np.random.Generator, effect_catalog: Effect
         lo, hi = parameter.realistic_min, parameter.realistic_max
         if not (math.isfinite(lo) and math.isfinite(hi)) or hi <= lo:
             continue
-        if "time_constant" in parameter.name and lo > 0:
+        # A range spanning more than a decade has no natural scale: drawn log-uniformly.
+        if lo > 0 and hi > LOG_DRAW_SPAN * lo:
             value = math.exp(rng.uniform(math.log(lo), math.log(hi)))
         else:
             value = rng.uniform(lo, hi)
-        if name == "time_skew" and parameter.name == "offset_s":
+        if parameter.either_sign:
             value *= rng.choice((-1.0, 1.0))
         given[parameter.name] = repr(float(value))
         drawn.append(parameter.name)

@@ -158,7 +158,9 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
     if (!(length > geometry.min_length() && length < geometry.max_length())) {
       throw InvalidInput(detail::message("trajectory sample ", k, " (t = ", time[k], " s, elongation ", elongation[k],
                                          " m) gives muscle length ", length, " m, outside the braid's range (",
-                                         geometry.min_length(), ", ", geometry.max_length(), ") m"));
+                                         geometry.min_length(), ", ", geometry.max_length(),
+                                         ") m: check the elongation's zero (it is the stretch from the length at the "
+                                         "start of the test) and [test] initial_length_m"));
     }
   }
 

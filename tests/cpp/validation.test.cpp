@@ -139,6 +139,8 @@ TEST_CASE("Simulator and model reject lengths outside the braid's range", "[vali
   const Simulator simulator;
   CHECK_THROWS_AS(simulator.run(model, trajectory), InvalidInput);
   CHECK_THROWS_WITH(simulator.run(model, trajectory), Contains("trajectory sample 2"));
+  // The message points at the usual culprit: a record re-zeroed mid-stretch.
+  CHECK_THROWS_WITH(simulator.run(model, trajectory), Contains("initial_length_m"));
 
   // Below the shortest length (the cones flatten at 0.1355 m).
   const ElongationTrajectory too_short({0.0, 1.0}, {0.0, -0.05});

@@ -2,13 +2,15 @@
 (plausible, not at a bound, resolvable), and the verdict with its margins.
 
 The rules (DESIGN.md, "The diagnosis report"; issue "Diagnosis decisions"):
-1. A candidate is *significant* when its combined held-out gain is at least MIN_GAIN with the
-   95 % interval above zero and the BIC falls by more than MIN_BIC_DROP.
+1. A candidate is *significant* when its combined held-out gain (every channel, weighted by its
+   noise: one yardstick for all) is at least MIN_GAIN with the 95 % interval above zero and the
+   BIC falls by more than MIN_BIC_DROP.
 2. It is *credible* when, besides, every fitted parameter (its own and the baseline's it moved)
    lies inside its physically plausible range and away from the search's bounds, the data
    resolve it (a skew or lag of at least one sample interval, a slack of at least the travel
-   between samples), and it makes no channel it does not change worse. Its gain counts only on
-   the channels its effects change.
+   between samples), and its effects earn their gain where they act: significant on the channels
+   they change, and no other channel made worse. A measurement effect refitted with the
+   baseline free moves the baseline to fit the channels it cannot touch; that part is not its.
 3. The best significant candidate by held-out gain is named only if it is credible. If it is
    not, the cause is "unexplained" and the verdict says what the rejected fit looks like —
    never the runner-up, which explains less — unless the baseline already reaches the noise on
@@ -52,9 +54,11 @@ class Score:
     rmse: dict[str, float]
     gain: dict[str, float]
     gain_ci95: dict[str, list[float]]
-    combined_gain: float
+    combined_gain: float          # over every channel, each weighted by its noise
     combined_ci95: list[float]
     delta_bic: float
+    credited_gain: float          # over the channels the fit's effects change only
+    credited_ci95: list[float]
 
 
 def _gain(sse_fit: float, sse_base: float) -> float:
@@ -73,8 +77,8 @@ def credited_channels(problem: Problem, fit: Fit) -> list[str]:
 def score(problem: Problem, baseline: Fit, fit: Fit, rng: np.random.Generator) -> Score:
     """Held-out RMSE per channel, gain against `baseline`, bootstrap intervals over held-out
     half-cycles, and the change of the Bayesian information criterion on the fitted cycles.
-    The combined gain, its interval and the BIC count only the channels the fit's effects
-    change (every channel for physics and motion effects)."""
+    Every candidate is ranked on every channel (the same yardstick, the same baseline freedom);
+    the credited gain counts only the channels the fit's effects change."""
     units = np.unique(problem.half_cycle[problem.held_mask])
     sse_base = np.zeros((len(problem.channels), units.size))
     sse_fit = np.zeros_like(sse_base)
@@ -86,11 +90,11 @@ def score(problem: Problem, baseline: Fit, fit: Fit, rng: np.random.Generator) -
             sse_base[i, j] = np.sum((baseline.predicted[c] - problem.measured[c])[mask] ** 2)
             sse_fit[i, j] = np.sum((fit.predicted[c] - problem.measured[c])[mask] ** 2)
     credited = credited_channels(problem, fit)
-    weights = np.array([1.0 / problem.sigma[c] ** 2 if c in credited else 0.0 for c in problem.channels])[:, None]
+    weights = np.array([1.0 / problem.sigma[c] ** 2 for c in problem.channels])[:, None]
+    credited_weights = np.array([1.0 / problem.sigma[c] ** 2 if c in credited else 0.0 for c in problem.channels])[:, None]
     n = counts.sum()
     rmse = {c: float(np.sqrt(sse_fit[i].sum() / n)) for i, c in enumerate(problem.channels)}
     gain = {c: _gain(sse_fit[i].sum(), sse_base[i].sum()) for i, c in enumerate(problem.channels)}
-    combined = _gain((weights * sse_fit).sum(), (weights * sse_base).sum())
     draws = rng.integers(0, units.size, size=(BOOTSTRAP_SAMPLES, units.size))
     boot_fit = sse_fit[:, draws].sum(axis=2)
     boot_base = sse_base[:, draws].sum(axis=2)
@@ -98,12 +102,17 @@ def score(problem: Problem, baseline: Fit, fit: Fit, rng: np.random.Generator) -
     for i, c in enumerate(problem.channels):
         gains = 1.0 - np.sqrt(boot_fit[i] / np.maximum(boot_base[i], 1e-300))
         gain_ci[c] = [float(np.percentile(gains, 2.5)), float(np.percentile(gains, 97.5))]
-    combined_boot = 1.0 - np.sqrt((weights * boot_fit).sum(axis=0) / np.maximum((weights * boot_base).sum(axis=0), 1e-300))
-    combined_ci = [float(np.percentile(combined_boot, 2.5)), float(np.percentile(combined_boot, 97.5))]
-    n_fit = int(problem.fit_mask.sum()) * len(credited)
-    delta_chi2 = sum(fit.training_chi2[c] - baseline.training_chi2[c] for c in credited)
+    def combined_with(w):
+        boot = 1.0 - np.sqrt((w * boot_fit).sum(axis=0) / np.maximum((w * boot_base).sum(axis=0), 1e-300))
+        return (_gain((w * sse_fit).sum(), (w * sse_base).sum()),
+                [float(np.percentile(boot, 2.5)), float(np.percentile(boot, 97.5))])
+
+    combined, combined_ci = combined_with(weights)
+    credited_gain, credited_ci = combined_with(credited_weights)
+    n_fit = int(problem.fit_mask.sum()) * len(problem.channels)
+    delta_chi2 = sum(fit.training_chi2[c] - baseline.training_chi2[c] for c in problem.channels)
     delta_bic = delta_chi2 + (fit.parameter_count - baseline.parameter_count) * math.log(n_fit)
-    return Score(rmse, gain, gain_ci, combined, combined_ci, float(delta_bic))
+    return Score(rmse, gain, gain_ci, combined, combined_ci, float(delta_bic), credited_gain, credited_ci)
 
 
 def significant(s: Score) -> bool:
@@ -201,16 +210,22 @@ class Judgement:
         return [f.sentence() for f in self.findings] + self.unresolved
 
 
-def worsened(problem: Problem, fit: Fit, s: Score) -> list[str]:
-    """Channels the fit does not credit but makes worse on held-out units (a baseline moved
-    to fit them badly while the effect repairs its own channel)."""
+def uncredited(problem: Problem, fit: Fit, s: Score) -> list[str]:
+    """Why a fit's gain is not its effects' own: it does not gain significantly on the channels
+    its effects change (the gain comes from the baseline moving on channels they cannot touch),
+    or it makes one of those other channels worse."""
     credited = credited_channels(problem, fit)
-    return [f"it makes {c} worse (held-out gain {s.gain[c]:.2f})" for c in problem.channels
+    out = []
+    if set(credited) != set(problem.channels) and (s.credited_gain < MIN_GAIN or s.credited_ci95[0] <= 0.0):
+        out.append(f"its gain on the channels it changes ({', '.join(credited)}) is only {s.credited_gain:.3f}; "
+                   "the rest comes from channels it cannot change")
+    out += [f"it makes {c} worse (held-out gain {s.gain[c]:.2f})" for c in problem.channels
             if c not in credited and s.gain[c] < -MIN_GAIN]
+    return out
 
 
 def judge(problem: Problem, fit: Fit, s: Score) -> Judgement:
-    return Judgement(fit, s, significant(s), findings(fit), unresolved(problem, fit) + worsened(problem, fit, s))
+    return Judgement(fit, s, significant(s), findings(fit), unresolved(problem, fit) + uncredited(problem, fit, s))
 
 
 def structured(problem: Problem, fit: Fit, factor: float) -> list[str]:

@@ -2,7 +2,7 @@
 
 The unit a diagnosis fits on and holds out follows the test: the stretch cycles of a cyclic
 test, the pressurise/vent sweeps of a supplied-pressure test whose length the rig holds
-(isometric). The units are found from the commanded signal's structure — the crosshead's
+(isometric), or, with fewer than four sweeps, their pressure plateaus. The units are found from the commanded signal's structure — the crosshead's
 elongation, or the supplied pressure when the length is held — never from noise: a held
 length's encoder noise has no cycles.
 """
@@ -13,11 +13,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from scipy.ndimage import median_filter
+
 from pamkit.diagnose import evidence
 from pamkit.diagnose.cycles import Cycles, find_cycles, split_cycles
 from pamkit.diagnose.model import Predictor
 from pamkit.experiment import Experiment, ExperimentError
 
+# A plateau of a stepped sweep starts where the pressure leaves the last one's level by more
+# than this many noise sigmas, or this share of the sweep's span, whichever is larger; pieces
+# shorter than PLATEAU_MERGE of the median piece (a transition's crossings) join the next.
+PLATEAU_NOISE = 10.0
+PLATEAU_SPAN = 0.05
+PLATEAU_MERGE = 0.25
 # A length counts as held when its whole travel is within this many noise sigmas of the
 # encoder (Gaussian noise over 10^4 samples spans about 8 sigma peak to peak).
 HELD_TRAVEL_NOISE = 20.0
@@ -43,7 +51,7 @@ class Problem:
     held_mask: np.ndarray
     half_cycle: np.ndarray  # the bootstrap's unit: half a cycle (stretch / return, pressurise / vent)
     cycle: np.ndarray       # cycle number of every sample, -1 outside any
-    unit_name: str          # what a cycle is in this test: "stretch cycle" or "pressurise/vent sweep"
+    unit_name: str          # what a unit is here: "stretch cycle", "pressurise/vent sweep", "pressure plateau"
     predictor: Predictor
 
     def chi(self, predicted: dict[str, np.ndarray], mask: np.ndarray) -> np.ndarray:
@@ -85,6 +93,24 @@ def driving_signal(experiment: Experiment) -> tuple[str, np.ndarray, str]:
     return "elongation_m", experiment.elongation_m, "stretch cycle"
 
 
+def plateaus(signal: np.ndarray) -> Cycles:
+    """The plateaus of a stepped sweep (each with the transition that leads to it), from the
+    signal's levels: a new one starts where the median-smoothed signal leaves the current
+    level by more than the larger of PLATEAU_NOISE noise sigmas and PLATEAU_SPAN of the span."""
+    smooth = median_filter(np.asarray(signal, dtype=float), size=5, mode="nearest")
+    threshold = max(PLATEAU_NOISE * evidence.noise_scale(signal), PLATEAU_SPAN * float(np.ptp(smooth)))
+    starts, level = [0], smooth[0]
+    for k, value in enumerate(smooth):
+        if abs(value - level) > threshold:
+            starts.append(k)
+            level = value
+    bounds = starts + [smooth.size]
+    lengths = np.diff(bounds)
+    typical = float(np.median(lengths)) if lengths.size else 0.0
+    kept = [start for start, length in zip(starts, lengths) if length >= PLATEAU_MERGE * typical or start == 0]
+    return Cycles(np.array(kept, dtype=int), np.array(kept[1:] + [smooth.size], dtype=int))
+
+
 def build_problem(experiment: Experiment) -> Problem:
     """The data, its noise and its units, checked.
 
@@ -103,6 +129,12 @@ def build_problem(experiment: Experiment) -> Problem:
         )
     column, signal, unit_name = driving_signal(experiment)
     cycles: Cycles = find_cycles(signal)
+    halves = cycles.half_cycle_index(signal)
+    if len(cycles) < 4 and column == "pressure_kPa":
+        # One or two sweeps: their pressure plateaus are the units (steps), each its own
+        # bootstrap unit.
+        cycles, unit_name = plateaus(signal), "pressure plateau"
+        halves = cycles.index(signal.size)
     try:
         fit_cycles, held_cycles = split_cycles(cycles)
     except ValueError:
@@ -120,7 +152,7 @@ def build_problem(experiment: Experiment) -> Problem:
         sigma=sigma,
         fit_mask=np.isin(cycle, fit_cycles),
         held_mask=np.isin(cycle, held_cycles),
-        half_cycle=cycles.half_cycle_index(signal),
+        half_cycle=halves,
         cycle=cycle,
         unit_name=unit_name,
         predictor=Predictor(experiment, channels),

@@ -9,7 +9,7 @@ import numpy as np
 
 from pamkit.diagnose import evidence
 from pamkit.diagnose.calibrate import Fit
-from pamkit.diagnose.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Judgement
+from pamkit.diagnose.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Judgement, credited_channels
 from pamkit.diagnose.engine import Diagnosis
 
 UNITS = {"force_N": "N", "pressure_kPa": "kPa", "temperature_C": "°C"}
@@ -141,7 +141,7 @@ def verdict(d: Diagnosis) -> str:
                 f"{looks}{discovered}{bounds}")
     j = d.extended_judgement
     fit, s = j.fit, j.score
-    channel = max(p.channels, key=lambda c: s.gain[c])
+    channel = max(credited_channels(p, fit), key=lambda c: s.gain[c])
     numbers = ", ".join(f"{k} = {v:.3g}" for k, v in fit.params.items() if not isinstance(v, str))
     lo, hi = s.gain_ci95[channel]
     unit = UNITS.get(channel, "")
