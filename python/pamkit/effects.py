@@ -19,7 +19,7 @@ from pamkit._core import Effect, EffectCatalog
 
 
 def catalog() -> EffectCatalog:
-    """A new catalog holding the nine built-in effects."""
+    """A new catalog holding the built-in effects."""
     return EffectCatalog.builtin()
 
 

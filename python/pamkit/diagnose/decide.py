@@ -9,8 +9,9 @@ The rules (DESIGN.md, "The diagnosis report"; issue "Diagnosis decisions"):
    lies inside its physically plausible range and away from the search's bounds, the data
    resolve it (a skew or lag of at least one sample interval, a slack of at least the travel
    between samples), and its effects earn their gain where they act: significant on the channels
-   they change, and no other channel made worse. A measurement effect refitted with the
-   baseline free moves the baseline to fit the channels it cannot touch; that part is not its.
+   they change, and no other channel made worse (a measurement effect refitted with the
+   baseline free moves the baseline to fit the channels it cannot touch; that part is not its);
+   and it explains at least half of what a perfect explanation would (MIN_SHARE).
 3. The best significant candidate by held-out gain is named only if it is credible. If it is
    not, the cause is "unexplained" and the verdict says what the rejected fit looks like —
    never the runner-up, which explains less — unless the baseline already reaches the noise on
@@ -44,6 +45,8 @@ BOOTSTRAP_SAMPLES = 1000
 # another instrument's clock and interpolated, by up to half. Twice the noise leaves a model
 # error of at most sqrt(3) sigma unexplained, and is not reached by any null.
 NONE_WITHIN_NOISE = 2.0
+# A cause must explain at least this share of the gain a perfect explanation would reach.
+MIN_SHARE = 0.5
 # A named cause leaving a channel this many noise sigmas off tries pairs.
 PAIR_TRIGGER = 2.0
 PAIR_PARTNERS = 3
@@ -224,8 +227,27 @@ def uncredited(problem: Problem, fit: Fit, s: Score) -> list[str]:
     return out
 
 
-def judge(problem: Problem, fit: Fit, s: Score) -> Judgement:
-    return Judgement(fit, s, significant(s), findings(fit), unresolved(problem, fit) + uncredited(problem, fit, s))
+def attainable_gain(problem: Problem, baseline: Fit) -> float:
+    """The combined held-out gain of a perfect explanation, one that leaves only the noise:
+    1 - sqrt(channels / sum of (baseline RMSE / noise)^2)."""
+    ratios = noise_ratios(problem, baseline)
+    excess = sum(r * r for r in ratios.values())
+    return float(1.0 - math.sqrt(len(ratios) / excess)) if excess > len(ratios) else 0.0
+
+
+def partial(s: Score, attainable: float) -> list[str]:
+    """A fit that explains less than MIN_SHARE of what a perfect one would is a part of a
+    cause, not the cause: Coulomb friction at alternating rates is fitted a quarter of the way
+    by a viscoelastic bladder, which is not what the data show."""
+    if attainable > 0.0 and s.combined_gain < MIN_SHARE * attainable:
+        return [f"it explains only a part of what is wrong (held-out gain {s.combined_gain:.2f} of the "
+                f"{attainable:.2f} a perfect explanation would reach)"]
+    return []
+
+
+def judge(problem: Problem, fit: Fit, s: Score, attainable: float) -> Judgement:
+    return Judgement(fit, s, significant(s), findings(fit),
+                     unresolved(problem, fit) + uncredited(problem, fit, s) + partial(s, attainable))
 
 
 def structured(problem: Problem, fit: Fit, factor: float) -> list[str]:

@@ -24,6 +24,7 @@ from pamkit.diagnose.decide import (
     Decision,
     Finding,
     Judgement,
+    attainable_gain,
     decide,
     findings,
     judge,
@@ -95,7 +96,8 @@ def _try_pairs(problem: Problem, baseline: Fit, single: Judgement, judged: list[
             if pair.error is not None:
                 continue
             over_single = score(problem, single.fit, pair, np.random.default_rng(seed))
-            candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)))
+            candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)),
+                              attainable_gain(problem, baseline))
             if significant(over_single) and candidate.credible \
                     and candidate.score.combined_gain > best.score.combined_gain:
                 best = candidate
@@ -161,6 +163,7 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
         if not acts:
             skipped[name] = why_not
     todo = candidates(effect_catalog, problem)
+    attainable = attainable_gain(problem, baseline)
     judged: list[Judgement] = []
     phase = clock.perf_counter()
     with _pool(threads) as pool:
@@ -169,7 +172,7 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
             fit = future.result()
             if fit.error is None:
                 # Every candidate's bootstrap draws the same units: scores differ by the fits alone.
-                judged.append(judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed))))
+                judged.append(judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), attainable))
             else:
                 skipped[label] = f"fit failed: {fit.error}"
             report(f"[{done}/{len(futures)}] {label}: "
@@ -187,7 +190,7 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
             for i, future in refits.items():
                 fit = future.result()
                 if fit.error is None:
-                    refit = judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)))
+                    refit = judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), attainable)
                     if refit.score.combined_gain > judged[i].score.combined_gain:
                         judged[i] = refit
         judged.sort(key=lambda j: (-j.score.combined_gain, j.score.delta_bic, j.fit.name))

@@ -77,10 +77,10 @@ ElongationTrajectory bench() { return thesis_protocol(0.05, 2.5e-3, 2, 0.1, 2.0)
 
 }  // namespace
 
-TEST_CASE("catalog: holds the nine effects of DESIGN.md", "[effects][catalog]") {
+TEST_CASE("catalog: holds the nine effects of DESIGN.md and the travel scale", "[effects][catalog]") {
   const std::vector<std::string> expected{"bladder_viscoelasticity", "dead_volume", "fiber_compliance",
                                           "fixture_slack", "heat_transfer", "leak",
-                                          "sensor_lag", "sensor_offset", "time_skew"};
+                                          "sensor_lag", "sensor_offset", "time_skew", "travel_scale"};
   CHECK(EffectCatalog::builtin().names() == expected);
   for (const std::string& name : expected) {
     const EffectPtr e = EffectCatalog::builtin().make(name);
@@ -141,7 +141,7 @@ TEST_CASE("catalog: measurement effects change only the channels they name", "[e
     }
   }
   for (const std::string& name : {"heat_transfer", "dead_volume", "leak", "bladder_viscoelasticity",
-                                  "fiber_compliance", "fixture_slack"}) {
+                                  "fiber_compliance", "fixture_slack", "travel_scale"}) {
     CHECK(effect(name)->channels_changed().empty());  // every channel
     CHECK(effect(name)->stage() != EffectStage::measurement);
   }

@@ -10,14 +10,8 @@ import pytest
 from scipy.signal import savgol_coeffs
 
 import pamkit
-from pamkit.diagnose.discover import (
-    DiscoveryError,
-    discover,
-    discovered_effect,
-    feature_library,
-    load_effect,
-    save_effect,
-)
+from pamkit.diagnose.discover import DiscoveryError, discover, feature_library
+from pamkit.diagnose.discovered import discovered_effect, load_effect, save_effect
 from pamkit.effects import catalog as builtin_catalog
 
 SIGMA_N = 2.0     # white load-cell noise of the stretch record [N]
