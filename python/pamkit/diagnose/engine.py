@@ -4,6 +4,7 @@ significant."""
 
 from __future__ import annotations
 
+import hashlib
 import math
 import os
 import time as clock
@@ -450,9 +451,20 @@ class Diagnosis:
     seconds: dict[str, float] = field(default_factory=dict)
 
 
+def data_seed(problem: Problem) -> int:
+    """A seed drawn from the measured channels' bytes (little-endian float64, whatever the
+    machine): the same data give the same bootstrap draws, on every run and machine."""
+    digest = hashlib.sha256()
+    for c in problem.channels:
+        digest.update(c.encode())
+        digest.update(np.ascontiguousarray(problem.measured[c], dtype="<f8").tobytes())
+    return int.from_bytes(digest.digest()[:8], "little")
+
+
 def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog | None = None, progress=None,
-             threads: int | None = None, seed: int = 0) -> Diagnosis:
-    """Diagnoses one experiment. `progress(message)` is called as work proceeds.
+             threads: int | None = None, seed: int | None = None) -> Diagnosis:
+    """Diagnoses one experiment. `progress(message)` is called as work proceeds. `seed` seeds
+    the bootstrap; by default it comes from the measured data (data_seed).
 
     Raises:
         ExperimentError: for data that cannot be diagnosed, naming file, row and column.
@@ -476,7 +488,7 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
         if not acts:
             skipped[name] = why_not
     todo = candidates(effect_catalog, problem)
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(data_seed(problem) if seed is None else seed)
     fitted: list[tuple[Fit, Score]] = []
     phase = clock.perf_counter()
     with ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
