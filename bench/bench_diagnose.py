@@ -2,7 +2,7 @@
 matrix of hidden effect against named cause, the detection and false-alarm rates, the median
 held-out gain, and the time per diagnosis with its breakdown.
 
-    PYTHONPATH=build/python python3 bench/bench_diagnose.py --datasets 200 [--json OUT]
+    PYTHONPATH=build/python .venv/bin/python bench/bench_diagnose.py --datasets 200 [--json OUT]
 
 Datasets cycle through the catalog and "none" (equal shares), seeds from --first-seed on. The
 time per diagnosis is machine-dependent: the breakdown (baseline calibration, candidate fits)

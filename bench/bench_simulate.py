@@ -20,7 +20,7 @@ It prints ratios only (absolute times go to --json):
                       (RHS + quadrature RHS ~ one per step + one per output sample)
 
 Usage:
-  PYTHONPATH=build/python python3 bench/bench_simulate.py [--exe build/bench/pamkit_bench_simulate]
+  PYTHONPATH=build/python .venv/bin/python bench/bench_simulate.py [--exe build/bench/pamkit_bench_simulate]
       [--rounds 3] [--repeats 3] [--json OUT] [--methods LSODA,Radau,BDF] [--cycles 10]
 """
 

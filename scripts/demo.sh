@@ -6,5 +6,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
 mkdir -p out
-PYTHONPATH="$PWD/build/python" python3 -m pamkit diagnose data/experiments/example/experiment.toml \
+PYTHONPATH="$PWD/build/python" .venv/bin/python -m pamkit diagnose data/experiments/example/experiment.toml \
   --json out/report.json --plot out/report.png

@@ -1,18 +1,21 @@
 #!/usr/bin/env bash
 # Installs everything pamkit needs on a fresh Debian 12 machine: the C++ toolchain and
-# libraries from Debian's packages, the Python build and test tools from PyPI. Safe to run
-# again: it installs only what is missing.
-# Usage: scripts/install-deps.sh        (as root, or with sudo available)
+# libraries from Debian's packages (fixed by the release), and the Python build, runtime, test
+# and lint packages from PyPI into the project's venv, .venv, at the versions pinned in
+# constraints.txt. Safe to run again: it installs only what is missing or changed.
+# Usage: scripts/install-deps.sh            (as root, or with sudo available)
+#        scripts/install-deps.sh --latest   the newest versions PyPI serves, in .venv-latest
+#                                           (the drift check: scripts/test.sh --latest)
 set -euo pipefail
+cd "$(dirname "$0")/.."
+
+latest=false
+if [ "${1:-}" = "--latest" ]; then latest=true; fi
 
 apt_packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config python3 python3-dev python3-venv
   libeigen3-dev libboost-dev libsundials-dev catch2 libserialport-dev
   gcc-avr avr-libc arduino-core-avr simavr libsimavr-dev clang libclang-rt-14-dev arduino-builder  # logger firmware and its tests
-)
-# pybind11 comes from PyPI: Debian 12's 2.10 predates NumPy 2 support (2.12).
-python_packages=(
-  "scikit-build-core>=0.8" "pybind11>=2.12" "numpy>=1.24" "scipy>=1.10" "matplotlib>=3.7" "pytest>=7"
 )
 
 sudo_cmd=()
@@ -29,16 +32,34 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-if ! python3 - "${python_packages[@]}" <<'PY' 2>/dev/null
-import sys
-from importlib.metadata import version
-from packaging.requirements import Requirement
-for spec in sys.argv[1:]:
-    requirement = Requirement(spec)
-    if not requirement.specifier.contains(version(requirement.name), prereleases=True):
-        sys.exit(1)
+# What the project asks of PyPI, read from pyproject.toml (build-system, runtime, test and dev
+# extras) so that the lower bounds live in one place; constraints.txt fixes the versions.
+if $latest; then venv=.venv-latest; else venv=.venv; fi
+if [ ! -x "$venv/bin/python" ]; then
+  echo "creating the Python venv $venv"
+  python3 -m venv "$venv"
+fi
+mapfile -t requirements < <("$venv/bin/python" - <<'PY'
+import tomllib
+with open("pyproject.toml", "rb") as f:
+    project = tomllib.load(f)
+for requirement in (project["build-system"]["requires"] + project["project"]["dependencies"]
+                    + [r for extra in project["project"]["optional-dependencies"].values() for r in extra]):
+    print(requirement)
 PY
-then
-  echo "installing Python packages: ${python_packages[*]}"
-  python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore "${python_packages[@]}"
+)
+pip=("$venv/bin/python" -m pip --disable-pip-version-check --quiet)
+if $latest; then
+  # The newest of everything, every time: that is what the drift check is for.
+  echo "installing the newest Python packages into $venv"
+  "${pip[@]}" install --upgrade --upgrade-strategy eager "${requirements[@]}"
+  "${pip[@]}" freeze
+else
+  # A copy of the constraints the venv was installed with: unchanged means nothing to do.
+  stamp="$venv/pamkit-constraints.txt"
+  if ! cmp -s constraints.txt "$stamp"; then
+    echo "installing the pinned Python packages (constraints.txt) into $venv"
+    "${pip[@]}" install -c constraints.txt "${requirements[@]}"
+    cp constraints.txt "$stamp"
+  fi
 fi
