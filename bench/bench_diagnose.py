@@ -83,7 +83,7 @@ def print_summary(rows: list[dict], names: list[str]) -> None:
     confusion = defaultdict(Counter)
     for row in rows:
         confusion[row["truth"]][row["cause"]] += 1
-    causes = names + (["error"] if any(r["cause"] == "error" for r in rows) else [])
+    causes = names + [extra for extra in ("unexplained", "error") if any(r["cause"] == extra for r in rows)]
     width = max(len(n) for n in names) + 1
     print(f"\nconfusion matrix ({len(rows)} datasets; rows: hidden effect, columns: named cause)\n")
     print(" " * width + " ".join(f"{k[:6]:>6}" for k in causes))
@@ -92,8 +92,9 @@ def print_summary(rows: list[dict], names: list[str]) -> None:
     effect_rows = [r for r in rows if r["truth"] != "none"]
     null_rows = [r for r in rows if r["truth"] == "none"]
     detected = sum(r["cause"] == r["truth"] for r in effect_rows)
-    wrong = sum(r["cause"] not in ("none", r["truth"]) for r in effect_rows)
-    false_alarms = sum(r["cause"] != "none" for r in null_rows)
+    wrong = sum(r["cause"] not in ("none", "unexplained", r["truth"]) for r in effect_rows)
+    false_alarms = sum(r["cause"] not in ("none", "unexplained") for r in null_rows)
+    unexplained_nulls = sum(r["cause"] == "unexplained" for r in null_rows)
     gains = [r["gain"] for r in effect_rows if r["cause"] == r["truth"]]
     seconds = np.array([r["seconds"] for r in rows])
     ratio = np.array([r["seconds"] / r["one_simulation_s"] for r in rows])
@@ -101,7 +102,8 @@ def print_summary(rows: list[dict], names: list[str]) -> None:
     candidates = np.array([r["breakdown"]["candidates"] for r in rows])
     print(f"\ndetection rate        {detected}/{len(effect_rows)} = {detected / max(len(effect_rows), 1):.3f}"
           f"  (wrong cause named: {wrong})")
-    print(f"false-alarm rate      {false_alarms}/{len(null_rows)} = {false_alarms / max(len(null_rows), 1):.3f}")
+    print(f"false-alarm rate      {false_alarms}/{len(null_rows)} = {false_alarms / max(len(null_rows), 1):.3f}"
+          f"  (nulls called unexplained: {unexplained_nulls})")
     print(f"median held-out gain  {np.median(gains) if gains else float('nan'):.3f} (correctly named causes, best channel)")
     print(f"time per diagnosis    median {np.median(seconds):.2f} s, 90th percentile {np.percentile(seconds, 90):.2f} s, "
           f"max {seconds.max():.2f} s")

@@ -203,7 +203,7 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
 
   py::class_<EffectCatalog>(m, "EffectCatalog", "Effect names mapped to factories.")
       .def(py::init<>())
-      .def_static("builtin", &EffectCatalog::builtin, "the built-in catalog (DESIGN.md's nine effects and travel_scale)")
+      .def_static("builtin", &EffectCatalog::builtin, "the nine effects of the catalog")
       .def("add", [](EffectCatalog& catalog, const std::string& name, const py::function& factory) {
              // A Python subclass's overrides live in its Python object: each effect made here
              // keeps that object alive as long as its C++ pointer lives, or the overrides

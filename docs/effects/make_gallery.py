@@ -267,23 +267,8 @@ def sensor_offset() -> Path:
     return save(fig, "sensor_offset")
 
 
-def travel_scale() -> Path:
-    spec = "travel_scale:relative_error=0.03"
-    p, e = 207.0, stretch(207.0, 0.9)
-    path = corners(e, 10e-3, 2)
-    base, run = simulate(p, path), simulate(p, path, [spec])
-    fig, (loop, pressure) = figure(f"{spec} (PAM 2, 207 kPa, 90 %, 10 mm/s): every stretch 3 % shorter than recorded")
-    loop.plot(base["elongation_m"] * 1e3, base["force_N"], **BASE, label="baseline")
-    loop.plot(run["elongation_m"] * 1e3, run["force_N"], color=COLORS[0], label="travel read 3 % long")
-    label(loop, "recorded elongation [mm]", "force [N]")
-    pressure.plot(base["elongation_m"] * 1e3, base["pressure_kPa"], **BASE, label="baseline")
-    pressure.plot(run["elongation_m"] * 1e3, run["pressure_kPa"], color=COLORS[0], label="travel read 3 % long")
-    label(pressure, "recorded elongation [mm]", "gauge pressure [kPa]")
-    return save(fig, "travel_scale")
-
-
 GALLERY = {f.__name__: f for f in (heat_transfer, dead_volume, leak, bladder_viscoelasticity, fiber_compliance,
-                                    fixture_slack, sensor_lag, time_skew, sensor_offset, travel_scale)}
+                                    fixture_slack, sensor_lag, time_skew, sensor_offset)}
 
 
 def main() -> int:

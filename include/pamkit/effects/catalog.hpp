@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The effect catalog: the nine named model extensions of DESIGN.md and the crosshead's travel scale, each with physical
+/// The effect catalog of DESIGN.md: nine named model extensions, each with physical
 /// parameters, their realistic ranges, and what gives them away in the data.
 
 #include <algorithm>
@@ -331,37 +331,6 @@ class FixtureSlackEffect : public detail::ParametricEffect<FixtureSlackParams> {
   }
 };
 
-/// travel_scale: the crosshead's recorded travel is off by a constant factor from the muscle's.
-struct TravelScaleParams {
-  static constexpr const char* kName = "travel_scale";
-  static constexpr const char* kDescription =
-      "the crosshead's recorded travel off by a constant factor from the muscle's own (the encoder's calibration, "
-      "or the frame and grips stretching under load). Gives it away: force and pressure swing as if every stretch "
-      "were scaled by that factor, at every rate and in holds, with the loops' shape unchanged.";
-  static constexpr const char* kSignature = "force and pressure swing as if every stretch were scaled";
-  static constexpr EffectStage kStage = EffectStage::motion;
-  static constexpr bool kHasChannel = false;
-  double relative_error = 0.02;  ///< recorded travel / the muscle's travel - 1 [1]
-  template <class V>
-  static void for_each_field(V&& visit) {
-    visit("relative_error", &TravelScaleParams::relative_error,
-          FieldInfo{"1", -0.5, 0.5, "recorded travel / the muscle's travel - 1"},
-          EffectFieldInfo{{0.01, 0.03}, true,
-                          {-0.05, 0.05,
-                           "a tensile machine's displacement is certified to 0.5-1 % of reading (ISO 9513 class "
-                           "1); the frame and grips stretching under a few hundred newtons add 1-3 %"},
-                          {FitScale::linear, -0.2, 0.2, 0.0}});
-  }
-};
-class TravelScaleEffect : public detail::ParametricEffect<TravelScaleParams> {
- public:
-  std::vector<double> apply_to_elongation(const std::vector<double>&, const std::vector<double>& crosshead) const override {
-    std::vector<double> muscle(crosshead);
-    for (double& e : muscle) e /= 1.0 + params_.relative_error;
-    return muscle;
-  }
-};
-
 /// sensor_lag: a first-order lag on one measured channel.
 struct SensorLagParams {
   static constexpr const char* kName = "sensor_lag";
@@ -491,7 +460,6 @@ inline EffectCatalog EffectCatalog::builtin() {
   catalog.add(BladderViscoelasticityParams::kName, [] { return std::make_shared<BladderViscoelasticityEffect>(); });
   catalog.add(FiberComplianceParams::kName, [] { return std::make_shared<FiberComplianceEffect>(); });
   catalog.add(FixtureSlackParams::kName, [] { return std::make_shared<FixtureSlackEffect>(); });
-  catalog.add(TravelScaleParams::kName, [] { return std::make_shared<TravelScaleEffect>(); });
   catalog.add(SensorLagParams::kName, [] { return std::make_shared<SensorLagEffect>(); });
   catalog.add(TimeSkewParams::kName, [] { return std::make_shared<TimeSkewEffect>(); });
   catalog.add(SensorOffsetParams::kName, [] { return std::make_shared<SensorOffsetEffect>(); });

@@ -173,7 +173,7 @@ class EffectCatalog {
  public:
   using Factory = std::function<EffectPtr()>;
 
-  /// The built-in catalog: DESIGN.md's nine effects and the crosshead's travel scale.
+  /// The nine effects of DESIGN.md's catalog.
   static EffectCatalog builtin();
 
   /// Adds or replaces an effect. \throws InvalidParameter for an empty name.

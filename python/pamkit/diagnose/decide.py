@@ -10,7 +10,9 @@ The rules (DESIGN.md, "The diagnosis report"; issue "Diagnosis decisions"):
    resolve it (a skew or lag of at least one sample interval, a slack of at least the travel
    between samples), and its effects earn their gain where they act: significant on the channels
    they change, and no other channel made worse (a measurement effect refitted with the
-   baseline free moves the baseline to fit the channels it cannot touch; that part is not its);
+   baseline free moves the baseline to fit the channels it cannot touch; that part is not its),
+   and the channels it cannot change end within the noise (structure left there is another
+   cause, which may be what its own channel shows: a travel scale reads as a pressure gain);
    and it explains at least half of what a perfect explanation would (MIN_SHARE).
 3. The best significant candidate by held-out gain is named only if it is credible. If it is
    not, the cause is "unexplained" and the verdict says what the rejected fit looks like —
@@ -45,8 +47,11 @@ BOOTSTRAP_SAMPLES = 1000
 # another instrument's clock and interpolated, by up to half. Twice the noise leaves a model
 # error of at most sqrt(3) sigma unexplained, and is not reached by any null.
 NONE_WITHIN_NOISE = 2.0
-# A cause must explain at least this share of the gain a perfect explanation would reach.
+# A cause must explain at least this share of the gain a perfect explanation would reach ...
 MIN_SHARE = 0.5
+# ... one that leaves each channel where the calibrated baseline leaves pamkit's own nulls: up to
+# 1.5x the noise estimate (seeds 1000-1011; see NONE_WITHIN_NOISE).
+NULL_NOISE_RATIO = 1.5
 # A named cause leaving a channel this many noise sigmas off tries pairs.
 PAIR_TRIGGER = 2.0
 PAIR_PARTNERS = 3
@@ -224,15 +229,23 @@ def uncredited(problem: Problem, fit: Fit, s: Score) -> list[str]:
                    "the rest comes from channels it cannot change")
     out += [f"it makes {c} worse (held-out gain {s.gain[c]:.2f})" for c in problem.channels
             if c not in credited and s.gain[c] < -MIN_GAIN]
+    # An instrument's error explains its own channel only: structure left in the others is
+    # something else, which may also be what the credited channel shows (a crosshead's travel
+    # scale reads as a pressure gain error).
+    out += [f"it leaves {c}, which it cannot change, at {s.rmse[c] / problem.sigma[c]:.1f}x its noise"
+            for c in problem.channels
+            if c not in credited and s.rmse[c] > NONE_WITHIN_NOISE * problem.sigma[c]]
     return out
 
 
 def attainable_gain(problem: Problem, baseline: Fit) -> float:
-    """The combined held-out gain of a perfect explanation, one that leaves only the noise:
-    1 - sqrt(channels / sum of (baseline RMSE / noise)^2)."""
-    ratios = noise_ratios(problem, baseline)
-    excess = sum(r * r for r in ratios.values())
-    return float(1.0 - math.sqrt(len(ratios) / excess)) if excess > len(ratios) else 0.0
+    """The combined held-out gain of a perfect explanation, one that leaves each channel at the
+    noise a correct model reaches (NULL_NOISE_RATIO times the estimate, or where the baseline
+    already is): 1 - sqrt(sum of min(r, NULL_NOISE_RATIO)^2 / sum of r^2), r = RMSE / noise."""
+    ratios = list(noise_ratios(problem, baseline).values())
+    total = sum(r * r for r in ratios)
+    floor = sum(min(r, NULL_NOISE_RATIO) ** 2 for r in ratios)
+    return float(1.0 - math.sqrt(floor / total)) if total > 0 else 0.0
 
 
 def partial(s: Score, attainable: float) -> list[str]:

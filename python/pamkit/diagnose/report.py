@@ -120,8 +120,14 @@ def verdict(d: Diagnosis) -> str:
     bounds = f"; the base model strains to fit: {'; '.join(baseline_findings)}" if baseline_findings else ""
     if decision.cause == "none":
         best = d.candidates[0] if d.candidates else None
-        tail = (f"; best candidate {best.fit.name} gains {best.score.combined_gain:.3f} (a cause needs {MIN_GAIN:.2f} "
-                "with its 95 % CI above 0 and the BIC down by 10)") if best else ""
+        if decision.rejected is not None:
+            j = decision.rejected
+            tail = f"; best candidate {j.fit.name} gains {j.score.combined_gain:.3f} but {'; '.join(j.reasons())}"
+        elif best is not None:
+            tail = (f"; best candidate {best.fit.name} gains {best.score.combined_gain:.3f} (a cause needs "
+                    f"{MIN_GAIN:.2f} with its 95 % CI above 0 and the BIC down by 10)")
+        else:
+            tail = ""
         return (f"no cause named: the calibrated model explains the data to within its noise (held-out RMSE "
                 f"{_sizes(d, d.baseline)}){tail}{bounds}")
     if decision.cause == "unexplained":
