@@ -34,14 +34,18 @@ def parse_effects(specs: Iterable[str], effect_catalog: EffectCatalog | None = N
 
 
 def describe(effect_catalog: EffectCatalog | None = None) -> str:
-    """A table of every effect: name, parameters (unit, realistic range), what gives it away."""
+    """A table of every effect: name, stage, parameters (unit, realistic and plausible ranges,
+    the plausible range's source), what gives it away."""
     effect_catalog = effect_catalog if effect_catalog is not None else catalog()
     lines = []
     for name in effect_catalog.names():
         effect = effect_catalog.make(name)
         options = ", ".join(f"{key}={value}" for key, value in effect.options().items())
         parameters = ", ".join(
-            f"{p.name}={p.value:g} {p.unit} (realistic {p.realistic_min:g}-{p.realistic_max:g})" for p in effect.parameters()
+            f"{p.name}={p.value:g} {p.unit} (realistic {p.realistic_min:g}-{p.realistic_max:g}, "
+            f"plausible {p.plausible_min:g}-{p.plausible_max:g})" for p in effect.parameters()
         )
-        lines.append(f"{name}: {', '.join(filter(None, [options, parameters]))}\n    {effect.description()}")
+        sources = "".join(f"\n    plausible {p.name}: {p.plausible_source}" for p in effect.parameters())
+        lines.append(f"{name} [{effect.stage().name}]: {', '.join(filter(None, [options, parameters]))}\n"
+                     f"    {effect.description()}{sources}")
     return "\n".join(lines)
