@@ -15,7 +15,7 @@ files only, as a user would. Per family, the verdicts are counted as
   (the factor of issue #17's rule 3; ``baseline.rmse`` against ``evidence.noise``);
 - error: a non-zero exit or a timeout, with the last line of stderr.
 
-The median decision margin is printed when the report has a ``margin``, and the median held-out
+The median decision margin (the smallest of the report's ``decision.margins``) is printed, and the median held-out
 RMSE of the calibrated baseline over the noise for force (F/σ) and pressure (p/σ). Datasets are generated
 into a temporary directory and deleted.
 """
@@ -37,7 +37,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 from independent.families import FAMILIES, HONEST
 
-STRUCTURE_FACTOR = 1.5  # issue #17, rule 3: "within a stated factor of its estimated noise (say 1.5x)"
 HONEST_CAUSES = ("none", "unexplained")
 
 
@@ -59,17 +58,19 @@ def diagnose(toml: Path, timeout_s: float, threads: int) -> dict:
 
 
 def margin_of(report: dict):
-    """The decision's margin, where the report gives one (issue #17, rule 2)."""
-    for holder in (report, report.get("decision", {}) if isinstance(report.get("decision"), dict) else {}):
-        if isinstance(holder.get("margin"), (int, float)):
-            return float(holder["margin"])
-    return None
+    """The decision's margin (issue #17, rule 2): the smallest of the report's
+    `decision.margins`, each a distance from its threshold (> 0: the decision holds)."""
+    margins = report.get("decision", {}).get("margins", {}) if isinstance(report.get("decision"), dict) else {}
+    values = [float(v) for v in margins.values() if isinstance(v, (int, float))]
+    return min(values) if values else None
 
 
 def structure_left(report: dict) -> dict:
-    """Channels whose held-out baseline RMSE exceeds STRUCTURE_FACTOR x their noise: ratio."""
+    """Channels whose held-out baseline RMSE exceeds the report's stated factor of their noise
+    (issue #17, rule 3; `evidence.none_within_noise`): ratio."""
     rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
-    return {c: rmse[c] / noise[c] for c in rmse if c in noise and noise[c] > 0 and rmse[c] > STRUCTURE_FACTOR * noise[c]}
+    factor = report["evidence"]["none_within_noise"]
+    return {c: rmse[c] / noise[c] for c in rmse if c in noise and noise[c] > 0 and rmse[c] > factor * noise[c]}
 
 
 def classify(expected: str, outcome: dict) -> dict:
