@@ -104,7 +104,8 @@ def print_summary(rows: list[dict], names: list[str]) -> None:
           f"  (wrong cause named: {wrong})")
     print(f"false-alarm rate      {false_alarms}/{len(null_rows)} = {false_alarms / max(len(null_rows), 1):.3f}"
           f"  (nulls called unexplained: {unexplained_nulls})")
-    print(f"median held-out gain  {np.median(gains) if gains else float('nan'):.3f} (correctly named causes, best channel)")
+    median_gain = np.median(gains) if gains else float("nan")
+    print(f"median held-out gain  {median_gain:.3f} (correctly named causes, best channel)")
     print(f"time per diagnosis    median {np.median(seconds):.2f} s, 90th percentile {np.percentile(seconds, 90):.2f} s, "
           f"max {seconds.max():.2f} s")
     print(f"                      = median {np.median(ratio):.0f} x one simulation of the same dataset")

@@ -62,7 +62,8 @@ def main() -> None:
     if not variants or not harness.exists():
         raise SystemExit("build the targets bench_logger_firmware and pamkit_simavr_harness first")
     print(f"sketch in simavr (ATmega2560, 16 MHz), {arguments.seconds:g} simulated s per variant:")
-    print(f"{'baud':>8} {'rate_hz':>8} {'oversample':>10} {'frames':>7} {'expected':>8} {'gaps':>5} {'dropped':>8}  wall_s")
+    print(f"{'baud':>8} {'rate_hz':>8} {'oversample':>10} {'frames':>7} {'expected':>8} {'gaps':>5} "
+          f"{'dropped':>8}  wall_s")
     best: dict[tuple[int, int], int] = {}
     for elf in variants:
         match = re.fullmatch(r"bench_(\d+)_(\d+)hz(?:_(\d+)x)?", elf.stem)
@@ -76,7 +77,8 @@ def main() -> None:
         if sustained:
             best[(baud, oversample)] = max(best.get((baud, oversample), 0), rate)
     for (baud, oversample), rate in sorted(best.items()):
-        print(f"highest rate sustained without drops at {baud} baud, {oversample}x oversampling: {rate} Hz (of those tried)")
+        print(f"highest rate sustained without drops at {baud} baud, {oversample}x oversampling: "
+              f"{rate} Hz (of those tried)")
 
 
 if __name__ == "__main__":

@@ -153,7 +153,7 @@ def measure(case, exe, rounds, repeats, methods):
     pamkit_repeats = max(5 * repeats, 10)  # pamkit runs are short: more of them for a stable best
     for _ in range(rounds):
         for tol in (DEFAULT, TIGHT):
-            py[tol] = min(py[tol], best_time(lambda: case.pamkit_run(tol), pamkit_repeats))
+            py[tol] = min(py[tol], best_time(lambda tol=tol: case.pamkit_run(tol), pamkit_repeats))
             if exe:
                 c = run_exe(exe, case, tol, pamkit_repeats)
                 if cxx[tol] is not None:  # keep the best of each, over the rounds
@@ -162,7 +162,7 @@ def measure(case, exe, rounds, repeats, methods):
                 cxx[tol] = c
             for m in methods:
                 repeats_m = repeats if m == "LSODA" else 1
-                sp[(m, tol)] = min(sp[(m, tol)], best_time(lambda: case.scipy_run(tol, m), repeats_m))
+                sp[(m, tol)] = min(sp[(m, tol)], best_time(lambda tol=tol, m=m: case.scipy_run(tol, m), repeats_m))
     for m in methods:
         for tol in (DEFAULT, TIGHT):
             nfev[f"{m}@{tol:g}"] = case.scipy_run(tol, m)["nfev"]

@@ -276,7 +276,7 @@ def main() -> int:
     if missing:
         print(f"no gallery plot for: {', '.join(missing)}", file=sys.stderr)
         return 1
-    for name, make in GALLERY.items():
+    for make in GALLERY.values():
         path = make()
         print(f"wrote {path} ({path.stat().st_size / 1e3:.0f} kB)")
     return 0

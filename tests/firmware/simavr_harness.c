@@ -83,6 +83,17 @@ typedef struct harness {
   unsigned long seq_gaps, seq_missing, device_dropped;
 } harness;
 
+/* elf_read_firmware allocates the firmware's sections and symbols for the caller, and simavr 1.6
+ * has no function that frees them; avr_load_firmware copied the code into the AVR's own memory. */
+static void free_firmware(elf_firmware_t* fw) {
+  for (uint32_t i = 0; i < fw->symbolcount; ++i) free(fw->symbol[i]);
+  free(fw->symbol);
+  free(fw->flash);
+  free(fw->eeprom);
+  free(fw->fuse);
+  free(fw->lockbits);
+}
+
 static void die(const char* what) {
   fprintf(stderr, "simavr_harness: %s: %s\n", what, strerror(errno));
   exit(2);
@@ -454,5 +465,6 @@ int main(int argc, char** argv) {
   /* wait for the host to let go of the port, so that it can read everything first */
   for (int i = 0; i < 3000 && port_open(&h); ++i) wall_sleep(0.01);
   unplug(&h);
+  free_firmware(&fw);
   return 0;
 }
