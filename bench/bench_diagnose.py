@@ -55,23 +55,49 @@ def main() -> int:
                 d = diagnose(experiment, threads=arguments.threads)
             except Exception as error:  # a crash is a result of the sweep too: count it, go on
                 print(f"ERROR seed {seed}: hidden {truth['name']}: {error!r}", file=sys.stderr, flush=True)
-                rows.append({"seed": seed, "truth": truth["name"], "options": truth.get("options", {}),
-                             "parameters": truth.get("parameters", {}), "cause": "error", "gain": 0.0,
-                             "seconds": time.perf_counter() - started, "breakdown": {"baseline": 0.0, "candidates": 0.0},
-                             "one_simulation_s": one_simulation, "samples": int(experiment.time_s.size),
-                             "largest_change": truth.get("largest_change", {}), "verdict": repr(error)})
+                rows.append(
+                    {
+                        "seed": seed,
+                        "truth": truth["name"],
+                        "options": truth.get("options", {}),
+                        "parameters": truth.get("parameters", {}),
+                        "cause": "error",
+                        "gain": 0.0,
+                        "seconds": time.perf_counter() - started,
+                        "breakdown": {"baseline": 0.0, "candidates": 0.0},
+                        "one_simulation_s": one_simulation,
+                        "samples": int(experiment.time_s.size),
+                        "largest_change": truth.get("largest_change", {}),
+                        "verdict": repr(error),
+                    }
+                )
                 continue
             seconds = time.perf_counter() - started
             report = to_json(d)
             best_gain = max(report["gain"].values()) if report["gain"] else 0.0
-            rows.append({"seed": seed, "truth": truth["name"], "options": truth.get("options", {}),
-                         "parameters": truth.get("parameters", {}), "cause": report["cause"], "gain": best_gain,
-                         "seconds": seconds, "breakdown": d.seconds, "one_simulation_s": one_simulation,
-                         "samples": int(experiment.time_s.size), "largest_change": truth.get("largest_change", {}),
-                         "verdict": report["verdict"]})
+            rows.append(
+                {
+                    "seed": seed,
+                    "truth": truth["name"],
+                    "options": truth.get("options", {}),
+                    "parameters": truth.get("parameters", {}),
+                    "cause": report["cause"],
+                    "gain": best_gain,
+                    "seconds": seconds,
+                    "breakdown": d.seconds,
+                    "one_simulation_s": one_simulation,
+                    "samples": int(experiment.time_s.size),
+                    "largest_change": truth.get("largest_change", {}),
+                    "verdict": report["verdict"],
+                }
+            )
             mark = "ok " if rows[-1]["cause"] == truth["name"] else "MISS"
-            print(f"{mark} {i + 1:4d}/{arguments.datasets} seed {seed}: hidden {truth['name']:<24} named "
-                  f"{report['cause']:<24} {seconds:5.2f} s", file=sys.stderr, flush=True)
+            print(
+                f"{mark} {i + 1:4d}/{arguments.datasets} seed {seed}: hidden {truth['name']:<24} named "
+                f"{report['cause']:<24} {seconds:5.2f} s",
+                file=sys.stderr,
+                flush=True,
+            )
 
     print_summary(rows, names)
     if arguments.json:
@@ -100,25 +126,35 @@ def print_summary(rows: list[dict], names: list[str]) -> None:
     ratio = np.array([r["seconds"] / r["one_simulation_s"] for r in rows])
     baseline = np.array([r["breakdown"]["baseline"] for r in rows])
     candidates = np.array([r["breakdown"]["candidates"] for r in rows])
-    print(f"\ndetection rate        {detected}/{len(effect_rows)} = {detected / max(len(effect_rows), 1):.3f}"
-          f"  (wrong cause named: {wrong})")
-    print(f"false-alarm rate      {false_alarms}/{len(null_rows)} = {false_alarms / max(len(null_rows), 1):.3f}"
-          f"  (nulls called unexplained: {unexplained_nulls})")
+    print(
+        f"\ndetection rate        {detected}/{len(effect_rows)} = {detected / max(len(effect_rows), 1):.3f}"
+        f"  (wrong cause named: {wrong})"
+    )
+    print(
+        f"false-alarm rate      {false_alarms}/{len(null_rows)} = {false_alarms / max(len(null_rows), 1):.3f}"
+        f"  (nulls called unexplained: {unexplained_nulls})"
+    )
     median_gain = np.median(gains) if gains else float("nan")
     print(f"median held-out gain  {median_gain:.3f} (correctly named causes, best channel)")
-    print(f"time per diagnosis    median {np.median(seconds):.2f} s, 90th percentile {np.percentile(seconds, 90):.2f} s, "
-          f"max {seconds.max():.2f} s")
+    print(
+        f"time per diagnosis    median {np.median(seconds):.2f} s, 90th percentile {np.percentile(seconds, 90):.2f} s, "
+        f"max {seconds.max():.2f} s"
+    )
     print(f"                      = median {np.median(ratio):.0f} x one simulation of the same dataset")
-    print(f"breakdown (median)    baseline calibration {np.median(baseline):.2f} s, candidate fits "
-          f"{np.median(candidates):.2f} s")
+    print(
+        f"breakdown (median)    baseline calibration {np.median(baseline):.2f} s, candidate fits "
+        f"{np.median(candidates):.2f} s"
+    )
     misses = [r for r in rows if r["cause"] != r["truth"]]
     if misses:
         print("\nmisses:")
         for r in misses:
             change = {k: round(v, 2) for k, v in r.get("largest_change", {}).items()}
-            print(f"  seed {r['seed']}: hidden {r['truth']} {r['options']} "
-                  f"{ {k: round(v, 4) for k, v in r['parameters'].items()} } (largest change {change}) -> "
-                  f"{r['cause']}: {r['verdict'][:140]}")
+            print(
+                f"  seed {r['seed']}: hidden {r['truth']} {r['options']} "
+                f"{ {k: round(v, 4) for k, v in r['parameters'].items()} } (largest change {change}) -> "
+                f"{r['cause']}: {r['verdict'][:140]}"
+            )
 
 
 if __name__ == "__main__":

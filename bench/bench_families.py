@@ -45,8 +45,24 @@ def diagnose(toml: Path, timeout_s: float, threads: int) -> dict:
     report_path = toml.with_name("report.json")
     started = time.perf_counter()
     try:
-        done = subprocess.run([sys.executable, "-m", "pamkit", "diagnose", str(toml), "--json", str(report_path), "--quiet",
-                               "--threads", str(threads)], check=False, capture_output=True, text=True, timeout=timeout_s)
+        done = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "pamkit",
+                "diagnose",
+                str(toml),
+                "--json",
+                str(report_path),
+                "--quiet",
+                "--threads",
+                str(threads),
+            ],
+            check=False,
+            capture_output=True,
+            text=True,
+            timeout=timeout_s,
+        )
     except subprocess.TimeoutExpired:
         return {"error": f"timeout after {timeout_s:.0f} s", "seconds": time.perf_counter() - started}
     seconds = time.perf_counter() - started
@@ -79,9 +95,13 @@ def classify(expected: str, outcome: dict) -> dict:
     report = outcome["report"]
     cause = report["cause"]
     rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
-    row = {"cause": cause, "effects": report.get("extended", {}).get("effects", []), "margin": margin_of(report),
-           "verdict": report.get("verdict", ""),
-           "baseline_rmse_over_noise": {c: rmse[c] / noise[c] for c in rmse if noise.get(c, 0) > 0}}
+    row = {
+        "cause": cause,
+        "effects": report.get("extended", {}).get("effects", []),
+        "margin": margin_of(report),
+        "verdict": report.get("verdict", ""),
+        "baseline_rmse_over_noise": {c: rmse[c] / noise[c] for c in rmse if noise.get(c, 0) > 0},
+    }
     if cause in HONEST_CAUSES:
         row["outcome"] = "honest"
         if cause == "none":
@@ -103,15 +123,20 @@ def summarise(rows: list[dict]) -> dict:
         "honest": counts["honest"],
         "wrong": counts["wrong"],
         "wrong_names": dict(Counter(r["cause"] for r in rows if r["outcome"] == "wrong")),
-        "truth_only_as_partner": sum(1 for r in rows if r["outcome"] == "wrong" and r["expected"] in r.get("effects", [])),
+        "truth_only_as_partner": sum(
+            1 for r in rows if r["outcome"] == "wrong" and r["expected"] in r.get("effects", [])
+        ),
         "none_with_structure": sum(1 for r in rows if r.get("cause") == "none" and r.get("structure")),
         "errors": counts["error"],
         "error_messages": sorted({r["message"] for r in rows if r["outcome"] == "error"}),
         "median_margin": statistics.median(margins) if margins else None,
         "median_seconds": statistics.median(r["seconds"] for r in rows),
         "median_baseline_rmse_over_noise": {
-            c: statistics.median(r["baseline_rmse_over_noise"][c] for r in rows if c in r.get("baseline_rmse_over_noise", {}))
-            for c in sorted({c for r in rows for c in r.get("baseline_rmse_over_noise", {})})},
+            c: statistics.median(
+                r["baseline_rmse_over_noise"][c] for r in rows if c in r.get("baseline_rmse_over_noise", {})
+            )
+            for c in sorted({c for r in rows for c in r.get("baseline_rmse_over_noise", {})})
+        },
     }
 
 
@@ -128,7 +153,9 @@ def main() -> int:
     names = arguments.families.split(",") if arguments.families else list(FAMILIES)
     unknown = [n for n in names if n not in FAMILIES]
     if unknown:
-        parser.error(f"unknown famil{'y' if len(unknown) == 1 else 'ies'} {', '.join(unknown)}; known: {', '.join(FAMILIES)}")
+        parser.error(
+            f"unknown famil{'y' if len(unknown) == 1 else 'ies'} {', '.join(unknown)}; known: {', '.join(FAMILIES)}"
+        )
 
     with tempfile.TemporaryDirectory() as scratch:
         work = []
@@ -140,18 +167,30 @@ def main() -> int:
         def run(item):
             name, seed, dataset = item
             outcome = diagnose(dataset.experiment, arguments.timeout, arguments.threads)
-            row = {"family": name, "seed": seed, "expected": dataset.expected, "truth": dataset.truth,
-                   "seconds": outcome["seconds"], **classify(dataset.expected, outcome)}
+            row = {
+                "family": name,
+                "seed": seed,
+                "expected": dataset.expected,
+                "truth": dataset.truth,
+                "seconds": outcome["seconds"],
+                **classify(dataset.expected, outcome),
+            }
             extra = f" ({row['message']})" if row["outcome"] == "error" else ""
-            print(f"{name:28s} seed {seed:3d}: {row['outcome']:6s} cause {row['cause']}{extra} [{row['seconds']:.1f} s]",
-                  file=sys.stderr, flush=True)
+            print(
+                f"{name:28s} seed {seed:3d}: {row['outcome']:6s} cause {row['cause']}{extra} [{row['seconds']:.1f} s]",
+                file=sys.stderr,
+                flush=True,
+            )
             return row
 
         with ThreadPoolExecutor(max_workers=max(1, arguments.jobs)) as pool:
             rows = list(pool.map(run, work))
 
     table = {name: summarise([r for r in rows if r["family"] == name]) for name in names}
-    header = f"{'family':28s} {'expected':14s} {'n':>2s} {'right':>5s} {'honest':>6s} {'wrong':>5s} {'none+str':>8s} {'err':>3s} {'margin':>6s} {'s':>5s} {'F/σ':>5s} {'p/σ':>5s}  wrong names / errors"
+    header = (
+        f"{'family':28s} {'expected':14s} {'n':>2s} {'right':>5s} {'honest':>6s} {'wrong':>5s} {'none+str':>8s} "
+        f"{'err':>3s} {'margin':>6s} {'s':>5s} {'F/σ':>5s} {'p/σ':>5s}  wrong names / errors"
+    )
     print(header)
     print("-" * len(header))
     for name, s in table.items():
@@ -161,15 +200,22 @@ def main() -> int:
         force, pressure = (f"{ratio[c]:5.1f}" if c in ratio else "    -" for c in ("force_N", "pressure_kPa"))
         if s["error_messages"]:
             notes += ("; " if notes else "") + " | ".join(m[:120] for m in s["error_messages"])
-        print(f"{name:28s} {s['expected']:14s} {s['datasets']:2d} {s['right']:5d} {s['honest']:6d} {s['wrong']:5d} "
-              f"{s['none_with_structure']:8d} {s['errors']:3d} {margin:>6s} {s['median_seconds']:5.1f} {force} {pressure}  {notes}")
+        print(
+            f"{name:28s} {s['expected']:14s} {s['datasets']:2d} {s['right']:5d} {s['honest']:6d} {s['wrong']:5d} "
+            f"{s['none_with_structure']:8d} {s['errors']:3d} {margin:>6s} "
+            f"{s['median_seconds']:5.1f} {force} {pressure}  {notes}"
+        )
     total = Counter()
     for s in table.values():
         total.update({k: s[k] for k in ("datasets", "right", "honest", "wrong", "none_with_structure", "errors")})
-    print(f"{'all':28s} {'':14s} {total['datasets']:2d} {total['right']:5d} {total['honest']:6d} {total['wrong']:5d} "
-          f"{total['none_with_structure']:8d} {total['errors']:3d}")
+    print(
+        f"{'all':28s} {'':14s} {total['datasets']:2d} {total['right']:5d} {total['honest']:6d} {total['wrong']:5d} "
+        f"{total['none_with_structure']:8d} {total['errors']:3d}"
+    )
     if arguments.json:
-        Path(arguments.json).write_text(json.dumps({"table": table, "total": dict(total), "rows": rows}, indent=2, default=float) + "\n")
+        Path(arguments.json).write_text(
+            json.dumps({"table": table, "total": dict(total), "rows": rows}, indent=2, default=float) + "\n"
+        )
     return 0
 
 

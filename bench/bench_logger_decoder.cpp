@@ -44,9 +44,9 @@ double run(const std::vector<std::uint8_t>& stream, std::uint64_t& frames) {
   const auto start = clock::now();
   // 4096-byte reads, as the Reader does
   for (std::size_t at = 0; at < stream.size(); at += 4096) {
-    decoder.feed(stream.data() + at, std::min<std::size_t>(4096, stream.size() - at),
-                 [&](const pamkit::logger::Sample& s) { checksum += s.frame.counts[0]; },
-                 [](const pamkit::logger::Banner&) {});
+    decoder.feed(
+        stream.data() + at, std::min<std::size_t>(4096, stream.size() - at),
+        [&](const pamkit::logger::Sample& s) { checksum += s.frame.counts[0]; }, [](const pamkit::logger::Banner&) {});
   }
   const double seconds = std::chrono::duration<double>(clock::now() - start).count();
   frames = decoder.stats().frames;

@@ -20,22 +20,22 @@ namespace {
 
 /// The test to time; defaults are the 10-cycle test of table C.2 (207 kPa, 90 %).
 struct Options {
-  double length_m = 0.167;             ///< InitialState.length_m [m]
-  double gauge_pressure_Pa = 236.63e3; ///< InitialState.gauge_pressure_Pa [Pa]
-  double max_elongation_m = 0.0523;    ///< thesis_protocol max elongation [m]
-  double speed_m_per_s = 2.5e-3;       ///< thesis_protocol speed [m/s]
-  int cycles = 10;                     ///< thesis_protocol cycles [1]
-  double sample_period_s = 0.1;        ///< thesis_protocol sample period [s]
+  double length_m = 0.167;                ///< InitialState.length_m [m]
+  double gauge_pressure_Pa = 236.63e3;    ///< InitialState.gauge_pressure_Pa [Pa]
+  double max_elongation_m = 0.0523;       ///< thesis_protocol max elongation [m]
+  double speed_m_per_s = 2.5e-3;          ///< thesis_protocol speed [m/s]
+  int cycles = 10;                        ///< thesis_protocol cycles [1]
+  double sample_period_s = 0.1;           ///< thesis_protocol sample period [s]
   std::string process = "heat_transfer";  ///< GasProcess: heat_transfer or polytropic
-  double tau_s = 5.0;                  ///< GasParams.heat_transfer_time_constant_s [s]
-  double polytropic_index = 1.0;       ///< GasParams.polytropic_index [1]
-  double sharpness_s_per_m = 1.0;      ///< FrictionParams.sharpness_s_per_m [s/m]
-  double rtol = 1e-8;                  ///< SimulatorConfig.relative_tolerance [1]
-  double atol_K = 1e-8;                ///< SimulatorConfig.absolute_tolerance_K [K]
-  double atol_J = 1e-8;                ///< SimulatorConfig.absolute_tolerance_J [J]
-  int repeats = 7;                     ///< timed simulations; the best is reported
-  long evaluations = 200000;           ///< evaluate() calls per timed batch
-  int evaluation_batches = 7;          ///< timed batches; the best is reported
+  double tau_s = 5.0;                     ///< GasParams.heat_transfer_time_constant_s [s]
+  double polytropic_index = 1.0;          ///< GasParams.polytropic_index [1]
+  double sharpness_s_per_m = 1.0;         ///< FrictionParams.sharpness_s_per_m [s/m]
+  double rtol = 1e-8;                     ///< SimulatorConfig.relative_tolerance [1]
+  double atol_K = 1e-8;                   ///< SimulatorConfig.absolute_tolerance_K [K]
+  double atol_J = 1e-8;                   ///< SimulatorConfig.absolute_tolerance_J [J]
+  int repeats = 7;                        ///< timed simulations; the best is reported
+  long evaluations = 200000;              ///< evaluate() calls per timed batch
+  int evaluation_batches = 7;             ///< timed batches; the best is reported
 };
 
 double number(const char* name, const char* text) {

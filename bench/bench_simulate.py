@@ -93,21 +93,31 @@ class Case:
     def __init__(self, name, process, tau_s, polytropic_index, sharpness, cycles):
         self.name, self.process, self.tau_s, self.n = name, process, tau_s, polytropic_index
         self.sharpness, self.cycles = sharpness, cycles
-        gas = pamkit.GasParams(process=getattr(pamkit.GasProcess, process), heat_transfer_time_constant_s=tau_s,
-                               polytropic_index=polytropic_index)
-        params = pamkit.MuscleParams(pamkit.MuscleBuild(), pamkit.BladderLaw.thesis(),
-                                     pamkit.FrictionParams(sharpness_s_per_m=sharpness), gas)
+        gas = pamkit.GasParams(
+            process=getattr(pamkit.GasProcess, process),
+            heat_transfer_time_constant_s=tau_s,
+            polytropic_index=polytropic_index,
+        )
+        params = pamkit.MuscleParams(
+            pamkit.MuscleBuild(), pamkit.BladderLaw.thesis(), pamkit.FrictionParams(sharpness_s_per_m=sharpness), gas
+        )
         self.model = pamkit.MuscleModel(params, pamkit.InitialState(**INITIAL))
         self.trajectory = pamkit.thesis_protocol(MAX_ELONGATION_M, cycles=cycles)
         self.time_s = np.array(self.trajectory.time_s)
         self.elongation_m = np.array(self.trajectory.elongation_m)
         self.reference = ReferenceMuscle(
-            build=pamkit.MuscleBuild().to_dict(), initial_length_m=INITIAL["length_m"],
+            build=pamkit.MuscleBuild().to_dict(),
+            initial_length_m=INITIAL["length_m"],
             initial_gauge_pressure_Pa=INITIAL["gauge_pressure_Pa"],
             friction=pamkit.FrictionParams(sharpness_s_per_m=sharpness).to_dict(),
-            gas={**gas.to_dict(), "process": process})
-        self.simulators = {tol: pamkit.Simulator(pamkit.SimulatorConfig(
-            relative_tolerance=tol, absolute_tolerance_K=tol, absolute_tolerance_J=tol)) for tol in (DEFAULT, TIGHT)}
+            gas={**gas.to_dict(), "process": process},
+        )
+        self.simulators = {
+            tol: pamkit.Simulator(
+                pamkit.SimulatorConfig(relative_tolerance=tol, absolute_tolerance_K=tol, absolute_tolerance_J=tol)
+            )
+            for tol in (DEFAULT, TIGHT)
+        }
 
     def pamkit_run(self, tol):
         return self.simulators[tol].run(self.model, self.trajectory)
@@ -116,15 +126,36 @@ class Case:
         return self.reference.simulate(self.time_s, self.elongation_m, rtol=tol, atol_K=tol, atol_J=tol, method=method)
 
     def exe_args(self, tol):
-        return ["--process", self.process, "--tau", repr(self.tau_s), "--polytropic-index", repr(self.n),
-                "--sharpness", repr(self.sharpness), "--cycles", str(self.cycles), "--length", repr(INITIAL["length_m"]),
-                "--gauge", repr(INITIAL["gauge_pressure_Pa"]), "--max-elongation", repr(MAX_ELONGATION_M),
-                "--rtol", repr(tol), "--atol-K", repr(tol), "--atol-J", repr(tol)]
+        return [
+            "--process",
+            self.process,
+            "--tau",
+            repr(self.tau_s),
+            "--polytropic-index",
+            repr(self.n),
+            "--sharpness",
+            repr(self.sharpness),
+            "--cycles",
+            str(self.cycles),
+            "--length",
+            repr(INITIAL["length_m"]),
+            "--gauge",
+            repr(INITIAL["gauge_pressure_Pa"]),
+            "--max-elongation",
+            repr(MAX_ELONGATION_M),
+            "--rtol",
+            repr(tol),
+            "--atol-K",
+            repr(tol),
+            "--atol-J",
+            repr(tol),
+        ]
 
 
 def run_exe(exe, case, tol, repeats):
-    out = subprocess.run([exe, *case.exe_args(tol), "--repeats", str(repeats)], check=True, capture_output=True,
-                         text=True)
+    out = subprocess.run(
+        [exe, *case.exe_args(tol), "--repeats", str(repeats)], check=True, capture_output=True, text=True
+    )
     return json.loads(out.stdout)
 
 
@@ -135,12 +166,18 @@ def measure(case, exe, rounds, repeats, methods):
     res["max_rel_diff"] = {}
     for tol in (TIGHT, DEFAULT):
         r = case.pamkit_run(tol)
-        res["max_rel_diff"][f"pamkit@{tol:g}"] = {k: rel_diff(getattr(r, k), ref_tight[k]) for k in
-                                                  (*TRACES, "work_J", "heat_lost_J", "friction_dissipated_J")}
+        res["max_rel_diff"][f"pamkit@{tol:g}"] = {
+            k: rel_diff(getattr(r, k), ref_tight[k])
+            for k in (*TRACES, "work_J", "heat_lost_J", "friction_dissipated_J")
+        }
         st = r.statistics
         res.setdefault("statistics", {})[f"{tol:g}"] = {
-            "steps": st.steps, "rhs_evaluations": st.rhs_evaluations, "jacobian_evaluations": st.jacobian_evaluations,
-            "error_test_failures": st.error_test_failures, "restarts": st.restarts}
+            "steps": st.steps,
+            "rhs_evaluations": st.rhs_evaluations,
+            "jacobian_evaluations": st.jacobian_evaluations,
+            "error_test_failures": st.error_test_failures,
+            "restarts": st.restarts,
+        }
     for method in methods[1:]:  # the other SciPy methods agree too (informative)
         other = case.scipy_run(TIGHT, method)
         res["max_rel_diff"][f"SciPy {method} vs LSODA"] = {k: rel_diff(other[k], ref_tight[k]) for k in TRACES}
@@ -180,11 +217,13 @@ def measure(case, exe, rounds, repeats, methods):
 
     scipy_eval_s = best_time(scipy_evaluations, max(repeats, 3)) / len(states)
 
-    res["times_s"] = {"pamkit_python": {f"{t:g}": py[t] for t in py},
-                      "pamkit_cxx": {f"{t:g}": (cxx[t]["simulate_s"] if cxx[t] else None) for t in cxx},
-                      "scipy": {f"{m}@{t:g}": sp[(m, t)] for (m, t) in sp},
-                      "evaluate_cxx": cxx[DEFAULT]["evaluate_s"] if cxx[DEFAULT] else None,
-                      "evaluate_scipy": scipy_eval_s}
+    res["times_s"] = {
+        "pamkit_python": {f"{t:g}": py[t] for t in py},
+        "pamkit_cxx": {f"{t:g}": (cxx[t]["simulate_s"] if cxx[t] else None) for t in cxx},
+        "scipy": {f"{m}@{t:g}": sp[(m, t)] for (m, t) in sp},
+        "evaluate_cxx": cxx[DEFAULT]["evaluate_s"] if cxx[DEFAULT] else None,
+        "evaluate_scipy": scipy_eval_s,
+    }
     res["scipy_nfev"] = nfev
     res["speed_ratio"] = {f"{m}@{t:g}": sp[(m, t)] / py[t] for (m, t) in sp}
     if exe:
@@ -217,33 +256,47 @@ def report(results, methods, exe):
         for m in methods:
             sr = res["speed_ratio"]
             tgt = f">= {TARGETS['speed_ratio']:.0f}x" if m == "LSODA" else "(info)"
-            lines.append(f"{'speed ratio SciPy ' + m + ' / pamkit':{w}}{fmt_ratio(sr[m + '@' + d]):>14}"
-                         f"{fmt_ratio(sr[m + '@' + t]):>14}   {tgt}")
+            lines.append(
+                f"{'speed ratio SciPy ' + m + ' / pamkit':{w}}{fmt_ratio(sr[m + '@' + d]):>14}"
+                f"{fmt_ratio(sr[m + '@' + t]):>14}   {tgt}"
+            )
         mixed = res["times_s"]["scipy"]["LSODA@" + t] / res["times_s"]["pamkit_python"][d]
         lines.append(f"{'speed ratio SciPy LSODA@' + t + ' / pamkit@' + d:{w}}{fmt_ratio(mixed):>14}{'':>14}   (info)")
         for k in TRACES:
             tight = res["max_rel_diff"][f"pamkit@{t}"][k]
             default = res["max_rel_diff"][f"pamkit@{d}"][k]
-            lines.append(f"{'max rel diff vs SciPy@1e-11, ' + k:{w}}{default:>14.1e}{tight:>14.1e}   "
-                         f"<= {TARGETS['max_rel_diff']:.0e} (at {t})")
+            lines.append(
+                f"{'max rel diff vs SciPy@1e-11, ' + k:{w}}{default:>14.1e}{tight:>14.1e}   "
+                f"<= {TARGETS['max_rel_diff']:.0e} (at {t})"
+            )
         for m in methods[1:]:
             worst = max(res["max_rel_diff"][f"SciPy {m} vs LSODA"].values())
             lines.append(f"{'max rel diff SciPy ' + m + ' vs LSODA (F, p, T)':{w}}{'':>14}{worst:>14.1e}   (info)")
         if exe:
             bo = res["binding_overhead"]
-            lines.append(f"{'binding overhead (Python / C++ - 1)':{w}}{100 * bo[d]:>13.2f}%{100 * bo[t]:>13.2f}%   "
-                         f"<= {100 * TARGETS['binding_overhead']:.0f} %")
+            lines.append(
+                f"{'binding overhead (Python / C++ - 1)':{w}}{100 * bo[d]:>13.2f}%{100 * bo[t]:>13.2f}%   "
+                f"<= {100 * TARGETS['binding_overhead']:.0f} %"
+            )
             rb, mb = res["rhs_bound"], res["model_eval_bound"]
-            lines.append(f"{'wall / (CVODE RHS evals x one evaluate)':{w}}{rb[d]:>13.2f}x{rb[t]:>13.2f}x   "
-                         f"<= {TARGETS['rhs_bound']:.0f}x")
+            lines.append(
+                f"{'wall / (CVODE RHS evals x one evaluate)':{w}}{rb[d]:>13.2f}x{rb[t]:>13.2f}x   "
+                f"<= {TARGETS['rhs_bound']:.0f}x"
+            )
             lines.append(f"{'wall / (all evaluate calls x one evaluate)':{w}}{mb[d]:>13.2f}x{mb[t]:>13.2f}x   (info)")
-            lines.append(f"{'one evaluate: SciPy reference / C++':{w}}{fmt_ratio(res['per_evaluation_ratio']):>14}"
-                         f"{'':>14}   (info)")
+            lines.append(
+                f"{'one evaluate: SciPy reference / C++':{w}}{fmt_ratio(res['per_evaluation_ratio']):>14}"
+                f"{'':>14}   (info)"
+            )
         sd, stt = res["statistics"][d], res["statistics"][t]
-        lines.append(f"{'CVODE steps / RHS evals':{w}}{str(sd['steps']) + ' / ' + str(sd['rhs_evaluations']):>14}"
-                     f"{str(stt['steps']) + ' / ' + str(stt['rhs_evaluations']):>14}")
-        lines.append(f"{'SciPy LSODA RHS evals (4 states at once)':{w}}{res['scipy_nfev']['LSODA@' + d]:>14}"
-                     f"{res['scipy_nfev']['LSODA@' + t]:>14}")
+        lines.append(
+            f"{'CVODE steps / RHS evals':{w}}{str(sd['steps']) + ' / ' + str(sd['rhs_evaluations']):>14}"
+            f"{str(stt['steps']) + ' / ' + str(stt['rhs_evaluations']):>14}"
+        )
+        lines.append(
+            f"{'SciPy LSODA RHS evals (4 states at once)':{w}}{res['scipy_nfev']['LSODA@' + d]:>14}"
+            f"{res['scipy_nfev']['LSODA@' + t]:>14}"
+        )
     return "\n".join(lines)
 
 
@@ -254,8 +307,12 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=3, help="SciPy runs per round; pamkit runs 5x as many (default 3)")
     ap.add_argument("--methods", default="LSODA", help="SciPy methods, comma-separated; the first is the reference")
     ap.add_argument("--cycles", type=int, default=10)
-    ap.add_argument("--sharpness", type=float, default=pamkit.FrictionParams().sharpness_s_per_m,
-                    help="friction Kf [s/m] (default: pamkit's, 1 s/m as in the thesis)")
+    ap.add_argument(
+        "--sharpness",
+        type=float,
+        default=pamkit.FrictionParams().sharpness_s_per_m,
+        help="friction Kf [s/m] (default: pamkit's, 1 s/m as in the thesis)",
+    )
     ap.add_argument("--json", metavar="OUT", help="write every measurement (times in s) to OUT")
     args = ap.parse_args(argv)
     methods = [m.strip() for m in args.methods.split(",") if m.strip()]
@@ -265,19 +322,36 @@ def main(argv=None):
     if exe and not os.access(exe, os.X_OK):
         ap.error(f"--exe {exe} is not an executable")
     if not exe:
-        print("pamkit_bench_simulate not found (build target pamkit_bench_simulate or pass --exe): "
-              "no binding overhead or RHS bound", file=sys.stderr)
+        print(
+            "pamkit_bench_simulate not found (build target pamkit_bench_simulate or pass --exe): "
+            "no binding overhead or RHS bound",
+            file=sys.stderr,
+        )
 
-    cases = [Case("heat_transfer, tau = 5 s", "heat_transfer", 5.0, 1.0, args.sharpness, args.cycles),
-             Case("polytropic, n = 1", "polytropic", 5.0, 1.0, args.sharpness, args.cycles)]
+    cases = [
+        Case("heat_transfer, tau = 5 s", "heat_transfer", 5.0, 1.0, args.sharpness, args.cycles),
+        Case("polytropic, n = 1", "polytropic", 5.0, 1.0, args.sharpness, args.cycles),
+    ]
     results = [measure(c, exe, args.rounds, args.repeats, methods) for c in cases]
-    print(f"pamkit {pamkit.__version__} vs SciPy reference ({', '.join(methods)}); {args.cycles} cycles, "
-          f"Kf = {args.sharpness:g} s/m; best of {args.rounds} rounds; exe: {exe or 'not found'}")
+    print(
+        f"pamkit {pamkit.__version__} vs SciPy reference ({', '.join(methods)}); {args.cycles} cycles, "
+        f"Kf = {args.sharpness:g} s/m; best of {args.rounds} rounds; exe: {exe or 'not found'}"
+    )
     print(report(results, methods, exe))
     if args.json:
         with open(args.json, "w") as f:
-            json.dump({"targets": TARGETS, "exe": exe, "cycles": args.cycles, "sharpness_s_per_m": args.sharpness,
-                       "methods": methods, "results": results}, f, indent=2)
+            json.dump(
+                {
+                    "targets": TARGETS,
+                    "exe": exe,
+                    "cycles": args.cycles,
+                    "sharpness_s_per_m": args.sharpness,
+                    "methods": methods,
+                    "results": results,
+                },
+                f,
+                indent=2,
+            )
     return 0
 
 

@@ -122,8 +122,15 @@ class ReferenceMuscle:
         highest power first; None for the thesis law, ``"none"`` for no bladder stress
     """
 
-    def __init__(self, build=None, initial_length_m=0.167, initial_gauge_pressure_Pa=236.63e3,
-                 friction=None, gas=None, bladder=None):
+    def __init__(
+        self,
+        build=None,
+        initial_length_m=0.167,
+        initial_gauge_pressure_Pa=236.63e3,
+        friction=None,
+        gas=None,
+        bladder=None,
+    ):
         b = _merge(DEFAULT_BUILD, build, "build")
         f = _merge(DEFAULT_FRICTION, friction, "friction")
         g = _merge(DEFAULT_GAS, gas, "gas")
@@ -146,7 +153,7 @@ class ReferenceMuscle:
         d0 = float(b["diameter_m"])
         # Deflated build: cones at D0, the cylinder the rest; fibre length from eq. 3.1.11.
         self.lm0 = float(b["length_m"]) - 2.0 * self._cone_length(d0)
-        self.lym = math.sqrt(self.lm0 ** 2 + (self.k * d0) ** 2)
+        self.lym = math.sqrt(self.lm0**2 + (self.k * d0) ** 2)
         self.v_rubber = math.pi * self.dbo * self.tb * self.lm0  # reference volume of the stress laws
 
         # Friction magnitude per pascal of gauge pressure (eqs. 3.1.19-3.1.24), times tanh(Kf v).
@@ -210,8 +217,11 @@ class ReferenceMuscle:
         # Eq. 3.1.1: two frusta of height LL and the cylinder.
         frustum = (D * D + d * d + d * D) / 4.0
         v_total = (2.0 / 3.0) * pi * ll * frustum + pi * D * D / 4.0 * lm
-        dvt_dD = (2.0 / 3.0) * pi * (dll_dD * frustum + ll * (2.0 * D + d) / 4.0) + \
-            pi * D / 2.0 * lm + pi * D * D / 4.0 * dlm_dD
+        dvt_dD = (
+            (2.0 / 3.0) * pi * (dll_dD * frustum + ll * (2.0 * D + d) / 4.0)
+            + pi * D / 2.0 * lm
+            + pi * D * D / 4.0 * dlm_dD
+        )
         # Eq. 3.1.3: a tube of the full length L, outer diameter D, wall tb.
         tb = self.tb
         ring = (D / 2.0) ** 2 - (D / 2.0 - tb) ** 2
@@ -219,11 +229,19 @@ class ReferenceMuscle:
         dvb_dL = pi * ring + L * pi * tb * dD_dL  # d(ring)/dD = (D/2) - (D/2 - tb) = tb
         dvt_dL = dvt_dD * dD_dL
         return {
-            "length": L, "diameter": D, "cylinder_length": lm, "cone_length": ll,
+            "length": L,
+            "diameter": D,
+            "cylinder_length": lm,
+            "cone_length": ll,
             "braid_angle": math.atan2(self.k * D, lm),
-            "total_volume": v_total, "bladder_volume": v_bladder, "gas_volume": v_total - v_bladder,
-            "d_diameter": dD_dL, "d_cylinder_length": dlm_dD * dD_dL,
-            "d_total_volume": dvt_dL, "d_bladder_volume": dvb_dL, "d_gas_volume": dvt_dL - dvb_dL,
+            "total_volume": v_total,
+            "bladder_volume": v_bladder,
+            "gas_volume": v_total - v_bladder,
+            "d_diameter": dD_dL,
+            "d_cylinder_length": dlm_dD * dD_dL,
+            "d_total_volume": dvt_dL,
+            "d_bladder_volume": dvb_dL,
+            "d_gas_volume": dvt_dL - dvb_dL,
         }
 
     # --- the model at one instant -------------------------------------------------------------
@@ -243,13 +261,21 @@ class ReferenceMuscle:
         f_pressure = -p * dV + self.p_atm * s["d_total_volume"]
         eps_l = s["cylinder_length"] / self.lm0 - 1.0
         eps_h = s["diameter"] / self.dbo - 1.0
-        f_bladder = self.v_rubber * (_horner(self.sigma_long, eps_l) * s["d_cylinder_length"] / self.lm0 +
-                                     _horner(self.sigma_hoop, eps_h) * s["d_diameter"] / self.dbo)
+        f_bladder = self.v_rubber * (
+            _horner(self.sigma_long, eps_l) * s["d_cylinder_length"] / self.lm0
+            + _horner(self.sigma_hoop, eps_h) * s["d_diameter"] / self.dbo
+        )
         f_friction = self.friction_per_Pa * max(p - self.p_atm, 0.0) * math.tanh(self.kf * velocity)
         return {
-            "shape": s, "absolute_pressure_Pa": p, "gauge_pressure_Pa": p - self.p_atm,
-            "temperature_K": T, "temperature_rate_K_per_s": T_rate, "heat_loss_rate_W": q_loss,
-            "force_pressure_N": f_pressure, "force_bladder_N": f_bladder, "friction_force_N": f_friction,
+            "shape": s,
+            "absolute_pressure_Pa": p,
+            "gauge_pressure_Pa": p - self.p_atm,
+            "temperature_K": T,
+            "temperature_rate_K_per_s": T_rate,
+            "heat_loss_rate_W": q_loss,
+            "force_pressure_N": f_pressure,
+            "force_bladder_N": f_bladder,
+            "friction_force_N": f_friction,
             "force_N": f_pressure + f_bladder + f_friction,
         }
 
@@ -267,9 +293,22 @@ class ReferenceMuscle:
             raise ValueError("time_s and elongation_m must be 1-D, the same size (>= 2), time increasing")
         rates = np.diff(e) / np.diff(t)
         atol = [atol_K, atol_J, atol_J, atol_J]
-        columns = {name: np.empty(t.size) for name in (
-            "length_m", "force_N", "friction_force_N", "pressure_gauge_Pa", "temperature_K", "gas_volume_m3",
-            "braid_angle_rad", "diameter_m", "work_J", "heat_lost_J", "friction_dissipated_J")}
+        columns = {
+            name: np.empty(t.size)
+            for name in (
+                "length_m",
+                "force_N",
+                "friction_force_N",
+                "pressure_gauge_Pa",
+                "temperature_K",
+                "gas_volume_m3",
+                "braid_angle_rad",
+                "diameter_m",
+                "work_J",
+                "heat_lost_J",
+                "friction_dissipated_J",
+            )
+        }
 
         def record(i, rate, y):
             L = self.length0 + e[i]
@@ -296,11 +335,14 @@ class ReferenceMuscle:
 
             def rhs(time, state, rate=rate, t_start=t_start, L_start=L_start):
                 out = self.evaluate(L_start + rate * (time - t_start), rate, state[0])
-                return (out["temperature_rate_K_per_s"], out["force_N"] * rate, out["heat_loss_rate_W"],
-                        out["friction_force_N"] * rate)
+                return (
+                    out["temperature_rate_K_per_s"],
+                    out["force_N"] * rate,
+                    out["heat_loss_rate_W"],
+                    out["friction_force_N"] * rate,
+                )
 
-            sol = solve_ivp(rhs, (t[k], t[end]), y, method=method, t_eval=t[k + 1:end + 1],
-                            rtol=rtol, atol=atol)
+            sol = solve_ivp(rhs, (t[k], t[end]), y, method=method, t_eval=t[k + 1 : end + 1], rtol=rtol, atol=atol)
             if not sol.success:
                 raise RuntimeError(f"solve_ivp ({method}) failed on [{t[k]}, {t[end]}] s: {sol.message}")
             nfev += sol.nfev

@@ -36,14 +36,17 @@ void bind_fields(py::class_<Struct>& cls) {
           }),
           "Keyword construction; fields not given keep their documented defaults.");
   cls.def("validate", &Struct::validate, "Raises ValueError naming the first field out of range.");
-  cls.def_static("fields", [] {
-    py::dict out;
-    Struct::for_each_field([&](const char* name, auto, const FieldInfo& info) {
-      out[name] = py::dict(py::arg("unit") = info.unit, py::arg("min") = info.min, py::arg("max") = info.max,
-                           py::arg("description") = info.description);
-    });
-    return out;
-  }, "Field names mapped to their unit, allowed range and meaning.");
+  cls.def_static(
+      "fields",
+      [] {
+        py::dict out;
+        Struct::for_each_field([&](const char* name, auto, const FieldInfo& info) {
+          out[name] = py::dict(py::arg("unit") = info.unit, py::arg("min") = info.min, py::arg("max") = info.max,
+                               py::arg("description") = info.description);
+        });
+        return out;
+      },
+      "Field names mapped to their unit, allowed range and meaning.");
   cls.def("to_dict", [](const Struct& s) {
     py::dict out;
     Struct::for_each_field([&](const char* name, auto Struct::*member, const FieldInfo&) { out[name] = s.*member; });

@@ -1,10 +1,10 @@
 // Bindings of include/pamkit/effects: the Effect interface (subclassable from Python), the
 // built-in catalog, and the simulated measurement.
 
+#include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
-#include <pybind11/functional.h>
 
 #include <optional>
 
@@ -27,7 +27,9 @@ class PyEffect : public Effect {
   std::map<std::string, std::string> options() const override {
     PYBIND11_OVERRIDE(PYBIND11_TYPE(std::map<std::string, std::string>), Effect, options, );
   }
-  void set(const std::string& key, const std::string& value) override { PYBIND11_OVERRIDE_PURE(void, Effect, set, key, value); }
+  void set(const std::string& key, const std::string& value) override {
+    PYBIND11_OVERRIDE_PURE(void, Effect, set, key, value);
+  }
   std::string signature() const override { PYBIND11_OVERRIDE(std::string, Effect, signature, ); }
   std::vector<std::string> channels_changed() const override {
     PYBIND11_OVERRIDE(std::vector<std::string>, Effect, channels_changed, );
@@ -57,7 +59,8 @@ class PyEffect : public Effect {
     py::function override = py::get_override(static_cast<const Effect*>(this), "apply_to_params");
     if (override) params = override(params).cast<MuscleParams>();
   }
-  std::vector<double> apply_to_elongation(const std::vector<double>& time_s, const std::vector<double>& crosshead_m) const override {
+  std::vector<double> apply_to_elongation(const std::vector<double>& time_s,
+                                          const std::vector<double>& crosshead_m) const override {
     PYBIND11_OVERRIDE(std::vector<double>, Effect, apply_to_elongation, time_s, crosshead_m);
   }
   void apply_to_measurement(Measurement& measurement) const override {
@@ -67,7 +70,9 @@ class PyEffect : public Effect {
   }
 };
 
-py::array_t<double> copy(const std::vector<double>& v) { return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data()); }
+py::array_t<double> copy(const std::vector<double>& v) {
+  return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+}
 std::vector<double> vector(const py::array_t<double, py::array::c_style | py::array::forcecast>& a) {
   return {a.data(), a.data() + a.size()};
 }
@@ -79,13 +84,16 @@ void bind_effects(py::module_& m) {
       .value("sealed", GasMode::sealed)
       .value("supplied", GasMode::supplied);
 
-  py::class_<Measurement>(m, "Measurement", "Channels of a bench test on one time base (numpy arrays, copied in and out).")
+  py::class_<Measurement>(m, "Measurement",
+                          "Channels of a bench test on one time base (numpy arrays, copied in and out).")
       .def(py::init<>())
-#define PAMKIT_CHANNEL(name, doc)                                                                        \
-  def_property(#name, [](const Measurement& s) { return copy(s.name); },                                 \
-               [](Measurement& s, const py::array_t<double, py::array::c_style | py::array::forcecast>& a) { \
-                 s.name = vector(a);                                                                     \
-               }, doc)
+#define PAMKIT_CHANNEL(name, doc)                                                                   \
+  def_property(                                                                                     \
+      #name, [](const Measurement& s) { return copy(s.name); },                                     \
+      [](Measurement& s, const py::array_t<double, py::array::c_style | py::array::forcecast>& a) { \
+        s.name = vector(a);                                                                         \
+      },                                                                                            \
+      doc)
       .PAMKIT_CHANNEL(time_s, "sample times [s]")
       .PAMKIT_CHANNEL(elongation_m, "the crosshead's elongation [m]")
       .PAMKIT_CHANNEL(force_N, "load cell [N]")
@@ -136,8 +144,7 @@ range and the search is linear over the realistic range widened by its width on 
            py::arg("realistic_max"), py::arg("description") = "", py::kw_only(), py::arg("either_sign") = false,
            py::arg("plausible_min") = py::none(), py::arg("plausible_max") = py::none(),
            py::arg("plausible_source") = "", py::arg("fit_scale") = py::none(), py::arg("fit_min") = py::none(),
-           py::arg("fit_max") = py::none(), py::arg("fit_start") = py::none(),
-           py::arg("resolution") = Resolution::any)
+           py::arg("fit_max") = py::none(), py::arg("fit_start") = py::none(), py::arg("resolution") = Resolution::any)
       .def_readonly("name", &EffectParameter::name)
       .def_readonly("value", &EffectParameter::value)
       .def_readonly("unit", &EffectParameter::unit)
@@ -173,17 +180,22 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
       .def("stage", &Effect::stage, "where the effect acts: physics, motion or measurement")
       .def("channels_changed", &Effect::channels_changed, "the measured channels it changes ([]: all)")
       .def("signature", &Effect::signature, "a short phrase for a verdict (may name {channel})")
-      .def("acts_in", [](const Effect& e, GasMode mode) {
-             std::string why;
-             const bool ok = e.acts_in(mode, &why);
-             return py::make_tuple(ok, ok ? py::none() : py::cast(why));
-           }, py::arg("mode"), "(True, None) or (False, reason)")
-      .def("apply_to_params", [](const Effect& e, MuscleParams params) {
+      .def(
+          "acts_in",
+          [](const Effect& e, GasMode mode) {
+            std::string why;
+            const bool ok = e.acts_in(mode, &why);
+            return py::make_tuple(ok, ok ? py::none() : py::cast(why));
+          },
+          py::arg("mode"), "(True, None) or (False, reason)")
+      .def("apply_to_params",
+           [](const Effect& e, MuscleParams params) {
              e.apply_to_params(params);
              return params;
            })
       .def("apply_to_elongation", &Effect::apply_to_elongation, py::arg("time_s"), py::arg("crosshead_m"))
-      .def("apply_to_measurement", [](const Effect& e, Measurement measurement) {
+      .def("apply_to_measurement",
+           [](const Effect& e, Measurement measurement) {
              e.apply_to_measurement(measurement);
              return measurement;
            })
@@ -204,27 +216,30 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
   py::class_<EffectCatalog>(m, "EffectCatalog", "Effect names mapped to factories.")
       .def(py::init<>())
       .def_static("builtin", &EffectCatalog::builtin, "the nine effects of the catalog")
-      .def("add", [](EffectCatalog& catalog, const std::string& name, const py::function& factory) {
-             // A Python subclass's overrides live in its Python object: each effect made here
-             // keeps that object alive as long as its C++ pointer lives, or the overrides
-             // vanish as soon as the factory's result is dropped ("Tried to call pure virtual
-             // function"). Both the factory and the kept objects are released under the GIL.
-             const std::shared_ptr<py::function> shared(new py::function(factory), [](py::function* f) {
-               py::gil_scoped_acquire gil;
-               delete f;
-             });
-             catalog.add(name, [shared]() -> EffectPtr {
-               py::gil_scoped_acquire gil;
-               py::object made = (*shared)();
-               Effect* effect = made.cast<Effect*>();
-               auto* keep = new py::object(std::move(made));
-               return EffectPtr(effect, [keep](Effect*) {
-                 py::gil_scoped_acquire release_gil;
-                 delete keep;
-               });
-             });
-           }, py::arg("name"), py::arg("factory"),
-           "adds a factory (e.g. a pamkit.Effect subclass) called with no arguments for each new effect")
+      .def(
+          "add",
+          [](EffectCatalog& catalog, const std::string& name, const py::function& factory) {
+            // A Python subclass's overrides live in its Python object: each effect made here
+            // keeps that object alive as long as its C++ pointer lives, or the overrides
+            // vanish as soon as the factory's result is dropped ("Tried to call pure virtual
+            // function"). Both the factory and the kept objects are released under the GIL.
+            const std::shared_ptr<py::function> shared(new py::function(factory), [](py::function* f) {
+              py::gil_scoped_acquire gil;
+              delete f;
+            });
+            catalog.add(name, [shared]() -> EffectPtr {
+              py::gil_scoped_acquire gil;
+              py::object made = (*shared)();
+              Effect* effect = made.cast<Effect*>();
+              auto* keep = new py::object(std::move(made));
+              return EffectPtr(effect, [keep](Effect*) {
+                py::gil_scoped_acquire release_gil;
+                delete keep;
+              });
+            });
+          },
+          py::arg("name"), py::arg("factory"),
+          "adds a factory (e.g. a pamkit.Effect subclass) called with no arguments for each new effect")
       .def("make", &EffectCatalog::make, py::arg("name"))
       .def("parse", &EffectCatalog::parse, py::arg("spec"), "'NAME' or 'NAME:key=value,...'")
       .def("names", &EffectCatalog::names);
@@ -233,18 +248,19 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
         py::arg("effects"), py::arg("simulator") = Simulator(), py::call_guard<py::gil_scoped_release>(),
         "Simulates a sealed test as its instruments read it, with the effects applied at every stage. Releases "
         "the GIL: diagnosis fits run in parallel threads (a Python effect takes the GIL for its own calls).");
-  m.def("simulate_supplied_measurement",
-        [](const MuscleParams& params, double length_m, const ElongationTrajectory& crosshead,
-           const py::array_t<double, py::array::c_style | py::array::forcecast>& pressure_kPa,
-           double ambient_temperature_C, const std::vector<EffectPtr>& effects) {
-          const std::vector<double> pressure = vector(pressure_kPa);
-          py::gil_scoped_release release;
-          return simulate_supplied_measurement(params, length_m, crosshead, pressure, ambient_temperature_C, effects);
-        },
-        py::arg("params"), py::arg("length_m"), py::arg("crosshead"), py::arg("pressure_kPa"),
-        py::arg("ambient_temperature_C"), py::arg("effects"),
-        "Simulates a supplied-pressure test: the measured gauge pressure [kPa] drives the static model at each "
-        "sample of crosshead (lengths from length_m [m]); force is predicted. Releases the GIL.");
+  m.def(
+      "simulate_supplied_measurement",
+      [](const MuscleParams& params, double length_m, const ElongationTrajectory& crosshead,
+         const py::array_t<double, py::array::c_style | py::array::forcecast>& pressure_kPa,
+         double ambient_temperature_C, const std::vector<EffectPtr>& effects) {
+        const std::vector<double> pressure = vector(pressure_kPa);
+        py::gil_scoped_release release;
+        return simulate_supplied_measurement(params, length_m, crosshead, pressure, ambient_temperature_C, effects);
+      },
+      py::arg("params"), py::arg("length_m"), py::arg("crosshead"), py::arg("pressure_kPa"),
+      py::arg("ambient_temperature_C"), py::arg("effects"),
+      "Simulates a supplied-pressure test: the measured gauge pressure [kPa] drives the static model at each "
+      "sample of crosshead (lengths from length_m [m]); force is predicted. Releases the GIL.");
 }
 
 }  // namespace pamkit::python

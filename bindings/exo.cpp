@@ -29,26 +29,30 @@ py::array_t<T> view(const std::vector<T>& vector, py::handle owner) {
 }
 
 std::vector<double> to_vector(const Array& a, const char* name) {
-  if (a.ndim() != 1) throw py::value_error(std::string(name) + " must be a 1-D array, got " + std::to_string(a.ndim()) + " dimensions");
+  if (a.ndim() != 1)
+    throw py::value_error(std::string(name) + " must be a 1-D array, got " + std::to_string(a.ndim()) + " dimensions");
   return {a.data(), a.data() + a.size()};
 }
 
 /// Binds a read-only numpy property `name` viewing the vector member `member`.
 template <class Class, class T>
 void column(py::class_<Class>& cls, const char* name, std::vector<T> Class::*member, const char* doc) {
-  cls.def_property_readonly(name, [member](py::object self) { return view(self.cast<const Class&>().*member, self); }, doc);
+  cls.def_property_readonly(
+      name, [member](py::object self) { return view(self.cast<const Class&>().*member, self); }, doc);
 }
 
 /// run_device for one concrete spring type, so C++ springs run without calling back into Python.
 template <class Spring>
 void def_run_device(py::module_& m) {
-  m.def("run_device",
-        [](const GaitCycle& cycle, const Linkage& linkage, const ClutchParams& clutch, const PlayParams& play, const Spring& spring,
-           int strides, ClutchMode initial) { return run_device(cycle, linkage, clutch, play, spring, strides, initial); },
-        py::arg("cycle"), py::arg("linkage"), py::arg("clutch"), py::arg("play"), py::arg("spring"), py::arg("strides") = 3,
-        py::arg("initial") = ClutchMode::engaged,
-        "The device over `strides` repeats of the gait cycle; returns the last stride (DeviceRun). `spring` is a "
-        "LinearSpring, ThesisPolynomialSpring, PamStaticSpring or any callable force_N(elongation_m).");
+  m.def(
+      "run_device",
+      [](const GaitCycle& cycle, const Linkage& linkage, const ClutchParams& clutch, const PlayParams& play,
+         const Spring& spring, int strides,
+         ClutchMode initial) { return run_device(cycle, linkage, clutch, play, spring, strides, initial); },
+      py::arg("cycle"), py::arg("linkage"), py::arg("clutch"), py::arg("play"), py::arg("spring"),
+      py::arg("strides") = 3, py::arg("initial") = ClutchMode::engaged,
+      "The device over `strides` repeats of the gait cycle; returns the last stride (DeviceRun). `spring` is a "
+      "LinearSpring, ThesisPolynomialSpring, PamStaticSpring or any callable force_N(elongation_m).");
 }
 
 }  // namespace
@@ -58,7 +62,8 @@ void bind_exo(py::module_& m) {
 
   // Gait data.
   py::class_<GaitData> data(m, "GaitData", "Winter's gait data as printed in appendix G.3: one row per frame.");
-  data.def(py::init([](const Array& frame, const Array& hip, const Array& leg, const Array& foot, const Array& moment, double mass) {
+  data.def(py::init([](const Array& frame, const Array& hip, const Array& leg, const Array& foot, const Array& moment,
+                       double mass) {
              return GaitData(to_vector(frame, "frame"), to_vector(hip, "hip_deg"), to_vector(leg, "leg_deg"),
                              to_vector(foot, "foot_deg"), to_vector(moment, "ankle_moment_Nm"), mass);
            }),
@@ -67,40 +72,49 @@ void bind_exo(py::module_& m) {
            "Columns of equal length (angles [deg], moment [N m] with Winter's sign: plantarflexor < 0).")
       .def("__len__", &GaitData::size)
       .def_property_readonly("subject_mass_kg", &GaitData::subject_mass_kg)
-      .def("ankle_angle_deg", &GaitData::ankle_angle_deg, py::arg("row"), "shank strut to foot arm at a row (G.3 testangle) [deg]");
-  for (const auto& [name, getter] : {std::pair{"frame", &GaitData::frame}, std::pair{"hip_deg", &GaitData::hip_deg},
-                                     std::pair{"leg_deg", &GaitData::leg_deg}, std::pair{"foot_deg", &GaitData::foot_deg},
-                                     std::pair{"ankle_moment_Nm", &GaitData::ankle_moment_Nm}}) {
-    data.def_property_readonly(name, [getter = getter](py::object self) { return view((self.cast<const GaitData&>().*getter)(), self); });
+      .def("ankle_angle_deg", &GaitData::ankle_angle_deg, py::arg("row"),
+           "shank strut to foot arm at a row (G.3 testangle) [deg]");
+  for (const auto& [name, getter] :
+       {std::pair{"frame", &GaitData::frame}, std::pair{"hip_deg", &GaitData::hip_deg},
+        std::pair{"leg_deg", &GaitData::leg_deg}, std::pair{"foot_deg", &GaitData::foot_deg},
+        std::pair{"ankle_moment_Nm", &GaitData::ankle_moment_Nm}}) {
+    data.def_property_readonly(
+        name, [getter = getter](py::object self) { return view((self.cast<const GaitData&>().*getter)(), self); });
   }
-  m.def("winter_appendix_g3", &winter_appendix_g3, "Winter's walking data as appendix G.3 prints it (56.7 kg subject).");
+  m.def("winter_appendix_g3", &winter_appendix_g3,
+        "Winter's walking data as appendix G.3 prints it (56.7 kg subject).");
 
   py::class_<GaitEvents>(m, "GaitEvents", "Gait events found in the data (frame numbers as printed).")
       .def_readonly("heel_strike_frame", &GaitEvents::heel_strike_frame)
       .def_readonly("toe_off_frame", &GaitEvents::toe_off_frame)
       .def_readonly("stride_frames", &GaitEvents::stride_frames)
       .def_property_readonly("stance_percent", &GaitEvents::stance_percent, "stance over stride [%]");
-  m.def("detect_gait_events", &detect_gait_events, py::arg("data"), "Stride, heel strike and toe-off from the data alone.");
+  m.def("detect_gait_events", &detect_gait_events, py::arg("data"),
+        "Stride, heel strike and toe-off from the data alone.");
 
-  py::class_<GaitCycle> cycle(m, "GaitCycle", "One stride at evenly spaced percent of the gait cycle, 0 % at heel strike.");
+  py::class_<GaitCycle> cycle(m, "GaitCycle",
+                              "One stride at evenly spaced percent of the gait cycle, 0 % at heel strike.");
   column(cycle, "percent", &GaitCycle::percent, "percent of the gait cycle [%]");
   column(cycle, "hip_deg", &GaitCycle::hip_deg, "thigh segment angle [deg]");
   column(cycle, "leg_deg", &GaitCycle::leg_deg, "shank segment angle [deg]");
   column(cycle, "foot_deg", &GaitCycle::foot_deg, "foot segment angle [deg]");
   column(cycle, "ankle_angle_deg", &GaitCycle::ankle_angle_deg, "shank strut to foot arm (G.3 testangle) [deg]");
-  column(cycle, "moment_Nm", &GaitCycle::moment_Nm, "biological ankle moment, plantarflexor > 0, scaled to body_mass_kg [N m]");
+  column(cycle, "moment_Nm", &GaitCycle::moment_Nm,
+         "biological ankle moment, plantarflexor > 0, scaled to body_mass_kg [N m]");
   cycle.def_readonly("body_mass_kg", &GaitCycle::body_mass_kg)
       .def_readonly("toe_off_percent", &GaitCycle::toe_off_percent)
       .def("__len__", &GaitCycle::size);
-  m.def("resample_cycle", &resample_cycle, py::arg("data"), py::arg("events"), py::arg("points"), py::arg("body_mass_kg"),
-        "One stride resampled at `points` percents, the moment scaled to body_mass_kg.");
+  m.def("resample_cycle", &resample_cycle, py::arg("data"), py::arg("events"), py::arg("points"),
+        py::arg("body_mass_kg"), "One stride resampled at `points` percents, the moment scaled to body_mass_kg.");
   m.def("with_ankle_range", &with_ankle_range, py::arg("cycle"), py::arg("range_deg"),
         "The cycle with its ankle angle's excursion scaled to range_deg about the middle of its range.");
 
   // Linkage.
-  py::class_<LinkageParams> linkage_params(m, "LinkageParams", "Dimensions of the device (appendix G.3's as defaults).");
+  py::class_<LinkageParams> linkage_params(m, "LinkageParams",
+                                           "Dimensions of the device (appendix G.3's as defaults).");
   bind_fields(linkage_params);
-  py::class_<LinkagePose>(m, "LinkagePose", "The linkage at one heel-bar angle (shank frame: x up the shank, y to the heel).")
+  py::class_<LinkagePose>(m, "LinkagePose",
+                          "The linkage at one heel-bar angle (shank frame: x up the shank, y to the heel).")
       .def_readonly("heel_bar_angle_deg", &LinkagePose::heel_bar_angle_deg)
       .def_readonly("shank_anchor_x_m", &LinkagePose::shank_anchor_x_m)
       .def_readonly("shank_anchor_y_m", &LinkagePose::shank_anchor_y_m)
@@ -121,13 +135,15 @@ void bind_exo(py::module_& m) {
   py::class_<LinearSpring> linear(m, "LinearSpring", "F = k e (G.3's coil spring).");
   bind_fields(linear);
   linear.def("__call__", &LinearSpring::operator(), py::arg("elongation_m"));
-  py::class_<ThesisPolynomialSpring>(m, "ThesisPolynomialSpring", "G.3's pamequation: 0.1687 (1000e)^2 + 0.127 (1000e) + 16.9 [N].")
+  py::class_<ThesisPolynomialSpring>(m, "ThesisPolynomialSpring",
+                                     "G.3's pamequation: 0.1687 (1000e)^2 + 0.127 (1000e) + 16.9 [N].")
       .def(py::init<>())
       .def("__call__", &ThesisPolynomialSpring::operator(), py::arg("elongation_m"));
-  py::class_<PamStaticSpring>(m, "PamStaticSpring", "The muscle as a static, sealed, polytropic spring (pamkit's force model).")
-      .def(py::init<const MuscleBuild&, const BladderLaw&, const GasParams&, double, double, double, double>(), py::arg("build"),
-           py::arg("bladder"), py::arg("gas"), py::arg("free_length_m"), py::arg("gauge_pressure_Pa"), py::arg("pretension_m") = 0.0,
-           py::arg("polytropic_index") = 1.0)
+  py::class_<PamStaticSpring>(m, "PamStaticSpring",
+                              "The muscle as a static, sealed, polytropic spring (pamkit's force model).")
+      .def(py::init<const MuscleBuild&, const BladderLaw&, const GasParams&, double, double, double, double>(),
+           py::arg("build"), py::arg("bladder"), py::arg("gas"), py::arg("free_length_m"), py::arg("gauge_pressure_Pa"),
+           py::arg("pretension_m") = 0.0, py::arg("polytropic_index") = 1.0)
       .def("__call__", &PamStaticSpring::operator(), py::arg("elongation_m"), "force [N] at spring elongation [m]")
       .def("gauge_pressure", &PamStaticSpring::gauge_pressure, py::arg("elongation_m"), "[Pa]")
       .def("muscle_length", &PamStaticSpring::muscle_length, py::arg("elongation_m"), "[m]");
@@ -138,7 +154,8 @@ void bind_exo(py::module_& m) {
       .value("engaging", ClutchMode::engaging)
       .value("engaged", ClutchMode::engaged)
       .value("releasing", ClutchMode::releasing);
-  py::class_<ClutchParams> clutch_params(m, "ClutchParams", "Screw angles and switching travel of the timing mechanism.");
+  py::class_<ClutchParams> clutch_params(m, "ClutchParams",
+                                         "Screw angles and switching travel of the timing mechanism.");
   bind_fields(clutch_params);
   py::class_<PlayParams> play_params(m, "PlayParams", "Play between leg and device: dead zone and compliance.");
   bind_fields(play_params);
@@ -173,7 +190,8 @@ void bind_exo(py::module_& m) {
   def_run_device<PamStaticSpring>(m);
   def_run_device<std::function<double(double)>>(m);
 
-  py::class_<IdealSpring> ideal(m, "IdealSpring", "The force that would give a share of the biological moment (figure 4.7).");
+  py::class_<IdealSpring> ideal(m, "IdealSpring",
+                                "The force that would give a share of the biological moment (figure 4.7).");
   column(ideal, "percent", &IdealSpring::percent, "stance samples with the spring stretched [%]");
   column(ideal, "elongation_m", &IdealSpring::elongation_m, "[m]");
   column(ideal, "force_N", &IdealSpring::force_N, "[N]");
@@ -181,7 +199,8 @@ void bind_exo(py::module_& m) {
       .def_readonly("elongation_at_peak_m", &IdealSpring::elongation_at_peak_m)
       .def_readonly("max_elongation_m", &IdealSpring::max_elongation_m)
       .def_readonly("loading_samples", &IdealSpring::loading_samples)
-      .def("force_at", &IdealSpring::force_at, py::arg("elongation_m"), "force on the stretching branch [N], or None if never reached");
+      .def("force_at", &IdealSpring::force_at, py::arg("elongation_m"),
+           "force on the stretching branch [N], or None if never reached");
   m.def("ideal_spring", &ideal_spring, py::arg("run"), py::arg("toe_off_percent"), py::arg("share"));
 
   py::class_<ScriptKinematics> script(m, "ScriptKinematics", "Appendix G.3's script as printed, rows 2..83.");
@@ -208,7 +227,8 @@ void bind_exo(py::module_& m) {
       .def_readonly("muscle_force_N", &JigSample::muscle_force_N)
       .def_readonly("ankle_moment_Nm", &JigSample::ankle_moment_Nm);
   py::class_<Jig>(m, "Jig", "Crosshead displacement and force to muscle length, force and ankle moment.")
-      .def(py::init<const LinkageParams&, const JigParams&>(), py::arg("linkage") = LinkageParams{}, py::arg("jig") = JigParams{})
+      .def(py::init<const LinkageParams&, const JigParams&>(), py::arg("linkage") = LinkageParams{},
+           py::arg("jig") = JigParams{})
       .def("convert", &Jig::convert, py::arg("displacement_m"), py::arg("force_N"))
       .def_property_readonly("linkage", &Jig::linkage)
       .def_property_readonly("params", &Jig::params);

@@ -58,9 +58,13 @@ void bind_logger(py::module_& m) {
   py::class_<logger::LoggerCalibration> calibration(
       lm, "LoggerCalibration", "Counts to volts (ADC reference), volts to gauge kPa (61CP fit) and to degC (TMP36).");
   bind_fields(calibration);
-  calibration.def("volts", &logger::LoggerCalibration::volts, py::arg("mean_counts"), "V at the pin for a mean conversion [counts]")
-      .def("pressure_kPa", &logger::LoggerCalibration::pressure_kPa, py::arg("volts"), "gauge pressure [kPa] for the transducer's V")
-      .def("temperature_C", &logger::LoggerCalibration::temperature_C, py::arg("volts"), "TMP36 temperature [degC] for its V");
+  calibration
+      .def("volts", &logger::LoggerCalibration::volts, py::arg("mean_counts"),
+           "V at the pin for a mean conversion [counts]")
+      .def("pressure_kPa", &logger::LoggerCalibration::pressure_kPa, py::arg("volts"),
+           "gauge pressure [kPa] for the transducer's V")
+      .def("temperature_C", &logger::LoggerCalibration::temperature_C, py::arg("volts"),
+           "TMP36 temperature [degC] for its V");
 
   lm.def(
       "fit_pressure",
@@ -79,7 +83,8 @@ void bind_logger(py::module_& m) {
         py::list out;
         for (const auto& p : logger::list_ports()) {
           out.append(py::dict(py::arg("path") = p.path, py::arg("description") = p.description,
-                              py::arg("usb_vid") = p.usb_vid, py::arg("usb_pid") = p.usb_pid, py::arg("by_id") = p.by_id));
+                              py::arg("usb_vid") = p.usb_vid, py::arg("usb_pid") = p.usb_pid,
+                              py::arg("by_id") = p.by_id));
         }
         return out;
       },
@@ -108,21 +113,28 @@ void bind_logger(py::module_& m) {
            py::arg("reconnect_interval_s") = 0.25)
       .def("poll", &logger::Reader::poll, py::arg("timeout_s"), py::call_guard<py::gil_scoped_release>(),
            "Waits up to timeout_s [s] for data, writes the rows; reopens a lost port. Returns rows written.")
-      .def("stats", [](const logger::Reader& r) { return stats_dict(r.stats()); },
-           "Counters: bytes, frames, skipped_bytes, resyncs, checksum_errors, gaps, missing_frames, resets, "
-           "disconnects, ...")
-      .def("last", [](const logger::Reader& r) -> py::object {
-             if (!r.last()) return py::none();
-             const auto& x = *r.last();
-             return py::dict(py::arg("time_s") = x.time_s, py::arg("pressure_kPa") = x.pressure_kPa,
-                             py::arg("temperature_C") = x.temperature_C, py::arg("pressure_V") = x.pressure_V,
-                             py::arg("temperature_V") = x.temperature_V, py::arg("boot") = x.boot, py::arg("seq") = x.seq);
-           }, "The last row written, or None.")
-      .def("banner", [](const logger::Reader& r) { return banner_dict(r.banner()); }, "The board's banner, or None.")
+      .def(
+          "stats", [](const logger::Reader& r) { return stats_dict(r.stats()); },
+          "Counters: bytes, frames, skipped_bytes, resyncs, checksum_errors, gaps, missing_frames, resets, "
+          "disconnects, ...")
+      .def(
+          "last",
+          [](const logger::Reader& r) -> py::object {
+            if (!r.last()) return py::none();
+            const auto& x = *r.last();
+            return py::dict(py::arg("time_s") = x.time_s, py::arg("pressure_kPa") = x.pressure_kPa,
+                            py::arg("temperature_C") = x.temperature_C, py::arg("pressure_V") = x.pressure_V,
+                            py::arg("temperature_V") = x.temperature_V, py::arg("boot") = x.boot,
+                            py::arg("seq") = x.seq);
+          },
+          "The last row written, or None.")
+      .def(
+          "banner", [](const logger::Reader& r) { return banner_dict(r.banner()); }, "The board's banner, or None.")
       .def_property_readonly("connected", &logger::Reader::connected)
       .def_property_readonly("last_error", &logger::Reader::last_error, "why the last open failed, '' if it did not")
       .def("close", &logger::Reader::close)
-      .def("__enter__", [](logger::Reader& r) -> logger::Reader& { return r; }, py::return_value_policy::reference)
+      .def(
+          "__enter__", [](logger::Reader& r) -> logger::Reader& { return r; }, py::return_value_policy::reference)
       .def("__exit__", [](logger::Reader& r, py::args) { r.close(); });
 }
 

@@ -32,7 +32,8 @@ PYBIND11_MODULE(_core, m) {
   pamkit::python::bind_exo(m);
   pamkit::python::bind_logger(m);
 
-  py::module_ units = m.def_submodule("units", "Conversions for quantities that cross a boundary in other units (units.hpp).");
+  py::module_ units =
+      m.def_submodule("units", "Conversions for quantities that cross a boundary in other units (units.hpp).");
   units.attr("PASCAL_PER_KILOPASCAL") = pamkit::units::kPascalPerKilopascal;
   units.attr("KILOPASCAL_PER_PSI") = pamkit::units::kKilopascalPerPsi;
   units.attr("KELVIN_AT_ZERO_CELSIUS") = pamkit::units::kKelvinAtZeroCelsius;

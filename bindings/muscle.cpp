@@ -13,7 +13,8 @@ namespace py = pybind11;
 namespace pamkit::python {
 
 void bind_muscle(py::module_& m) {
-  py::class_<MuscleBuild> build(m, "MuscleBuild", "The muscle as built and deflated (SI units; thesis tables 3.4, C.4).");
+  py::class_<MuscleBuild> build(m, "MuscleBuild",
+                                "The muscle as built and deflated (SI units; thesis tables 3.4, C.4).");
   bind_fields(build);
 
   py::class_<BladderLaw>(m, "BladderLaw",
@@ -28,7 +29,8 @@ void bind_muscle(py::module_& m) {
       .def("hoop_stress", py::vectorize(&BladderLaw::hoop_stress), py::arg("strain"),
            "sigma_h [Pa] at hoop strain (scalar or array)");
 
-  py::class_<FrictionParams> friction(m, "FrictionParams", "Fiber-fiber and fiber-bladder friction (eqs. 3.1.19-3.1.24).");
+  py::class_<FrictionParams> friction(m, "FrictionParams",
+                                      "Fiber-fiber and fiber-bladder friction (eqs. 3.1.19-3.1.24).");
   bind_fields(friction);
 
   py::class_<MuscleShape>(m, "MuscleShape", "Shape of the muscle at one length (SI units, angles in rad).")
@@ -49,7 +51,8 @@ void bind_muscle(py::module_& m) {
       .def_readonly("d_bladder_volume", &MuscleShape::d_bladder_volume)
       .def_readonly("d_gas_volume", &MuscleShape::d_gas_volume);
 
-  py::class_<BraidGeometry>(m, "BraidGeometry", "Braid kinematics and volumes of one build (eqs. 3.1.1-3.1.3, 3.1.9-3.1.11).")
+  py::class_<BraidGeometry>(m, "BraidGeometry",
+                            "Braid kinematics and volumes of one build (eqs. 3.1.1-3.1.3, 3.1.9-3.1.11).")
       .def(py::init<const MuscleBuild&>(), py::arg("build"))
       .def("shape", &BraidGeometry::shape, py::arg("length_m"), "Shape at muscle length [m].")
       .def_property_readonly("min_length", &BraidGeometry::min_length, "shortest allowed length [m]")
@@ -59,8 +62,8 @@ void bind_muscle(py::module_& m) {
                              "cylinder length of the deflated build [m]")
       .def_property_readonly("build", &BraidGeometry::build);
 
-  m.def("braid_diameter", &braid_diameter, py::arg("fiber_length_m"), py::arg("revolutions"), py::arg("braid_angle_rad"),
-        "Eq. 3.1.9: D = Lym sin(theta) / (pi n) [m].");
+  m.def("braid_diameter", &braid_diameter, py::arg("fiber_length_m"), py::arg("revolutions"),
+        py::arg("braid_angle_rad"), "Eq. 3.1.9: D = Lym sin(theta) / (pi n) [m].");
   m.def("braid_cylinder_length", &braid_cylinder_length, py::arg("fiber_length_m"), py::arg("braid_angle_rad"),
         "Eq. 3.1.10: Lm = Lym cos(theta) [m].");
   m.def("braid_fiber_length", &braid_fiber_length, py::arg("cylinder_length_m"), py::arg("diameter_m"),
@@ -75,13 +78,15 @@ void bind_muscle(py::module_& m) {
         py::arg("absolute_pressure_Pa"), py::arg("atmospheric_pressure_Pa"), py::arg("velocity_m_per_s"),
         "Virtual-work force of gas and bladder plus friction at one shape.");
 
-  py::class_<FiberTensions>(m, "FiberTensions", "Fiber tensions of the Newtonian model [N per fiber] and its force [N].")
+  py::class_<FiberTensions>(m, "FiberTensions",
+                            "Fiber tensions of the Newtonian model [N per fiber] and its force [N].")
       .def_readonly("cylinder_hoop", &FiberTensions::cylinder_hoop)
       .def_readonly("cone_hoop", &FiberTensions::cone_hoop)
       .def_readonly("longitudinal", &FiberTensions::longitudinal)
       .def_readonly("force", &FiberTensions::force);
-  m.def("newtonian_fiber_tensions", &newtonian_fiber_tensions, py::arg("geometry"), py::arg("shape"), py::arg("bladder"),
-        py::arg("gauge_pressure_Pa"), "The thesis's Newtonian fiber tensions and force (eqs. 3.1.4-3.1.8).");
+  m.def("newtonian_fiber_tensions", &newtonian_fiber_tensions, py::arg("geometry"), py::arg("shape"),
+        py::arg("bladder"), py::arg("gauge_pressure_Pa"),
+        "The thesis's Newtonian fiber tensions and force (eqs. 3.1.4-3.1.8).");
 
   py::class_<FreeInflation>(m, "FreeInflation", "Free (zero-force) length and diameter after inflation.")
       .def_readonly("length_m", &FreeInflation::length_m)

@@ -22,17 +22,24 @@ py::array_t<double> view(const std::vector<double>& vector, py::handle owner) {
 
 std::vector<double> to_vector(const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
                               const char* name) {
-  if (a.ndim() != 1) throw py::value_error(std::string(name) + " must be a 1-D array, got " + std::to_string(a.ndim()) + " dimensions");
+  if (a.ndim() != 1)
+    throw py::value_error(std::string(name) + " must be a 1-D array, got " + std::to_string(a.ndim()) + " dimensions");
   return {a.data(), a.data() + a.size()};
 }
 
 }  // namespace
 
 void bind_sim(py::module_& m) {
+  // Bound before MuscleParams, whose signatures name it.
+  py::class_<ModelExtensions> extensions(
+      m, "ModelExtensions", "Physics beyond the thesis's model, all off (zero) by default; effects switch them on.");
+  bind_fields(extensions);
   py::class_<MuscleParams>(m, "MuscleParams", "Everything that defines a muscle: build, bladder law, friction, gas.")
       .def(py::init<>())
       .def(py::init([](const MuscleBuild& build, const BladderLaw& bladder, const FrictionParams& friction,
-                       const GasParams& gas) { return MuscleParams{build, bladder, friction, gas}; }),
+                       const GasParams& gas) {
+             return MuscleParams{build, bladder, friction, gas, ModelExtensions{}};
+           }),
            py::arg("build") = MuscleBuild{}, py::arg("bladder") = BladderLaw::thesis(),
            py::arg("friction") = FrictionParams{}, py::arg("gas") = GasParams{})
       .def(py::init([](const MuscleBuild& build, const BladderLaw& bladder, const FrictionParams& friction,
@@ -47,16 +54,13 @@ void bind_sim(py::module_& m) {
       .def_readwrite("extensions", &MuscleParams::extensions)
       .def("validate", &MuscleParams::validate);
 
-  py::class_<ModelExtensions> extensions(m, "ModelExtensions",
-                                         "Physics beyond the thesis's model, all off (zero) by default; effects switch them on.");
-  bind_fields(extensions);
-
   py::class_<InitialState> initial(m, "InitialState", "The test at zero elongation: inflated, sealed, at rest.");
   bind_fields(initial);
   m.def("inflated_and_sealed", &inflated_and_sealed, py::arg("params"), py::arg("gauge_pressure_Pa"),
         "The start of a sealed test: inflated freely to gauge_pressure_Pa [Pa], sealed at the free length it gives.");
 
-  py::class_<State> state(m, "State", "ODE state: gas temperature and mass, bladder viscous stresses, energy integrals (SI).");
+  py::class_<State> state(m, "State",
+                          "ODE state: gas temperature and mass, bladder viscous stresses, energy integrals (SI).");
   state.def(py::init<>())
       .def(py::init([](const std::array<double, State::size>& values) { return State{values}; }), py::arg("values"))
       .def_readwrite("values", &State::values, "the state as a list, in the order of the index constants")
@@ -64,9 +68,11 @@ void bind_sim(py::module_& m) {
         if (i < 0 || i >= State::size) throw py::index_error("State index " + std::to_string(i) + " out of range");
         return s[i];
       });
-  for (auto [name, index] : {std::pair{"temperature_K", State::temperature_K}, {"gas_mass_kg", State::gas_mass_kg},
+  for (auto [name, index] : {std::pair{"temperature_K", State::temperature_K},
+                             {"gas_mass_kg", State::gas_mass_kg},
                              {"viscous_stress_l_Pa", State::viscous_stress_l_Pa},
-                             {"viscous_stress_h_Pa", State::viscous_stress_h_Pa}, {"work_J", State::work_J},
+                             {"viscous_stress_h_Pa", State::viscous_stress_h_Pa},
+                             {"work_J", State::work_J},
                              {"heat_lost_J", State::heat_lost_J},
                              {"friction_dissipated_J", State::friction_dissipated_J}}) {
     state.attr(name) = static_cast<int>(index);
@@ -90,24 +96,26 @@ void bind_sim(py::module_& m) {
       .def("initial", &MuscleModel::initial, "the state at zero elongation")
       .def_property_readonly("dead_volume", &MuscleModel::dead_volume, "dead gas volume [m^3]")
       .def_property_readonly("gas_mass", &MuscleModel::gas_mass, "sealed air mass [kg]")
-      .def_property_readonly("initial_gas_volume", &MuscleModel::initial_gas_volume, "gas volume at zero elongation [m^3]")
-      .def_property_readonly("initial_temperature", &MuscleModel::initial_temperature, "gas temperature at the start [K]")
+      .def_property_readonly("initial_gas_volume", &MuscleModel::initial_gas_volume,
+                             "gas volume at zero elongation [m^3]")
+      .def_property_readonly("initial_temperature", &MuscleModel::initial_temperature,
+                             "gas temperature at the start [K]")
       .def_property_readonly("params", &MuscleModel::params)
       .def_property_readonly("initial_state", &MuscleModel::initial_state)
       .def_property_readonly("geometry", &MuscleModel::geometry);
 
-  py::class_<ElongationTrajectory>(m, "ElongationTrajectory", "Elongation [m] against time [s], linear between samples.")
+  py::class_<ElongationTrajectory>(m, "ElongationTrajectory",
+                                   "Elongation [m] against time [s], linear between samples.")
       .def(py::init([](const py::array_t<double, py::array::c_style | py::array::forcecast>& time_s,
                        const py::array_t<double, py::array::c_style | py::array::forcecast>& elongation_m) {
              return ElongationTrajectory(to_vector(time_s, "time_s"), to_vector(elongation_m, "elongation_m"));
            }),
            py::arg("time_s"), py::arg("elongation_m"))
-      .def_property_readonly("time_s", [](py::object self) {
-        return view(self.cast<const ElongationTrajectory&>().time(), self);
-      })
-      .def_property_readonly("elongation_m", [](py::object self) {
-        return view(self.cast<const ElongationTrajectory&>().elongation(), self);
-      })
+      .def_property_readonly(
+          "time_s", [](py::object self) { return view(self.cast<const ElongationTrajectory&>().time(), self); })
+      .def_property_readonly(
+          "elongation_m",
+          [](py::object self) { return view(self.cast<const ElongationTrajectory&>().elongation(), self); })
       .def("__len__", &ElongationTrajectory::size);
   m.def("thesis_protocol", &thesis_protocol, py::arg("max_elongation_m"), py::arg("speed_m_per_s") = 2.5e-3,
         py::arg("cycles") = 10, py::arg("sample_period_s") = 0.1, py::arg("hold_s") = 0.0,
@@ -127,16 +135,19 @@ void bind_sim(py::module_& m) {
       .def_readonly("restarts", &SolverStatistics::restarts)
       .def_readonly("output_evaluations", &SolverStatistics::output_evaluations)
       .def("__repr__", [](const SolverStatistics& s) {
-        return "SolverStatistics(steps=" + std::to_string(s.steps) + ", rhs_evaluations=" + std::to_string(s.rhs_evaluations) +
+        return "SolverStatistics(steps=" + std::to_string(s.steps) +
+               ", rhs_evaluations=" + std::to_string(s.rhs_evaluations) +
                ", jacobian_evaluations=" + std::to_string(s.jacobian_evaluations) +
                ", error_test_failures=" + std::to_string(s.error_test_failures) +
                ", nonlinear_convergence_failures=" + std::to_string(s.nonlinear_convergence_failures) +
                ", restarts=" + std::to_string(s.restarts) + ")";
       });
 
-  py::class_<SimulationResult> result(m, "SimulationResult", "Time series of one run, one entry per trajectory sample.");
-#define PAMKIT_RESULT_COLUMN(name, doc)                                                                          \
-  result.def_property_readonly(#name, [](py::object self) { return view(self.cast<const SimulationResult&>().name, self); }, doc)
+  py::class_<SimulationResult> result(m, "SimulationResult",
+                                      "Time series of one run, one entry per trajectory sample.");
+#define PAMKIT_RESULT_COLUMN(name, doc) \
+  result.def_property_readonly(         \
+      #name, [](py::object self) { return view(self.cast<const SimulationResult&>().name, self); }, doc)
   PAMKIT_RESULT_COLUMN(time_s, "sample times [s]");
   PAMKIT_RESULT_COLUMN(elongation_m, "prescribed elongation [m]");
   PAMKIT_RESULT_COLUMN(length_m, "muscle length [m]");

@@ -16,6 +16,7 @@ apt_packages=(
   build-essential cmake ninja-build pkg-config python3 python3-dev python3-venv
   libeigen3-dev libboost-dev libsundials-dev catch2 libserialport-dev
   gcc-avr avr-libc arduino-core-avr simavr libsimavr-dev clang libclang-rt-14-dev arduino-builder  # logger firmware and its tests
+  clang-format  # scripts/format.sh and lint.sh (Debian 12's 14)
 )
 
 sudo_cmd=()

@@ -3,6 +3,8 @@
 #   clang-format 14: Debian 12's package (apt-get install clang-format); CLANG_FORMAT names another binary
 #   ruff 0.17.6:     pip install ruff==0.17.6 (the same pin as .pre-commit-config.yaml)
 clang_format=${CLANG_FORMAT:-clang-format}
+# ruff from the project's venv (scripts/install-deps.sh pins it there), else from PATH.
+if [ -x .venv/bin/ruff ]; then PATH="$PWD/.venv/bin:$PATH"; fi
 clang_format_major=14
 ruff_version=0.17.6
 

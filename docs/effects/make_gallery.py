@@ -32,14 +32,16 @@ COLORS = ("C0", "C3")
 def params() -> pamkit.MuscleParams:
     gas = pamkit.GasParams()
     gas.ambient_temperature_K = AMBIENT_C + 273.15
-    return pamkit.MuscleParams(build=pamkit.MuscleBuild(), bladder=pamkit.BladderLaw.thesis(),
-                               friction=pamkit.FrictionParams(), gas=gas)
+    return pamkit.MuscleParams(
+        build=pamkit.MuscleBuild(), bladder=pamkit.BladderLaw.thesis(), friction=pamkit.FrictionParams(), gas=gas
+    )
 
 
 def free_length(pressure_kPa: float) -> float:
     p = params()
-    return pamkit.free_inflation(pamkit.BraidGeometry(p.build), p.bladder, p.gas.atmospheric_pressure_Pa,
-                                 pressure_kPa * 1e3).length_m
+    return pamkit.free_inflation(
+        pamkit.BraidGeometry(p.build), p.bladder, p.gas.atmospheric_pressure_Pa, pressure_kPa * 1e3
+    ).length_m
 
 
 def stretch(pressure_kPa: float, fraction: float) -> float:
@@ -68,7 +70,10 @@ def simulate(pressure_kPa: float, path, specs=(), rate_Hz: float = SAMPLE_RATE_H
     crosshead = pamkit.ElongationTrajectory(time, np.interp(time, t_corner, e_corner))
     initial = pamkit.InitialState(length_m=free_length(pressure_kPa), gauge_pressure_Pa=pressure_kPa * 1e3)
     m = pamkit.simulate_measurement(params(), initial, crosshead, parse_effects(list(specs)), pamkit.Simulator())
-    return {name: np.asarray(getattr(m, name)) for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")}
+    return {
+        name: np.asarray(getattr(m, name))
+        for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
+    }
 
 
 def last_cycle(run: dict[str, np.ndarray], path) -> np.ndarray:
@@ -109,8 +114,9 @@ def save(fig, name: str) -> Path:
 def heat_transfer() -> Path:
     spec = "heat_transfer:time_constant_s=2"
     p, e = 207.0, stretch(207.0, 0.9)
-    fig, (loops, hold) = figure(f"{spec} (PAM 2, 207 kPa, 90 %): pressure loops that grow with rate; "
-                                "pressure relaxes during a hold")
+    fig, (loops, hold) = figure(
+        f"{spec} (PAM 2, 207 kPa, 90 %): pressure loops that grow with rate; pressure relaxes during a hold"
+    )
     for color, speed in zip(COLORS, (2.5e-3, 25e-3)):
         path = corners(e, speed, 2)
         base, run = simulate(p, path), simulate(p, path, [spec])
@@ -132,8 +138,15 @@ def dead_volume() -> Path:
     path = corners(e, 10e-3, 2)
     base, run = simulate(p, path), simulate(p, path, [spec])
     fig, (pressure, force) = figure(f"{spec} (PAM 2, 207 kPa, 90 %, 10 mm/s): the pressure swing is scaled down evenly")
-    pressure.plot(base["time_s"], base["pressure_kPa"], **BASE, label=f"baseline, swing {np.ptp(base['pressure_kPa']):.0f} kPa")
-    pressure.plot(run["time_s"], run["pressure_kPa"], color=COLORS[0], label=f"dead volume, swing {np.ptp(run['pressure_kPa']):.0f} kPa")
+    pressure.plot(
+        base["time_s"], base["pressure_kPa"], **BASE, label=f"baseline, swing {np.ptp(base['pressure_kPa']):.0f} kPa"
+    )
+    pressure.plot(
+        run["time_s"],
+        run["pressure_kPa"],
+        color=COLORS[0],
+        label=f"dead volume, swing {np.ptp(run['pressure_kPa']):.0f} kPa",
+    )
     label(pressure, "time [s]", "gauge pressure [kPa]")
     force.plot(base["elongation_m"] * 1e3, base["force_N"], **BASE, label="baseline")
     force.plot(run["elongation_m"] * 1e3, run["force_N"], color=COLORS[0], label="dead volume")
@@ -146,7 +159,9 @@ def leak() -> Path:
     p, e = 207.0, stretch(207.0, 0.9)
     path = corners(e, 2.5e-3, 10)
     base, run = simulate(p, path, rate_Hz=5.0), simulate(p, path, [spec], rate_Hz=5.0)
-    fig, (pressure, peaks) = figure(f"{spec} (PAM 2, 207 kPa, 90 %, 2.5 mm/s, 10 cycles): peaks drift down cycle after cycle")
+    fig, (pressure, peaks) = figure(
+        f"{spec} (PAM 2, 207 kPa, 90 %, 2.5 mm/s, 10 cycles): peaks drift down cycle after cycle"
+    )
     pressure.plot(base["time_s"], base["pressure_kPa"], **BASE, label="baseline")
     pressure.plot(run["time_s"], run["pressure_kPa"], color=COLORS[1], lw=0.9, label="leak")
     label(pressure, "time [s]", "gauge pressure [kPa]")
@@ -170,8 +185,14 @@ def bladder_viscoelasticity() -> Path:
             base, run = simulate(p, path), simulate(p, path, [spec])
             k = last_cycle(run, path)
             axis.plot(run["elongation_m"][k] * 1e3, run["force_N"][k], color=color, label=f"{speed * 1e3:g} mm/s")
-            axis.plot(base["elongation_m"][k] * 1e3, base["force_N"][k], color=color, ls="--", lw=0.9,
-                      label=f"baseline, {speed * 1e3:g} mm/s")
+            axis.plot(
+                base["elongation_m"][k] * 1e3,
+                base["force_N"][k],
+                color=color,
+                ls="--",
+                lw=0.9,
+                label=f"baseline, {speed * 1e3:g} mm/s",
+            )
         axis.set_title(f"PAM 2, {p:g} kPa, 95 %", fontsize=9)
         label(axis, "elongation [mm]", "force [N]")
     return save(fig, "bladder_viscoelasticity")
@@ -197,7 +218,9 @@ def fixture_slack() -> Path:
     p, e = 207.0, stretch(207.0, 0.9)
     path = corners(e, 2.5e-3, 2)
     base, run = simulate(p, path), simulate(p, path, [spec])
-    fig, (force, loop) = figure(f"{spec} (PAM 2, 207 kPa, 90 %, 2.5 mm/s): force flat at the start of each stretch and return")
+    fig, (force, loop) = figure(
+        f"{spec} (PAM 2, 207 kPa, 90 %, 2.5 mm/s): force flat at the start of each stretch and return"
+    )
     t_corner, e_corner = path
     turn = t_corner[3]  # the end of the first return: the start of the second stretch
     k = (base["time_s"] > turn - 3.0) & (base["time_s"] < turn + 5.0)
@@ -214,8 +237,9 @@ def fixture_slack() -> Path:
 
 def sensor_lag() -> Path:
     p, e = 207.0, stretch(207.0, 0.9)
-    fig, (pressure, temperature) = figure("sensor_lag: the lagged channel trails its prediction and its swings shrink "
-                                          "(PAM 2, 207 kPa, 90 %, 25 mm/s)")
+    fig, (pressure, temperature) = figure(
+        "sensor_lag: the lagged channel trails its prediction and its swings shrink (PAM 2, 207 kPa, 90 %, 25 mm/s)"
+    )
     path = corners(e, 25e-3, 3)
     spec = "sensor_lag:channel=pressure_kPa,time_constant_s=1"
     base, run = simulate(p, path), simulate(p, path, [spec])
@@ -244,8 +268,12 @@ def time_skew() -> Path:
     dt = 1.0 / SAMPLE_RATE_HZ
     reading, prediction = run["pressure_kPa"], base["pressure_kPa"]
     lags = np.arange(-80, 81)
-    values = [np.corrcoef(reading[max(lag, 0):reading.size + min(lag, 0)],
-                          prediction[max(-lag, 0):prediction.size - max(lag, 0)])[0, 1] for lag in lags]
+    values = [
+        np.corrcoef(
+            reading[max(lag, 0) : reading.size + min(lag, 0)], prediction[max(-lag, 0) : prediction.size - max(lag, 0)]
+        )[0, 1]
+        for lag in lags
+    ]
     correlation.plot(lags * dt, values, color=COLORS[0])
     correlation.axvline(0.0, **BASE)
     correlation.axvline(lags[int(np.argmax(values))] * dt, color=COLORS[0], ls=":")
@@ -258,17 +286,33 @@ def sensor_offset() -> Path:
     p, e = 207.0, stretch(207.0, 0.9)
     path = corners(e, 10e-3, 2)
     base, run = simulate(p, path), simulate(p, path, [spec])
-    fig, (pressure, residual) = figure(f"{spec} (PAM 2, 207 kPa, 90 %, 10 mm/s): constant offset and scale in the pressure")
+    fig, (pressure, residual) = figure(
+        f"{spec} (PAM 2, 207 kPa, 90 %, 10 mm/s): constant offset and scale in the pressure"
+    )
     pressure.plot(base["time_s"], base["pressure_kPa"], **BASE, label="baseline")
     pressure.plot(run["time_s"], run["pressure_kPa"], color=COLORS[0], label="offset and gain error")
     label(pressure, "time [s]", "gauge pressure [kPa]")
-    residual.plot(base["pressure_kPa"], run["pressure_kPa"] - base["pressure_kPa"], color=COLORS[0], marker=".", ls="none", ms=2)
+    residual.plot(
+        base["pressure_kPa"], run["pressure_kPa"] - base["pressure_kPa"], color=COLORS[0], marker=".", ls="none", ms=2
+    )
     label(residual, "predicted gauge pressure [kPa]", "reading - prediction [kPa]", legend=False)
     return save(fig, "sensor_offset")
 
 
-GALLERY = {f.__name__: f for f in (heat_transfer, dead_volume, leak, bladder_viscoelasticity, fiber_compliance,
-                                    fixture_slack, sensor_lag, time_skew, sensor_offset)}
+GALLERY = {
+    f.__name__: f
+    for f in (
+        heat_transfer,
+        dead_volume,
+        leak,
+        bladder_viscoelasticity,
+        fiber_compliance,
+        fixture_slack,
+        sensor_lag,
+        time_skew,
+        sensor_offset,
+    )
+}
 
 
 def main() -> int:

@@ -45,18 +45,19 @@
 /* The banner: one line, every value a decimal number except version and board. The line ends
  * with " crc=" and the CRC-16 (4 upper-case hex digits) of everything before that space. */
 #define PAMKIT_BANNER_TAG "#pamkit-logger"
-#define PAMKIT_BANNER_FORMAT                                                                  \
-  PAMKIT_BANNER_TAG " version=%s frame=%u board=mega2560 rate_hz=%lu period_us=%lu"           \
-                    " oversample=%u baud=%lu vref_mV=%u a0=pressure a1=tmp36"
+#define PAMKIT_BANNER_FORMAT                                      \
+  PAMKIT_BANNER_TAG                                               \
+  " version=%s frame=%u board=mega2560 rate_hz=%lu period_us=%lu" \
+  " oversample=%u baud=%lu vref_mV=%u a0=pressure a1=tmp36"
 #define PAMKIT_BANNER_MAX 192 /* longest banner line a decoder must accept, "\r\n" included */
 
 /** One decoded sample, in the board's raw units. */
 typedef struct pamkit_frame {
-  uint16_t seq;                      /**< sample number since reset (wraps at 65536) */
-  uint32_t time_us;                  /**< device time at the start of the sample [us], wraps */
-  uint16_t counts[PAMKIT_CHANNELS];  /**< sums of `oversample` 10-bit conversions [counts] */
-  uint8_t oversample;                /**< conversions per channel in the sums (1..64) */
-  uint8_t dropped;                   /**< samples lost on the board since the previous frame */
+  uint16_t seq;                     /**< sample number since reset (wraps at 65536) */
+  uint32_t time_us;                 /**< device time at the start of the sample [us], wraps */
+  uint16_t counts[PAMKIT_CHANNELS]; /**< sums of `oversample` 10-bit conversions [counts] */
+  uint8_t oversample;               /**< conversions per channel in the sums (1..64) */
+  uint8_t dropped;                  /**< samples lost on the board since the previous frame */
 } pamkit_frame;
 
 /** CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF), one byte at a time without a table
@@ -88,9 +89,7 @@ static inline void pamkit_put_u32(uint8_t* out, uint32_t value) {
   pamkit_put_u16(out + 2, (uint16_t)(value >> 16));
 }
 
-static inline uint16_t pamkit_get_u16(const uint8_t* in) {
-  return (uint16_t)(in[0] | ((uint16_t)in[1] << 8));
-}
+static inline uint16_t pamkit_get_u16(const uint8_t* in) { return (uint16_t)(in[0] | ((uint16_t)in[1] << 8)); }
 
 static inline uint32_t pamkit_get_u32(const uint8_t* in) {
   return (uint32_t)pamkit_get_u16(in) | ((uint32_t)pamkit_get_u16(in + 2) << 16);
@@ -113,8 +112,7 @@ static inline void pamkit_frame_encode(const pamkit_frame* frame, uint8_t* out) 
  *  the CRC and the oversample count are all valid; returns 0 (frame untouched) otherwise. */
 static inline int pamkit_frame_decode(const uint8_t* in, pamkit_frame* frame) {
   if (in[0] != PAMKIT_FRAME_SYNC0 || in[1] != PAMKIT_FRAME_SYNC1) return 0;
-  if (pamkit_get_u16(in + PAMKIT_FRAME_CRC_OFFSET) !=
-      pamkit_crc16(in + 2, PAMKIT_FRAME_CRC_OFFSET - 2)) {
+  if (pamkit_get_u16(in + PAMKIT_FRAME_CRC_OFFSET) != pamkit_crc16(in + 2, PAMKIT_FRAME_CRC_OFFSET - 2)) {
     return 0;
   }
   if (in[12] < 1 || in[12] > PAMKIT_OVERSAMPLE_MAX) return 0;

@@ -38,9 +38,9 @@ static_assert(2UL * PAMKIT_OVERSAMPLE * kConversionUs < kPeriodUs,
               "the conversions of one sample do not fit in the sample period: "
               "lower PAMKIT_OVERSAMPLE or PAMKIT_SAMPLE_RATE_HZ");
 
-static uint16_t g_seq = 0;            // number of the next sample
-static unsigned long g_next_us = 0;   // when the next sample is due (micros())
-static uint8_t g_dropped = 0;         // samples lost since the last frame sent
+static uint16_t g_seq = 0;           // number of the next sample
+static unsigned long g_next_us = 0;  // when the next sample is due (micros())
+static uint8_t g_dropped = 0;        // samples lost since the last frame sent
 
 static void count_dropped(unsigned long samples) {
   const unsigned long total = g_dropped + samples;
@@ -58,9 +58,8 @@ static uint16_t read_sum(uint8_t pin) {
 static void send_banner() {
   char line[PAMKIT_BANNER_MAX];
   int length = snprintf(line, sizeof line, PAMKIT_BANNER_FORMAT, PAMKIT_FIRMWARE_VERSION,
-                        (unsigned)PAMKIT_FRAME_VERSION, (unsigned long)PAMKIT_SAMPLE_RATE_HZ,
-                        kPeriodUs, (unsigned)PAMKIT_OVERSAMPLE, (unsigned long)PAMKIT_BAUD,
-                        (unsigned)PAMKIT_VREF_MV);
+                        (unsigned)PAMKIT_FRAME_VERSION, (unsigned long)PAMKIT_SAMPLE_RATE_HZ, kPeriodUs,
+                        (unsigned)PAMKIT_OVERSAMPLE, (unsigned long)PAMKIT_BAUD, (unsigned)PAMKIT_VREF_MV);
   const uint16_t crc = pamkit_crc16((const uint8_t*)line, (size_t)length);
   snprintf(line + length, sizeof line - (size_t)length, " crc=%04X\r\n", crc);
   Serial.print(line);

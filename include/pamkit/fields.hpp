@@ -26,8 +26,8 @@ namespace detail {
 inline void check_range(const char* struct_name, const char* name, double value, const FieldInfo& info) {
   if (std::isnan(value) || value < info.min || value > info.max) {
     throw InvalidParameter(message(struct_name, ".", name, " = ", value, " ", info.unit,
-                                   " is outside the allowed range [", info.min, ", ", info.max, "] (",
-                                   info.description, ")"));
+                                   " is outside the allowed range [", info.min, ", ", info.max, "] (", info.description,
+                                   ")"));
   }
 }
 

@@ -43,9 +43,12 @@ def describe(effect_catalog: EffectCatalog | None = None) -> str:
         options = ", ".join(f"{key}={value}" for key, value in effect.options().items())
         parameters = ", ".join(
             f"{p.name}={p.value:g} {p.unit} (realistic {p.realistic_min:g}-{p.realistic_max:g}, "
-            f"plausible {p.plausible_min:g}-{p.plausible_max:g})" for p in effect.parameters()
+            f"plausible {p.plausible_min:g}-{p.plausible_max:g})"
+            for p in effect.parameters()
         )
         sources = "".join(f"\n    plausible {p.name}: {p.plausible_source}" for p in effect.parameters())
-        lines.append(f"{name} [{effect.stage().name}]: {', '.join(filter(None, [options, parameters]))}\n"
-                     f"    {effect.description()}{sources}")
+        lines.append(
+            f"{name} [{effect.stage().name}]: {', '.join(filter(None, [options, parameters]))}\n"
+            f"    {effect.description()}{sources}"
+        )
     return "\n".join(lines)

@@ -17,9 +17,9 @@ from pamkit._core import (
     WINTER_SUBJECT_MASS_KG,
     BladderLaw,
     BraidGeometry,
+    Clutch,
     ClutchMode,
     ClutchParams,
-    Clutch,
     DeviceRun,
     ElongationTrajectory,
     GaitCycle,
@@ -49,13 +49,13 @@ from pamkit._core import (
     fit_clutch,
     free_inflation,
     ideal_spring,
-    winter_appendix_g3,
     reproduce_g3_script,
     resample_cycle,
     run_device,
     table_4_2,
     thesis_protocol,
     walking_trajectory,
+    winter_appendix_g3,
     with_ankle_range,
 )
 from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
@@ -125,8 +125,13 @@ def chapter4(block_angle_deg: float, mass_kg: float = THESIS_BODY_MASS_KG, data:
     loading_end = int(np.argmax(elongation))
     at_40 = None
     if elongation[loading_end] >= THESIS_CHAPTER4["ideal_force_elongation_m"]:
-        at_40 = float(np.interp(THESIS_CHAPTER4["ideal_force_elongation_m"], elongation[: loading_end + 1][stretched[: loading_end + 1]],
-                                force[: loading_end + 1][stretched[: loading_end + 1]]))
+        at_40 = float(
+            np.interp(
+                THESIS_CHAPTER4["ideal_force_elongation_m"],
+                elongation[: loading_end + 1][stretched[: loading_end + 1]],
+                force[: loading_end + 1][stretched[: loading_end + 1]],
+            )
+        )
     peak = int(np.argmax(force))
     return {
         "block_angle_deg": block_angle_deg,
@@ -166,20 +171,31 @@ class ExoStudy:
     report: dict
 
 
-def pam_spring(pressure_kPa: float, build: MuscleBuild | None = None, gas: GasParams | None = None,
-               pretension_m: float = 0.0) -> tuple[PamStaticSpring, float]:
+def pam_spring(
+    pressure_kPa: float, build: MuscleBuild | None = None, gas: GasParams | None = None, pretension_m: float = 0.0
+) -> tuple[PamStaticSpring, float]:
     """The muscle (PAM 2 of table 3.4 unless given) inflated to pressure_kPa at its free length,
     sealed, isothermal (n = 1, the thesis's best fit): the static spring and that free length."""
     build = build if build is not None else MuscleBuild()
     gas = gas if gas is not None else GasParams()
-    free = free_inflation(BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure_kPa * PASCAL_PER_KILOPASCAL)
-    spring = PamStaticSpring(build, BladderLaw.thesis(), gas, free.length_m, pressure_kPa * PASCAL_PER_KILOPASCAL, pretension_m, 1.0)
+    free = free_inflation(
+        BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure_kPa * PASCAL_PER_KILOPASCAL
+    )
+    spring = PamStaticSpring(
+        build, BladderLaw.thesis(), gas, free.length_m, pressure_kPa * PASCAL_PER_KILOPASCAL, pretension_m, 1.0
+    )
     return spring, free.length_m
 
 
-def walking_cadence_run(run: DeviceRun, pressure_kPa: float, cadence_steps_per_min: float = WALKING_CADENCE_STEPS_PER_MIN,
-                        strides: int = 10, bench_cycles: int = 2, time_constant_s: float | None = None,
-                        pretension_m: float = 0.0) -> dict:
+def walking_cadence_run(
+    run: DeviceRun,
+    pressure_kPa: float,
+    cadence_steps_per_min: float = WALKING_CADENCE_STEPS_PER_MIN,
+    strides: int = 10,
+    bench_cycles: int = 2,
+    time_constant_s: float | None = None,
+    pretension_m: float = 0.0,
+) -> dict:
     """The muscle's ODE with gas-wall heat transfer, driven by the device's elongation over
     `strides` strides at the cadence, and the same muscle stretched to the same peak on the
     bench (triangular cycles at 2.5 mm/s, section 3.2.1). Returns both runs' series, and a
@@ -194,7 +210,10 @@ def walking_cadence_run(run: DeviceRun, pressure_kPa: float, cadence_steps_per_m
         gas.heat_transfer_time_constant_s = time_constant_s
     build = MuscleBuild()
     _, free_length = pam_spring(pressure_kPa, build, gas)
-    model = MuscleModel(MuscleParams(build=build, gas=gas), InitialState(length_m=free_length, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL))
+    model = MuscleModel(
+        MuscleParams(build=build, gas=gas),
+        InitialState(length_m=free_length, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL),
+    )
     stride_s = 120.0 / cadence_steps_per_min  # two steps per stride
     gait = walking_trajectory(run, stride_s, strides, pretension_m)
     peak = float(np.max(gait.elongation_m))
@@ -202,8 +221,13 @@ def walking_cadence_run(run: DeviceRun, pressure_kPa: float, cadence_steps_per_m
         raise ValueError("the device never stretches the muscle, so there is no walking-cadence run to make")
     bench = thesis_protocol(peak, BENCH_SPEED_M_PER_S, bench_cycles, 0.05)
     simulator = Simulator()
-    out = {"stride_s": stride_s, "cadence_steps_per_min": cadence_steps_per_min, "strides": strides,
-           "time_constant_s": gas.heat_transfer_time_constant_s, "peak_elongation_m": peak}
+    out = {
+        "stride_s": stride_s,
+        "cadence_steps_per_min": cadence_steps_per_min,
+        "strides": strides,
+        "time_constant_s": gas.heat_transfer_time_constant_s,
+        "peak_elongation_m": peak,
+    }
     bench_cycle_s = 2.0 * peak / BENCH_SPEED_M_PER_S
     for name, trajectory, cycle_s in (("walking", gait, stride_s), ("bench", bench, bench_cycle_s)):
         result = simulator.run(model, trajectory)
@@ -229,11 +253,20 @@ def walking_cadence_run(run: DeviceRun, pressure_kPa: float, cadence_steps_per_m
     return out
 
 
-def exo_study(mass_kg: float = THESIS_BODY_MASS_KG, pressure_kPa: float = 70.0, play_deg: float = 0.0,
-              ankle_range_deg: float | None = None, block_angle_deg: float | None = None,
-              compliance_deg_per_Nm: float = 0.0, clutch: ClutchParams | None = None, points: int = 690,
-              cadence_steps_per_min: float | None = WALKING_CADENCE_STEPS_PER_MIN, strides: int = 10,
-              time_constant_s: float | None = None, gait_csv: str | Path | None = None) -> ExoStudy:
+def exo_study(
+    mass_kg: float = THESIS_BODY_MASS_KG,
+    pressure_kPa: float = 70.0,
+    play_deg: float = 0.0,
+    ankle_range_deg: float | None = None,
+    block_angle_deg: float | None = None,
+    compliance_deg_per_Nm: float = 0.0,
+    clutch: ClutchParams | None = None,
+    points: int = 690,
+    cadence_steps_per_min: float | None = WALKING_CADENCE_STEPS_PER_MIN,
+    strides: int = 10,
+    time_constant_s: float | None = None,
+    gait_csv: str | Path | None = None,
+) -> ExoStudy:
     """The device of appendix G.3 on Winter's gait scaled to mass_kg, with the muscle inflated
     to pressure_kPa as its spring (70 kPa: the walking trials, section 4.7), the clutch's
     screws fitted to the normal gait unless given, and optionally play between leg and device
@@ -252,17 +285,23 @@ def exo_study(mass_kg: float = THESIS_BODY_MASS_KG, pressure_kPa: float = 70.0, 
     ideal = ideal_spring(normal_run, normal.toe_off_percent, 1.0)
     walking = None
     if cadence_steps_per_min is not None and float(np.max(run.elongation_m)) > 0.0:
-        walking = walking_cadence_run(run, pressure_kPa, cadence_steps_per_min, strides, time_constant_s=time_constant_s)
+        walking = walking_cadence_run(
+            run, pressure_kPa, cadence_steps_per_min, strides, time_constant_s=time_constant_s
+        )
     modes = np.asarray(run.mode)
     torque = np.asarray(run.torque_Nm)
     biological = np.asarray(run.biological_torque_Nm)
     at_40 = ideal.force_at(THESIS_CHAPTER4["ideal_force_elongation_m"])
     report = {
         "inputs": {
-            "mass_kg": mass_kg, "pressure_kPa": pressure_kPa, "play_deg": play_deg,
-            "compliance_deg_per_Nm": compliance_deg_per_Nm, "ankle_range_deg": ankle_range_deg,
+            "mass_kg": mass_kg,
+            "pressure_kPa": pressure_kPa,
+            "play_deg": play_deg,
+            "compliance_deg_per_Nm": compliance_deg_per_Nm,
+            "ankle_range_deg": ankle_range_deg,
             "ankle_range_of_gait_deg": float(np.ptp(cycle.ankle_angle_deg)),
-            "linkage": linkage.params.to_dict(), "clutch": clutch.to_dict(),
+            "linkage": linkage.params.to_dict(),
+            "clutch": clutch.to_dict(),
             "muscle_free_length_m": free_length,
         },
         "moment_arm_m": _span(run.moment_arm_m),
@@ -288,8 +327,18 @@ def exo_study(mass_kg: float = THESIS_BODY_MASS_KG, pressure_kPa: float = 70.0, 
         "chapter4": chapter4_comparison(THESIS_BODY_MASS_KG, data),
     }
     if walking is not None:
-        report["walking"] = {key: walking[key] for key in ("stride_s", "cadence_steps_per_min", "strides", "time_constant_s",
-                                                           "peak_elongation_m", "walking_summary", "bench_summary")}
+        report["walking"] = {
+            key: walking[key]
+            for key in (
+                "stride_s",
+                "cadence_steps_per_min",
+                "strides",
+                "time_constant_s",
+                "peak_elongation_m",
+                "walking_summary",
+                "bench_summary",
+            )
+        }
     return ExoStudy(cycle, linkage, clutch, play, spring, run, ideal, walking, report)
 
 
@@ -304,8 +353,9 @@ def plot_exo(path: str | Path, study: ExoStudy, title: str = "") -> Path:
 
     walking = study.walking
     rows = 2 if walking is not None else 1
-    figure, axes = plt.subplots(rows, 3 if walking is not None else 1, figsize=(13, 4.2 * rows), constrained_layout=True,
-                                squeeze=False)
+    figure, axes = plt.subplots(
+        rows, 3 if walking is not None else 1, figsize=(13, 4.2 * rows), constrained_layout=True, squeeze=False
+    )
     run = study.run
     percent = np.asarray(run.percent)
     modes = np.asarray(run.mode)
@@ -313,8 +363,11 @@ def plot_exo(path: str | Path, study: ExoStudy, title: str = "") -> Path:
     if walking is not None:
         for axis in axes[0]:
             axis.remove()
-    shades = {int(ClutchMode.engaged): ("#cfe8cf", "engaged"), int(ClutchMode.engaging): ("#f3e0b5", "switching"),
-              int(ClutchMode.releasing): ("#f3e0b5", None)}
+    shades = {
+        int(ClutchMode.engaged): ("#cfe8cf", "engaged"),
+        int(ClutchMode.engaging): ("#f3e0b5", "switching"),
+        int(ClutchMode.releasing): ("#f3e0b5", None),
+    }
     labelled = set()
     start = 0
     for k in range(1, len(percent) + 1):
@@ -327,7 +380,9 @@ def plot_exo(path: str | Path, study: ExoStudy, title: str = "") -> Path:
                 torque_axis.axvspan(percent[start], end, color=colour, lw=0, label=show)
             start = k
     share = study.report["target_share"]
-    torque_axis.plot(percent, np.asarray(run.biological_torque_Nm) * share, "k--", lw=1.2, label=f"{share:.0%} of biological")
+    torque_axis.plot(
+        percent, np.asarray(run.biological_torque_Nm) * share, "k--", lw=1.2, label=f"{share:.0%} of biological"
+    )
     torque_axis.plot(percent, run.torque_Nm, color="C3", lw=1.5, label="device (PAM)")
     torque_axis.axvline(study.cycle.toe_off_percent, color="0.4", lw=0.8, ls=":", label="toe-off")
     torque_axis.set_xlim(0, 100)
@@ -336,15 +391,29 @@ def plot_exo(path: str | Path, study: ExoStudy, title: str = "") -> Path:
     torque_axis.legend(loc="upper left", fontsize="small")
     torque_axis.grid(alpha=0.3)
     if walking is not None:
-        for axis, (name, label) in zip(axes[1], (("force_N", "force [N]"), ("pressure_kPa", "gauge pressure [kPa]"),
-                                                 ("temperature_C", "gas temperature [°C]"))):
-            for run_name, colour, text in (("bench", "0.5", "bench, 2.5 mm/s"),
-                                            ("walking", "C0", f"walking, {walking['cadence_steps_per_min']:.0f} steps/min")):
+        for axis, (name, label) in zip(
+            axes[1],
+            (
+                ("force_N", "force [N]"),
+                ("pressure_kPa", "gauge pressure [kPa]"),
+                ("temperature_C", "gas temperature [°C]"),
+            ),
+        ):
+            for run_name, colour, text in (
+                ("bench", "0.5", "bench, 2.5 mm/s"),
+                ("walking", "C0", f"walking, {walking['cadence_steps_per_min']:.0f} steps/min"),
+            ):
                 series = walking[run_name]
                 axis.plot(series["elongation_m"] * 1e3, series[name], color=colour, lw=1.0, label=text)
                 if name == "force_N":
-                    axis.plot(series["elongation_m"] * 1e3, series["elastic_force_N"], color=colour, lw=0.8, ls="--",
-                              label=f"{text.split(',')[0]}: gas + bladder (no friction)")
+                    axis.plot(
+                        series["elongation_m"] * 1e3,
+                        series["elastic_force_N"],
+                        color=colour,
+                        lw=0.8,
+                        ls="--",
+                        label=f"{text.split(',')[0]}: gas + bladder (no friction)",
+                    )
             axis.set_xlabel("muscle elongation [mm]")
             axis.set_ylabel(label)
             axis.grid(alpha=0.3)
@@ -358,4 +427,6 @@ def plot_exo(path: str | Path, study: ExoStudy, title: str = "") -> Path:
     return path
 
 
-__all__ = [name for name in dir() if not name.startswith("_") and name not in {"annotations", "np", "dataclass", "Path"}]
+__all__ = [
+    name for name in dir() if not name.startswith("_") and name not in {"annotations", "np", "dataclass", "Path"}
+]

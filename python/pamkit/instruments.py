@@ -26,8 +26,6 @@ import numpy as np
 
 from pamkit.units import KILOPASCAL_PER_PSI
 
-
-
 # ----------------------------------------------------------------------------------------------
 # Tensile machine
 
@@ -109,7 +107,9 @@ class TensileMachine:
         time = np.asarray(truth.time_s, dtype=float)
         end = time[-1] if duration_s is None else duration_s
         if time[0] > 0.0 or end > time[-1] + 1e-9:
-            raise ValueError(f"TensileMachine.record: the truth spans [{time[0]}, {time[-1]}] s, the record needs [0, {end}] s")
+            raise ValueError(
+                f"TensileMachine.record: the truth spans [{time[0]}, {time[-1]}] s, the record needs [0, {end}] s"
+            )
         t = self.sample_times(end)
         cell = self.settings.load_cell
         force = np.interp(t, time, np.asarray(truth.force_N, dtype=float))
@@ -295,7 +295,9 @@ class ArduinoLogger:
         total = np.zeros(volts.shape, dtype=np.int64)
         for _ in range(s.oversample):
             noisy = volts + rng.normal(0.0, noise_rms_V, volts.shape) if noise_rms_V > 0 else volts
-            total += np.clip(np.floor(noisy * s.full_scale_counts / s.adc_reference_V + 0.5), 0, s.full_scale_counts - 1).astype(np.int64)
+            total += np.clip(
+                np.floor(noisy * s.full_scale_counts / s.adc_reference_V + 0.5), 0, s.full_scale_counts - 1
+            ).astype(np.int64)
         return total
 
     def volts(self, counts: np.ndarray) -> np.ndarray:
@@ -321,7 +323,9 @@ class ArduinoLogger:
 
     # calibration and recording --------------------------------------------------------------
 
-    def calibrate(self, rng: np.random.Generator, points_psi=tuple(range(0, 90, 10)), readings_per_point: int = 20) -> PressureCalibration:
+    def calibrate(
+        self, rng: np.random.Generator, points_psi=tuple(range(0, 90, 10)), readings_per_point: int = 20
+    ) -> PressureCalibration:
         """Appendix B's calibration: known gauge pressures from 0 to 80 psi every 10 psi, the
         logger's mean reading at each in the host's volts, a least-squares line psi(V). The
         reference pressures are taken as exact here (a reference gauge's error is what the

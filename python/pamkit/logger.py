@@ -26,7 +26,6 @@ except ModuleNotFoundError:  # Python < 3.11
 
 from pamkit._core.logger import LoggerCalibration, fit_pressure
 
-
 CALIBRATION_TEMPLATE = """\
 # pamkit logger calibration (thesis appendix B).
 #
@@ -91,7 +90,9 @@ def load_calibration(path: str | Path) -> Calibration:
             raise LoggerError(f"{path}: unknown section [{section}] (known: {', '.join(_CALIBRATION_KEYS)})")
         for key in table:
             if key not in _CALIBRATION_KEYS[section]:
-                raise LoggerError(f"{path}: unknown key [{section}] {key} (known: {', '.join(sorted(_CALIBRATION_KEYS[section]))})")
+                raise LoggerError(
+                    f"{path}: unknown key [{section}] {key} (known: {', '.join(sorted(_CALIBRATION_KEYS[section]))})"
+                )
 
     def number(section: str, key: str, default: float) -> float:
         value = document.get(section, {}).get(key, default)
@@ -172,8 +173,10 @@ def read_machine_csv(path: str | Path) -> dict[str, np.ndarray]:
         raise LoggerError(f"{path}: no header row naming time, extension (or displacement) and load (or force)")
     header = rows[header_line]
     units_row = None
-    if header_line + 1 < len(rows) and rows[header_line + 1] and all(
-        re.fullmatch(r"\s*[(\[]?\s*[A-Za-z]*\s*[)\]]?\s*", cell) for cell in rows[header_line + 1]
+    if (
+        header_line + 1 < len(rows)
+        and rows[header_line + 1]
+        and all(re.fullmatch(r"\s*[(\[]?\s*[A-Za-z]*\s*[)\]]?\s*", cell) for cell in rows[header_line + 1])
     ):
         units_row = [cell.strip().strip("()[] ") for cell in rows[header_line + 1]]
     columns: dict[str, tuple[int, float]] = {}
@@ -184,12 +187,16 @@ def read_machine_csv(path: str | Path) -> dict[str, np.ndarray]:
                 if units_row is not None and number < len(units_row) and units_row[number]:
                     unit = units_row[number]
                 if unit is None:
-                    raise LoggerError(f"{path}:{header_line + 1}: column {number + 1} '{cell}' has no unit "
-                                      "(write it as 'Name (unit)' or in a units row below the header)")
+                    raise LoggerError(
+                        f"{path}:{header_line + 1}: column {number + 1} '{cell}' has no unit "
+                        "(write it as 'Name (unit)' or in a units row below the header)"
+                    )
                 factor = _UNITS[quantity].get(unit.lower())
                 if factor is None:
-                    raise LoggerError(f"{path}:{header_line + 1}: column {number + 1} '{cell}': unknown unit '{unit}' "
-                                      f"for {quantity} (known: {', '.join(_UNITS[quantity])})")
+                    raise LoggerError(
+                        f"{path}:{header_line + 1}: column {number + 1} '{cell}': unknown unit '{unit}' "
+                        f"for {quantity} (known: {', '.join(_UNITS[quantity])})"
+                    )
                 columns[quantity] = (number, factor)
     first = header_line + (2 if units_row is not None else 1)
     values = {quantity: [] for quantity in columns}
@@ -201,7 +208,9 @@ def read_machine_csv(path: str | Path) -> dict[str, np.ndarray]:
                 value = float(row[number]) * factor
             except (ValueError, IndexError):
                 cell = row[number] if number < len(row) else ""
-                raise LoggerError(f"{path}:{line}: column {number + 1} ({quantity}) = {cell.strip()!r} is not a number") from None
+                raise LoggerError(
+                    f"{path}:{line}: column {number + 1} ({quantity}) = {cell.strip()!r} is not a number"
+                ) from None
             if not math.isfinite(value):
                 raise LoggerError(f"{path}:{line}: column {number + 1} ({quantity}) is not finite")
             values[quantity].append(value)
@@ -250,7 +259,9 @@ def _check_time(path: Path, time: np.ndarray) -> None:
     steps = np.diff(time)
     if np.any(steps <= 0):
         index = int(np.argmax(steps <= 0)) + 1
-        raise LoggerError(f"{path}: time does not increase at sample {index + 1} ({time[index - 1]} -> {time[index]} s)")
+        raise LoggerError(
+            f"{path}: time does not increase at sample {index + 1} ({time[index - 1]} -> {time[index]} s)"
+        )
 
 
 # --- alignment ----------------------------------------------------------------------------------
@@ -261,10 +272,10 @@ class Alignment:
     """How the logger's clock relates to the machine's: logger time = machine time + offset_s."""
 
     offset_s: float
-    correlation: float         # Pearson r of the two signals at that offset, over their overlap
-    next_best_ratio: float     # height of the next-best cross-correlation peak relative to the chosen one
+    correlation: float  # Pearson r of the two signals at that offset, over their overlap
+    next_best_ratio: float  # height of the next-best cross-correlation peak relative to the chosen one
     next_best_offset_s: float  # where that peak is
-    step_s: float              # resolution of the search grid (one logger sample)
+    step_s: float  # resolution of the search grid (one logger sample)
     logger_signal: str
     machine_signal: str
     notes: list[str] = field(default_factory=list)
@@ -277,8 +288,14 @@ def _zscore(values: np.ndarray) -> np.ndarray:
     return (values - values.mean()) / spread
 
 
-def find_offset(logger_time: np.ndarray, logger_values: np.ndarray, machine_time: np.ndarray,
-                machine_values: np.ndarray, step_s: float, max_offset_s: float | None = None) -> tuple[float, float, float, float]:
+def find_offset(
+    logger_time: np.ndarray,
+    logger_values: np.ndarray,
+    machine_time: np.ndarray,
+    machine_values: np.ndarray,
+    step_s: float,
+    max_offset_s: float | None = None,
+) -> tuple[float, float, float, float]:
     """Offset between two signals of the same process by cross-correlation: returns
     (offset_s, r, next_best_ratio, next_best_offset_s) with logger time = machine time + offset_s,
     r the Pearson correlation over the overlap at that offset, and next_best_ratio the height of
@@ -345,8 +362,13 @@ def _pearson_at(logger_time, logger_values, machine_time, machine_values, offset
     return float(np.corrcoef(x, y)[0, 1])
 
 
-def align(logger: dict[str, np.ndarray], machine: dict[str, np.ndarray], logger_signal: str = "pressure_kPa",
-          machine_signal: str = "extension_m", max_offset_s: float | None = None) -> Alignment:
+def align(
+    logger: dict[str, np.ndarray],
+    machine: dict[str, np.ndarray],
+    logger_signal: str = "pressure_kPa",
+    machine_signal: str = "extension_m",
+    max_offset_s: float | None = None,
+) -> Alignment:
     """Finds the offset between a logger file and a machine export (see :func:`find_offset`).
 
     The default pairs pressure with extension: in a sealed muscle the pressure follows the volume,
@@ -357,8 +379,9 @@ def align(logger: dict[str, np.ndarray], machine: dict[str, np.ndarray], logger_
     if machine_signal not in machine:
         raise LoggerError(f"the machine export has no {machine_signal} (has: {', '.join(machine)})")
     step = float(np.median(np.diff(logger["time_s"])))
-    offset, r, next_ratio, next_offset = find_offset(logger["time_s"], logger[logger_signal], machine["time_s"],
-                                                     machine[machine_signal], step, max_offset_s)
+    offset, r, next_ratio, next_offset = find_offset(
+        logger["time_s"], logger[logger_signal], machine["time_s"], machine[machine_signal], step, max_offset_s
+    )
     return Alignment(offset, r, next_ratio, next_offset, step, logger_signal, machine_signal)
 
 
@@ -393,8 +416,9 @@ def read_muscle_source(path: str | Path) -> dict[str, dict]:
     raise LoggerError(f"{path}: no [muscle] section and no muscle keys at the top level")
 
 
-def write_experiment(path: str | Path, columns: dict[str, np.ndarray], sections: dict[str, dict],
-                     test: dict, comments: list[str]) -> Path:
+def write_experiment(
+    path: str | Path, columns: dict[str, np.ndarray], sections: dict[str, dict], test: dict, comments: list[str]
+) -> Path:
     """Writes EXPERIMENT.toml and EXPERIMENT.csv (same stem) in the DESIGN.md format."""
     from pamkit.experiment import write_series
 

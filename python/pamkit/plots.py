@@ -6,11 +6,16 @@ from pathlib import Path
 
 import numpy as np
 
-CHANNELS = (("force_N", "force [N]"), ("pressure_kPa", "gauge pressure [kPa]"), ("temperature_C", "gas temperature [°C]"))
+CHANNELS = (
+    ("force_N", "force [N]"),
+    ("pressure_kPa", "gauge pressure [kPa]"),
+    ("temperature_C", "gas temperature [°C]"),
+)
 
 
-def plot_simulation(path: str | Path, predicted: dict[str, np.ndarray], measured: dict[str, np.ndarray] | None = None,
-                    title: str = "") -> Path:
+def plot_simulation(
+    path: str | Path, predicted: dict[str, np.ndarray], measured: dict[str, np.ndarray] | None = None, title: str = ""
+) -> Path:
     """Writes a 2x2 figure: force, pressure and temperature against time, and force against
     elongation (the hysteresis loop); measured channels, when given, are drawn under the
     prediction."""

@@ -3,9 +3,9 @@ predict force, pressure and temperature."""
 
 from __future__ import annotations
 
-import numpy as np
-
 from collections.abc import Sequence
+
+import numpy as np
 
 from pamkit._core import (
     BladderLaw,
@@ -70,13 +70,23 @@ def simulate_experiment(
     crosshead = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
     try:
         if mode == GasMode.supplied:
-            measurement = simulate_supplied_measurement(params, length0, crosshead, experiment.columns["pressure_kPa"],
-                                                        experiment.ambient_temperature_C, list(effects))
+            measurement = simulate_supplied_measurement(
+                params,
+                length0,
+                crosshead,
+                experiment.columns["pressure_kPa"],
+                experiment.ambient_temperature_C,
+                list(effects),
+            )
         else:
-            initial = InitialState(length_m=length0,
-                                   gauge_pressure_Pa=experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL)
+            initial = InitialState(
+                length_m=length0, gauge_pressure_Pa=experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL
+            )
             simulator = Simulator(config if config is not None else SimulatorConfig())
             measurement = simulate_measurement(params, initial, crosshead, list(effects), simulator)
     except ValueError as error:
         raise ExperimentError(f"{experiment.data_path}: {error}") from None
-    return {name: getattr(measurement, name) for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")}
+    return {
+        name: getattr(measurement, name)
+        for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
+    }

@@ -33,8 +33,8 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import asdict, dataclass, replace
 from collections.abc import Sequence
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -132,7 +132,7 @@ class Protocol:
     def duration_s(self) -> float:
         return float(self.breakpoints()[0][-1])
 
-    def on_samples(self, sample_rate_Hz: float) -> "Protocol":
+    def on_samples(self, sample_rate_Hz: float) -> Protocol:
         """The same protocol with every corner on a sample of a machine logging at
         `sample_rate_Hz`: ramp, hold and rests whole numbers of sample periods, the speed
         adjusted (by less than half a period per ramp, kept within DESIGN.md's range).
@@ -196,7 +196,9 @@ def draw_protocol(rng: np.random.Generator, build: MuscleBuild) -> Protocol:
     hold = rng.uniform(*HOLD_S) if rng.uniform() < HOLD_PROBABILITY else 0.0
     rest = rng.uniform(*REST_BEFORE_S)
     gas = GasParams()
-    free = free_inflation(BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure * PASCAL_PER_KILOPASCAL)
+    free = free_inflation(
+        BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure * PASCAL_PER_KILOPASCAL
+    )
     contraction = build.length_m - free.length_m
     return Protocol(
         inflation_pressure_kPa=pressure,
@@ -279,8 +281,12 @@ def parse_spec(spec: str, effect_catalog: EffectCatalog) -> tuple[str, dict[str,
     return name, given
 
 
-def configure_effect(spec: str, rng: np.random.Generator, effect_catalog: EffectCatalog | None = None,
-                     channels: Sequence[str] = LOGGED_CHANNELS):
+def configure_effect(
+    spec: str,
+    rng: np.random.Generator,
+    effect_catalog: EffectCatalog | None = None,
+    channels: Sequence[str] = LOGGED_CHANNELS,
+):
     """The effect of `spec` with every parameter not given drawn (module docstring); a channel
     not given is drawn among `channels`.
 
@@ -324,7 +330,9 @@ def configure_effect(spec: str, rng: np.random.Generator, effect_catalog: Effect
 # the dataset
 
 
-def synthesize(effect_spec: str, seed: int, out_dir: str | Path, effect_catalog: EffectCatalog | None = None) -> SynthFiles:
+def synthesize(
+    effect_spec: str, seed: int, out_dir: str | Path, effect_catalog: EffectCatalog | None = None
+) -> SynthFiles:
     """Writes a synthetic experiment with the effect `effect_spec` (``"none"``, ``"NAME"`` or
     ``"NAME:key=value,..."``) hidden in it: ``out_dir/experiment.toml``,
     ``out_dir/experiment.csv`` and the truth in ``out_dir/manifest.json``.
@@ -358,12 +366,16 @@ def synthesize(effect_spec: str, seed: int, out_dir: str | Path, effect_catalog:
     duration = protocol.duration_s
     corners_t, corners_e = protocol.breakpoints()
     logger_times = logger.sample_times(-LOGGER_MARGIN_S, duration + LOGGER_MARGIN_S)
-    times = np.concatenate([machine.sample_times(duration), logger_times[(logger_times > 0) & (logger_times < duration)], corners_t])
+    times = np.concatenate(
+        [machine.sample_times(duration), logger_times[(logger_times > 0) & (logger_times < duration)], corners_t]
+    )
     times = np.unique(times)
     times = times[np.concatenate([[True], np.diff(times) > 1e-6])]
     crosshead = ElongationTrajectory(times, np.interp(times, corners_t, corners_e))
     params = muscle_params(build, protocol.ambient_temperature_C)
-    initial = InitialState(length_m=protocol.free_length_m, gauge_pressure_Pa=protocol.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL)
+    initial = InitialState(
+        length_m=protocol.free_length_m, gauge_pressure_Pa=protocol.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL
+    )
     baseline = simulate_measurement(params, initial, crosshead, [], Simulator())
 
     # A lag or skew of a channel that does not move cannot be seen (the temperature of the
@@ -404,7 +416,11 @@ def synthesize(effect_spec: str, seed: int, out_dir: str | Path, effect_catalog:
             "temperature_step_C": logger.temperature_step_C(),
             "logger_clock_at_machine_zero_s": {"true": instruments["logger"].clock_offset_s, "used_to_merge": sync},
         },
-        "samples": {"dense": int(times.size), "machine": int(machine_log.time_s.size), "logger": int(logger_log.time_s.size)},
+        "samples": {
+            "dense": int(times.size),
+            "machine": int(machine_log.time_s.size),
+            "logger": int(logger_log.time_s.size),
+        },
         "files": {"experiment": files.experiment.name, "data": files.data.name},
     }
     files.manifest.write_text(json.dumps(manifest, indent=2, sort_keys=True) + "\n")

@@ -56,9 +56,9 @@ TABLE_3_6_SOURCE = (
 class Table36Row:
     """One measured swing of table 3.6."""
 
-    pressure_kPa: int     #: nominal inflation pressure (gauge) as the thesis names the test [kPa]
+    pressure_kPa: int  #: nominal inflation pressure (gauge) as the thesis names the test [kPa]
     stretch_percent: int  #: stretch as a percentage of the free contraction [%]
-    swing_C: float        #: measured peak-to-trough gas-temperature swing [°C]
+    swing_C: float  #: measured peak-to-trough gas-temperature swing [°C]
 
     @property
     def experiment(self) -> str:
@@ -156,7 +156,7 @@ def cycle_swings(elongation_m: np.ndarray, temperature_C: np.ndarray) -> np.ndar
     """Peak-to-trough temperature within each complete cycle [°C]."""
     starts = cycle_starts(np.asarray(elongation_m))
     temperature_C = np.asarray(temperature_C)
-    return np.array([np.ptp(temperature_C[a:b + 1]) for a, b in zip(starts[:-1], starts[1:])])
+    return np.array([np.ptp(temperature_C[a : b + 1]) for a, b in zip(starts[:-1], starts[1:])])
 
 
 def steady_swing(elongation_m: np.ndarray, temperature_C: np.ndarray, cycles: int = STEADY_CYCLES) -> float:
@@ -176,21 +176,24 @@ def effects(gas_time_constant_s: float, sensor_time_constant_s: float) -> list:
     ]
 
 
-def simulate_row(row: Table36Row, gas_time_constant_s: float, sensor_time_constant_s: float,
-                 directory: str | Path | None = None) -> dict[str, np.ndarray]:
+def simulate_row(
+    row: Table36Row, gas_time_constant_s: float, sensor_time_constant_s: float, directory: str | Path | None = None
+) -> dict[str, np.ndarray]:
     """The row's test simulated with heat exchange and the TMP36's lag."""
     return simulate_experiment(load_row(row, directory), effects=effects(gas_time_constant_s, sensor_time_constant_s))
 
 
-def predict_swing(row: Table36Row, gas_time_constant_s: float, sensor_time_constant_s: float,
-                  directory: str | Path | None = None) -> float:
+def predict_swing(
+    row: Table36Row, gas_time_constant_s: float, sensor_time_constant_s: float, directory: str | Path | None = None
+) -> float:
     """The swing the TMP36 would read in the row's test [°C] (see :func:`steady_swing`)."""
     run = simulate_row(row, gas_time_constant_s, sensor_time_constant_s, directory)
     return steady_swing(run["elongation_m"], run["temperature_C"])
 
 
-def polytropic_swing(row: Table36Row, index: float = 1.4, sensor_time_constant_s: float = 0.0,
-                     directory: str | Path | None = None) -> float:
+def polytropic_swing(
+    row: Table36Row, index: float = 1.4, sensor_time_constant_s: float = 0.0, directory: str | Path | None = None
+) -> float:
     """The swing the thesis's polytropic model predicts [°C]: the gas temperature itself
     (`sensor_time_constant_s` = 0, as figure 3.21 compares), or as a lagging TMP36 would read it."""
     experiment = load_row(row, directory)
@@ -204,15 +207,18 @@ def polytropic_swing(row: Table36Row, index: float = 1.4, sensor_time_constant_s
 
 @dataclass
 class Calibration:
-    gas_time_constant_s: float     #: fitted
+    gas_time_constant_s: float  #: fitted
     sensor_time_constant_s: float  #: fixed
-    row: Table36Row                #: the row fitted
-    residual_C: float              #: predicted - measured swing on that row
-    evaluations: int               #: simulations the fit ran
+    row: Table36Row  #: the row fitted
+    residual_C: float  #: predicted - measured swing on that row
+    evaluations: int  #: simulations the fit ran
 
 
-def calibrate(row: Table36Row = CALIBRATION_ROW, sensor_time_constant_s: float = TMP36_TIME_CONSTANT_S,
-              directory: str | Path | None = None) -> Calibration:
+def calibrate(
+    row: Table36Row = CALIBRATION_ROW,
+    sensor_time_constant_s: float = TMP36_TIME_CONSTANT_S,
+    directory: str | Path | None = None,
+) -> Calibration:
     """Fits the gas-wall time constant so that the row's predicted swing equals the measured one,
     with the sensor's time constant fixed (one measured number fits one constant; see the module
     docstring). scipy.optimize.least_squares in log(tau) keeps tau positive and scales the step."""
@@ -255,20 +261,22 @@ def gas_wall_time_constant(experiment: Experiment, heat_transfer_W_per_m2K: floa
     mass = pressure * shape.gas_volume / (gas.gas_constant_J_per_kgK * gas.ambient_temperature_K)
     cv = gas.gas_constant_J_per_kgK / (gas.heat_capacity_ratio - 1.0)
     end = params.build.end_diameter_m
-    area = (math.pi * shape.diameter * shape.cylinder_length
-            + 2.0 * math.pi * 0.5 * (shape.diameter + end) * params.build.cone_generator_m
-            + 2.0 * math.pi * end ** 2 / 4.0)
+    area = (
+        math.pi * shape.diameter * shape.cylinder_length
+        + 2.0 * math.pi * 0.5 * (shape.diameter + end) * params.build.cone_generator_m
+        + 2.0 * math.pi * end**2 / 4.0
+    )
     return mass * cv / (heat_transfer_W_per_m2K * area)
 
 
 @dataclass
 class Table36Report:
     calibration: Calibration
-    predicted_C: dict[Table36Row, float]           #: with the calibrated constants
-    polytropic_C: dict[Table36Row, float]          #: n = 1.4, gas temperature
-    polytropic_lagged_C: dict[Table36Row, float]   #: n = 1.4, read through the TMP36's lag
+    predicted_C: dict[Table36Row, float]  #: with the calibrated constants
+    polytropic_C: dict[Table36Row, float]  #: n = 1.4, gas temperature
+    polytropic_lagged_C: dict[Table36Row, float]  #: n = 1.4, read through the TMP36's lag
     sensitivity: list[tuple[Calibration, dict[Table36Row, float]]]  #: refits at the sensor range's ends
-    gas_estimate_s: tuple[float, float]            #: tau_gas from natural convection, (h high, h low)
+    gas_estimate_s: tuple[float, float]  #: tau_gas from natural convection, (h high, h low)
     sensor_estimate_s: tuple[float, float, float]  #: TMP36_TIME_CONSTANT_RANGE_S
 
     @property
@@ -295,7 +303,9 @@ def report(directory: str | Path | None = None) -> Table36Report:
         calibration=calibration,
         predicted_C=predict(calibration),
         polytropic_C={r: polytropic_swing(r, 1.4, 0.0, directory) for r in TABLE_3_6},
-        polytropic_lagged_C={r: polytropic_swing(r, 1.4, calibration.sensor_time_constant_s, directory) for r in TABLE_3_6},
+        polytropic_lagged_C={
+            r: polytropic_swing(r, 1.4, calibration.sensor_time_constant_s, directory) for r in TABLE_3_6
+        },
         sensitivity=sensitivity,
         gas_estimate_s=(gas_wall_time_constant(experiment, h_high), gas_wall_time_constant(experiment, h_low)),
         sensor_estimate_s=TMP36_TIME_CONSTANT_RANGE_S,
@@ -306,7 +316,8 @@ def format_markdown(result: Table36Report) -> str:
     """The comparison as markdown: the table, the fitted constants and the estimates."""
     c = result.calibration
     lines = [
-        "| test | measured [°C] | predicted [°C] | error [°C] | polytropic n = 1.4, gas [°C] | n = 1.4 through the TMP36 [°C] |",
+        "| test | measured [°C] | predicted [°C] | error [°C] | "
+        "polytropic n = 1.4, gas [°C] | n = 1.4 through the TMP36 [°C] |",
         "|---|---|---|---|---|---|",
     ]
     for row in TABLE_3_6:

@@ -68,8 +68,8 @@ void Reader::try_open(double now) {
 void Reader::on_banner(const Banner& banner) {
   if (banner.frame_version != PAMKIT_FRAME_VERSION) {
     throw Error(message("logger on ", options_.port, ": the board sends frame format ", banner.frame_version,
-                        " (firmware ", banner.firmware_version, "), this reader knows format ",
-                        PAMKIT_FRAME_VERSION, ": flash the sketch from this pamkit"));
+                        " (firmware ", banner.firmware_version, "), this reader knows format ", PAMKIT_FRAME_VERSION,
+                        ": flash the sketch from this pamkit"));
   }
   if (waiting_for_banner_) {
     stats_.stale_frames += held_.size();
@@ -104,8 +104,8 @@ void Reader::write(const Sample& sample, double arrival) {
   row.time_s = sample.device_time_s + offset_s_;
   row.pressure_V = calibration_.volts(sample.mean_counts(PAMKIT_CHANNEL_PRESSURE));
   row.temperature_V = calibration_.volts(sample.mean_counts(PAMKIT_CHANNEL_TEMPERATURE));
-  row.pressure_kPa = pressure_calibrated_ ? calibration_.pressure_kPa(row.pressure_V)
-                                          : std::numeric_limits<double>::quiet_NaN();
+  row.pressure_kPa =
+      pressure_calibrated_ ? calibration_.pressure_kPa(row.pressure_V) : std::numeric_limits<double>::quiet_NaN();
   row.temperature_C = calibration_.temperature_C(row.temperature_V);
   row.boot = sample.boot;
   row.seq = sample.frame.seq;
@@ -113,8 +113,8 @@ void Reader::write(const Sample& sample, double arrival) {
     std::fprintf(file_, "%.6f,%.4f,%.3f,%.6f,%.6f,%u,%u\n", row.time_s, row.pressure_kPa, row.temperature_C,
                  row.pressure_V, row.temperature_V, row.boot, static_cast<unsigned>(row.seq));
   } else {
-    std::fprintf(file_, "%.6f,%.3f,%.6f,%.6f,%u,%u\n", row.time_s, row.temperature_C, row.pressure_V,
-                 row.temperature_V, row.boot, static_cast<unsigned>(row.seq));
+    std::fprintf(file_, "%.6f,%.3f,%.6f,%.6f,%u,%u\n", row.time_s, row.temperature_C, row.pressure_V, row.temperature_V,
+                 row.boot, static_cast<unsigned>(row.seq));
   }
   ++stats_.rows;
   last_ = row;

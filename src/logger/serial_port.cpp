@@ -34,10 +34,14 @@ std::string sp_error(enum sp_return code) {
     return out;
   }
   switch (code) {
-    case SP_ERR_ARG: return "invalid argument (libserialport)";
-    case SP_ERR_MEM: return "out of memory";
-    case SP_ERR_SUPP: return "not supported by this port";
-    default: return "libserialport error " + std::to_string(static_cast<int>(code));
+    case SP_ERR_ARG:
+      return "invalid argument (libserialport)";
+    case SP_ERR_MEM:
+      return "out of memory";
+    case SP_ERR_SUPP:
+      return "not supported by this port";
+    default:
+      return "libserialport error " + std::to_string(static_cast<int>(code));
   }
 }
 
@@ -51,16 +55,26 @@ std::string resolve(const std::string& path) {
 
 speed_t termios_speed(unsigned baud) {
   switch (baud) {
-    case 9600: return B9600;
-    case 19200: return B19200;
-    case 38400: return B38400;
-    case 57600: return B57600;
-    case 115200: return B115200;
-    case 230400: return B230400;
-    case 500000: return B500000;
-    case 1000000: return B1000000;
-    case 2000000: return B2000000;
-    default: return 0;
+    case 9600:
+      return B9600;
+    case 19200:
+      return B19200;
+    case 38400:
+      return B38400;
+    case 57600:
+      return B57600;
+    case 115200:
+      return B115200;
+    case 230400:
+      return B230400;
+    case 500000:
+      return B500000;
+    case 1000000:
+      return B1000000;
+    case 2000000:
+      return B2000000;
+    default:
+      return 0;
   }
 }
 

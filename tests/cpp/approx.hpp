@@ -21,12 +21,12 @@ inline double relative_error(double actual, double expected) {
 }  // namespace pamkit_test
 
 /// CHECK that `actual` is within relative tolerance `rel` of `expected` (NaN always fails).
-#define CHECK_REL(actual, expected, rel)                                                               \
-  do {                                                                                                 \
-    const double check_rel_a_ = (actual);                                                              \
-    const double check_rel_e_ = (expected);                                                            \
-    const double check_rel_err_ = ::pamkit_test::relative_error(check_rel_a_, check_rel_e_);          \
-    INFO(std::setprecision(12) << #actual " = " << check_rel_a_ << ", " #expected " = " << check_rel_e_ \
+#define CHECK_REL(actual, expected, rel)                                                                  \
+  do {                                                                                                    \
+    const double check_rel_a_ = (actual);                                                                 \
+    const double check_rel_e_ = (expected);                                                               \
+    const double check_rel_err_ = ::pamkit_test::relative_error(check_rel_a_, check_rel_e_);              \
+    INFO(std::setprecision(12) << #actual " = " << check_rel_a_ << ", " #expected " = " << check_rel_e_   \
                                << ", relative error " << check_rel_err_ << " (allowed " << (rel) << ")"); \
-    CHECK(check_rel_err_ <= (rel));                                                                    \
+    CHECK(check_rel_err_ <= (rel));                                                                       \
   } while (false)

@@ -36,7 +36,8 @@ Run run_cycles(double time_constant_s, double sharpness_s_per_m, double friction
   // The energy integrals under the error test too (by default they only follow the physics' steps).
   SimulatorConfig config;
   config.absolute_tolerance_J = 1e-8;
-  return {Simulator(config).run(model, thesis_protocol(0.05, 2.5e-3, 2)), model.gas_mass() * params.gas.specific_heat_cv()};
+  return {Simulator(config).run(model, thesis_protocol(0.05, 2.5e-3, 2)),
+          model.gas_mass() * params.gas.specific_heat_cv()};
 }
 
 // Sum of |F dL| over the samples: the work that flowed in and out, the scale of the integrator's
@@ -76,8 +77,8 @@ TEST_CASE("Energy: work = heat lost + friction + gas internal energy over whole 
   CHECK(std::abs(heat) > 1000.0 * tolerance);      // ~1.1 J
   CHECK(std::abs(internal) > 1000.0 * tolerance);  // ~-0.5 J: the gas ends a little below T_0
   CHECK(friction > 1000.0 * tolerance);            // ~155 J: with Kf = 200 friction dominates
-  CHECK(heat > 0.0);  // hysteresis: the gas gives heat to the wall over the cycles
-  CHECK(work > 0.0);  // and the machine must supply it
+  CHECK(heat > 0.0);                               // hysteresis: the gas gives heat to the wall over the cycles
+  CHECK(work > 0.0);                               // and the machine must supply it
 }
 
 TEST_CASE("Energy: friction and heat only ever dissipate", "[energy][sim][physics]") {

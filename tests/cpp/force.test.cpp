@@ -110,7 +110,8 @@ TEST_CASE("Newtonian and virtual-work forces agree with flat ends and the thesis
   }
 }
 
-TEST_CASE("With the thesis's end cones the Newtonian force exceeds the virtual-work force", "[force][characterisation]") {
+TEST_CASE("With the thesis's end cones the Newtonian force exceeds the virtual-work force",
+          "[force][characterisation]") {
   // Characterisation, not a tolerance: the statement in force.hpp that the two formulations
   // part with cones (eq. 3.1.1's cones of fixed slant) must stay true. At 200 kPa gauge, thin
   // walls, no bladder, the Newtonian force is larger by ~21-23 N at every working length;
@@ -126,8 +127,8 @@ TEST_CASE("With the thesis's end cones the Newtonian force exceeds the virtual-w
         muscle_forces(geometry, s, BladderLaw::none(), kNoFriction, kAtmosphere + gauge, kAtmosphere, 0.0).total;
     const double newtonian = newtonian_fiber_tensions(geometry, s, BladderLaw::none(), gauge).force;
     table << std::fixed << std::setprecision(3) << "  " << L << std::setprecision(2) << std::setw(10) << vw
-          << std::setw(14) << newtonian << std::setw(10) << newtonian - vw << std::setw(10)
-          << std::setprecision(3) << (newtonian - vw) / vw << "\n";
+          << std::setw(14) << newtonian << std::setw(10) << newtonian - vw << std::setw(10) << std::setprecision(3)
+          << (newtonian - vw) / vw << "\n";
     INFO("L = " << L << ": virtual work " << vw << " N, Newtonian " << newtonian << " N");
     CHECK(newtonian > vw);
     // Regression band around the 21-23 N the model gave when this test was written.

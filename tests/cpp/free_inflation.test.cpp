@@ -27,7 +27,7 @@ struct Row {
 
 // Table 3.4 (thesis section 3.2.1), the inflated rows.
 const std::vector<Row> kTable34 = {
-    {0.223, 35, 0.185, 0.02725}, {0.223, 48, 0.181, 0.0276}, {0.223, 55, 0.180, 0.0278},
+    {0.223, 35, 0.185, 0.02725}, {0.223, 48, 0.181, 0.0276},  {0.223, 55, 0.180, 0.0278},
     {0.223, 69, 0.177, 0.0280},  {0.223, 83, 0.174, 0.02875}, {0.223, 104, 0.172, 0.029},
     {0.225, 138, 0.171, 0.031},  {0.225, 207, 0.167, 0.033},  {0.225, 276, 0.165, 0.033},
 };
@@ -55,11 +55,11 @@ TEST_CASE("Table 3.4: free length and diameter with table C.4's 0.254 mm bladder
           << row.gauge_kPa << " | " << std::setprecision(4) << f.length_m << " | " << std::setprecision(3)
           << row.measured_length_m << " | " << std::setprecision(1) << std::showpos
           << percent(f.length_m, row.measured_length_m) << " % | " << std::noshowpos << std::setprecision(4)
-          << f.diameter_m << " | " << std::setprecision(5) << row.measured_diameter_m << " | "
-          << std::setprecision(1) << std::showpos << percent(f.diameter_m, row.measured_diameter_m) << " % |\n"
+          << f.diameter_m << " | " << std::setprecision(5) << row.measured_diameter_m << " | " << std::setprecision(1)
+          << std::showpos << percent(f.diameter_m, row.measured_diameter_m) << " % |\n"
           << std::noshowpos;
-    INFO(row.gauge_kPa << " kPa: L = " << f.length_m << " m (measured " << row.measured_length_m << "), D = "
-                       << f.diameter_m << " m (measured " << row.measured_diameter_m << ")");
+    INFO(row.gauge_kPa << " kPa: L = " << f.length_m << " m (measured " << row.measured_length_m
+                       << "), D = " << f.diameter_m << " m (measured " << row.measured_diameter_m << ")");
     CHECK(f.contracted);
     // What the model meets honestly: length within 5 % (worst -4.0 % at 138 kPa) and diameter
     // within 10 % (worst -8.9 % at 207 kPa: PAM 2's measured 33 mm is wider than the braid

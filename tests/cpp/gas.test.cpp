@@ -41,8 +41,8 @@ void check_polytropic(const SimulationResult& r, double n, double tolerance) {
   REQUIRE(r.time_s.size() > 100);
   for (std::size_t k = 0; k < r.time_s.size(); ++k) {
     INFO("sample " << k << ", t = " << r.time_s[k] << " s, n = " << n);
-    CHECK_REL(r.pressure_gauge_Pa[k] + gas.atmospheric_pressure_Pa,
-              polytropic_pressure(p0, v0, r.gas_volume_m3[k], n), tolerance);  // eq. 3.1.16
+    CHECK_REL(r.pressure_gauge_Pa[k] + gas.atmospheric_pressure_Pa, polytropic_pressure(p0, v0, r.gas_volume_m3[k], n),
+              tolerance);  // eq. 3.1.16
     CHECK_REL(r.temperature_K[k], polytropic_temperature(gas.ambient_temperature_K, v0, r.gas_volume_m3[k], n),
               tolerance);  // eq. 3.1.18
   }
@@ -82,8 +82,8 @@ TEST_CASE("Gas: instantaneous heat exchange (tau = 1e-4 s) is isothermal, n = 1"
     INFO("sample " << k << ", t = " << r.time_s[k] << " s");
     // The simulator reports sample k with the rate of the segment ending there.
     const double volume_rate = model.geometry().shape(r.length_m[k]).d_gas_volume * trajectory.segment_velocity(k - 1);
-    const double lag = -(gas.heat_capacity_ratio - 1.0) * gas.heat_transfer_time_constant_s * volume_rate /
-                       r.gas_volume_m3[k];
+    const double lag =
+        -(gas.heat_capacity_ratio - 1.0) * gas.heat_transfer_time_constant_s * volume_rate / r.gas_volume_m3[k];
     largest_lag = std::max(largest_lag, std::abs(lag));
     const double p_iso = polytropic_pressure(p0, v0, r.gas_volume_m3[k], 1.0);  // eq. 3.1.16, n = 1
     const double t_iso = polytropic_temperature(gas.ambient_temperature_K, v0, r.gas_volume_m3[k], 1.0);

@@ -59,8 +59,8 @@ TEST_CASE("Table 3.1: theoretical bladder strains from the braid angles 25 and 5
     const double contracted_length = braid_cylinder_length(fiber_length, 50.0 * kDegree);              // eq. 3.1.10
     const double strain_l = contracted_length / relaxed_length - 1.0;
     const double strain_c = contracted_diameter * 1e3 / relaxed_diameter_mm - 1.0;
-    INFO("D = " << contracted_diameter * 1e3 << " mm, Lm = " << contracted_length * 1e2 << " cm, strain L = "
-                << strain_l << ", strain C = " << strain_c);
+    INFO("D = " << contracted_diameter * 1e3 << " mm, Lm = " << contracted_length * 1e2
+                << " cm, strain L = " << strain_l << ", strain C = " << strain_c);
 
     CHECK(within_last_digit(contracted_diameter * 1e3, row.contracted_diameter_mm, 0.01));
     CHECK(within_last_digit(contracted_length * 1e2, row.contracted_length_cm, 0.01));

@@ -39,8 +39,8 @@ void append_frame(Bytes& out, const pamkit_frame& f) {
 std::string banner_line(unsigned long rate_hz = 100, unsigned oversample = 16) {
   char line[PAMKIT_BANNER_MAX];
   const int n = std::snprintf(line, sizeof line, PAMKIT_BANNER_FORMAT, PAMKIT_FIRMWARE_VERSION,
-                              static_cast<unsigned>(PAMKIT_FRAME_VERSION), rate_hz, 1000000UL / rate_hz,
-                              oversample, 115200UL, 5000u);
+                              static_cast<unsigned>(PAMKIT_FRAME_VERSION), rate_hz, 1000000UL / rate_hz, oversample,
+                              115200UL, 5000u);
   std::snprintf(line + n, sizeof line - n, " crc=%04X\r\n",
                 pamkit_crc16(reinterpret_cast<const std::uint8_t*>(line), static_cast<std::size_t>(n)));
   return line;
@@ -57,9 +57,9 @@ Collected decode(Decoder& decoder, const Bytes& stream, std::size_t chunk = 0) {
   Collected out;
   const std::size_t step = chunk ? chunk : std::max<std::size_t>(stream.size(), 1);
   for (std::size_t at = 0; at < stream.size(); at += step) {
-    decoder.feed(stream.data() + at, std::min(step, stream.size() - at),
-                 [&](const Sample& s) { out.samples.push_back(s); },
-                 [&](const Banner& b) { out.banners.push_back(b); });
+    decoder.feed(
+        stream.data() + at, std::min(step, stream.size() - at), [&](const Sample& s) { out.samples.push_back(s); },
+        [&](const Banner& b) { out.banners.push_back(b); });
   }
   return out;
 }
@@ -112,7 +112,8 @@ TEST_CASE("a clean stream decodes completely, in any chunking", "[firmware][deco
   Bytes stream;
   const std::string banner = banner_line();
   append(stream, banner);
-  for (unsigned k = 0; k < 500; ++k) append_frame(stream, make_frame(static_cast<std::uint16_t>(k), 1000u + 10000u * k));
+  for (unsigned k = 0; k < 500; ++k)
+    append_frame(stream, make_frame(static_cast<std::uint16_t>(k), 1000u + 10000u * k));
   for (std::size_t chunk : {std::size_t{1}, std::size_t{7}, std::size_t{16}, std::size_t{4096}}) {
     Decoder d;
     const Collected c = decode(d, stream, chunk);
@@ -142,7 +143,11 @@ TEST_CASE("garbage between frames is skipped, counted and loses nothing", "[firm
       const std::size_t n = 1 + rng() % 50;
       for (std::size_t i = 0; i < n; ++i) {
         const unsigned r = rng() % 8;
-        stream.push_back(r == 0 ? 0xA5 : r == 1 ? 0x5A : r == 2 ? '#' : r == 3 ? '\n' : static_cast<std::uint8_t>(rng()));
+        stream.push_back(r == 0   ? 0xA5
+                         : r == 1 ? 0x5A
+                         : r == 2 ? '#'
+                         : r == 3 ? '\n'
+                                  : static_cast<std::uint8_t>(rng()));
       }
       garbage += n;
     }
@@ -188,7 +193,8 @@ TEST_CASE("flipped bits and dropped bytes cost exactly the frame they hit", "[fi
   CHECK(d.stats().skipped_bytes == damaged_bytes);
   CHECK(d.stats().checksum_errors >= damaged);
   // the frame after each damaged one says how many went missing before it
-  for (const auto& s : c.samples) CHECK(s.missing_before == ((s.frame.seq % 20 == 4 || s.frame.seq % 20 == 14) ? 1u : 0u));
+  for (const auto& s : c.samples)
+    CHECK(s.missing_before == ((s.frame.seq % 20 == 4 || s.frame.seq % 20 == 14) ? 1u : 0u));
   check_ledger(d, 0);
 }
 
@@ -196,7 +202,8 @@ TEST_CASE("a board reset shows as a new boot, by its banner or by its clock", "[
   Bytes stream;
   const std::string banner = banner_line();
   append(stream, banner);
-  for (unsigned k = 0; k < 50; ++k) append_frame(stream, make_frame(static_cast<std::uint16_t>(k), 5000000u + 10000u * k));
+  for (unsigned k = 0; k < 50; ++k)
+    append_frame(stream, make_frame(static_cast<std::uint16_t>(k), 5000000u + 10000u * k));
   stream.resize(stream.size() - 7);  // reset in the middle of frame 49
   append(stream, banner);
   for (unsigned k = 0; k < 50; ++k) append_frame(stream, make_frame(static_cast<std::uint16_t>(k), 4000u + 10000u * k));

@@ -35,12 +35,13 @@ struct Run {
 Run decode(Decoder& d, const std::uint8_t* data, std::size_t size, std::size_t chunk) {
   Run run;
   for (std::size_t at = 0; at < size; at += chunk) {
-    d.feed(data + at, std::min(chunk, size - at),
-           [&](const Sample& s) {
-             require(s.frame.oversample >= 1 && s.frame.oversample <= PAMKIT_OVERSAMPLE_MAX, "oversample range");
-             run.frames.emplace_back(s.boot, s.frame.seq);
-           },
-           [&](const Banner& b) { run.banner_bytes += b.line.size() + 2; });
+    d.feed(
+        data + at, std::min(chunk, size - at),
+        [&](const Sample& s) {
+          require(s.frame.oversample >= 1 && s.frame.oversample <= PAMKIT_OVERSAMPLE_MAX, "oversample range");
+          run.frames.emplace_back(s.boot, s.frame.seq);
+        },
+        [&](const Banner& b) { run.banner_bytes += b.line.size() + 2; });
   }
   return run;
 }

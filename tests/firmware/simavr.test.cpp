@@ -38,9 +38,7 @@ namespace {
 
 constexpr double kVref_mV = 5000.0;  // the harness's AVCC
 
-double wall() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double wall() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 /// The simulated board: a harness process and its files in a fresh temporary folder.
 class SimulatedBoard {
@@ -53,9 +51,9 @@ class SimulatedBoard {
     truth = dir / "truth.txt";
     summary = dir / "summary.txt";
     csv = dir / "log.csv";
-    std::vector<std::string> args = {PAMKIT_SIMAVR_HARNESS, "--firmware", firmware, "--link", link.string(),
-                                     "--seconds", std::to_string(seconds), "--truth", truth.string(),
-                                     "--summary", summary.string()};
+    std::vector<std::string> args = {
+        PAMKIT_SIMAVR_HARNESS,   "--firmware", firmware,       "--link",    link.string(),   "--seconds",
+        std::to_string(seconds), "--truth",    truth.string(), "--summary", summary.string()};
     args.insert(args.end(), extra.begin(), extra.end());
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
@@ -110,7 +108,7 @@ class SimulatedBoard {
 /// What the harness did, from its truth file.
 struct Truth {
   std::map<unsigned, std::vector<unsigned>> conversions[2];  // boot -> mV served, per channel, in order
-  std::vector<std::pair<unsigned, unsigned>> intact;          // (boot, seq) of frames sent undamaged
+  std::vector<std::pair<unsigned, unsigned>> intact;         // (boot, seq) of frames sent undamaged
 };
 
 Truth read_truth(const fs::path& path) {
@@ -234,8 +232,8 @@ void check_values(const std::vector<Row>& rows, const Truth& truth, unsigned ove
     ++checked;
   }
   CHECK(checked == rows.size());
-  WARN("values checked in " << checked << " frames; worst mean difference to a real ATmega: "
-                            << worst_hardware << " counts");
+  WARN("values checked in " << checked << " frames; worst mean difference to a real ATmega: " << worst_hardware
+                            << " counts");
 }
 
 std::vector<std::pair<unsigned, unsigned>> received(const std::vector<Row>& rows) {
@@ -246,7 +244,8 @@ std::vector<std::pair<unsigned, unsigned>> received(const std::vector<Row>& rows
 
 }  // namespace
 
-TEST_CASE("simavr: the shipped sketch streams 60 s at 100 Hz with no frame lost and exact values", "[firmware][simavr]") {
+TEST_CASE("simavr: the shipped sketch streams 60 s at 100 Hz with no frame lost and exact values",
+          "[firmware][simavr]") {
   SimulatedBoard board(PAMKIT_FIRMWARE_SHIPPED, 60.0);
   const LoggerCalibration calibration = test_calibration();
   std::optional<Banner> banner;
@@ -275,7 +274,8 @@ TEST_CASE("simavr: the shipped sketch streams 60 s at 100 Hz with no frame lost 
   // device time: one sample every 10 ms; micros() ticks in 4 us steps at 16 MHz and the loop
   // polls it every few us, so consecutive stamps are 10 ms within 8 us
   double worst = 0;
-  for (std::size_t i = 1; i < rows.size(); ++i) worst = std::max(worst, std::abs(rows[i].time_s - rows[i - 1].time_s - 0.01));
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    worst = std::max(worst, std::abs(rows[i].time_s - rows[i - 1].time_s - 0.01));
   CHECK(worst <= 8e-6);
   CHECK(rows.front().time_s == 0.0);
 }

@@ -54,22 +54,22 @@ typedef struct harness {
   const char* link;
   FILE* truth;
   int master;
-  uint64_t cycles;        /* simulated cycles since start, across resets */
+  uint64_t cycles; /* simulated cycles since start, across resets */
   avr_cycle_count_t last_cycle;
   unsigned boot;
   /* the stream as the firmware sends it */
-  int in_banner;          /* inside a banner line */
-  unsigned frame_pos;     /* byte index within the current frame */
+  int in_banner;      /* inside a banner line */
+  unsigned frame_pos; /* byte index within the current frame */
   uint8_t frame[PAMKIT_FRAME_SIZE];
-  unsigned long frames;   /* frames sent since start */
+  unsigned long frames; /* frames sent since start */
   /* fault plan */
   unsigned long fault_every;
   unsigned next_fault;
   unsigned long last_fault_at; /* frame count at the last fault: one fault per count */
-  int fault_here;         /* fault planned for the current frame, or -1 */
-  unsigned fault_byte;    /* which byte of the frame it hits */
-  int pending;            /* FAULT_RESET / FAULT_UNPLUG to perform after this batch, or -1 */
-  int muted;              /* the board is "gone" until the pending fault is performed */
+  int fault_here;              /* fault planned for the current frame, or -1 */
+  unsigned fault_byte;         /* which byte of the frame it hits */
+  int pending;                 /* FAULT_RESET / FAULT_UNPLUG to perform after this batch, or -1 */
+  int muted;                   /* the board is "gone" until the pending fault is performed */
   uint32_t rng;
   /* bytes on their way to the pty */
   uint8_t out[OUT_CAPACITY];
@@ -131,7 +131,8 @@ static void adc_trigger(avr_irq_t* irq, uint32_t value, void* param) {
     uint32_t v;
   } e = {.v = value};
   if (e.mux.kind != ADC_MUX_SINGLE || e.mux.src > 1) return;
-  const uint32_t mV = waveform_mV(e.mux.src, sim_seconds(h) + (double)(h->avr->cycle - h->last_cycle) / h->avr->frequency);
+  const uint32_t mV =
+      waveform_mV(e.mux.src, sim_seconds(h) + (double)(h->avr->cycle - h->last_cycle) / h->avr->frequency);
   avr_raise_irq(h->adc_in[e.mux.src], mV);
   ++h->conversions;
   if (h->truth) fprintf(h->truth, "C %u %u %u\n", h->boot, (unsigned)e.mux.src, mV);
@@ -347,8 +348,9 @@ int main(int argc, char** argv) {
   const double seconds = atof(option(argc, argv, "--seconds", "10"));
   const int realtime = flag(argc, argv, "--realtime");
   if (!firmware || !link || !(seconds > 0)) {
-    fprintf(stderr, "usage: simavr_harness --firmware ELF --link PATH --seconds S [--truth FILE] "
-                    "[--summary FILE] [--fault-every N] [--seed N] [--realtime]\n");
+    fprintf(stderr,
+            "usage: simavr_harness --firmware ELF --link PATH --seconds S [--truth FILE] "
+            "[--summary FILE] [--fault-every N] [--seed N] [--realtime]\n");
     return 2;
   }
 
@@ -450,17 +452,19 @@ int main(int argc, char** argv) {
     snprintf(temporary, sizeof temporary, "%s.tmp", summary);
     FILE* out = fopen(temporary, "w");
     if (!out) die(temporary);
-    fprintf(out, "simulated_s=%.6f\nwall_s=%.3f\nframes=%lu\ndamaged_frames=%lu\ndamaged_bytes=%lu\n"
-                 "garbage_bytes=%lu\nbytes_written=%lu\nconversions=%lu\nboots=%u\nreopened=%u\n",
-            sim_seconds(&h), wall, h.frames, h.damaged, h.damaged_bytes, h.garbage_bytes,
-            h.bytes_written, h.conversions, h.boot + 1, reopened);
+    fprintf(out,
+            "simulated_s=%.6f\nwall_s=%.3f\nframes=%lu\ndamaged_frames=%lu\ndamaged_bytes=%lu\n"
+            "garbage_bytes=%lu\nbytes_written=%lu\nconversions=%lu\nboots=%u\nreopened=%u\n",
+            sim_seconds(&h), wall, h.frames, h.damaged, h.damaged_bytes, h.garbage_bytes, h.bytes_written,
+            h.conversions, h.boot + 1, reopened);
     for (int k = 0; k < FAULT_KINDS; ++k) fprintf(out, "fault_%s=%lu\n", kFaultNames[k], h.faults[k]);
     fprintf(out, "unplugged=%u\nseq_gaps=%lu\nseq_missing=%lu\ndevice_dropped=%lu\n", unplugged, h.seq_gaps,
             h.seq_missing, h.device_dropped);
     fclose(out);
     if (rename(temporary, summary)) die(summary);
   }
-  printf("simavr_harness: %.2f s simulated in %.2f s, %lu frames, %lu damaged\n", sim_seconds(&h), wall, h.frames, h.damaged);
+  printf("simavr_harness: %.2f s simulated in %.2f s, %lu frames, %lu damaged\n", sim_seconds(&h), wall, h.frames,
+         h.damaged);
   fflush(stdout);
   /* wait for the host to let go of the port, so that it can read everything first */
   for (int i = 0; i < 3000 && port_open(&h); ++i) wall_sleep(0.01);

@@ -32,13 +32,25 @@ def write_calibration(path: Path) -> Path:
     from pamkit.logger import CALIBRATION_TEMPLATE
 
     assert "measured_V = []" in CALIBRATION_TEMPLATE
-    path.write_text(CALIBRATION_TEMPLATE.replace("measured_V = []", "measured_V = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5]"))
+    path.write_text(
+        CALIBRATION_TEMPLATE.replace("measured_V = []", "measured_V = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5]")
+    )
     return path
 
 
 def start_board(tmp_path: Path, seconds: float, realtime: bool = True) -> tuple[subprocess.Popen, Path, Path]:
     link, summary = tmp_path / "ttyPAMKIT", tmp_path / "summary.txt"
-    command = [HARNESS, "--firmware", FIRMWARE, "--link", str(link), "--seconds", str(seconds), "--summary", str(summary)]
+    command = [
+        HARNESS,
+        "--firmware",
+        FIRMWARE,
+        "--link",
+        str(link),
+        "--seconds",
+        str(seconds),
+        "--summary",
+        str(summary),
+    ]
     with (tmp_path / "harness.log").open("w") as log:
         board = subprocess.Popen(command + (["--realtime"] if realtime else []), stdout=log, stderr=subprocess.STDOUT)
     deadline = time.monotonic() + 20
@@ -53,8 +65,19 @@ def totals(summary: Path) -> dict[str, float]:
 
 
 def log_command(link: Path, output: Path, calibration: Path, *extra: str) -> list[str]:
-    return [sys.executable, "-m", "pamkit", "log", "--port", str(link), "-o", str(output),
-            "--calibration", str(calibration), *extra]
+    return [
+        sys.executable,
+        "-m",
+        "pamkit",
+        "log",
+        "--port",
+        str(link),
+        "-o",
+        str(output),
+        "--calibration",
+        str(calibration),
+        *extra,
+    ]
 
 
 def read_rows(path: Path) -> list[dict[str, float]]:
@@ -67,8 +90,13 @@ def test_log_records_every_frame_of_a_simulated_board(tmp_path):
     calibration = write_calibration(tmp_path / "cal.toml")
     board, link, summary = start_board(tmp_path, seconds=4.0)
     output = tmp_path / "log.csv"
-    result = subprocess.run(log_command(link, output, calibration, "--duration", "7"), capture_output=True, text=True,
-                            timeout=60, env={**os.environ, "PYTHONUNBUFFERED": "1"})
+    result = subprocess.run(
+        log_command(link, output, calibration, "--duration", "7"),
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env={**os.environ, "PYTHONUNBUFFERED": "1"},
+    )
     assert result.returncode == 0, result.stderr
     assert board.wait(timeout=30) == 0
     frames = totals(summary)["frames"]
@@ -90,10 +118,13 @@ def test_log_keeps_what_arrived_when_stopped(tmp_path, how):
     calibration = write_calibration(tmp_path / "cal.toml")
     board, link, _ = start_board(tmp_path, seconds=30.0)
     output = tmp_path / "log.csv"
-    process = subprocess.Popen(log_command(link, output, calibration), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                               text=True)
+    process = subprocess.Popen(
+        log_command(link, output, calibration), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
     deadline = time.monotonic() + 30
-    while (not output.exists() or len(output.read_text().splitlines()) < 151) and time.monotonic() < deadline:  # header + 150 rows
+    while (
+        not output.exists() or len(output.read_text().splitlines()) < 151
+    ) and time.monotonic() < deadline:  # header + 150 rows
         time.sleep(0.05)
     process.send_signal(how)
     stdout, _ = process.communicate(timeout=20)
@@ -126,8 +157,13 @@ def synthetic_logs(tmp_path: Path, offset_s: float, seed: int) -> tuple[Path, Pa
         writer.writerow(["Time", "Extension", "Load"])
         writer.writerow(["(s)", "(mm)", "(N)"])
         for i in range(t.size):
-            writer.writerow([f"{t[i]:.2f}", f"{truth['elongation_m'][i] * 1e3:.4f}",
-                             f"{truth['force_N'][i] + rng.normal(0, 0.2):.3f}"])
+            writer.writerow(
+                [
+                    f"{t[i]:.2f}",
+                    f"{truth['elongation_m'][i] * 1e3:.4f}",
+                    f"{truth['force_N'][i] + rng.normal(0, 0.2):.3f}",
+                ]
+            )
     # the logger runs from 20 s before the machine to 10 s after (cut to what overlaps for a
     # negative offset), 100 Hz, on its own clock
     machine_time = np.arange(-20.0, t[-1] + 10.0, 0.01)
@@ -170,8 +206,22 @@ def test_align_recovers_a_known_offset_within_one_sample(tmp_path, capsys, offse
 def test_aligned_experiment_is_accepted_by_simulate(tmp_path):
     logger, machine, _ = synthetic_logs(tmp_path, 12.5, 3)
     output = tmp_path / "aligned.toml"
-    assert main(["align", str(logger), str(machine), "-o", str(output), "--muscle", str(THESIS),
-                 "--initial-length-m", "0.185"]) == 0
+    assert (
+        main(
+            [
+                "align",
+                str(logger),
+                str(machine),
+                "-o",
+                str(output),
+                "--muscle",
+                str(THESIS),
+                "--initial-length-m",
+                "0.185",
+            ]
+        )
+        == 0
+    )
     predicted = tmp_path / "predicted.csv"
     assert main(["simulate", str(output), "-o", str(predicted)]) == 0
     rows = read_rows(predicted)
@@ -195,6 +245,18 @@ def test_align_and_calibration_errors_name_the_problem(tmp_path, capsys):
     machine.write_text("Time (s),Extension (mm),Load (kN)\n0,0,0\n1,abc,1\n")
     with pytest.raises(LoggerError, match=r"machine.csv:3: column 2 \(extension\) = 'abc' is not a number"):
         read_machine_csv(machine)
-    assert main(["log", "--port", "/dev/nonexistent", "-o", str(tmp_path / "x.csv"),
-                 "--calibration", str(tmp_path / "missing.toml")]) == 2
+    assert (
+        main(
+            [
+                "log",
+                "--port",
+                "/dev/nonexistent",
+                "-o",
+                str(tmp_path / "x.csv"),
+                "--calibration",
+                str(tmp_path / "missing.toml"),
+            ]
+        )
+        == 2
+    )
     assert "no such calibration file" in capsys.readouterr().err

@@ -66,8 +66,9 @@ def temperature_logger(temperature_C, rng):
     return (_adc_volts(volts, rng) - TMP36_ZERO_V) / TMP36_V_PER_C
 
 
-def write_experiment(folder: Path, name: str, muscle: dict, test: dict, columns: dict[str, np.ndarray],
-                     comment: str) -> Path:
+def write_experiment(
+    folder: Path, name: str, muscle: dict, test: dict, columns: dict[str, np.ndarray], comment: str
+) -> Path:
     """Writes NAME.toml and NAME.csv into `folder`; returns the TOML's path."""
     folder.mkdir(parents=True, exist_ok=True)
     header = list(columns)

@@ -38,11 +38,25 @@ def pamkit_prediction(folder: Path, physics: Physics, speed: float) -> tuple[dic
     times = np.arange(0.0, motion.corner_t[-1] + 1e-9, 0.1)
     run = muscle.run(motion, times)
     truth = {"force_N": run.force_N, "pressure_kPa": run.gauge_kPa}
-    path = bench.write_experiment(folder, "cal", vars(Build()).copy(), {
-        "inflation_pressure_kPa": plan.gauge_kPa, "ambient_temperature_C": plan.ambient_C,
-        "initial_length_m": muscle.free_length_m}, {"time_s": times, "elongation_m": run.elongation_m}, "calibration")
+    path = bench.write_experiment(
+        folder,
+        "cal",
+        vars(Build()).copy(),
+        {
+            "inflation_pressure_kPa": plan.gauge_kPa,
+            "ambient_temperature_C": plan.ambient_C,
+            "initial_length_m": muscle.free_length_m,
+        },
+        {"time_s": times, "elongation_m": run.elongation_m},
+        "calibration",
+    )
     out = folder / "cal_pamkit.csv"
-    done = subprocess.run([sys.executable, "-m", "pamkit", "simulate", str(path), "-o", str(out)], check=False, capture_output=True, text=True)
+    done = subprocess.run(
+        [sys.executable, "-m", "pamkit", "simulate", str(path), "-o", str(out)],
+        check=False,
+        capture_output=True,
+        text=True,
+    )
     if done.returncode != 0:
         raise SystemExit(done.stderr)
     predicted = np.genfromtxt(out, delimiter=",", names=True)
@@ -63,10 +77,13 @@ def main() -> int:
         if not arguments.grid:
             for speed in speeds:
                 truth, predicted, muscle = pamkit_prediction(folder, Physics(), speed)
-                print(f"{speed * 1e3:4.1f} mm/s: free length {muscle.free_length_m * 1e3:.1f} mm; force RMSE "
-                      f"{rmse(truth['force_N'], predicted['force_N']):.2f} N (range {np.ptp(predicted['force_N']):.0f} N), "
-                      f"pressure RMSE {rmse(truth['pressure_kPa'], predicted['pressure_kPa']):.2f} kPa "
-                      f"(range {np.ptp(predicted['pressure_kPa']):.0f} kPa)")
+                print(
+                    f"{speed * 1e3:4.1f} mm/s: free length {muscle.free_length_m * 1e3:.1f} mm; force RMSE "
+                    f"{rmse(truth['force_N'], predicted['force_N']):.2f} N "
+                    f"(range {np.ptp(predicted['force_N']):.0f} N), "
+                    f"pressure RMSE {rmse(truth['pressure_kPa'], predicted['pressure_kPa']):.2f} kPa "
+                    f"(range {np.ptp(predicted['pressure_kPa']):.0f} kPa)"
+                )
             return 0
         for mu in (0.3e6, 0.45e6, 0.6e6, 0.8e6):
             # force = static + c_f * p * tanh(v / v_s): run without friction, fit c_f linearly
@@ -74,13 +91,23 @@ def main() -> int:
             for speed in speeds:
                 truth, predicted, _ = pamkit_prediction(folder, Physics(shear_modulus_Pa=mu, friction_m2=0.0), speed)
                 rows.append((truth, predicted, speed))
-            a = np.concatenate([r[0]["pressure_kPa"] * 1e3 * np.tanh(_velocity(r[2]) / Physics().friction_velocity_m_per_s)
-                                for r in rows])
+            a = np.concatenate(
+                [
+                    r[0]["pressure_kPa"] * 1e3 * np.tanh(_velocity(r[2]) / Physics().friction_velocity_m_per_s)
+                    for r in rows
+                ]
+            )
             residual = np.concatenate([r[1]["force_N"] - r[0]["force_N"] for r in rows])
             friction = float(a @ residual / (a @ a))
             force = rmse(residual, friction * a)
-            pressure = rmse(np.concatenate([r[0]["pressure_kPa"] for r in rows]), np.concatenate([r[1]["pressure_kPa"] for r in rows]))
-            print(f"mu {mu / 1e6:.2f} MPa: c_f {friction:.3g} m², force RMSE {force:.2f} N, pressure RMSE {pressure:.2f} kPa")
+            pressure = rmse(
+                np.concatenate([r[0]["pressure_kPa"] for r in rows]),
+                np.concatenate([r[1]["pressure_kPa"] for r in rows]),
+            )
+            print(
+                f"mu {mu / 1e6:.2f} MPa: c_f {friction:.3g} m², "
+                f"force RMSE {force:.2f} N, pressure RMSE {pressure:.2f} kPa"
+            )
     return 0
 
 

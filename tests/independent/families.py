@@ -70,9 +70,13 @@ class SealedPlan:
 def draw_sealed_plan(rng: np.random.Generator) -> SealedPlan:
     speed = math.exp(rng.uniform(math.log(SPEED_M_PER_S[0]), math.log(SPEED_M_PER_S[1])))
     cycles = int(rng.integers(CYCLES[0], CYCLES[1] + 1))
-    return SealedPlan(gauge_kPa=round(rng.uniform(*INFLATION_KPA), 2), ambient_C=round(rng.uniform(*AMBIENT_C), 2),
-                      fraction=rng.uniform(*STRETCH_FRACTION), speeds=[round(speed, 5)] * cycles,
-                      rest_before_s=round(rng.uniform(1.0, 3.0), 1))
+    return SealedPlan(
+        gauge_kPa=round(rng.uniform(*INFLATION_KPA), 2),
+        ambient_C=round(rng.uniform(*AMBIENT_C), 2),
+        fraction=rng.uniform(*STRETCH_FRACTION),
+        speeds=[round(speed, 5)] * cycles,
+        rest_before_s=round(rng.uniform(1.0, 3.0), 1),
+    )
 
 
 def sample_rate(top_m: float, speeds) -> float:
@@ -94,8 +98,17 @@ def crosshead(plan: SealedPlan, top_m: float, rate: float) -> Motion:
     return Motion(np.asarray(t), np.asarray(x))
 
 
-def sealed_test(seed: int, folder: Path, *, physics: Physics | None = None, plan_change=None, record=None,
-                expected: str = HONEST, truth: dict | None = None, muscle_change: dict | None = None) -> Dataset:
+def sealed_test(
+    seed: int,
+    folder: Path,
+    *,
+    physics: Physics | None = None,
+    plan_change=None,
+    record=None,
+    expected: str = HONEST,
+    truth: dict | None = None,
+    muscle_change: dict | None = None,
+) -> Dataset:
     """One sealed test. `plan_change(plan, rng)` alters the protocol; `record(muscle, motion,
     times, rate, rngs)` turns the truth into the columns (default: the bench's instruments);
     `muscle_change` overrides [muscle] keys in the TOML only (a declared build that is off)."""
@@ -111,12 +124,28 @@ def sealed_test(seed: int, folder: Path, *, physics: Physics | None = None, plan
     times = np.arange(0.0, motion.corner_t[-1] + 1e-9, 1.0 / rate)
     columns = (record or record_sealed)(muscle, motion, times, rate, rng)
     muscle_toml = {**_muscle_toml(build), **(muscle_change or {})}
-    test = {"description": "independent model, sealed cyclic test", "inflation_pressure_kPa": plan.gauge_kPa,
-            "ambient_temperature_C": plan.ambient_C, "initial_length_m": round(muscle.free_length_m, 4)}
-    path = bench.write_experiment(folder, "test", muscle_toml, test, columns,
-                                  "Written by tests/independent (not pamkit): a sealed muscle stretched on a tensile machine.")
-    info = {"gauge_kPa": plan.gauge_kPa, "speeds_mm_per_s": sorted({round(s * 1e3, 3) for s in plan.speeds}), "cycles": len(plan.speeds),
-            "top_mm": top * 1e3, "rate_Hz": rate, **(truth or {})}
+    test = {
+        "description": "independent model, sealed cyclic test",
+        "inflation_pressure_kPa": plan.gauge_kPa,
+        "ambient_temperature_C": plan.ambient_C,
+        "initial_length_m": round(muscle.free_length_m, 4),
+    }
+    path = bench.write_experiment(
+        folder,
+        "test",
+        muscle_toml,
+        test,
+        columns,
+        "Written by tests/independent (not pamkit): a sealed muscle stretched on a tensile machine.",
+    )
+    info = {
+        "gauge_kPa": plan.gauge_kPa,
+        "speeds_mm_per_s": sorted({round(s * 1e3, 3) for s in plan.speeds}),
+        "cycles": len(plan.speeds),
+        "top_mm": top * 1e3,
+        "rate_Hz": rate,
+        **(truth or {}),
+    }
     return Dataset(path, expected, info)
 
 
@@ -145,51 +174,68 @@ def independent_null(seed, folder):
 
 def independent_heat_transfer(seed, folder):
     tau = math.exp(np.random.default_rng([seed, 1]).uniform(math.log(0.5), math.log(10.0)))
-    return sealed_test(seed, folder, physics=Physics(heat_time_constant_s=tau), expected="heat_transfer",
-                       truth={"time_constant_s": tau})
+    return sealed_test(
+        seed,
+        folder,
+        physics=Physics(heat_time_constant_s=tau),
+        expected="heat_transfer",
+        truth={"time_constant_s": tau},
+    )
 
 
 def independent_dead_volume(seed, folder):
     fraction = np.random.default_rng([seed, 2]).uniform(0.03, 0.3)
-    return sealed_test(seed, folder, physics=Physics(dead_volume_fraction=fraction), expected="dead_volume",
-                       truth={"volume_fraction": fraction})
+    return sealed_test(
+        seed,
+        folder,
+        physics=Physics(dead_volume_fraction=fraction),
+        expected="dead_volume",
+        truth={"volume_fraction": fraction},
+    )
 
 
 def independent_leak(seed, folder):
     tau = math.exp(np.random.default_rng([seed, 3]).uniform(math.log(100.0), math.log(3000.0)))
-    return sealed_test(seed, folder, physics=Physics(leak_time_constant_s=tau), expected="leak",
-                       truth={"time_constant_s": tau})
+    return sealed_test(
+        seed, folder, physics=Physics(leak_time_constant_s=tau), expected="leak", truth={"time_constant_s": tau}
+    )
 
 
 def load_cell_tare(seed, folder):
     tare = _signed(np.random.default_rng([seed, 4]), 2.0, 6.0)
-    return sealed_test(seed, folder, record=lambda *a: record_sealed(*a, force=lambda f: f + tare),
-                       truth={"tare_N": tare})
+    return sealed_test(
+        seed, folder, record=lambda *a: record_sealed(*a, force=lambda f: f + tare), truth={"tare_N": tare}
+    )
 
 
 def load_cell_nonlinear(seed, folder):
     """Reads F + k F², k set so that the error at 300 N is 2-5 % of the reading."""
     k = _signed(np.random.default_rng([seed, 5]), 0.02, 0.05) / 300.0
-    return sealed_test(seed, folder, record=lambda *a: record_sealed(*a, force=lambda f: f + k * f * f),
-                       truth={"k_per_N": k})
+    return sealed_test(
+        seed, folder, record=lambda *a: record_sealed(*a, force=lambda f: f + k * f * f), truth={"k_per_N": k}
+    )
 
 
 def travel_scale(seed, folder):
     scale = 1.0 + _signed(np.random.default_rng([seed, 6]), 0.02, 0.04)
-    return sealed_test(seed, folder, record=lambda *a: record_sealed(*a, elongation=lambda x: x * scale),
-                       truth={"scale": scale})
+    return sealed_test(
+        seed, folder, record=lambda *a: record_sealed(*a, elongation=lambda x: x * scale), truth={"scale": scale}
+    )
 
 
 def declared_length(seed, folder):
     error = _signed(np.random.default_rng([seed, 7]), 1e-3, 2e-3)
-    return sealed_test(seed, folder, muscle_change={"length_m": round(Build().length_m + error, 4)}, truth={"error_m": error})
+    return sealed_test(
+        seed, folder, muscle_change={"length_m": round(Build().length_m + error, 4)}, truth={"error_m": error}
+    )
 
 
 def declared_diameter(seed, folder):
     """The TOML's braid diameter 0.3-0.6 mm off (a caliper on a soft braid)."""
     error = _signed(np.random.default_rng([seed, 14]), 0.3e-3, 0.6e-3)
-    return sealed_test(seed, folder, muscle_change={"diameter_m": round(Build().diameter_m + error, 5)},
-                       truth={"error_m": error})
+    return sealed_test(
+        seed, folder, muscle_change={"diameter_m": round(Build().diameter_m + error, 5)}, truth={"error_m": error}
+    )
 
 
 def mullins(seed, folder):
@@ -304,12 +350,27 @@ def isometric_sweep(seed, folder, *, transducer=None, expected=HONEST, truth=Non
         pressure[i] = decay * pressure[i - 1] + (1 - decay) * command[i - 1]
     force = supplied_tension(build, Physics(), held, pressure)
     read = pressure if transducer is None else transducer(pressure)
-    columns = {"time_s": times, "elongation_m": bench.encoder(np.zeros_like(times), rng.noise, encoder_noise_m),
-               "force_N": bench.load_cell(force, rng.noise), "pressure_kPa": bench.pressure_logger(read, rng.noise)}
-    test = {"description": "independent model, isometric supplied-pressure sweep", "gas": "supplied",
-            "inflation_pressure_kPa": 0.0, "ambient_temperature_C": ambient, "initial_length_m": held}
-    path = bench.write_experiment(folder, "test", _muscle_toml(build), test, columns,
-                                  "Written by tests/independent (not pamkit): a muscle held by the rig, supplied pressure swept.")
+    columns = {
+        "time_s": times,
+        "elongation_m": bench.encoder(np.zeros_like(times), rng.noise, encoder_noise_m),
+        "force_N": bench.load_cell(force, rng.noise),
+        "pressure_kPa": bench.pressure_logger(read, rng.noise),
+    }
+    test = {
+        "description": "independent model, isometric supplied-pressure sweep",
+        "gas": "supplied",
+        "inflation_pressure_kPa": 0.0,
+        "ambient_temperature_C": ambient,
+        "initial_length_m": held,
+    }
+    path = bench.write_experiment(
+        folder,
+        "test",
+        _muscle_toml(build),
+        test,
+        columns,
+        "Written by tests/independent (not pamkit): a muscle held by the rig, supplied pressure swept.",
+    )
     return Dataset(path, expected, {"held_m": held, "top_kPa": top, "steps": steps, **(truth or {})})
 
 
@@ -324,11 +385,31 @@ def isometric_held_exactly(seed, folder):
 
 def isometric_transducer_offset(seed, folder):
     """The supplied pressure's transducer reads 0.96 p − 10 kPa."""
-    return isometric_sweep(seed, folder, transducer=lambda p: 0.96 * p - 10.0, truth={"gain": 0.96, "offset_kPa": -10.0})
+    return isometric_sweep(
+        seed, folder, transducer=lambda p: 0.96 * p - 10.0, truth={"gain": 0.96, "offset_kPa": -10.0}
+    )
 
 
-FAMILIES = {f.__name__: f for f in (
-    independent_null, independent_heat_transfer, independent_dead_volume, independent_leak,
-    load_cell_tare, load_cell_nonlinear, travel_scale, declared_length, declared_diameter, mullins, coulomb_alternating, dahl,
-    subsample_skew, subsample_lag, subsample_slack, isometric_null, isometric_held_exactly, isometric_transducer_offset,
-)}
+FAMILIES = {
+    f.__name__: f
+    for f in (
+        independent_null,
+        independent_heat_transfer,
+        independent_dead_volume,
+        independent_leak,
+        load_cell_tare,
+        load_cell_nonlinear,
+        travel_scale,
+        declared_length,
+        declared_diameter,
+        mullins,
+        coulomb_alternating,
+        dahl,
+        subsample_skew,
+        subsample_lag,
+        subsample_slack,
+        isometric_null,
+        isometric_held_exactly,
+        isometric_transducer_offset,
+    )
+}

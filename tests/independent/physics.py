@@ -73,7 +73,8 @@ class Physics:
     see tests/independent/calibrate.py) and the switches of the hidden causes."""
 
     shear_modulus_Pa: float = 0.6e6
-    """bladder rubber μ: natural latex is 0.3-0.6 MPa; 0.6, its top, brings the force nearest pamkit's while the pressure stays within 2.3 kPa (calibrate.py --grid)"""
+    """bladder rubber μ: natural latex is 0.3-0.6 MPa; 0.6, its top, brings the force nearest
+    pamkit's while the pressure stays within 2.3 kPa (calibrate.py --grid)"""
     friction_m2: float = 2.6e-5
     """c_f: friction force per gauge pressure [N/Pa]; least squares against pamkit at 2.5 and 25 mm/s"""
     friction_velocity_m_per_s: float = 1.0e-3
@@ -150,8 +151,12 @@ class Geometry:
     def free_length(self, gauge_Pa: float, shear_modulus_Pa: float) -> float:
         """Length at which the inflated muscle pulls nothing [m]."""
         shortest = 2 * self.cone_height_m + self.fiber_length_m / math.sqrt(3)
-        return brentq(lambda x: float(self.static_tension(x, gauge_Pa, shear_modulus_Pa)), shortest,
-                      self.build.length_m, xtol=1e-10)
+        return brentq(
+            lambda x: float(self.static_tension(x, gauge_Pa, shear_modulus_Pa)),
+            shortest,
+            self.build.length_m,
+            xtol=1e-10,
+        )
 
 
 @dataclass
@@ -199,7 +204,9 @@ class SealedMuscle:
         self.free_length_m = self.geometry.free_length(gauge_kPa * 1e3, physics.shear_modulus_Pa)
         volume, _ = self.geometry.volume_and_slope(self.free_length_m)
         self.dead_volume_m3 = physics.dead_volume_fraction * float(volume)
-        self.moles0 = (gauge_kPa * 1e3 + ATMOSPHERE_PA) * (float(volume) + self.dead_volume_m3) / (GAS_CONSTANT * self.ambient_K)
+        self.moles0 = (
+            (gauge_kPa * 1e3 + ATMOSPHERE_PA) * (float(volume) + self.dead_volume_m3) / (GAS_CONSTANT * self.ambient_K)
+        )
         tau = physics.leak_time_constant_s
         self.leak_conductance = 0.0 if tau is None else float(volume) / (GAS_CONSTANT * self.ambient_K * tau)
 
@@ -228,20 +235,37 @@ class SealedMuscle:
                 volume, slope = self.geometry.volume_and_slope(length)
                 gauge = moles * GAS_CONSTANT * temperature / (volume + self.dead_volume_m3) - ATMOSPHERE_PA
                 outflow = self.leak_conductance * gauge
-                heat = 0.0 if p.heat_time_constant_s is None else moles * CV_AIR * (self.ambient_K - temperature) / p.heat_time_constant_s
+                heat = (
+                    0.0
+                    if p.heat_time_constant_s is None
+                    else moles * CV_AIR * (self.ambient_K - temperature) / p.heat_time_constant_s
+                )
                 if p.heat_time_constant_s is None:
                     d_temperature = 0.0
                 else:
-                    d_temperature = (-(gauge + ATMOSPHERE_PA) * slope * speed - GAS_CONSTANT * temperature * outflow + heat) / (moles * CV_AIR)
+                    d_temperature = (
+                        -(gauge + ATMOSPHERE_PA) * slope * speed - GAS_CONSTANT * temperature * outflow + heat
+                    ) / (moles * CV_AIR)
                 d_dahl = 0.0
                 if p.dahl_length_m is not None:
                     limit = max(p.friction_m2 * max(gauge, 0.0), 1e-9)
-                    d_dahl = limit / p.dahl_length_m * speed * (1.0 - dahl / limit * math.copysign(1.0, speed)) if speed else 0.0
+                    d_dahl = (
+                        limit / p.dahl_length_m * speed * (1.0 - dahl / limit * math.copysign(1.0, speed))
+                        if speed
+                        else 0.0
+                    )
                 return [-outflow, d_temperature, d_dahl]
 
             inside = (times >= t0) & ((times < t1) | ((k == corners.size - 2) & (times <= t1)))
-            solution = solve_ivp(rhs, (t0, t1), state, method="LSODA", rtol=1e-9, atol=[self.moles0 * 1e-12, 1e-9, 1e-9],
-                                 dense_output=True)
+            solution = solve_ivp(
+                rhs,
+                (t0, t1),
+                state,
+                method="LSODA",
+                rtol=1e-9,
+                atol=[self.moles0 * 1e-12, 1e-9, 1e-9],
+                dense_output=True,
+            )
             if not solution.success:
                 raise RuntimeError(f"independent model: integration failed on segment {k}: {solution.message}")
             if inside.any():
@@ -251,7 +275,9 @@ class SealedMuscle:
         x = motion.elongation(times)
         length = self.free_length_m + x
         gauge = self._gauge(moles, temperature, length)
-        mu = p.shear_modulus_Pa * (1.0 - p.mullins_softening * motion.running_max(times) / max(motion.corner_x.max(), 1e-12))
+        mu = p.shear_modulus_Pa * (
+            1.0 - p.mullins_softening * motion.running_max(times) / max(motion.corner_x.max(), 1e-12)
+        )
         static = self.geometry.static_tension(length, gauge, mu)
         if p.dahl_length_m is None:
             friction = self._friction_limit(gauge) * np.tanh(motion.velocity(times) / p.friction_velocity_m_per_s)

@@ -16,8 +16,9 @@ def write_experiment(tmp_path):
     """Writes an experiment TOML (PAM 2 of the thesis, 207 kPa, table C.2) and its CSV into
     tmp_path; `toml_extra` lines are appended to [test], `csv_text` replaces the data."""
 
-    def write(csv_text="time_s,elongation_m\n0,0\n1,0.0025\n2,0.005\n", toml_test_extra="", sections="",
-              muscle_extra=""):
+    def write(
+        csv_text="time_s,elongation_m\n0,0\n1,0.0025\n2,0.005\n", toml_test_extra="", sections="", muscle_extra=""
+    ):
         (tmp_path / "run.csv").write_text(csv_text)
         path = tmp_path / "run.toml"
         path.write_text(

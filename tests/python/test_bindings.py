@@ -45,8 +45,10 @@ def test_results_are_read_only_views_that_outlive_their_run():
 
 def test_runs_in_threads_match_serial_runs():
     simulator = pamkit.Simulator()
-    models = [pamkit.MuscleModel(pamkit.MuscleParams(), pamkit.InitialState(gauge_pressure_Pa=p))
-              for p in (150e3, 200e3, 250e3, 300e3)]
+    models = [
+        pamkit.MuscleModel(pamkit.MuscleParams(), pamkit.InitialState(gauge_pressure_Pa=p))
+        for p in (150e3, 200e3, 250e3, 300e3)
+    ]
     trajectory = pamkit.thesis_protocol(0.05, cycles=2)
     serial = [simulator.run(m, trajectory).force_N.copy() for m in models]
     with ThreadPoolExecutor(max_workers=4) as pool:

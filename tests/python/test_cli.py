@@ -10,8 +10,13 @@ import pytest
 
 
 def run_pamkit(*arguments):
-    return subprocess.run([sys.executable, "-m", "pamkit", *map(str, arguments)], capture_output=True, text=True,
-                          env=os.environ.copy(), timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "pamkit", *map(str, arguments)],
+        capture_output=True,
+        text=True,
+        env=os.environ.copy(),
+        timeout=120,
+    )
 
 
 def read_csv(path):
@@ -40,8 +45,9 @@ def test_simulate_thesis_test_writes_csv_and_plot(thesis_dir, tmp_path):
 
 
 def test_simulate_supplied_uses_measured_pressure(write_experiment, tmp_path):
-    path = write_experiment(csv_text="time_s,elongation_m,pressure_kPa\n0,0,200\n1,0,300\n2,0,400\n",
-                            toml_test_extra='gas = "supplied"')
+    path = write_experiment(
+        csv_text="time_s,elongation_m,pressure_kPa\n0,0,200\n1,0,300\n2,0,400\n", toml_test_extra='gas = "supplied"'
+    )
     output = tmp_path / "supplied.csv"
     done = run_pamkit("simulate", path, "-o", output)
     assert done.returncode == 0, done.stderr

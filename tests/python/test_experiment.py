@@ -17,8 +17,10 @@ def test_reads_build_test_and_series(write_experiment):
 
 
 def test_optional_sections_set_model_fields(write_experiment):
-    path = write_experiment(sections='[gas]\nprocess = "heat_transfer"\nheat_transfer_time_constant_s = 3.0\n'
-                                     "[friction]\nsharpness_s_per_m = 100.0\n")
+    path = write_experiment(
+        sections='[gas]\nprocess = "heat_transfer"\nheat_transfer_time_constant_s = 3.0\n'
+        "[friction]\nsharpness_s_per_m = 100.0\n"
+    )
     experiment = load_experiment(path)
     assert experiment.gas_params.process.name == "heat_transfer"
     assert experiment.gas_params.heat_transfer_time_constant_s == 3.0

@@ -43,10 +43,10 @@ class ParametricEffect : public Effect {
 
   std::vector<EffectParameter> parameters() const override {
     std::vector<EffectParameter> out;
-    Params::for_each_field([&](const char* key, double Params::*member, const FieldInfo& field,
-                               const EffectFieldInfo& info) {
-      out.push_back(EffectParameter::declared(key, params_.*member, field, info));
-    });
+    Params::for_each_field(
+        [&](const char* key, double Params::*member, const FieldInfo& field, const EffectFieldInfo& info) {
+          out.push_back(EffectParameter::declared(key, params_.*member, field, info));
+        });
     return out;
   }
 
@@ -83,13 +83,13 @@ class ParametricEffect : public Effect {
 
   void set_value(const std::string& key, double value) override {
     bool found = false;
-    Params::for_each_field([&](const char* field, double Params::*member, const FieldInfo& info,
-                               const EffectFieldInfo&) {
-      if (key != field) return;
-      check_range(Params::kName, field, value, info);
-      params_.*member = value;
-      found = true;
-    });
+    Params::for_each_field(
+        [&](const char* field, double Params::*member, const FieldInfo& info, const EffectFieldInfo&) {
+          if (key != field) return;
+          check_range(Params::kName, field, value, info);
+          params_.*member = value;
+          found = true;
+        });
     if (!found) throw unknown_key(key);
   }
 
@@ -127,8 +127,9 @@ inline bool sealed_only(const char* effect, GasMode mode, std::string* why_not) 
 inline bool dynamic_only(const char* effect, GasMode mode, std::string* why_not) {
   if (mode == GasMode::sealed) return true;
   if (why_not) {
-    *why_not = message(effect, " needs the dynamic muscle model, which pamkit runs for sealed tests only; a supplied "
-                               "test is evaluated statically at the measured pressure");
+    *why_not = message(effect,
+                       " needs the dynamic muscle model, which pamkit runs for sealed tests only; a supplied "
+                       "test is evaluated statically at the measured pressure");
   }
   return false;
 }
@@ -153,7 +154,8 @@ struct HeatTransferParams {
   static void for_each_field(V&& visit) {
     visit("time_constant_s", &HeatTransferParams::time_constant_s,
           FieldInfo{"s", 0.0, 1e9, "gas-wall heat exchange time constant"},
-          EffectFieldInfo{{0.5, 10.0}, false,
+          EffectFieldInfo{{0.5, 10.0},
+                          false,
                           {0.05, 30.0,
                            "0.38 s reproduces table 3.6 on the thesis muscle (forced flow into the cones); natural "
                            "convection in a 20-30 mm muscle gives 0.8-3.8 s (docs/table_3_6.md); a factor 8 below "
@@ -163,7 +165,9 @@ struct HeatTransferParams {
 };
 class HeatTransferEffect : public detail::ParametricEffect<HeatTransferParams> {
  public:
-  bool acts_in(GasMode mode, std::string* why_not) const override { return detail::sealed_only(HeatTransferParams::kName, mode, why_not); }
+  bool acts_in(GasMode mode, std::string* why_not) const override {
+    return detail::sealed_only(HeatTransferParams::kName, mode, why_not);
+  }
   void apply_to_params(MuscleParams& p) const override {
     p.gas.process = GasProcess::heat_transfer;
     p.gas.heat_transfer_time_constant_s = params_.time_constant_s;
@@ -184,7 +188,8 @@ struct DeadVolumeParams {
   static void for_each_field(V&& visit) {
     visit("volume_fraction", &DeadVolumeParams::volume_fraction,
           FieldInfo{"1", 0.0, 10.0, "dead volume / initial gas volume"},
-          EffectFieldInfo{{0.03, 0.3}, false,
+          EffectFieldInfo{{0.03, 0.3},
+                          false,
                           {0.0, 0.6,
                            "hose and transducer: 5 % in the thesis (appendix B); a metre of 4 mm hose is 9 % of the "
                            "thesis muscle's 140 cm^3; more than 60 % needs a reservoir the test would declare"},
@@ -193,7 +198,9 @@ struct DeadVolumeParams {
 };
 class DeadVolumeEffect : public detail::ParametricEffect<DeadVolumeParams> {
  public:
-  bool acts_in(GasMode mode, std::string* why_not) const override { return detail::sealed_only(DeadVolumeParams::kName, mode, why_not); }
+  bool acts_in(GasMode mode, std::string* why_not) const override {
+    return detail::sealed_only(DeadVolumeParams::kName, mode, why_not);
+  }
   void apply_to_params(MuscleParams& p) const override { p.extensions.dead_volume_fraction = params_.volume_fraction; }
 };
 
@@ -211,7 +218,8 @@ struct LeakParams {
   static void for_each_field(V&& visit) {
     visit("time_constant_s", &LeakParams::time_constant_s,
           FieldInfo{"s", 1e-3, detail::kInfinity, "leak time constant (inf: none)"},
-          EffectFieldInfo{{100.0, 3000.0}, false,
+          EffectFieldInfo{{100.0, 3000.0},
+                          false,
                           {20.0, detail::kInfinity,
                            "a sealed test runs 5-10 stretch cycles of 2-200 s after one inflation; a muscle that "
                            "loses 63 % of its gauge pressure in under 20 s could not be tested sealed"},
@@ -220,7 +228,9 @@ struct LeakParams {
 };
 class LeakEffect : public detail::ParametricEffect<LeakParams> {
  public:
-  bool acts_in(GasMode mode, std::string* why_not) const override { return detail::sealed_only(LeakParams::kName, mode, why_not); }
+  bool acts_in(GasMode mode, std::string* why_not) const override {
+    return detail::sealed_only(LeakParams::kName, mode, why_not);
+  }
   void apply_to_params(MuscleParams& p) const override { p.extensions.leak_rate_per_s = 1.0 / params_.time_constant_s; }
 };
 
@@ -241,14 +251,16 @@ struct BladderViscoelasticityParams {
   static void for_each_field(V&& visit) {
     visit("time_constant_s", &BladderViscoelasticityParams::time_constant_s,
           FieldInfo{"s", 1e-4, 1e6, "relaxation time"},
-          EffectFieldInfo{{0.5, 20.0}, false,
+          EffectFieldInfo{{0.5, 20.0},
+                          false,
                           {0.2, 100.0,
                            "the thesis's biaxial tests show the hysteresis at cycle times of seconds (figure 3.5); a "
                            "branch relaxing in under 0.2 s is elastic at bench rates, over 100 s a drift"},
                           {FitScale::log, 0.1, 200.0, 2.0}});
     visit("strength", &BladderViscoelasticityParams::strength,
           FieldInfo{"1", 0.0, 100.0, "branch modulus / tangent modulus"},
-          EffectFieldInfo{{0.3, 3.0}, false,
+          EffectFieldInfo{{0.3, 3.0},
+                          false,
                           {0.0, 3.0,
                            "a branch stiffer than 3x the elastic tangent modulus means a loss tangent above 1, "
                            "beyond the most damped butyl compounds"},
@@ -281,7 +293,8 @@ struct FiberComplianceParams {
   static void for_each_field(V&& visit) {
     visit("stiffness_N", &FiberComplianceParams::stiffness_N,
           FieldInfo{"N", 1.0, detail::kInfinity, "fiber axial stiffness EA (inf: rigid)"},
-          EffectFieldInfo{{100.0, 600.0}, false,
+          EffectFieldInfo{{100.0, 600.0},
+                          false,
                           {50.0, detail::kInfinity,
                            "a braid strand of 0.1-0.5 mm^2 polyester or nylon (E = 2-5 GPa) has EA = 200-2500 N; "
                            "below 50 N the braid would stretch by several per cent at bench tensions"},
@@ -290,8 +303,12 @@ struct FiberComplianceParams {
 };
 class FiberComplianceEffect : public detail::ParametricEffect<FiberComplianceParams> {
  public:
-  bool acts_in(GasMode mode, std::string* why_not) const override { return detail::dynamic_only(FiberComplianceParams::kName, mode, why_not); }
-  void apply_to_params(MuscleParams& p) const override { p.extensions.fiber_compliance_per_N = 1.0 / params_.stiffness_N; }
+  bool acts_in(GasMode mode, std::string* why_not) const override {
+    return detail::dynamic_only(FiberComplianceParams::kName, mode, why_not);
+  }
+  void apply_to_params(MuscleParams& p) const override {
+    p.extensions.fiber_compliance_per_N = 1.0 / params_.stiffness_N;
+  }
 };
 
 /// fixture_slack: play between crosshead and muscle (loose pins).
@@ -308,7 +325,8 @@ struct FixtureSlackParams {
   template <class V>
   static void for_each_field(V&& visit) {
     visit("slack_m", &FixtureSlackParams::slack_m, FieldInfo{"m", 0.0, 0.05, "play between crosshead and muscle"},
-          EffectFieldInfo{{0.5e-3, 3e-3}, false,
+          EffectFieldInfo{{0.5e-3, 3e-3},
+                          false,
                           {0.0, 5e-3,
                            "pins in loose holes: two clearance fits of 0.1-1 mm each; 5 mm of play is a visibly "
                            "loose fixture"},
@@ -320,7 +338,8 @@ class FixtureSlackEffect : public detail::ParametricEffect<FixtureSlackParams> {
  public:
   /// A play (backlash) operator: the muscle stays put until the crosshead pushes it from
   /// either end of a band `slack_m` wide; it starts at the band's upper end.
-  std::vector<double> apply_to_elongation(const std::vector<double>&, const std::vector<double>& crosshead) const override {
+  std::vector<double> apply_to_elongation(const std::vector<double>&,
+                                          const std::vector<double>& crosshead) const override {
     std::vector<double> muscle(crosshead.size());
     double position = crosshead.empty() ? 0.0 : crosshead.front();
     for (std::size_t k = 0; k < crosshead.size(); ++k) {
@@ -345,7 +364,8 @@ struct SensorLagParams {
   template <class V>
   static void for_each_field(V&& visit) {
     visit("time_constant_s", &SensorLagParams::time_constant_s, FieldInfo{"s", 0.0, 1e4, "sensor time constant"},
-          EffectFieldInfo{{0.5, 20.0}, false,
+          EffectFieldInfo{{0.5, 20.0},
+                          false,
                           {0.0, 60.0,
                            "a TMP36 in still air: 9-32 s from its thermal resistance and capacity "
                            "(docs/table_3_6.md); transducers and load cells respond in milliseconds"},
@@ -388,7 +408,8 @@ struct TimeSkewParams {
   template <class V>
   static void for_each_field(V&& visit) {
     visit("offset_s", &TimeSkewParams::offset_s, FieldInfo{"s", -600.0, 600.0, "time offset of the channel"},
-          EffectFieldInfo{{0.3, 3.0}, true,
+          EffectFieldInfo{{0.3, 3.0},
+                          true,
                           {-5.0, 5.0,
                            "two instruments started by hand and aligned by eye or by cross-correlation "
                            "(pamkit align): seconds at most"},
@@ -434,13 +455,15 @@ struct SensorOffsetParams {
   template <class V>
   static void for_each_field(V&& visit) {
     visit("offset_kPa", &SensorOffsetParams::offset_kPa, FieldInfo{"kPa", -500.0, 500.0, "pressure offset"},
-          EffectFieldInfo{{-12.0, 12.0}, false,
+          EffectFieldInfo{{-12.0, 12.0},
+                          false,
                           {-15.0, 15.0,
                            "2 % of the 61CP transducer's 0-100 psi span (689 kPa) after a calibration by hand "
                            "(appendix B)"},
                           {FitScale::linear, -100.0, 100.0, 0.0}});
     visit("gain", &SensorOffsetParams::gain, FieldInfo{"1", 0.1, 10.0, "pressure gain"},
-          EffectFieldInfo{{0.93, 1.07}, false,
+          EffectFieldInfo{{0.93, 1.07},
+                          false,
                           {0.9, 1.1, "a calibration line through appendix B's points off by at most 10 % in slope"},
                           {FitScale::linear, 0.5, 1.5, 1.0}});
   }

@@ -85,10 +85,10 @@ struct FitSpace {
 /// What an effect declares about a parameter beside its allowed range (`FieldInfo`): declared
 /// once in the effect's field list and read by synthetic data, diagnosis and reports alike.
 struct EffectFieldInfo {
-  ValueRange realistic;       ///< strengths synthetic benches draw (a detectable, typical effect)
-  bool either_sign;           ///< `realistic` bounds |value|; the sign is drawn too
-  PlausibleRange plausible;   ///< a fitted value outside it is reported, never named as a cause
-  FitSpace fit;               ///< the diagnosis's search
+  ValueRange realistic;      ///< strengths synthetic benches draw (a detectable, typical effect)
+  bool either_sign;          ///< `realistic` bounds |value|; the sign is drawn too
+  PlausibleRange plausible;  ///< a fitted value outside it is reported, never named as a cause
+  FitSpace fit;              ///< the diagnosis's search
   Resolution resolution = Resolution::any;
 };
 
@@ -97,21 +97,21 @@ struct EffectFieldInfo {
 struct EffectParameter {
   std::string name;
   double value;
-  std::string unit;         ///< SI unit, "1" for a pure number
-  double min;               ///< smallest allowed value
-  double max;               ///< largest allowed value (may be infinity)
-  double realistic_min;     ///< smallest value synthetic benches draw
-  double realistic_max;     ///< largest value synthetic benches draw
-  std::string description;  ///< meaning
-  bool either_sign = false;                   ///< realistic range bounds |value|
+  std::string unit;                                                 ///< SI unit, "1" for a pure number
+  double min;                                                       ///< smallest allowed value
+  double max;                                                       ///< largest allowed value (may be infinity)
+  double realistic_min;                                             ///< smallest value synthetic benches draw
+  double realistic_max;                                             ///< largest value synthetic benches draw
+  std::string description;                                          ///< meaning
+  bool either_sign = false;                                         ///< realistic range bounds |value|
   double plausible_min = -std::numeric_limits<double>::infinity();  ///< physically plausible range
   double plausible_max = std::numeric_limits<double>::infinity();
-  std::string plausible_source;                ///< why that range
-  FitScale fit_scale = FitScale::linear;       ///< diagnosis's search scale
-  double fit_min = 0.0;                        ///< diagnosis's search interval
+  std::string plausible_source = {};      ///< why that range
+  FitScale fit_scale = FitScale::linear;  ///< diagnosis's search scale
+  double fit_min = 0.0;                   ///< diagnosis's search interval
   double fit_max = 0.0;
-  double fit_start = 0.0;                      ///< where the search starts
-  Resolution resolution = Resolution::any;     ///< what one sample must resolve
+  double fit_start = 0.0;                   ///< where the search starts
+  Resolution resolution = Resolution::any;  ///< what one sample must resolve
 
   /// A parameter with only an allowed and a realistic range (a user effect that declares no
   /// more): plausible is the allowed range, the search is linear over the realistic range

@@ -26,8 +26,8 @@ inline EffectParameter EffectParameter::declared(std::string name, double value,
   const double width = std::max(realistic_max - realistic_min, 1e-12);
   const double fit_min = std::max(min, realistic_min - width);
   const double fit_max = std::min(max, realistic_max + width);
-  EffectParameter p{std::move(name), value, std::move(unit), min, max, realistic_min, realistic_max,
-                    std::move(description)};
+  EffectParameter p{std::move(name), value,         std::move(unit),       min, max,
+                    realistic_min,   realistic_max, std::move(description)};
   p.plausible_min = min;
   p.plausible_max = max;
   p.plausible_source = "not declared by the effect: its allowed range";
@@ -39,8 +39,8 @@ inline EffectParameter EffectParameter::declared(std::string name, double value,
 
 inline EffectParameter EffectParameter::declared(std::string name, double value, const FieldInfo& field,
                                                  const EffectFieldInfo& info) {
-  EffectParameter p{std::move(name), value, field.unit, field.min, field.max, info.realistic.min,
-                    info.realistic.max, field.description};
+  EffectParameter p{std::move(name),  value, field.unit, field.min, field.max, info.realistic.min, info.realistic.max,
+                    field.description};
   p.either_sign = info.either_sign;
   p.plausible_min = info.plausible.min;
   p.plausible_max = info.plausible.max;

@@ -54,13 +54,12 @@ inline Measurement simulate_measurement(const MuscleParams& params, const Initia
 ///         whose length leaves the braid's range.
 inline Measurement simulate_supplied_measurement(const MuscleParams& params, double length_m,
                                                  const ElongationTrajectory& crosshead,
-                                                 const std::vector<double>& pressure_kPa,
-                                                 double ambient_temperature_C,
+                                                 const std::vector<double>& pressure_kPa, double ambient_temperature_C,
                                                  const std::vector<EffectPtr>& effects) {
   const std::vector<double>& time = crosshead.time();
   if (pressure_kPa.size() != time.size()) {
-    throw InvalidInput(detail::message("simulate_supplied_measurement: ", pressure_kPa.size(),
-                                       " pressures for ", time.size(), " samples"));
+    throw InvalidInput(detail::message("simulate_supplied_measurement: ", pressure_kPa.size(), " pressures for ",
+                                       time.size(), " samples"));
   }
   MuscleParams extended = params;
   std::vector<double> motion = crosshead.elongation();
@@ -87,9 +86,8 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
     try {
       shape = geometry.shape(length_m + motion[k]);
     } catch (const InvalidInput& error) {
-      throw InvalidInput(detail::message("sample ", k + 1, " (time ", time[k], " s, elongation ", motion[k],
-                                         " m): ", error.what(),
-                                         "; check the elongation's zero and [test] initial_length_m"));
+      throw InvalidInput(detail::message("sample ", k + 1, " (time ", time[k], " s, elongation ", motion[k], " m): ",
+                                         error.what(), "; check the elongation's zero and [test] initial_length_m"));
     }
     m.force_N[k] = muscle_forces(geometry, shape, extended.bladder, extended.friction,
                                  atmosphere + units::pascal_from_kilopascal(pressure_kPa[k]), atmosphere, velocity)

@@ -30,15 +30,20 @@ namespace pamkit::exo {
 struct ClutchParams {
   static constexpr const char* kName = "ClutchParams";
 
-  double engage_angle_deg = 111.0;     ///< where dorsiflexion starts engaging [deg] (G.3 `engageangle`, the engage screw)
-  double release_angle_deg = 138.0;    ///< where plantarflexion starts releasing [deg] (G.3 `disengageangle`, the release screw)
-  double switching_travel_deg = 7.0;   ///< rotation the arm needs to switch, carrying no torque [deg] (sections 4.4, 5.4.1)
+  double engage_angle_deg = 111.0;  ///< where dorsiflexion starts engaging [deg] (G.3 `engageangle`, the engage screw)
+  double release_angle_deg =
+      138.0;  ///< where plantarflexion starts releasing [deg] (G.3 `disengageangle`, the release screw)
+  double switching_travel_deg =
+      7.0;  ///< rotation the arm needs to switch, carrying no torque [deg] (sections 4.4, 5.4.1)
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
-    visit("engage_angle_deg", &ClutchParams::engage_angle_deg, FieldInfo{"deg", 30.0, 180.0, "engage screw: dorsiflexion past it engages (G.3 engageangle)"});
-    visit("release_angle_deg", &ClutchParams::release_angle_deg, FieldInfo{"deg", 30.0, 180.0, "release screw: plantarflexion past it releases (G.3 disengageangle)"});
-    visit("switching_travel_deg", &ClutchParams::switching_travel_deg, FieldInfo{"deg", 0.0, 45.0, "travel to switch state (7 deg, section 4.4)"});
+    visit("engage_angle_deg", &ClutchParams::engage_angle_deg,
+          FieldInfo{"deg", 30.0, 180.0, "engage screw: dorsiflexion past it engages (G.3 engageangle)"});
+    visit("release_angle_deg", &ClutchParams::release_angle_deg,
+          FieldInfo{"deg", 30.0, 180.0, "release screw: plantarflexion past it releases (G.3 disengageangle)"});
+    visit("switching_travel_deg", &ClutchParams::switching_travel_deg,
+          FieldInfo{"deg", 0.0, 45.0, "travel to switch state (7 deg, section 4.4)"});
   }
   /// \throws InvalidParameter naming the field; also if release_angle_deg is not above
   ///         engage_angle_deg (the two screws would overlap and the pawl could not rest).
@@ -46,7 +51,8 @@ struct ClutchParams {
     validate_fields(*this);
     if (!(release_angle_deg > engage_angle_deg)) {
       throw InvalidParameter(pamkit::detail::message("ClutchParams.release_angle_deg = ", release_angle_deg,
-                                                     " deg must be above engage_angle_deg = ", engage_angle_deg, " deg"));
+                                                     " deg must be above engage_angle_deg = ", engage_angle_deg,
+                                                     " deg"));
     }
   }
 };
@@ -61,7 +67,8 @@ struct PlayParams {
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
     visit("dead_zone_deg", &PlayParams::dead_zone_deg, FieldInfo{"deg", 0.0, 90.0, "free play between leg and device"});
-    visit("compliance_deg_per_Nm", &PlayParams::compliance_deg_per_Nm, FieldInfo{"deg/(N m)", 0.0, 10.0, "strap and shoe compliance"});
+    visit("compliance_deg_per_Nm", &PlayParams::compliance_deg_per_Nm,
+          FieldInfo{"deg/(N m)", 0.0, 10.0, "strap and shoe compliance"});
   }
   void validate() const { validate_fields(*this); }
 };
@@ -71,10 +78,14 @@ enum class ClutchMode { disengaged = 0, engaging = 1, engaged = 2, releasing = 3
 
 inline const char* to_string(ClutchMode mode) {
   switch (mode) {
-    case ClutchMode::disengaged: return "disengaged";
-    case ClutchMode::engaging: return "engaging";
-    case ClutchMode::engaged: return "engaged";
-    case ClutchMode::releasing: return "releasing";
+    case ClutchMode::disengaged:
+      return "disengaged";
+    case ClutchMode::engaging:
+      return "engaging";
+    case ClutchMode::engaged:
+      return "engaged";
+    case ClutchMode::releasing:
+      return "releasing";
   }
   return "?";
 }

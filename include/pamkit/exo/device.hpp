@@ -20,20 +20,20 @@ namespace pamkit::exo {
 
 /// One stride of the device, sample by sample (the GaitCycle's samples).
 struct DeviceRun {
-  std::vector<double> percent;             ///< percent of the gait cycle [%]
-  std::vector<double> ankle_angle_deg;     ///< leg: shank to foot (G.3 testangle) [deg]
-  std::vector<double> device_angle_deg;    ///< device: shank strut to foot plate, after play [deg]
-  std::vector<int> mode;                   ///< ClutchMode as an integer
-  std::vector<double> heel_bar_angle_deg;  ///< psi, heel bar to shank strut [deg]
-  std::vector<double> spring_length_m;     ///< anchor to anchor [m]
-  std::vector<double> elongation_m;        ///< beyond the block length [m]
-  std::vector<double> moment_arm_m;        ///< perpendicular moment arm [m]
-  std::vector<double> horizontal_lever_m;  ///< G.3 momentarm(1,:) [m]
-  std::vector<double> force_N;             ///< spring force [N]
-  std::vector<double> torque_Nm;           ///< plantarflexor torque the device adds at the ankle [N m]
-  std::vector<double> biological_torque_Nm;///< the GaitCycle's moment [N m]
-  std::optional<double> engage_percent;    ///< where the pawl meshed in this stride [%], if it did
-  std::optional<double> release_percent;   ///< where the pawl lifted in this stride [%], if it did
+  std::vector<double> percent;               ///< percent of the gait cycle [%]
+  std::vector<double> ankle_angle_deg;       ///< leg: shank to foot (G.3 testangle) [deg]
+  std::vector<double> device_angle_deg;      ///< device: shank strut to foot plate, after play [deg]
+  std::vector<int> mode;                     ///< ClutchMode as an integer
+  std::vector<double> heel_bar_angle_deg;    ///< psi, heel bar to shank strut [deg]
+  std::vector<double> spring_length_m;       ///< anchor to anchor [m]
+  std::vector<double> elongation_m;          ///< beyond the block length [m]
+  std::vector<double> moment_arm_m;          ///< perpendicular moment arm [m]
+  std::vector<double> horizontal_lever_m;    ///< G.3 momentarm(1,:) [m]
+  std::vector<double> force_N;               ///< spring force [N]
+  std::vector<double> torque_Nm;             ///< plantarflexor torque the device adds at the ankle [N m]
+  std::vector<double> biological_torque_Nm;  ///< the GaitCycle's moment [N m]
+  std::optional<double> engage_percent;      ///< where the pawl meshed in this stride [%], if it did
+  std::optional<double> release_percent;     ///< where the pawl lifted in this stride [%], if it did
 };
 
 /// Runs the device along `strides` repeats of `cycle` and returns the last stride, so the
@@ -65,7 +65,7 @@ struct IdealSpring {
   /// Force where the stretching (first) branch reaches `elongation_m`, by linear interpolation;
   /// empty if the device never stretches that far.
   std::optional<double> force_at(double elongation_m) const;
-  std::size_t loading_samples;       ///< samples of the stretching branch (the first ones)
+  std::size_t loading_samples;  ///< samples of the stretching branch (the first ones)
 };
 
 /// The inverse problem on a run of the device: IdealSpring over the run's engaged, stretched
@@ -93,7 +93,8 @@ ScriptKinematics reproduce_g3_script(const GaitData& data, const Linkage& linkag
 /// spring elongation plus `pretension_m`, periodic, one sample per run sample, and a final
 /// sample closing the last stride. The trajectory the Simulator drives the muscle along.
 /// \throws InvalidInput for a period <= 0, strides < 1 or pretension < 0.
-ElongationTrajectory walking_trajectory(const DeviceRun& run, double stride_period_s, int strides, double pretension_m = 0.0);
+ElongationTrajectory walking_trajectory(const DeviceRun& run, double stride_period_s, int strides,
+                                        double pretension_m = 0.0);
 
 }  // namespace pamkit::exo
 

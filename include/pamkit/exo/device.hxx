@@ -52,8 +52,10 @@ DeviceRun run_device(const GaitCycle& cycle, const Linkage& linkage, const Clutc
       if (last) {
         const double percent = cycle.percent[k];
         // A switch that turns back (releasing -> engaged, engaging -> disengaged) is no event.
-        const bool meshed = mode == ClutchMode::engaged && (previous == ClutchMode::engaging || previous == ClutchMode::disengaged);
-        const bool lifted = mode == ClutchMode::disengaged && (previous == ClutchMode::releasing || previous == ClutchMode::engaged);
+        const bool meshed =
+            mode == ClutchMode::engaged && (previous == ClutchMode::engaging || previous == ClutchMode::disengaged);
+        const bool lifted =
+            mode == ClutchMode::disengaged && (previous == ClutchMode::releasing || previous == ClutchMode::engaged);
         if (meshed && !run.engage_percent) run.engage_percent = percent;
         if (lifted && !run.release_percent) run.release_percent = percent;
         const LinkagePose pose = linkage.pose(block + stretch);
@@ -91,8 +93,9 @@ inline ClutchParams fit_clutch(const GaitCycle& cycle, double travel_deg, double
   p.engage_angle_deg = swing_min + travel_deg + margin_deg;
   p.release_angle_deg = stride_max - travel_deg - margin_deg;
   if (!(p.release_angle_deg > p.engage_angle_deg)) {
-    throw InvalidInput(pamkit::detail::message("fit_clutch: the gait's range (swing minimum ", swing_min, " deg, maximum ", stride_max,
-                                               " deg) cannot hold two switches of ", travel_deg, " deg"));
+    throw InvalidInput(pamkit::detail::message("fit_clutch: the gait's range (swing minimum ", swing_min,
+                                               " deg, maximum ", stride_max, " deg) cannot hold two switches of ",
+                                               travel_deg, " deg"));
   }
   p.validate();
   return p;
@@ -108,7 +111,8 @@ inline std::optional<double> IdealSpring::force_at(double e) const {
 }
 
 inline IdealSpring ideal_spring(const DeviceRun& run, double toe_off_percent, double share) {
-  if (!(share > 0.0 && share <= 10.0)) throw InvalidInput(pamkit::detail::message("ideal_spring: share = ", share, " must be in (0, 10]"));
+  if (!(share > 0.0 && share <= 10.0))
+    throw InvalidInput(pamkit::detail::message("ideal_spring: share = ", share, " must be in (0, 10]"));
   IdealSpring ideal{};
   for (std::size_t k = 0; k < run.percent.size(); ++k) {
     if (run.percent[k] >= toe_off_percent) break;
@@ -119,7 +123,8 @@ inline IdealSpring ideal_spring(const DeviceRun& run, double toe_off_percent, do
   }
   if (ideal.percent.empty()) throw InvalidInput("ideal_spring: the device never stretches the spring in stance");
   const auto peak = std::max_element(ideal.force_N.begin(), ideal.force_N.end()) - ideal.force_N.begin();
-  const auto stretch = std::max_element(ideal.elongation_m.begin(), ideal.elongation_m.end()) - ideal.elongation_m.begin();
+  const auto stretch =
+      std::max_element(ideal.elongation_m.begin(), ideal.elongation_m.end()) - ideal.elongation_m.begin();
   ideal.peak_force_N = ideal.force_N[static_cast<std::size_t>(peak)];
   ideal.elongation_at_peak_m = ideal.elongation_m[static_cast<std::size_t>(peak)];
   ideal.max_elongation_m = ideal.elongation_m[static_cast<std::size_t>(stretch)];
@@ -134,7 +139,8 @@ inline ScriptKinematics reproduce_g3_script(const GaitData& data, const Linkage&
     throw InvalidInput(pamkit::detail::message("reproduce_g3_script: rows begin ", begin_row, ", end ", end_row,
                                                " must satisfy 1 <= begin < end <= ", rows));
   }
-  if (!(body_mass_kg > 0.0)) throw InvalidInput(pamkit::detail::message("reproduce_g3_script: body_mass_kg = ", body_mass_kg, " must be > 0"));
+  if (!(body_mass_kg > 0.0))
+    throw InvalidInput(pamkit::detail::message("reproduce_g3_script: body_mass_kg = ", body_mass_kg, " must be > 0"));
   const double block = linkage.params().block_angle_deg;
   const double at_begin = data.ankle_angle_deg(static_cast<std::size_t>(begin_row - 1));
   const double scale = -body_mass_kg / data.subject_mass_kg();
@@ -157,10 +163,15 @@ inline ScriptKinematics reproduce_g3_script(const GaitData& data, const Linkage&
   return out;
 }
 
-inline ElongationTrajectory walking_trajectory(const DeviceRun& run, double stride_period_s, int strides, double pretension_m) {
-  if (!(stride_period_s > 0.0)) throw InvalidInput(pamkit::detail::message("walking_trajectory: stride_period_s = ", stride_period_s, " must be > 0"));
-  if (strides < 1) throw InvalidInput(pamkit::detail::message("walking_trajectory: strides = ", strides, " must be >= 1"));
-  if (!(pretension_m >= 0.0)) throw InvalidInput(pamkit::detail::message("walking_trajectory: pretension_m = ", pretension_m, " must be >= 0"));
+inline ElongationTrajectory walking_trajectory(const DeviceRun& run, double stride_period_s, int strides,
+                                               double pretension_m) {
+  if (!(stride_period_s > 0.0))
+    throw InvalidInput(
+        pamkit::detail::message("walking_trajectory: stride_period_s = ", stride_period_s, " must be > 0"));
+  if (strides < 1)
+    throw InvalidInput(pamkit::detail::message("walking_trajectory: strides = ", strides, " must be >= 1"));
+  if (!(pretension_m >= 0.0))
+    throw InvalidInput(pamkit::detail::message("walking_trajectory: pretension_m = ", pretension_m, " must be >= 0"));
   if (run.percent.empty()) throw InvalidInput("walking_trajectory: empty device run");
   std::vector<double> time, elongation;
   for (int s = 0; s < strides; ++s) {

@@ -16,17 +16,22 @@ inline GaitData::GaitData(std::vector<double> frame, std::vector<double> hip_deg
       foot_(std::move(foot_deg)),
       moment_(std::move(ankle_moment_Nm)),
       mass_(subject_mass_kg) {
-  const std::array<std::pair<const char*, const std::vector<double>*>, 5> columns{
-      {{"frame", &frame_}, {"hip_deg", &hip_}, {"leg_deg", &leg_}, {"foot_deg", &foot_}, {"ankle_moment_Nm", &moment_}}};
+  const std::array<std::pair<const char*, const std::vector<double>*>, 5> columns{{{"frame", &frame_},
+                                                                                   {"hip_deg", &hip_},
+                                                                                   {"leg_deg", &leg_},
+                                                                                   {"foot_deg", &foot_},
+                                                                                   {"ankle_moment_Nm", &moment_}}};
   if (!(mass_ > 0.0) || !std::isfinite(mass_)) {
     throw InvalidInput(detail::message("GaitData: subject_mass_kg = ", mass_, " must be > 0"));
   }
   for (const auto& [name, column] : columns) {
     if (column->size() != frame_.size()) {
-      throw InvalidInput(detail::message("GaitData: column ", name, " has ", column->size(), " rows, frame has ", frame_.size()));
+      throw InvalidInput(
+          detail::message("GaitData: column ", name, " has ", column->size(), " rows, frame has ", frame_.size()));
     }
     for (std::size_t i = 0; i < column->size(); ++i) {
-      if (!std::isfinite((*column)[i])) throw InvalidInput(detail::message("GaitData: ", name, "[", i, "] is not finite"));
+      if (!std::isfinite((*column)[i]))
+        throw InvalidInput(detail::message("GaitData: ", name, "[", i, "] is not finite"));
     }
   }
   if (frame_.size() < 3) throw InvalidInput(detail::message("GaitData: needs at least 3 frames, got ", frame_.size()));
@@ -71,7 +76,8 @@ inline GaitEvents detect_gait_events(const GaitData& data) {
   }
   if (heel == n) throw InvalidInput("detect_gait_events: no heel strike (the moment never turns dorsiflexor)");
   const std::size_t stance_end = std::min(n, heel + stride);
-  const auto peak = static_cast<std::size_t>(std::min_element(m.begin() + static_cast<long>(heel), m.begin() + static_cast<long>(stance_end)) - m.begin());
+  const auto peak = static_cast<std::size_t>(
+      std::min_element(m.begin() + static_cast<long>(heel), m.begin() + static_cast<long>(stance_end)) - m.begin());
   std::size_t toe = n;
   for (std::size_t i = peak; i < stance_end; ++i) {
     if (m[i] >= 0.0) {
@@ -83,16 +89,19 @@ inline GaitEvents detect_gait_events(const GaitData& data) {
   return {data.frame()[heel], data.frame()[toe], static_cast<double>(stride)};
 }
 
-inline GaitCycle resample_cycle(const GaitData& data, const GaitEvents& events, std::size_t points, double body_mass_kg) {
+inline GaitCycle resample_cycle(const GaitData& data, const GaitEvents& events, std::size_t points,
+                                double body_mass_kg) {
   if (points < 2) throw InvalidInput(detail::message("resample_cycle: points = ", points, " must be >= 2"));
   if (!(body_mass_kg > 0.0) || !std::isfinite(body_mass_kg)) {
     throw InvalidInput(detail::message("resample_cycle: body_mass_kg = ", body_mass_kg, " must be > 0"));
   }
   const double first = data.frame().front();
   const double last = data.frame().back();
-  if (events.heel_strike_frame < first || events.heel_strike_frame + events.stride_frames > last || !(events.stride_frames > 0.0)) {
+  if (events.heel_strike_frame < first || events.heel_strike_frame + events.stride_frames > last ||
+      !(events.stride_frames > 0.0)) {
     throw InvalidInput(detail::message("resample_cycle: the stride from frame ", events.heel_strike_frame, " over ",
-                                       events.stride_frames, " frames runs outside the data (frames ", first, " to ", last, ")"));
+                                       events.stride_frames, " frames runs outside the data (frames ", first, " to ",
+                                       last, ")"));
   }
   auto at = [&](const std::vector<double>& column, double frame) {
     const double x = frame - first;

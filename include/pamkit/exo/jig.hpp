@@ -29,13 +29,16 @@ namespace pamkit::exo {
 struct JigParams {
   static constexpr const char* kName = "JigParams";
 
-  double heel_bar_tilt_deg = 5.0;    ///< alpha, heel bar from the vertical, kept constant [deg] (G.4 `alpha`, fig. 4.18)
-  double initial_angle_deg = 85.0;   ///< theta at zero displacement, shank strut to heel bar [deg] (G.4 `thetao`; table 4.2)
+  double heel_bar_tilt_deg = 5.0;  ///< alpha, heel bar from the vertical, kept constant [deg] (G.4 `alpha`, fig. 4.18)
+  double initial_angle_deg =
+      85.0;  ///< theta at zero displacement, shank strut to heel bar [deg] (G.4 `thetao`; table 4.2)
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
-    visit("heel_bar_tilt_deg", &JigParams::heel_bar_tilt_deg, FieldInfo{"deg", -45.0, 45.0, "heel bar from vertical (G.4 alpha)"});
-    visit("initial_angle_deg", &JigParams::initial_angle_deg, FieldInfo{"deg", 1.0, 179.0, "shank strut to heel bar at the start (G.4 thetao)"});
+    visit("heel_bar_tilt_deg", &JigParams::heel_bar_tilt_deg,
+          FieldInfo{"deg", -45.0, 45.0, "heel bar from vertical (G.4 alpha)"});
+    visit("initial_angle_deg", &JigParams::initial_angle_deg,
+          FieldInfo{"deg", 1.0, 179.0, "shank strut to heel bar at the start (G.4 thetao)"});
   }
   void validate() const { validate_fields(*this); }
 };
@@ -54,7 +57,8 @@ class Jig {
  public:
   /// The device's linkage gives Ls (upright length), Lo (shank offset) and Lh (heel offset).
   /// \throws InvalidParameter naming the field.
-  Jig(const LinkageParams& linkage, const JigParams& jig) : linkage_((linkage.validate(), linkage)), jig_((jig.validate(), jig)) {}
+  Jig(const LinkageParams& linkage, const JigParams& jig)
+      : linkage_((linkage.validate(), linkage)), jig_((jig.validate(), jig)) {}
 
   /// Converts the crosshead's downward displacement [m] and compressive force [N] (the
   /// script flips the Instron's signs and turns mm into m before this point).
@@ -82,8 +86,9 @@ inline JigSample Jig::convert(double d, double force) const {
   const double alpha = detail::radians(jig_.heel_bar_tilt_deg);
   const double theta = detail::radians(jig_.initial_angle_deg) + rotation;
   if (!(theta > 0.0 && theta < detail::kPi)) {
-    throw InvalidInput(pamkit::detail::message("Jig: a displacement of ", d, " m turns the shank ", detail::degrees(rotation),
-                                               " deg, folding the shank onto the heel bar (initial_angle_deg = ", jig_.initial_angle_deg, ")"));
+    throw InvalidInput(pamkit::detail::message(
+        "Jig: a displacement of ", d, " m turns the shank ", detail::degrees(rotation),
+        " deg, folding the shank onto the heel bar (initial_angle_deg = ", jig_.initial_angle_deg, ")"));
   }
   const double beta = 0.5 * detail::kPi + alpha - theta;  // G.4: beta = 95 deg - theta with alpha = 5 deg
   const double ax = ls * std::cos(beta) + linkage_.shank_offset_m * std::cos(beta + 0.5 * detail::kPi);
@@ -112,15 +117,18 @@ inline JigSample Jig::convert(double d, double force) const {
 
 /// A row of table 4.2: the mechanical tests of the prototype.
 struct Table42Row {
-  double pressure_kPa;              ///< PAM inflation (gauge) [kPa]
-  double muscle_length_m;           ///< measured between attachment points, end caps included [m]
-  double angle_deg;                 ///< theta at the start [deg]
-  double vertical_displacement_m;   ///< crosshead travel [m]
+  double pressure_kPa;             ///< PAM inflation (gauge) [kPa]
+  double muscle_length_m;          ///< measured between attachment points, end caps included [m]
+  double angle_deg;                ///< theta at the start [deg]
+  double vertical_displacement_m;  ///< crosshead travel [m]
 };
 
 /// Table 4.2 as printed.
 inline std::vector<Table42Row> table_4_2() {
-  return {{70.0, 0.286, 80.0, 0.0503}, {70.0, 0.286, 80.0, 0.0604}, {55.0, 0.290, 82.0, 0.0703}, {48.0, 0.295, 85.0, 0.0803}};
+  return {{70.0, 0.286, 80.0, 0.0503},
+          {70.0, 0.286, 80.0, 0.0604},
+          {55.0, 0.290, 82.0, 0.0703},
+          {48.0, 0.295, 85.0, 0.0803}};
 }
 
 }  // namespace pamkit::exo

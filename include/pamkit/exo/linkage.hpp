@@ -26,18 +26,25 @@ inline double degrees(double radians) { return radians * 180.0 / kPi; }
 struct LinkageParams {
   static constexpr const char* kName = "LinkageParams";
 
-  double upright_length_m = 0.30;  ///< along the shank strut from the ankle to the upright's end [m] (G.3 `uprightlength`)
-  double shank_offset_m = 0.10;    ///< from the upright, perpendicular and posterior, to the shank anchor [m] (G.3 `shankoffset`)
-  double heel_offset_m = 0.17;     ///< from the ankle to the heel anchor along the heel bar [m] (G.3 `heeloffset`)
-  double block_angle_deg = 100.0;  ///< heel bar to shank strut when the bar rests on the stopper block, the spring at its
-                                   ///< minimum length [deg] (G.3 `blockangle`; set by the pre-tension screw, section 4.4)
+  double upright_length_m =
+      0.30;  ///< along the shank strut from the ankle to the upright's end [m] (G.3 `uprightlength`)
+  double shank_offset_m =
+      0.10;  ///< from the upright, perpendicular and posterior, to the shank anchor [m] (G.3 `shankoffset`)
+  double heel_offset_m = 0.17;  ///< from the ankle to the heel anchor along the heel bar [m] (G.3 `heeloffset`)
+  double block_angle_deg =
+      100.0;  ///< heel bar to shank strut when the bar rests on the stopper block, the spring at its
+              ///< minimum length [deg] (G.3 `blockangle`; set by the pre-tension screw, section 4.4)
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
-    visit("upright_length_m", &LinkageParams::upright_length_m, FieldInfo{"m", 0.02, 1.0, "ankle to the upright's end along the shank (G.3 uprightlength)"});
-    visit("shank_offset_m", &LinkageParams::shank_offset_m, FieldInfo{"m", 0.0, 0.5, "upright to shank anchor, posterior (G.3 shankoffset)"});
-    visit("heel_offset_m", &LinkageParams::heel_offset_m, FieldInfo{"m", 0.01, 0.5, "ankle to heel anchor (G.3 heeloffset)"});
-    visit("block_angle_deg", &LinkageParams::block_angle_deg, FieldInfo{"deg", 1.0, 179.0, "heel bar to shank strut on the stopper block (G.3 blockangle)"});
+    visit("upright_length_m", &LinkageParams::upright_length_m,
+          FieldInfo{"m", 0.02, 1.0, "ankle to the upright's end along the shank (G.3 uprightlength)"});
+    visit("shank_offset_m", &LinkageParams::shank_offset_m,
+          FieldInfo{"m", 0.0, 0.5, "upright to shank anchor, posterior (G.3 shankoffset)"});
+    visit("heel_offset_m", &LinkageParams::heel_offset_m,
+          FieldInfo{"m", 0.01, 0.5, "ankle to heel anchor (G.3 heeloffset)"});
+    visit("block_angle_deg", &LinkageParams::block_angle_deg,
+          FieldInfo{"deg", 1.0, 179.0, "heel bar to shank strut on the stopper block (G.3 blockangle)"});
   }
 
   /// Checks the ranges, then that the spring can close: at the block the two anchors must be
@@ -52,11 +59,11 @@ struct LinkagePose {
   double heel_bar_angle_deg;  ///< psi, heel bar to shank strut [deg]
   double shank_anchor_x_m;    ///< shank anchor in the shank frame [m]
   double shank_anchor_y_m;
-  double heel_anchor_x_m;     ///< heel anchor in the shank frame [m]
+  double heel_anchor_x_m;  ///< heel anchor in the shank frame [m]
   double heel_anchor_y_m;
-  double spring_length_m;     ///< anchor to anchor [m] (G.3 `springlength`)
-  double moment_arm_m;        ///< perpendicular distance from the ankle to the spring's line, > 0 when tension
-                              ///< plantarflexes [m]; the denominator of G.3's `idealforce` (fig. 4.3)
+  double spring_length_m;  ///< anchor to anchor [m] (G.3 `springlength`)
+  double moment_arm_m;     ///< perpendicular distance from the ankle to the spring's line, > 0 when tension
+                           ///< plantarflexes [m]; the denominator of G.3's `idealforce` (fig. 4.3)
 };
 
 /// The device's geometry. Immutable.
@@ -95,15 +102,16 @@ inline void LinkageParams::validate() const {
   const double dy = shank_offset_m - heel_offset_m * std::sin(b);
   const double length = std::hypot(dx, dy);
   if (length < 1e-3) {
-    throw InvalidParameter(pamkit::detail::message("LinkageParams: the anchors coincide at block_angle_deg = ", block_angle_deg,
-                                                   " (spring length ", length, " m): the spring cannot close"));
+    throw InvalidParameter(
+        pamkit::detail::message("LinkageParams: the anchors coincide at block_angle_deg = ", block_angle_deg,
+                                " (spring length ", length, " m): the spring cannot close"));
   }
   // Moment arm at the block: B x u with B the heel anchor and u the unit vector from it to the shank anchor.
   const double arm = (dx * heel_offset_m * std::sin(b) - dy * heel_offset_m * std::cos(b)) / length;
   if (!(arm > 0.0)) {
     throw InvalidParameter(pamkit::detail::message("LinkageParams.block_angle_deg = ", block_angle_deg,
-                                                   " deg puts the spring's line in front of the ankle (moment arm ", arm,
-                                                   " m): tension would dorsiflex"));
+                                                   " deg puts the spring's line in front of the ankle (moment arm ",
+                                                   arm, " m): tension would dorsiflex"));
   }
 }
 

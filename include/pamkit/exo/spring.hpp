@@ -20,7 +20,8 @@ struct LinearSpring {
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
-    visit("stiffness_N_per_m", &LinearSpring::stiffness_N_per_m, FieldInfo{"N/m", 0.0, 1e8, "spring rate k (G.3 linearspringstiffness)"});
+    visit("stiffness_N_per_m", &LinearSpring::stiffness_N_per_m,
+          FieldInfo{"N/m", 0.0, 1e8, "spring rate k (G.3 linearspringstiffness)"});
   }
   void validate() const { validate_fields(*this); }
 
@@ -82,17 +83,20 @@ inline PamStaticSpring::PamStaticSpring(const MuscleBuild& build, const BladderL
       pretension_(pretension_m),
       polytropic_index_(polytropic_index) {
   if (!(free_length_m > geometry_.min_length() && free_length_m < geometry_.max_length())) {
-    throw InvalidInput(pamkit::detail::message("PamStaticSpring: free_length_m = ", free_length_m, " m is outside the braid's range (",
-                                               geometry_.min_length(), ", ", geometry_.max_length(), ") m"));
+    throw InvalidInput(pamkit::detail::message("PamStaticSpring: free_length_m = ", free_length_m,
+                                               " m is outside the braid's range (", geometry_.min_length(), ", ",
+                                               geometry_.max_length(), ") m"));
   }
   if (!(gauge_pressure_Pa >= 0.0) || !std::isfinite(gauge_pressure_Pa)) {
-    throw InvalidInput(pamkit::detail::message("PamStaticSpring: gauge_pressure_Pa = ", gauge_pressure_Pa, " must be >= 0"));
+    throw InvalidInput(
+        pamkit::detail::message("PamStaticSpring: gauge_pressure_Pa = ", gauge_pressure_Pa, " must be >= 0"));
   }
   if (!(pretension_m >= 0.0) || !std::isfinite(pretension_m)) {
     throw InvalidInput(pamkit::detail::message("PamStaticSpring: pretension_m = ", pretension_m, " must be >= 0"));
   }
   if (!(polytropic_index >= 1.0 && polytropic_index <= 1.7)) {
-    throw InvalidInput(pamkit::detail::message("PamStaticSpring: polytropic_index = ", polytropic_index, " is outside [1, 1.7]"));
+    throw InvalidInput(
+        pamkit::detail::message("PamStaticSpring: polytropic_index = ", polytropic_index, " is outside [1, 1.7]"));
   }
   initial_volume_ = geometry_.shape(free_length_m).gas_volume;
 }
@@ -100,8 +104,9 @@ inline PamStaticSpring::PamStaticSpring(const MuscleBuild& build, const BladderL
 inline double PamStaticSpring::gauge_pressure(double elongation_m) const {
   const double length = muscle_length(elongation_m);
   if (!(length < geometry_.max_length())) {
-    throw InvalidInput(pamkit::detail::message("PamStaticSpring: elongation ", elongation_m, " m stretches the muscle to ", length,
-                                               " m, beyond the braid's longest ", geometry_.max_length(), " m"));
+    throw InvalidInput(pamkit::detail::message("PamStaticSpring: elongation ", elongation_m,
+                                               " m stretches the muscle to ", length, " m, beyond the braid's longest ",
+                                               geometry_.max_length(), " m"));
   }
   const double p0 = gas_.atmospheric_pressure_Pa + gauge_pressure_;
   return polytropic_pressure(p0, initial_volume_, geometry_.shape(length).gas_volume, polytropic_index_) -

@@ -22,23 +22,28 @@ enum class GasProcess {
 struct GasParams {
   static constexpr const char* kName = "GasParams";
 
-  double gas_constant_J_per_kgK = 287.0;        ///< R, dry air [J/(kg K)] (table C.4)
-  double heat_capacity_ratio = 1.4;             ///< gamma = cp / cv of air [1]
-  double atmospheric_pressure_Pa = 101e3;       ///< absolute ambient pressure [Pa] (Patm, table C.4)
-  double ambient_temperature_K = 296.0;         ///< ambient, and initial gas, temperature [K] (Tatm, table C.4)
-  double polytropic_index = 1.0;                ///< n of eq. 3.1.14 [1]; 1.0 fitted the thesis's tests best
-  double heat_transfer_time_constant_s = 0.38;  ///< tau of the gas-wall exchange [s] (heat_transfer only); 0: instantaneous
-                                                ///< (isothermal). 0.38 s reproduces table 3.6 (docs/table_3_6.md)
+  double gas_constant_J_per_kgK = 287.0;   ///< R, dry air [J/(kg K)] (table C.4)
+  double heat_capacity_ratio = 1.4;        ///< gamma = cp / cv of air [1]
+  double atmospheric_pressure_Pa = 101e3;  ///< absolute ambient pressure [Pa] (Patm, table C.4)
+  double ambient_temperature_K = 296.0;    ///< ambient, and initial gas, temperature [K] (Tatm, table C.4)
+  double polytropic_index = 1.0;           ///< n of eq. 3.1.14 [1]; 1.0 fitted the thesis's tests best
+  double heat_transfer_time_constant_s =
+      0.38;  ///< tau of the gas-wall exchange [s] (heat_transfer only); 0: instantaneous
+             ///< (isothermal). 0.38 s reproduces table 3.6 (docs/table_3_6.md)
   GasProcess process = GasProcess::polytropic;  ///< which law governs the gas temperature
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
-    visit("gas_constant_J_per_kgK", &GasParams::gas_constant_J_per_kgK, FieldInfo{"J/(kg K)", 1.0, 1e5, "specific gas constant R"});
+    visit("gas_constant_J_per_kgK", &GasParams::gas_constant_J_per_kgK,
+          FieldInfo{"J/(kg K)", 1.0, 1e5, "specific gas constant R"});
     visit("heat_capacity_ratio", &GasParams::heat_capacity_ratio, FieldInfo{"1", 1.0001, 1.7, "cp / cv"});
-    visit("atmospheric_pressure_Pa", &GasParams::atmospheric_pressure_Pa, FieldInfo{"Pa", 1e3, 1e6, "absolute ambient pressure"});
-    visit("ambient_temperature_K", &GasParams::ambient_temperature_K, FieldInfo{"K", 150.0, 500.0, "ambient and initial gas temperature"});
+    visit("atmospheric_pressure_Pa", &GasParams::atmospheric_pressure_Pa,
+          FieldInfo{"Pa", 1e3, 1e6, "absolute ambient pressure"});
+    visit("ambient_temperature_K", &GasParams::ambient_temperature_K,
+          FieldInfo{"K", 150.0, 500.0, "ambient and initial gas temperature"});
     visit("polytropic_index", &GasParams::polytropic_index, FieldInfo{"1", 1.0, 1.7, "polytropic exponent n"});
-    visit("heat_transfer_time_constant_s", &GasParams::heat_transfer_time_constant_s, FieldInfo{"s", 0.0, 1e9, "gas-wall heat exchange time constant (0: isothermal)"});
+    visit("heat_transfer_time_constant_s", &GasParams::heat_transfer_time_constant_s,
+          FieldInfo{"s", 0.0, 1e9, "gas-wall heat exchange time constant (0: isothermal)"});
   }
   void validate() const { validate_fields(*this); }
 

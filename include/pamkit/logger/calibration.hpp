@@ -18,17 +18,20 @@ using units::kKilopascalPerPsi;
 struct LoggerCalibration {
   static constexpr const char* kName = "LoggerCalibration";
 
-  double adc_reference_V = 5.0;        ///< ADC reference, the Mega's AVCC (nominally 5 V: measure it) [V]
-  double pressure_kPa_per_V = 0.0;     ///< transducer slope, fitted from the calibration points [kPa/V]
-  double pressure_offset_kPa = 0.0;    ///< transducer gauge pressure at 0 V [kPa]
-  double tmp36_offset_V = 0.5;         ///< TMP36 output at 0 degC [V] (appendix B; TMP36 datasheet)
-  double tmp36_V_per_C = 0.010;        ///< TMP36 scale factor [V/degC] (appendix B; TMP36 datasheet)
+  double adc_reference_V = 5.0;      ///< ADC reference, the Mega's AVCC (nominally 5 V: measure it) [V]
+  double pressure_kPa_per_V = 0.0;   ///< transducer slope, fitted from the calibration points [kPa/V]
+  double pressure_offset_kPa = 0.0;  ///< transducer gauge pressure at 0 V [kPa]
+  double tmp36_offset_V = 0.5;       ///< TMP36 output at 0 degC [V] (appendix B; TMP36 datasheet)
+  double tmp36_V_per_C = 0.010;      ///< TMP36 scale factor [V/degC] (appendix B; TMP36 datasheet)
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
-    visit("adc_reference_V", &LoggerCalibration::adc_reference_V, FieldInfo{"V", 1.0, 5.5, "ADC reference voltage (AVCC of the Mega)"});
-    visit("pressure_kPa_per_V", &LoggerCalibration::pressure_kPa_per_V, FieldInfo{"kPa/V", -1e5, 1e5, "pressure transducer slope (appendix B linear fit)"});
-    visit("pressure_offset_kPa", &LoggerCalibration::pressure_offset_kPa, FieldInfo{"kPa", -1e5, 1e5, "pressure transducer gauge pressure at 0 V"});
+    visit("adc_reference_V", &LoggerCalibration::adc_reference_V,
+          FieldInfo{"V", 1.0, 5.5, "ADC reference voltage (AVCC of the Mega)"});
+    visit("pressure_kPa_per_V", &LoggerCalibration::pressure_kPa_per_V,
+          FieldInfo{"kPa/V", -1e5, 1e5, "pressure transducer slope (appendix B linear fit)"});
+    visit("pressure_offset_kPa", &LoggerCalibration::pressure_offset_kPa,
+          FieldInfo{"kPa", -1e5, 1e5, "pressure transducer gauge pressure at 0 V"});
     visit("tmp36_offset_V", &LoggerCalibration::tmp36_offset_V, FieldInfo{"V", 0.0, 2.0, "TMP36 output at 0 degC"});
     visit("tmp36_V_per_C", &LoggerCalibration::tmp36_V_per_C, FieldInfo{"V/degC", 1e-4, 1.0, "TMP36 scale factor"});
   }
@@ -46,9 +49,9 @@ struct LoggerCalibration {
 
 /// Least-squares line through the pressure calibration points.
 struct PressureFit {
-  double kPa_per_V = 0;          ///< slope [kPa/V]
-  double offset_kPa = 0;         ///< gauge pressure at 0 V [kPa]
-  double max_residual_kPa = 0;   ///< largest |fit - applied| over the points [kPa]
+  double kPa_per_V = 0;         ///< slope [kPa/V]
+  double offset_kPa = 0;        ///< gauge pressure at 0 V [kPa]
+  double max_residual_kPa = 0;  ///< largest |fit - applied| over the points [kPa]
 };
 
 /// Fits gauge pressure = offset + slope * V to the calibration points (appendix B: applied 0, 10,

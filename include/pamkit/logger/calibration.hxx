@@ -18,8 +18,8 @@ inline PressureFit fit_pressure(const std::vector<double>& applied_psi, const st
   double mean_v = 0, mean_p = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(applied_psi[i]) || !std::isfinite(measured_V[i])) {
-      throw InvalidInput(message("pressure calibration: point ", i + 1, " (", applied_psi[i], " psi, ",
-                                 measured_V[i], " V) is not finite"));
+      throw InvalidInput(message("pressure calibration: point ", i + 1, " (", applied_psi[i], " psi, ", measured_V[i],
+                                 " V) is not finite"));
     }
     mean_v += measured_V[i] / n;
     mean_p += applied_psi[i] * kKilopascalPerPsi / n;
@@ -32,8 +32,8 @@ inline PressureFit fit_pressure(const std::vector<double>& applied_psi, const st
   }
   // One ADC count at 5 V is 4.9 mV: voltages spread less than that cannot fix a slope.
   if (std::sqrt(svv / n) < 5e-3) {
-    throw InvalidInput(message("pressure calibration: the measured voltages hardly differ (spread ",
-                               std::sqrt(svv / n), " V); were they filled in?"));
+    throw InvalidInput(message("pressure calibration: the measured voltages hardly differ (spread ", std::sqrt(svv / n),
+                               " V); were they filled in?"));
   }
   PressureFit fit;
   fit.kPa_per_V = svp / svv;

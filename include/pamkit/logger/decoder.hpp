@@ -19,26 +19,24 @@ namespace pamkit::logger {
 
 /// The board's start-up line: firmware version and settings (PAMKIT_BANNER_FORMAT).
 struct Banner {
-  std::string firmware_version;   ///< e.g. "1.0.0"
-  unsigned frame_version = 0;     ///< PAMKIT_FRAME_VERSION the firmware was built with
-  double rate_hz = 0;             ///< configured sample rate [Hz]
-  std::uint32_t period_us = 0;    ///< sample period [us]
-  unsigned oversample = 0;        ///< conversions summed per channel and sample
-  std::uint32_t baud = 0;         ///< serial line rate [bit/s]
-  double vref_V = 0;              ///< ADC reference the firmware was configured with [V]
-  std::string line;               ///< the line as received, without "\r\n"
+  std::string firmware_version;  ///< e.g. "1.0.0"
+  unsigned frame_version = 0;    ///< PAMKIT_FRAME_VERSION the firmware was built with
+  double rate_hz = 0;            ///< configured sample rate [Hz]
+  std::uint32_t period_us = 0;   ///< sample period [us]
+  unsigned oversample = 0;       ///< conversions summed per channel and sample
+  std::uint32_t baud = 0;        ///< serial line rate [bit/s]
+  double vref_V = 0;             ///< ADC reference the firmware was configured with [V]
+  std::string line;              ///< the line as received, without "\r\n"
 };
 
 /// One intact frame, with what the decoder knows around it.
 struct Sample {
-  pamkit_frame frame{};           ///< raw fields as sent
-  std::uint32_t boot = 0;         ///< board start counted by this decoder (0 = the first seen)
-  double device_time_s = 0;       ///< device clock since its reset, unwrapped across micros() wraps [s]
-  std::uint32_t missing_before = 0; ///< frames absent between the previous intact frame and this one
+  pamkit_frame frame{};              ///< raw fields as sent
+  std::uint32_t boot = 0;            ///< board start counted by this decoder (0 = the first seen)
+  double device_time_s = 0;          ///< device clock since its reset, unwrapped across micros() wraps [s]
+  std::uint32_t missing_before = 0;  ///< frames absent between the previous intact frame and this one
   /// Mean conversion of `channel` (PAMKIT_CHANNEL_PRESSURE or _TEMPERATURE) [counts, 0..1023].
-  double mean_counts(int channel) const {
-    return static_cast<double>(frame.counts[channel]) / frame.oversample;
-  }
+  double mean_counts(int channel) const { return static_cast<double>(frame.counts[channel]) / frame.oversample; }
 };
 
 /// What the decoder has seen. Counters only grow.

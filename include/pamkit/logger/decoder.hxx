@@ -53,8 +53,7 @@ inline bool parse_banner(const char* line, std::size_t length, Banner& banner) {
   const std::string text(line, body);
   parsed.firmware_version = detail::banner_value(text, "version");
   unsigned long frame = 0, rate = 0, period = 0, oversample = 0, baud = 0, vref = 0;
-  if (parsed.firmware_version.empty() ||
-      !detail::banner_number(detail::banner_value(text, "frame"), 255, frame) ||
+  if (parsed.firmware_version.empty() || !detail::banner_number(detail::banner_value(text, "frame"), 255, frame) ||
       !detail::banner_number(detail::banner_value(text, "rate_hz"), 1000000, rate) ||
       !detail::banner_number(detail::banner_value(text, "period_us"), 100000000, period) ||
       !detail::banner_number(detail::banner_value(text, "oversample"), PAMKIT_OVERSAMPLE_MAX, oversample) ||

@@ -28,22 +28,22 @@ namespace pamkit::logger {
 
 /// How to reach the board.
 struct ReaderOptions {
-  std::string port;                   ///< device path, by-id name or pty
-  unsigned baud = 115200;             ///< must match the sketch's PAMKIT_BAUD
-  bool assert_dtr = true;             ///< raise DTR on open: resets a Mega, so the log starts at its banner
-  double banner_timeout_s = 3.0;      ///< wait this long for the banner after opening before trusting frames without one
-  double reconnect_interval_s = 0.25; ///< retry period while the port is gone
+  std::string port;               ///< device path, by-id name or pty
+  unsigned baud = 115200;         ///< must match the sketch's PAMKIT_BAUD
+  bool assert_dtr = true;         ///< raise DTR on open: resets a Mega, so the log starts at its banner
+  double banner_timeout_s = 3.0;  ///< wait this long for the banner after opening before trusting frames without one
+  double reconnect_interval_s = 0.25;  ///< retry period while the port is gone
 };
 
 /// One row of the CSV.
 struct Reading {
-  double time_s = 0;          ///< [s] since the first row
-  double pressure_kPa = 0;    ///< gauge [kPa] (NaN without a pressure calibration)
-  double temperature_C = 0;   ///< [degC]
-  double pressure_V = 0;      ///< A0 [V]
-  double temperature_V = 0;   ///< A1 [V]
-  std::uint32_t boot = 0;     ///< board start (0 = first)
-  std::uint16_t seq = 0;      ///< the frame's sequence number
+  double time_s = 0;         ///< [s] since the first row
+  double pressure_kPa = 0;   ///< gauge [kPa] (NaN without a pressure calibration)
+  double temperature_C = 0;  ///< [degC]
+  double pressure_V = 0;     ///< A0 [V]
+  double temperature_V = 0;  ///< A1 [V]
+  std::uint32_t boot = 0;    ///< board start (0 = first)
+  std::uint16_t seq = 0;     ///< the frame's sequence number
 };
 
 /// The decoder's counters plus the reader's own.
@@ -63,8 +63,7 @@ class Reader {
   /// \param calibration validated; `pressure_calibrated` false writes no pressure_kPa column.
   /// \param csv_path created (truncated) at once, header written.
   /// \throws InvalidParameter for a bad calibration, Error if the CSV cannot be created.
-  Reader(ReaderOptions options, LoggerCalibration calibration, bool pressure_calibrated,
-         const std::string& csv_path);
+  Reader(ReaderOptions options, LoggerCalibration calibration, bool pressure_calibrated, const std::string& csv_path);
   ~Reader();
 
   /// Waits up to `timeout_s` for data, decodes it and writes the rows; opens or reopens the

@@ -15,10 +15,10 @@ namespace pamkit::logger {
 
 /// A serial port the system knows.
 struct PortInfo {
-  std::string path;         ///< device, e.g. /dev/ttyACM0
-  std::string description;  ///< what libserialport says about it (USB product name...)
-  int usb_vid = -1;         ///< USB vendor id, -1 if not USB (0x2341, 0x2A03: Arduino)
-  int usb_pid = -1;         ///< USB product id, -1 if not USB
+  std::string path;                ///< device, e.g. /dev/ttyACM0
+  std::string description;         ///< what libserialport says about it (USB product name...)
+  int usb_vid = -1;                ///< USB vendor id, -1 if not USB (0x2341, 0x2A03: Arduino)
+  int usb_pid = -1;                ///< USB product id, -1 if not USB
   std::vector<std::string> by_id;  ///< /dev/serial/by-id names that point at it: they survive re-plugging
 };
 

@@ -52,12 +52,12 @@ struct BladderLaw {
 
 /// Bladder strains and stresses at one shape.
 struct BladderState {
-  double longitudinal_strain;  ///< eps_l = Lm / Lm_deflated - 1 [1]
-  double hoop_strain;          ///< eps_h = D / D_bladder,deflated - 1 [1] (as table 3.1)
-  double d_longitudinal_strain;///< d eps_l / dL [1/m]
-  double d_hoop_strain;        ///< d eps_h / dL [1/m]
-  double longitudinal_stress;  ///< sigma_l [Pa]
-  double hoop_stress;          ///< sigma_h [Pa]
+  double longitudinal_strain;    ///< eps_l = Lm / Lm_deflated - 1 [1]
+  double hoop_strain;            ///< eps_h = D / D_bladder,deflated - 1 [1] (as table 3.1)
+  double d_longitudinal_strain;  ///< d eps_l / dL [1/m]
+  double d_hoop_strain;          ///< d eps_h / dL [1/m]
+  double longitudinal_stress;    ///< sigma_l [Pa]
+  double hoop_stress;            ///< sigma_h [Pa]
 };
 
 /// Strains follow the geometry: the bladder lies against the braid, so its hoop strain is the

@@ -30,13 +30,17 @@ struct MuscleBuild {
   static void for_each_field(Visitor&& visit) {
     visit("length_m", &MuscleBuild::length_m, FieldInfo{"m", 0.01, 5.0, "deflated length between the end caps"});
     visit("diameter_m", &MuscleBuild::diameter_m, FieldInfo{"m", 1e-3, 0.5, "deflated braid diameter"});
-    visit("bladder_diameter_m", &MuscleBuild::bladder_diameter_m, FieldInfo{"m", 1e-3, 0.5, "deflated bladder outer diameter"});
-    visit("bladder_thickness_m", &MuscleBuild::bladder_thickness_m, FieldInfo{"m", 0.0, 0.01, "bladder wall thickness"});
+    visit("bladder_diameter_m", &MuscleBuild::bladder_diameter_m,
+          FieldInfo{"m", 1e-3, 0.5, "deflated bladder outer diameter"});
+    visit("bladder_thickness_m", &MuscleBuild::bladder_thickness_m,
+          FieldInfo{"m", 0.0, 0.01, "bladder wall thickness"});
     visit("fiber_count", &MuscleBuild::fiber_count, FieldInfo{"1", 2, 5000, "number of braid fibers N"});
-    visit("fiber_revolutions", &MuscleBuild::fiber_revolutions, FieldInfo{"1", 0.1, 100, "fiber turns n over the cylinder"});
+    visit("fiber_revolutions", &MuscleBuild::fiber_revolutions,
+          FieldInfo{"1", 0.1, 100, "fiber turns n over the cylinder"});
     visit("fiber_thickness_m", &MuscleBuild::fiber_thickness_m, FieldInfo{"m", 0.0, 0.01, "thickness of one fiber"});
     visit("end_diameter_m", &MuscleBuild::end_diameter_m, FieldInfo{"m", 1e-4, 0.5, "end cap diameter d"});
-    visit("cone_generator_m", &MuscleBuild::cone_generator_m, FieldInfo{"m", 0.0, 0.5, "slant length of each end cone Lz (0: flat ends)"});
+    visit("cone_generator_m", &MuscleBuild::cone_generator_m,
+          FieldInfo{"m", 0.0, 0.5, "slant length of each end cone Lz (0: flat ends)"});
   }
 
   /// Checks each field's range, then the relations between fields (the bladder fits inside

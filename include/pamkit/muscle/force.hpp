@@ -99,9 +99,10 @@ inline FiberTensions newtonian_fiber_tensions(const BraidGeometry& geometry, con
   // Eq. 3.1.7 with the wall thicknesses taken off the mean cone diameter (the printed "+4tb"
   // would add the bladder to the gas's diameter).
   const double lz = b.cone_generator_m;
-  t.cone_hoop = lz > 0.0 ? (p * (D + d - 4.0 * tb - 4.0 * tf) * std::cos(shape.cone_angle) - 4.0 * bl.hoop_stress * tb) /
-                               (4.0 * n * N * std::sin(shape.mean_braid_angle)) * lz
-                         : 0.0;
+  t.cone_hoop = lz > 0.0
+                    ? (p * (D + d - 4.0 * tb - 4.0 * tf) * std::cos(shape.cone_angle) - 4.0 * bl.hoop_stress * tb) /
+                          (4.0 * n * N * std::sin(shape.mean_braid_angle)) * lz
+                    : 0.0;
   const double inner_radius = 0.5 * D - tf - tb;
   t.longitudinal = (p * detail::kPi * inner_radius * inner_radius -
                     bl.longitudinal_stress * detail::kPi * b.bladder_diameter_m * tb) /

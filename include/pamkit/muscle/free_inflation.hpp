@@ -47,16 +47,16 @@ inline FreeInflation free_inflation(const BraidGeometry& geometry, const Bladder
     const double lower = deflated - (deflated - shortest) * i / kScanSteps;
     if (force(lower) <= 0.0) {
       std::uintmax_t iterations = 200;
-      const auto bracket = boost::math::tools::toms748_solve(
-          force, lower, upper, boost::math::tools::eps_tolerance<double>(50), iterations);
+      const auto bracket = boost::math::tools::toms748_solve(force, lower, upper,
+                                                             boost::math::tools::eps_tolerance<double>(50), iterations);
       const double length = 0.5 * (bracket.first + bracket.second);
       return {length, geometry.shape(length).diameter, true};
     }
     upper = lower;
   }
-  throw InvalidInput(detail::message("free_inflation: at ", gauge_pressure_Pa,
-                                     " Pa gauge the force stays positive down to the shortest length the braid model allows (",
-                                     shortest, " m)"));
+  throw InvalidInput(detail::message(
+      "free_inflation: at ", gauge_pressure_Pa,
+      " Pa gauge the force stays positive down to the shortest length the braid model allows (", shortest, " m)"));
 }
 
 }  // namespace pamkit

@@ -27,11 +27,14 @@ struct FrictionParams {
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
-    visit("fiber_fiber_coefficient", &FrictionParams::fiber_fiber_coefficient, FieldInfo{"1", 0.0, 5.0, "fiber-fiber friction coefficient"});
-    visit("fiber_bladder_coefficient", &FrictionParams::fiber_bladder_coefficient, FieldInfo{"1", 0.0, 5.0, "fiber-bladder friction coefficient"});
+    visit("fiber_fiber_coefficient", &FrictionParams::fiber_fiber_coefficient,
+          FieldInfo{"1", 0.0, 5.0, "fiber-fiber friction coefficient"});
+    visit("fiber_bladder_coefficient", &FrictionParams::fiber_bladder_coefficient,
+          FieldInfo{"1", 0.0, 5.0, "fiber-bladder friction coefficient"});
     visit("sharpness_s_per_m", &FrictionParams::sharpness_s_per_m, FieldInfo{"s/m", 0.0, 1e7, "Kf of tanh(Kf v)"});
     visit("fiber_width_m", &FrictionParams::fiber_width_m, FieldInfo{"m", 0.0, 0.01, "fiber width w"});
-    visit("contact_length_m", &FrictionParams::contact_length_m, FieldInfo{"m", 0.0, 0.01, "fiber length z in one crossing"});
+    visit("contact_length_m", &FrictionParams::contact_length_m,
+          FieldInfo{"m", 0.0, 0.01, "fiber length z in one crossing"});
   }
   void validate() const { validate_fields(*this); }
 };
@@ -49,7 +52,8 @@ inline double friction_force(const FrictionParams& p, const BraidGeometry& geome
   const double contact_area = p.fiber_width_m * p.contact_length_m;
   const double fiber_fiber = crossings * 2.0 * gauge_pressure_Pa * contact_area * p.fiber_fiber_coefficient;
   const double bladder_contact = geometry.fiber_length() * fibers - 0.5 * p.contact_length_m * crossings;
-  const double fiber_bladder = 2.0 * gauge_pressure_Pa * p.fiber_bladder_coefficient * p.fiber_width_m * bladder_contact;
+  const double fiber_bladder =
+      2.0 * gauge_pressure_Pa * p.fiber_bladder_coefficient * p.fiber_width_m * bladder_contact;
   return (fiber_fiber + fiber_bladder) * std::tanh(p.sharpness_s_per_m * velocity_m_per_s);
 }
 

@@ -22,22 +22,22 @@ double braid_fiber_length(double cylinder_length_m, double diameter_m, double re
 /// Shape of the muscle at one length, with the derivatives with respect to that length that
 /// the force (virtual work) and the gas equation need. Angles in rad, lengths in m, volumes in m^3.
 struct MuscleShape {
-  double length;           ///< L, between the end caps
-  double diameter;         ///< D, braid diameter of the cylinder
-  double cylinder_length;  ///< Lm = L - 2 LL
-  double cone_length;      ///< LL, axial length of one end cone
-  double braid_angle;      ///< theta of the cylinder, from the axis (eq. 3.1.9-3.1.10)
-  double end_braid_angle;  ///< theta_e at the end cap: sin(theta_e) = (d / D) sin(theta)
-  double cone_angle;       ///< beta, inclination of the cone's slant from the axis
-  double mean_braid_angle; ///< theta_a = (theta + theta_e) / 2 (section 3.1.1)
-  double total_volume;     ///< eq. 3.1.1, inside the braid, bladder included
-  double bladder_volume;   ///< eq. 3.1.3
-  double gas_volume;       ///< eq. 3.1.2: total minus bladder
-  double d_diameter;       ///< dD/dL [1]
-  double d_cylinder_length;///< dLm/dL [1]
-  double d_total_volume;   ///< dV_total/dL [m^2]
-  double d_bladder_volume; ///< dV_bladder/dL [m^2]
-  double d_gas_volume;     ///< dV_gas/dL [m^2]
+  double length;             ///< L, between the end caps
+  double diameter;           ///< D, braid diameter of the cylinder
+  double cylinder_length;    ///< Lm = L - 2 LL
+  double cone_length;        ///< LL, axial length of one end cone
+  double braid_angle;        ///< theta of the cylinder, from the axis (eq. 3.1.9-3.1.10)
+  double end_braid_angle;    ///< theta_e at the end cap: sin(theta_e) = (d / D) sin(theta)
+  double cone_angle;         ///< beta, inclination of the cone's slant from the axis
+  double mean_braid_angle;   ///< theta_a = (theta + theta_e) / 2 (section 3.1.1)
+  double total_volume;       ///< eq. 3.1.1, inside the braid, bladder included
+  double bladder_volume;     ///< eq. 3.1.3
+  double gas_volume;         ///< eq. 3.1.2: total minus bladder
+  double d_diameter;         ///< dD/dL [1]
+  double d_cylinder_length;  ///< dLm/dL [1]
+  double d_total_volume;     ///< dV_total/dL [m^2]
+  double d_bladder_volume;   ///< dV_bladder/dL [m^2]
+  double d_gas_volume;       ///< dV_gas/dL [m^2]
 };
 
 /// The braid of one muscle build: fixed fiber length and turns, fixed cones. Immutable and

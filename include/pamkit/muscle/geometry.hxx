@@ -85,8 +85,7 @@ inline MuscleShape BraidGeometry::shape(double length_m) const {
     const double guess = std::clamp(cylinder_guess, lower + 1e-12, upper - 1e-12);
     std::uintmax_t iterations = 100;
     s.diameter = boost::math::tools::newton_raphson_iterate(closure, guess, lower, upper,
-                                                            std::numeric_limits<double>::digits - 6,
-                                                            iterations);
+                                                            std::numeric_limits<double>::digits - 6, iterations);
     s.cone_length = detail::cone_axial_length(lz, s.diameter, d);
   } else {
     s.diameter = std::sqrt((lym * lym - length_m * length_m) / k2);

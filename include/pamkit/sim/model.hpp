@@ -18,19 +18,25 @@ namespace pamkit {
 struct ModelExtensions {
   static constexpr const char* kName = "ModelExtensions";
 
-  double dead_volume_fraction = 0.0;          ///< gas volume outside the muscle (hose, transducer) over the initial gas volume [1]
-  double leak_rate_per_s = 0.0;               ///< 1/tau of the gauge pressure's decay through an orifice at fixed volume [1/s]
-  double viscoelastic_strength = 0.0;         ///< modulus of the bladder's Maxwell branch over the law's tangent modulus [1]
+  double dead_volume_fraction =
+      0.0;                       ///< gas volume outside the muscle (hose, transducer) over the initial gas volume [1]
+  double leak_rate_per_s = 0.0;  ///< 1/tau of the gauge pressure's decay through an orifice at fixed volume [1/s]
+  double viscoelastic_strength = 0.0;  ///< modulus of the bladder's Maxwell branch over the law's tangent modulus [1]
   double viscoelastic_time_constant_s = 1.0;  ///< relaxation time of that branch [s]
   double fiber_compliance_per_N = 0.0;        ///< 1 / axial stiffness EA of one fiber [1/N]; 0: inextensible
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
-    visit("dead_volume_fraction", &ModelExtensions::dead_volume_fraction, FieldInfo{"1", 0.0, 10.0, "dead gas volume / initial gas volume"});
-    visit("leak_rate_per_s", &ModelExtensions::leak_rate_per_s, FieldInfo{"1/s", 0.0, 1e3, "leak rate (1 / time constant)"});
-    visit("viscoelastic_strength", &ModelExtensions::viscoelastic_strength, FieldInfo{"1", 0.0, 100.0, "bladder Maxwell-branch modulus ratio"});
-    visit("viscoelastic_time_constant_s", &ModelExtensions::viscoelastic_time_constant_s, FieldInfo{"s", 1e-4, 1e6, "bladder relaxation time"});
-    visit("fiber_compliance_per_N", &ModelExtensions::fiber_compliance_per_N, FieldInfo{"1/N", 0.0, 1.0, "1 / fiber axial stiffness"});
+    visit("dead_volume_fraction", &ModelExtensions::dead_volume_fraction,
+          FieldInfo{"1", 0.0, 10.0, "dead gas volume / initial gas volume"});
+    visit("leak_rate_per_s", &ModelExtensions::leak_rate_per_s,
+          FieldInfo{"1/s", 0.0, 1e3, "leak rate (1 / time constant)"});
+    visit("viscoelastic_strength", &ModelExtensions::viscoelastic_strength,
+          FieldInfo{"1", 0.0, 100.0, "bladder Maxwell-branch modulus ratio"});
+    visit("viscoelastic_time_constant_s", &ModelExtensions::viscoelastic_time_constant_s,
+          FieldInfo{"s", 1e-4, 1e6, "bladder relaxation time"});
+    visit("fiber_compliance_per_N", &ModelExtensions::fiber_compliance_per_N,
+          FieldInfo{"1/N", 0.0, 1.0, "1 / fiber axial stiffness"});
   }
   void validate() const { validate_fields(*this); }
 };
@@ -56,13 +62,14 @@ struct MuscleParams {
 struct InitialState {
   static constexpr const char* kName = "InitialState";
 
-  double length_m = 0.167;               ///< muscle length at zero elongation [m] (table C.2)
-  double gauge_pressure_Pa = 236.63e3;   ///< gauge gas pressure at that length [Pa] (table C.2, 90 %)
+  double length_m = 0.167;              ///< muscle length at zero elongation [m] (table C.2)
+  double gauge_pressure_Pa = 236.63e3;  ///< gauge gas pressure at that length [Pa] (table C.2, 90 %)
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
     visit("length_m", &InitialState::length_m, FieldInfo{"m", 1e-3, 5.0, "muscle length at zero elongation"});
-    visit("gauge_pressure_Pa", &InitialState::gauge_pressure_Pa, FieldInfo{"Pa", 0.0, 2e6, "gauge pressure at zero elongation"});
+    visit("gauge_pressure_Pa", &InitialState::gauge_pressure_Pa,
+          FieldInfo{"Pa", 0.0, 2e6, "gauge pressure at zero elongation"});
   }
   void validate() const { validate_fields(*this); }
 };
@@ -80,13 +87,13 @@ inline InitialState inflated_and_sealed(const MuscleParams& params, double gauge
 /// evaluation serves them and the physics alike.
 struct State {
   enum Index : int {
-    temperature_K,             ///< gas temperature
-    gas_mass_kg,               ///< mass of air inside (falls through a leak)
-    viscous_stress_l_Pa,       ///< bladder Maxwell-branch stress, longitudinal
-    viscous_stress_h_Pa,       ///< bladder Maxwell-branch stress, hoop
-    work_J,                    ///< work done on the muscle since the start, integral of F dL
-    heat_lost_J,               ///< heat from the gas to the wall since the start
-    friction_dissipated_J,     ///< friction work since the start
+    temperature_K,          ///< gas temperature
+    gas_mass_kg,            ///< mass of air inside (falls through a leak)
+    viscous_stress_l_Pa,    ///< bladder Maxwell-branch stress, longitudinal
+    viscous_stress_h_Pa,    ///< bladder Maxwell-branch stress, hoop
+    work_J,                 ///< work done on the muscle since the start, integral of F dL
+    heat_lost_J,            ///< heat from the gas to the wall since the start
+    friction_dissipated_J,  ///< friction work since the start
     size
   };
   std::array<double, size> values{};

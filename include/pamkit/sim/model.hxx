@@ -29,8 +29,8 @@ inline State MuscleModel::initial() const {
 inline double MuscleModel::elastic_force(double braid_length, const State& y) const {
   const GasParams& g = params_.gas;
   const MuscleShape shape = geometry_.shape(braid_length);
-  const double pressure = y[State::gas_mass_kg] * g.gas_constant_J_per_kgK * y[State::temperature_K] /
-                          (shape.gas_volume + dead_volume_);
+  const double pressure =
+      y[State::gas_mass_kg] * g.gas_constant_J_per_kgK * y[State::temperature_K] / (shape.gas_volume + dead_volume_);
   const FrictionParams no_friction{0.0, 0.0, 0.0, 0.0, 0.0};
   const MuscleForces f =
       muscle_forces(geometry_, shape, params_.bladder, no_friction, pressure, g.atmospheric_pressure_Pa, 0.0);
@@ -42,8 +42,8 @@ inline double MuscleModel::elastic_force(double braid_length, const State& y) co
 inline double MuscleModel::braid_length(double length_m, const State& y) const {
   // The fibers stretch by T Lym / EA; their tension sums to the force, so the braid is shorter
   // than the muscle by F Lym / (N EA): a spring in series with the braid.
-  const double per_newton = params_.extensions.fiber_compliance_per_N * geometry_.fiber_length() /
-                            geometry_.build().fiber_count;
+  const double per_newton =
+      params_.extensions.fiber_compliance_per_N * geometry_.fiber_length() / geometry_.build().fiber_count;
   auto mismatch = [&](double braid) { return braid + per_newton * elastic_force(braid, y) - length_m; };
   const double stretch = per_newton * elastic_force(length_m, y);
   if (std::abs(stretch) <= 1e-14 * length_m) return length_m;  // unloaded: nothing to solve
@@ -72,7 +72,8 @@ inline MuscleOutputs MuscleModel::evaluate(double length_m, double velocity_m_pe
     // dL/dL_b = 1 + c dF/dL_b, the slope by central differences (step well above rounding).
     const double h = 1e-7;
     const double per_newton = x.fiber_compliance_per_N * geometry_.fiber_length() / geometry_.build().fiber_count;
-    const double slope = (elastic_force(out.braid_length_m + h, y) - elastic_force(out.braid_length_m - h, y)) / (2.0 * h);
+    const double slope =
+        (elastic_force(out.braid_length_m + h, y) - elastic_force(out.braid_length_m - h, y)) / (2.0 * h);
     out.braid_velocity_m_per_s = velocity_m_per_s / (1.0 + per_newton * slope);
   }
   out.shape = geometry_.shape(out.braid_length_m);
@@ -117,14 +118,13 @@ inline MuscleOutputs MuscleModel::evaluate(double length_m, double velocity_m_pe
   out.forces.bladder += viscous;
   out.forces.total += viscous;
   const double relaxation = 1.0 / x.viscoelastic_time_constant_s;
-  rate[State::viscous_stress_l_Pa] =
-      x.viscoelastic_strength * params_.bladder.longitudinal_modulus(b.longitudinal_strain) * b.d_longitudinal_strain *
-          out.braid_velocity_m_per_s -
-      relaxation * y[State::viscous_stress_l_Pa];
-  rate[State::viscous_stress_h_Pa] =
-      x.viscoelastic_strength * params_.bladder.hoop_modulus(b.hoop_strain) * b.d_hoop_strain *
-          out.braid_velocity_m_per_s -
-      relaxation * y[State::viscous_stress_h_Pa];
+  rate[State::viscous_stress_l_Pa] = x.viscoelastic_strength *
+                                         params_.bladder.longitudinal_modulus(b.longitudinal_strain) *
+                                         b.d_longitudinal_strain * out.braid_velocity_m_per_s -
+                                     relaxation * y[State::viscous_stress_l_Pa];
+  rate[State::viscous_stress_h_Pa] = x.viscoelastic_strength * params_.bladder.hoop_modulus(b.hoop_strain) *
+                                         b.d_hoop_strain * out.braid_velocity_m_per_s -
+                                     relaxation * y[State::viscous_stress_h_Pa];
 
   rate[State::work_J] = out.forces.total * velocity_m_per_s;
   rate[State::heat_lost_J] = out.heat_loss_rate_W;

@@ -19,11 +19,11 @@ struct SimulatorConfig {
   double relative_tolerance = 1e-8;    ///< CVODE relative tolerance [1]
   double absolute_tolerance_K = 1e-8;  ///< CVODE absolute tolerance on the gas temperature [K]; gas mass and
                                        ///< viscous stresses get the same tolerance relative to their scale
-  double absolute_tolerance_J = 1e6;  ///< absolute tolerance on the energy integrals [J]. The default, far
-                                      ///< above any energy a muscle stores, leaves them out of the error test
-                                      ///< (as SUNDIALS leaves quadratures out by default): they then ride on the
-                                      ///< steps the physics needs, which matters on measured, kinked
-                                      ///< trajectories. Set it small (1e-8) to control them too.
+  double absolute_tolerance_J = 1e6;   ///< absolute tolerance on the energy integrals [J]. The default, far
+                                       ///< above any energy a muscle stores, leaves them out of the error test
+                                       ///< (as SUNDIALS leaves quadratures out by default): they then ride on the
+                                       ///< steps the physics needs, which matters on measured, kinked
+                                       ///< trajectories. Set it small (1e-8) to control them too.
   double max_steps = 50000;            ///< most internal steps between two samples [1]
   double max_step_s = 0.0;             ///< largest internal step [s]; 0: no limit
   double corner_threshold = 0.2;       ///< a jump of the elongation rate above this share of the largest rate
@@ -32,12 +32,16 @@ struct SimulatorConfig {
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
-    visit("relative_tolerance", &SimulatorConfig::relative_tolerance, FieldInfo{"1", 1e-14, 1e-2, "relative tolerance"});
-    visit("absolute_tolerance_K", &SimulatorConfig::absolute_tolerance_K, FieldInfo{"K", 1e-16, 1.0, "absolute tolerance on temperature"});
-    visit("absolute_tolerance_J", &SimulatorConfig::absolute_tolerance_J, FieldInfo{"J", 1e-16, 1e12, "absolute tolerance on energies (large: leave them out of the error test)"});
+    visit("relative_tolerance", &SimulatorConfig::relative_tolerance,
+          FieldInfo{"1", 1e-14, 1e-2, "relative tolerance"});
+    visit("absolute_tolerance_K", &SimulatorConfig::absolute_tolerance_K,
+          FieldInfo{"K", 1e-16, 1.0, "absolute tolerance on temperature"});
+    visit("absolute_tolerance_J", &SimulatorConfig::absolute_tolerance_J,
+          FieldInfo{"J", 1e-16, 1e12, "absolute tolerance on energies (large: leave them out of the error test)"});
     visit("max_steps", &SimulatorConfig::max_steps, FieldInfo{"1", 10, 1e9, "most steps between samples"});
     visit("max_step_s", &SimulatorConfig::max_step_s, FieldInfo{"s", 0.0, 1e9, "largest step (0: no limit)"});
-    visit("corner_threshold", &SimulatorConfig::corner_threshold, FieldInfo{"1", 0.0, 2.0, "rate jump that restarts, share of the largest rate"});
+    visit("corner_threshold", &SimulatorConfig::corner_threshold,
+          FieldInfo{"1", 0.0, 2.0, "rate jump that restarts, share of the largest rate"});
   }
   void validate() const { validate_fields(*this); }
 };

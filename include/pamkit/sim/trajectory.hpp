@@ -43,29 +43,34 @@ ElongationTrajectory thesis_protocol(double max_elongation_m, double speed_m_per
 inline ElongationTrajectory::ElongationTrajectory(std::vector<double> time_s, std::vector<double> elongation_m)
     : time_(std::move(time_s)), elongation_(std::move(elongation_m)) {
   if (time_.size() != elongation_.size()) {
-    throw InvalidInput(detail::message("trajectory: ", time_.size(), " times but ", elongation_.size(), " elongations"));
+    throw InvalidInput(
+        detail::message("trajectory: ", time_.size(), " times but ", elongation_.size(), " elongations"));
   }
   if (time_.size() < 2) {
     throw InvalidInput(detail::message("trajectory: needs at least 2 samples, got ", time_.size()));
   }
   for (std::size_t k = 0; k < time_.size(); ++k) {
-    if (!std::isfinite(time_[k])) throw InvalidInput(detail::message("trajectory: time_s[", k, "] = ", time_[k], " is not finite"));
+    if (!std::isfinite(time_[k]))
+      throw InvalidInput(detail::message("trajectory: time_s[", k, "] = ", time_[k], " is not finite"));
     if (!std::isfinite(elongation_[k])) {
       throw InvalidInput(detail::message("trajectory: elongation_m[", k, "] = ", elongation_[k], " is not finite"));
     }
     if (k > 0 && !(time_[k] > time_[k - 1])) {
-      throw InvalidInput(detail::message("trajectory: time_s[", k, "] = ", time_[k], " does not increase (time_s[", k - 1,
-                                         "] = ", time_[k - 1], ")"));
+      throw InvalidInput(detail::message("trajectory: time_s[", k, "] = ", time_[k], " does not increase (time_s[",
+                                         k - 1, "] = ", time_[k - 1], ")"));
     }
   }
 }
 
 inline ElongationTrajectory thesis_protocol(double max_elongation_m, double speed_m_per_s, int cycles,
                                             double sample_period_s, double hold_s) {
-  if (!(max_elongation_m > 0.0)) throw InvalidInput(detail::message("thesis_protocol: max_elongation_m = ", max_elongation_m, " must be > 0"));
-  if (!(speed_m_per_s > 0.0)) throw InvalidInput(detail::message("thesis_protocol: speed_m_per_s = ", speed_m_per_s, " must be > 0"));
+  if (!(max_elongation_m > 0.0))
+    throw InvalidInput(detail::message("thesis_protocol: max_elongation_m = ", max_elongation_m, " must be > 0"));
+  if (!(speed_m_per_s > 0.0))
+    throw InvalidInput(detail::message("thesis_protocol: speed_m_per_s = ", speed_m_per_s, " must be > 0"));
   if (cycles < 1) throw InvalidInput(detail::message("thesis_protocol: cycles = ", cycles, " must be >= 1"));
-  if (!(sample_period_s > 0.0)) throw InvalidInput(detail::message("thesis_protocol: sample_period_s = ", sample_period_s, " must be > 0"));
+  if (!(sample_period_s > 0.0))
+    throw InvalidInput(detail::message("thesis_protocol: sample_period_s = ", sample_period_s, " must be > 0"));
   if (!(hold_s >= 0.0)) throw InvalidInput(detail::message("thesis_protocol: hold_s = ", hold_s, " must be >= 0"));
 
   std::vector<double> t{0.0};

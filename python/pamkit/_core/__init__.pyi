@@ -7,7 +7,8 @@ import numpy
 import numpy.typing
 import typing
 from . import logger
-__all__: list[str] = ['BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'InvalidInput', 'InvalidParameter', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'detect_gait_events', 'fit_clutch', 'free_inflation', 'ideal_spring', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'table_4_2', 'thesis_protocol', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range']
+from . import units
+__all__: list[str] = ['BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'InvalidInput', 'InvalidParameter', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'detect_gait_events', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_supplied_measurement', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range']
 class Error(RuntimeError):
     pass
 class SolverError(RuntimeError):
@@ -991,11 +992,167 @@ class Measurement:
     @time_s.setter
     def time_s(self, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
         ...
+class EffectStage:
+    """
+    Where an effect acts in a simulated measurement.
+    
+    Members:
+    
+      physics : the model's parameters and states
+    
+      motion : the motion between crosshead and muscle
+    
+      measurement : what the instruments read
+    """
+    __members__: typing.ClassVar[dict[str, EffectStage]]
+    measurement: typing.ClassVar[EffectStage]
+    motion: typing.ClassVar[EffectStage]
+    physics: typing.ClassVar[EffectStage]
+    @typing.overload
+    def __eq__(self, other: EffectStage) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: EffectStage) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class FitScale:
+    """
+    The scale on which a diagnosis moves a parameter.
+    
+    Members:
+    
+      linear
+    
+      log : time constants and stiffnesses that span decades
+    
+      reciprocal : 'infinity means off' constants, fitted as a rate
+    """
+    __members__: typing.ClassVar[dict[str, FitScale]]
+    linear: typing.ClassVar[FitScale]
+    log: typing.ClassVar[FitScale]
+    reciprocal: typing.ClassVar[FitScale]
+    @typing.overload
+    def __eq__(self, other: FitScale) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: FitScale) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class Resolution:
+    """
+    What a record must resolve for a fitted value to mean something.
+    
+    Members:
+    
+      any
+    
+      sample_interval : |value| [s] at least the sample interval
+    
+      travel_per_sample : value [m] at least the travel between samples
+    """
+    __members__: typing.ClassVar[dict[str, Resolution]]
+    any: typing.ClassVar[Resolution]
+    sample_interval: typing.ClassVar[Resolution]
+    travel_per_sample: typing.ClassVar[Resolution]
+    @typing.overload
+    def __eq__(self, other: Resolution) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: Resolution) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class EffectParameter:
     """
     One parameter of an effect.
+    
+    A Python effect declares at least name, value, unit, the allowed range (min, max) and the
+    realistic range synthetic benches draw from. It may also declare the physically plausible range
+    with its source (a fitted value outside it is reported, never named as a cause) and the
+    diagnosis's search (fit_scale, fit_min, fit_max, fit_start); left out, plausible is the allowed
+    range and the search is linear over the realistic range widened by its width on each side.
     """
-    def __init__(self, name: str, value: typing.SupportsFloat | typing.SupportsIndex, unit: str, min: typing.SupportsFloat | typing.SupportsIndex, max: typing.SupportsFloat | typing.SupportsIndex, realistic_min: typing.SupportsFloat | typing.SupportsIndex, realistic_max: typing.SupportsFloat | typing.SupportsIndex, description: str = '') -> None:
+    def __init__(self, name: str, value: typing.SupportsFloat | typing.SupportsIndex, unit: str, min: typing.SupportsFloat | typing.SupportsIndex, max: typing.SupportsFloat | typing.SupportsIndex, realistic_min: typing.SupportsFloat | typing.SupportsIndex, realistic_max: typing.SupportsFloat | typing.SupportsIndex, description: str = '', *, either_sign: bool = False, plausible_min: typing.SupportsFloat | typing.SupportsIndex | None = None, plausible_max: typing.SupportsFloat | typing.SupportsIndex | None = None, plausible_source: str = '', fit_scale: FitScale | None = None, fit_min: typing.SupportsFloat | typing.SupportsIndex | None = None, fit_max: typing.SupportsFloat | typing.SupportsIndex | None = None, fit_start: typing.SupportsFloat | typing.SupportsIndex | None = None, resolution: Resolution = Resolution.any) -> None:
         ...
     def __repr__(self) -> str:
         ...
@@ -1003,20 +1160,73 @@ class EffectParameter:
     def description(self) -> str:
         ...
     @property
+    def either_sign(self) -> bool:
+        """
+        the realistic range bounds |value|
+        """
+    @property
+    def fit_max(self) -> float:
+        """
+        the search's upper end
+        """
+    @property
+    def fit_min(self) -> float:
+        """
+        the search's lower end (a fit ending here is at a bound)
+        """
+    @property
+    def fit_scale(self) -> FitScale:
+        """
+        the diagnosis's search scale
+        """
+    @property
+    def fit_start(self) -> float:
+        """
+        where the search starts
+        """
+    @property
     def max(self) -> float:
-        ...
+        """
+        largest allowed value
+        """
     @property
     def min(self) -> float:
-        ...
+        """
+        smallest allowed value
+        """
     @property
     def name(self) -> str:
         ...
     @property
+    def plausible_max(self) -> float:
+        """
+        largest physically plausible value
+        """
+    @property
+    def plausible_min(self) -> float:
+        """
+        smallest physically plausible value
+        """
+    @property
+    def plausible_source(self) -> str:
+        """
+        why that range
+        """
+    @property
     def realistic_max(self) -> float:
-        ...
+        """
+        largest value synthetic benches draw
+        """
     @property
     def realistic_min(self) -> float:
-        ...
+        """
+        smallest value synthetic benches draw
+        """
+    @property
+    def resolution(self) -> Resolution:
+        """
+        what one sample must resolve
+        """
     @property
     def unit(self) -> str:
         ...
@@ -1046,6 +1256,10 @@ class Effect:
         ...
     def apply_to_params(self, arg0: MuscleParams) -> MuscleParams:
         ...
+    def channels_changed(self) -> list[str]:
+        """
+        the measured channels it changes ([]: all)
+        """
     def description(self) -> str:
         ...
     def name(self) -> str:
@@ -1054,8 +1268,24 @@ class Effect:
         ...
     def parameters(self) -> list[EffectParameter]:
         ...
+    @typing.overload
+    def set(self, key: str, value: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        sets a numeric parameter
+        """
+    @typing.overload
     def set(self, key: str, value: str) -> None:
-        ...
+        """
+        sets a parameter or option from text
+        """
+    def signature(self) -> str:
+        """
+        a short phrase for a verdict (may name {channel})
+        """
+    def stage(self) -> EffectStage:
+        """
+        where the effect acts: physics, motion or measurement
+        """
 class EffectCatalog:
     """
     Effect names mapped to factories.
@@ -1741,6 +1971,10 @@ def free_inflation(geometry: BraidGeometry, bladder: BladderLaw, atmospheric_pre
     """
 def ideal_spring(run: DeviceRun, toe_off_percent: typing.SupportsFloat | typing.SupportsIndex, share: typing.SupportsFloat | typing.SupportsIndex) -> IdealSpring:
     ...
+def inflated_and_sealed(params: MuscleParams, gauge_pressure_Pa: typing.SupportsFloat | typing.SupportsIndex) -> InitialState:
+    """
+    The start of a sealed test: inflated freely to gauge_pressure_Pa [Pa], sealed at the free length it gives.
+    """
 def measured_channels() -> list[str]:
     """
     names of the channels effects may act on
@@ -1789,7 +2023,11 @@ def run_device(cycle: GaitCycle, linkage: Linkage, clutch: ClutchParams, play: P
     """
 def simulate_measurement(params: MuscleParams, initial: InitialState, crosshead: ElongationTrajectory, effects: collections.abc.Sequence[Effect], simulator: Simulator = ...) -> Measurement:
     """
-    Simulates a sealed test as its instruments read it, with the effects applied at every stage.
+    Simulates a sealed test as its instruments read it, with the effects applied at every stage. Releases the GIL: diagnosis fits run in parallel threads (a Python effect takes the GIL for its own calls).
+    """
+def simulate_supplied_measurement(params: MuscleParams, length_m: typing.SupportsFloat | typing.SupportsIndex, crosshead: ElongationTrajectory, pressure_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], ambient_temperature_C: typing.SupportsFloat | typing.SupportsIndex, effects: collections.abc.Sequence[Effect]) -> Measurement:
+    """
+    Simulates a supplied-pressure test: the measured gauge pressure [kPa] drives the static model at each sample of crosshead (lengths from length_m [m]); force is predicted. Releases the GIL.
     """
 def table_4_2() -> list[Table42Row]:
     """

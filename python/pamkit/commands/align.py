@@ -20,27 +20,54 @@ def register(subparsers) -> None:
     parser.add_argument("logger", help="CSV written by `pamkit log`")
     parser.add_argument("machine", help="tensile machine export (CSV)")
     parser.add_argument("-o", "--output", required=True, help="experiment TOML to write (its CSV gets the same stem)")
-    parser.add_argument("--muscle", required=True, metavar="TOML",
-                        help="the muscle tested: a TOML with its [muscle] table (an experiment file will do; its "
-                        "[friction] and [gas] tables come along)")
-    parser.add_argument("--logger-signal", default="pressure_kPa", choices=("pressure_kPa", "temperature_C"),
-                        help="logger channel to align on (default: pressure_kPa)")
-    parser.add_argument("--machine-signal", default="extension_m", choices=("extension_m", "force_N"),
-                        help="machine channel to align on (default: extension_m: a sealed muscle's pressure follows "
-                        "its length without lag, while the load carries friction hysteresis)")
+    parser.add_argument(
+        "--muscle",
+        required=True,
+        metavar="TOML",
+        help="the muscle tested: a TOML with its [muscle] table (an experiment file will do; its "
+        "[friction] and [gas] tables come along)",
+    )
+    parser.add_argument(
+        "--logger-signal",
+        default="pressure_kPa",
+        choices=("pressure_kPa", "temperature_C"),
+        help="logger channel to align on (default: pressure_kPa)",
+    )
+    parser.add_argument(
+        "--machine-signal",
+        default="extension_m",
+        choices=("extension_m", "force_N"),
+        help="machine channel to align on (default: extension_m: a sealed muscle's pressure follows "
+        "its length without lag, while the load carries friction hysteresis)",
+    )
     parser.add_argument("--max-offset", type=float, metavar="S", help="only consider offsets within ±S seconds")
-    parser.add_argument("--baseline", type=float, default=1.0, metavar="S",
-                        help="[test] inflation_pressure_kPa and ambient_temperature_C are the means of the logger's "
-                        "samples from S seconds before the joint record starts until the first stretch, at most S "
-                        "seconds in (default: 1)")
-    parser.add_argument("--initial-length-m", type=float,
-                        help="[test] initial_length_m: muscle length at the start of the test (default: the free "
-                        "inflated length the model computes)")
+    parser.add_argument(
+        "--baseline",
+        type=float,
+        default=1.0,
+        metavar="S",
+        help="[test] inflation_pressure_kPa and ambient_temperature_C are the means of the logger's "
+        "samples from S seconds before the joint record starts until the first stretch, at most S "
+        "seconds in (default: 1)",
+    )
+    parser.add_argument(
+        "--initial-length-m",
+        type=float,
+        help="[test] initial_length_m: muscle length at the start of the test (default: the free "
+        "inflated length the model computes)",
+    )
     parser.set_defaults(run=run)
 
 
 def run(arguments: argparse.Namespace) -> int:
-    from pamkit.logger import LoggerError, align, read_logger_csv, read_machine_csv, read_muscle_source, write_experiment
+    from pamkit.logger import (
+        LoggerError,
+        align,
+        read_logger_csv,
+        read_machine_csv,
+        read_muscle_source,
+        write_experiment,
+    )
 
     logger = read_logger_csv(arguments.logger)
     machine = read_machine_csv(arguments.machine)
@@ -55,7 +82,9 @@ def run(arguments: argparse.Namespace) -> int:
     t_machine = machine["time_s"]
     inside = (t_machine + offset >= logger["time_s"][0]) & (t_machine + offset <= logger["time_s"][-1])
     if inside.sum() < 2:
-        raise LoggerError(f"after aligning (offset {offset:.3f} s) the two logs overlap in fewer than 2 machine samples")
+        raise LoggerError(
+            f"after aligning (offset {offset:.3f} s) the two logs overlap in fewer than 2 machine samples"
+        )
     t = t_machine[inside]
     columns = {
         "time_s": t - t[0],
@@ -72,7 +101,8 @@ def run(arguments: argparse.Namespace) -> int:
     still_until = columns["time_s"][np.argmax(moved)] if moved.any() else columns["time_s"][-1]
     start = t[0] + offset
     window = (logger["time_s"] >= start - arguments.baseline) & (
-        logger["time_s"] <= start + min(still_until, arguments.baseline))
+        logger["time_s"] <= start + min(still_until, arguments.baseline)
+    )
     if not window.any():  # no logger sample at rest: take the one nearest to the start
         window = np.zeros(logger["time_s"].size, bool)
         window[np.argmin(np.abs(logger["time_s"] - start))] = True
@@ -80,11 +110,14 @@ def run(arguments: argparse.Namespace) -> int:
     ambient = float(np.mean(logger["temperature_C"][window]))
     count = int(window.sum())
     span = (logger["time_s"][window][0] - start, logger["time_s"][window][-1] - start)
-    basis = (f"means of the {count} logger samples from {span[0]:+.2f} s to {span[1]:+.2f} s around the start of the "
-             "joint record, before the first stretch")
+    basis = (
+        f"means of the {count} logger samples from {span[0]:+.2f} s to {span[1]:+.2f} s around the start of the "
+        "joint record, before the first stretch"
+    )
 
     test = {
-        "description": f"{arguments.logger} and {arguments.machine} aligned by pamkit align: logger time = machine time "
+        "description": f"{arguments.logger} and {arguments.machine} aligned by pamkit align: "
+        "logger time = machine time "
         f"{'+' if offset >= 0 else '-'} {abs(offset):.4f} s (r = {found.correlation:.3f})",
         "inflation_pressure_kPa": round(inflation, 3),
         "ambient_temperature_C": round(ambient, 3),
@@ -104,16 +137,25 @@ def run(arguments: argparse.Namespace) -> int:
     ]
     data = write_experiment(arguments.output, columns, sections, test, comments)
 
-    print(f"offset: logger time = machine time {'+' if offset >= 0 else '-'} {abs(offset):.4f} s "
-          f"(cross-correlation of {found.logger_signal} with {found.machine_signal} on a {found.step_s * 1e3:.3g} ms grid)")
-    print(f"confidence: r = {found.correlation:.4f} over the overlap at that offset; the next-best cross-correlation "
-          f"peak is {found.next_best_ratio:.3f} of the chosen one (at {found.next_best_offset_s:.3f} s)")
+    print(
+        f"offset: logger time = machine time {'+' if offset >= 0 else '-'} {abs(offset):.4f} s "
+        f"(cross-correlation of {found.logger_signal} with {found.machine_signal} "
+        f"on a {found.step_s * 1e3:.3g} ms grid)"
+    )
+    print(
+        f"confidence: r = {found.correlation:.4f} over the overlap at that offset; the next-best cross-correlation "
+        f"peak is {found.next_best_ratio:.3f} of the chosen one (at {found.next_best_offset_s:.3f} s)"
+    )
     if not found.correlation > 0.8:
-        print("warning: the signals correlate weakly at the best offset; check the alignment (--logger-signal, "
-              "--machine-signal, --max-offset)")
+        print(
+            "warning: the signals correlate weakly at the best offset; check the alignment (--logger-signal, "
+            "--machine-signal, --max-offset)"
+        )
     if found.next_best_ratio > 0.95:
         print("warning: another offset fits almost as well (a cyclic test?); narrow it with --max-offset")
-    print(f"[test] inflation_pressure_kPa = {test['inflation_pressure_kPa']} and ambient_temperature_C = "
-          f"{test['ambient_temperature_C']}: {basis}")
+    print(
+        f"[test] inflation_pressure_kPa = {test['inflation_pressure_kPa']} and ambient_temperature_C = "
+        f"{test['ambient_temperature_C']}: {basis}"
+    )
     print(f"wrote {arguments.output} and {data} ({len(t)} samples over {columns['time_s'][-1]:.2f} s)")
     return 0

@@ -22,30 +22,48 @@ def register(subparsers) -> None:
     parser.add_argument("--port", help="serial port: /dev/serial/by-id/..., /dev/ttyACM0, or a pty")
     parser.add_argument("-o", "--output", help="CSV file to write")
     parser.add_argument("--duration", type=float, metavar="S", help="stop after S seconds (default: until Ctrl-C)")
-    parser.add_argument("--calibration", default="logger_calibration.toml", metavar="TOML",
-                        help="calibration file (default: ./logger_calibration.toml; see --write-calibration-template)")
-    parser.add_argument("--uncalibrated", action="store_true",
-                        help="no pressure calibration: write volts and temperature only (for calibrating)")
+    parser.add_argument(
+        "--calibration",
+        default="logger_calibration.toml",
+        metavar="TOML",
+        help="calibration file (default: ./logger_calibration.toml; see --write-calibration-template)",
+    )
+    parser.add_argument(
+        "--uncalibrated",
+        action="store_true",
+        help="no pressure calibration: write volts and temperature only (for calibrating)",
+    )
     parser.add_argument("--baud", type=int, default=115200, help="the sketch's PAMKIT_BAUD (default: 115200)")
     parser.add_argument("--no-dtr", action="store_true", help="do not raise DTR (which resets the Mega) on open")
-    parser.add_argument("--banner-timeout", type=float, default=3.0, metavar="S",
-                        help="wait this long after opening for the board's banner (default: 3)")
+    parser.add_argument(
+        "--banner-timeout",
+        type=float,
+        default=3.0,
+        metavar="S",
+        help="wait this long after opening for the board's banner (default: 3)",
+    )
     parser.add_argument("--list", action="store_true", help="list serial ports and exit")
-    parser.add_argument("--write-calibration-template", metavar="TOML", help="write a calibration file to fill in and exit")
+    parser.add_argument(
+        "--write-calibration-template", metavar="TOML", help="write a calibration file to fill in and exit"
+    )
     parser.set_defaults(run=run)
 
 
 def _status(stats: dict, last: dict | None, rate: float, reader) -> str:
-    errors = (f"skipped {stats['skipped_bytes']} B, crc {stats['checksum_errors']}, gaps {stats['gaps']} "
-              f"({stats['missing_frames']} lost, {stats['device_dropped']} by the board), resets {stats['resets']}, "
-              f"unplugged {stats['disconnects']}")
+    errors = (
+        f"skipped {stats['skipped_bytes']} B, crc {stats['checksum_errors']}, gaps {stats['gaps']} "
+        f"({stats['missing_frames']} lost, {stats['device_dropped']} by the board), resets {stats['resets']}, "
+        f"unplugged {stats['disconnects']}"
+    )
     if not reader.connected:
         where = f"waiting for the port: {reader.last_error}" if reader.last_error else "waiting for the port"
         return f"{stats['seconds']:7.1f} s  {where}  | {errors}"
     values = ""
     if last:
         pressure = "" if math.isnan(last["pressure_kPa"]) else f"{last['pressure_kPa']:8.2f} kPa  "
-        values = f"{pressure}{last['temperature_C']:6.2f} °C  ({last['pressure_V']:.3f} V, {last['temperature_V']:.3f} V)"
+        values = (
+            f"{pressure}{last['temperature_C']:6.2f} °C  ({last['pressure_V']:.3f} V, {last['temperature_V']:.3f} V)"
+        )
     return f"{stats['seconds']:7.1f} s  {rate:6.1f} Hz  {stats['rows']} rows | {errors} | {values}"
 
 
@@ -77,16 +95,27 @@ def run(arguments: argparse.Namespace) -> int:
     else:
         loaded = load_calibration(arguments.calibration)
         calibration, calibrated = loaded.calibration, True
-        print(f"calibration {arguments.calibration}: {calibration.pressure_kPa_per_V:.3f} kPa/V, "
-              f"{calibration.pressure_offset_kPa:+.3f} kPa at 0 V (worst point off the line by "
-              f"{loaded.max_residual_kPa:.2f} kPa); TMP36 {calibration.tmp36_offset_V} V at 0 °C, "
-              f"{calibration.tmp36_V_per_C * 1e3:g} mV/°C")
+        print(
+            f"calibration {arguments.calibration}: {calibration.pressure_kPa_per_V:.3f} kPa/V, "
+            f"{calibration.pressure_offset_kPa:+.3f} kPa at 0 V (worst point off the line by "
+            f"{loaded.max_residual_kPa:.2f} kPa); TMP36 {calibration.tmp36_offset_V} V at 0 °C, "
+            f"{calibration.tmp36_V_per_C * 1e3:g} mV/°C"
+        )
 
     live = sys.stderr.isatty()
-    reader = Reader(arguments.port, arguments.output, calibration, pressure_calibrated=calibrated,
-                    baud=arguments.baud, assert_dtr=not arguments.no_dtr, banner_timeout_s=arguments.banner_timeout)
-    print(f"logging {arguments.port} to {arguments.output}" +
-          (f" for {arguments.duration:g} s" if arguments.duration else " until Ctrl-C"))
+    reader = Reader(
+        arguments.port,
+        arguments.output,
+        calibration,
+        pressure_calibrated=calibrated,
+        baud=arguments.baud,
+        assert_dtr=not arguments.no_dtr,
+        banner_timeout_s=arguments.banner_timeout,
+    )
+    print(
+        f"logging {arguments.port} to {arguments.output}"
+        + (f" for {arguments.duration:g} s" if arguments.duration else " until Ctrl-C")
+    )
     start = time.monotonic()
     last_report, report_every = start, (0.25 if live else 5.0)
     frames_at_report, banner_shown = 0, False
@@ -96,8 +125,11 @@ def run(arguments: argparse.Namespace) -> int:
             reader.poll(0.1)
             banner = reader.banner()
             if banner and not banner_shown:
-                print(f"\rboard: pamkit logger {banner['firmware_version']}, {banner['rate_hz']:g} Hz, "
-                      f"{banner['oversample']}x oversampling, {banner['baud']} baud", file=sys.stderr)
+                print(
+                    f"\rboard: pamkit logger {banner['firmware_version']}, {banner['rate_hz']:g} Hz, "
+                    f"{banner['oversample']}x oversampling, {banner['baud']} baud",
+                    file=sys.stderr,
+                )
                 banner_shown = True
             now = time.monotonic()
             if now - last_report >= report_every:
@@ -113,10 +145,17 @@ def run(arguments: argparse.Namespace) -> int:
         reader.close()
     if live:
         print(file=sys.stderr)
-    print(f"{'interrupted; ' if interrupted else ''}wrote {stats['rows']} rows to {arguments.output} in {stats['seconds']:.1f} s")
-    print(f"frames {stats['frames']}, banners {stats['banners']}; garbage skipped {stats['skipped_bytes']} bytes in "
-          f"{stats['resyncs']} resyncs; checksum errors {stats['checksum_errors']}; bad banners {stats['banner_errors']}; "
-          f"gaps {stats['gaps']} ({stats['missing_frames']} frames lost, {stats['device_dropped']} of them by the board); "
-          f"board resets {stats['resets']}; port lost {stats['disconnects']} times; frames from before a reset dropped "
-          f"{stats['stale_frames']}")
+    print(
+        f"{'interrupted; ' if interrupted else ''}wrote {stats['rows']} rows to {arguments.output} "
+        f"in {stats['seconds']:.1f} s"
+    )
+    print(
+        f"frames {stats['frames']}, banners {stats['banners']}; garbage skipped {stats['skipped_bytes']} bytes in "
+        f"{stats['resyncs']} resyncs; checksum errors {stats['checksum_errors']}; "
+        f"bad banners {stats['banner_errors']}; "
+        f"gaps {stats['gaps']} "
+        f"({stats['missing_frames']} frames lost, {stats['device_dropped']} of them by the board); "
+        f"board resets {stats['resets']}; port lost {stats['disconnects']} times; frames from before a reset dropped "
+        f"{stats['stale_frames']}"
+    )
     return 0

@@ -16,8 +16,13 @@ def register(subparsers) -> None:
         "predicted force_N, pressure_kPa (gauge) and temperature_C.",
     )
     parser.add_argument("experiment", help="experiment TOML file")
-    parser.add_argument("--effect", action="append", default=[], metavar="NAME[:key=value,...]",
-                        help="extend the model with a catalog effect (repeatable); see `pamkit effects`")
+    parser.add_argument(
+        "--effect",
+        action="append",
+        default=[],
+        metavar="NAME[:key=value,...]",
+        help="extend the model with a catalog effect (repeatable); see `pamkit effects`",
+    )
     parser.add_argument("-o", "--output", required=True, help="CSV file to write")
     parser.add_argument("--plot", help="also write a PNG figure of the prediction (and of the data, if measured)")
     parser.set_defaults(run=run)

@@ -14,8 +14,12 @@ def register(subparsers) -> None:
         "effect at a random realistic strength (unless given) and read by the tensile machine and the Arduino "
         "logger. What was hidden goes to DIR/manifest.json, which diagnosis must not read.",
     )
-    parser.add_argument("--effect", required=True, metavar="NAME[:key=value,...]",
-                        help="a catalog effect (see `pamkit effects`), or 'none'; keys not given are drawn")
+    parser.add_argument(
+        "--effect",
+        required=True,
+        metavar="NAME[:key=value,...]",
+        help="a catalog effect (see `pamkit effects`), or 'none'; keys not given are drawn",
+    )
     parser.add_argument("--seed", required=True, type=int, help="seed of every random draw (>= 0)")
     parser.add_argument("-o", "--output", required=True, metavar="DIR", help="directory to write into")
     parser.set_defaults(run=run)

@@ -51,8 +51,9 @@ def start_unit(space: list[Coordinate]) -> np.ndarray:
 
 def solve(residual, u0: np.ndarray, max_evaluations: int) -> np.ndarray:
     """SciPy's bounded trust-region least squares in the unit box."""
-    result = least_squares(residual, u0, bounds=(0.0, 1.0), method="trf", diff_step=DIFF_STEP, x_scale=1.0,
-                           max_nfev=max_evaluations)
+    result = least_squares(
+        residual, u0, bounds=(0.0, 1.0), method="trf", diff_step=DIFF_STEP, x_scale=1.0, max_nfev=max_evaluations
+    )
     return result.x
 
 
@@ -85,5 +86,15 @@ def fit_baseline(problem: Problem) -> Fit:
     x = unit_to_x(space, u)
     predicted = problem.predictor.predict(x, [])
     values = problem.predictor.baseline.values(x)
-    return Fit("none", [], x, values, predicted, problem.chi2_by_channel(predicted), len(space), evaluations, baseline_params=values,
-               coordinates=baseline_coordinates(problem, x))
+    return Fit(
+        "none",
+        [],
+        x,
+        values,
+        predicted,
+        problem.chi2_by_channel(predicted),
+        len(space),
+        evaluations,
+        baseline_params=values,
+        coordinates=baseline_coordinates(problem, x),
+    )

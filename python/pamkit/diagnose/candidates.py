@@ -30,7 +30,7 @@ from pamkit.diagnose.calibrate import (
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import configure, effect_space
 
-SCAN_POINTS = 5               # simulations per physical effect's first parameter
+SCAN_POINTS = 5  # simulations per physical effect's first parameter
 SCAN_POINTS_MEASUREMENT = 41  # no simulation needed: scan finely (a skew has one minimum per cycle)
 CHANNEL_FIELDS = ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
 
@@ -46,7 +46,9 @@ def candidates(effect_catalog: EffectCatalog, problem: Problem) -> list[tuple[st
             continue
         if "channel" in probe.options():
             for channel in problem.channels:
-                out.append((f"{name}:channel={channel}", lambda n=name, c=channel: effect_catalog.parse(f"{n}:channel={c}")))
+                out.append(
+                    (f"{name}:channel={channel}", lambda n=name, c=channel: effect_catalog.parse(f"{n}:channel={c}"))
+                )
         else:
             out.append((name, lambda n=name: effect_catalog.make(n)))
     return out
@@ -100,6 +102,7 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
                 if chi2 < best_chi2:
                     best_u, best_chi2 = u, chi2
         if measurement_only:
+
             def residual(u):
                 return chi_or_penalty(baseline.baseline_x, unit_to_x(space, u))
 
@@ -124,11 +127,22 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
         coordinates.update(_effect_coordinates(effect, space, effect_x))
         # A measurement effect keeps the calibrated baseline: counted as one model with it.
         total = count + (len(base_space) if measurement_only else 0)
-        return Fit(label, [effect], base_x, params, predicted, problem.chi2_by_channel(predicted), total, evaluations,
-                   baseline_params=problem.predictor.baseline.values(base_x), coordinates=coordinates)
+        return Fit(
+            label,
+            [effect],
+            base_x,
+            params,
+            predicted,
+            problem.chi2_by_channel(predicted),
+            total,
+            evaluations,
+            baseline_params=problem.predictor.baseline.values(base_x),
+            coordinates=coordinates,
+        )
     except (ValueError, RuntimeError) as error:  # the effect drove the model out of its range
-        return Fit(label, [effect], baseline.baseline_x, {}, baseline.predicted, {}, len(space), evaluations,
-                   error=str(error))
+        return Fit(
+            label, [effect], baseline.baseline_x, {}, baseline.predicted, {}, len(space), evaluations, error=str(error)
+        )
 
 
 def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) -> Fit:
@@ -141,8 +155,11 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
     evaluations = 0
 
     def split(u):
-        return (unit_to_x(base_space, u[:n_base]), unit_to_x(spaces[0], u[n_base:n_base + n_first]),
-                unit_to_x(spaces[1], u[n_base + n_first:]))
+        return (
+            unit_to_x(base_space, u[:n_base]),
+            unit_to_x(spaces[0], u[n_base : n_base + n_first]),
+            unit_to_x(spaces[1], u[n_base + n_first :]),
+        )
 
     def predict(u):
         nonlocal evaluations
@@ -160,11 +177,13 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
         except (ValueError, RuntimeError):
             return bad_fit
 
-    start = np.concatenate([
-        np.clip(x_to_unit(base_space, first.baseline_x), 0, 1),
-        np.clip(x_to_unit(spaces[0], np.array([c.of(first.params[c.name]) for c in spaces[0]])), 0, 1),
-        start_unit(spaces[1]),
-    ])
+    start = np.concatenate(
+        [
+            np.clip(x_to_unit(base_space, first.baseline_x), 0, 1),
+            np.clip(x_to_unit(spaces[0], np.array([c.of(first.params[c.name]) for c in spaces[0]])), 0, 1),
+            start_unit(spaces[1]),
+        ]
+    )
     best_u, best_chi2 = start, math.inf
     # Finer than a single effect's scan: the first effect already absorbed part of the second.
     for point in np.linspace(0.0, 1.0, 2 * SCAN_POINTS - 1):
@@ -185,5 +204,15 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
         params.update({f"{effect.name()}.{c.name}": float(c.value(v)) for c, v in zip(space, x)})
         params.update({f"{effect.name()}.{k}": v for k, v in effect.options().items()})
         coordinates.update(_effect_coordinates(effect, space, x, prefix=f"{effect.name()}."))
-    return Fit(label, effects, base_x, params, predicted, problem.chi2_by_channel(predicted), len(start), evaluations,
-               baseline_params=problem.predictor.baseline.values(base_x), coordinates=coordinates)
+    return Fit(
+        label,
+        effects,
+        base_x,
+        params,
+        predicted,
+        problem.chi2_by_channel(predicted),
+        len(start),
+        evaluations,
+        baseline_params=problem.predictor.baseline.values(base_x),
+        coordinates=coordinates,
+    )

@@ -62,10 +62,10 @@ class Score:
     rmse: dict[str, float]
     gain: dict[str, float]
     gain_ci95: dict[str, list[float]]
-    combined_gain: float          # over every channel, each weighted by its noise
+    combined_gain: float  # over every channel, each weighted by its noise
     combined_ci95: list[float]
     delta_bic: float
-    credited_gain: float          # over the channels the fit's effects change only
+    credited_gain: float  # over the channels the fit's effects change only
     credited_ci95: list[float]
 
 
@@ -99,7 +99,9 @@ def score(problem: Problem, baseline: Fit, fit: Fit, rng: np.random.Generator) -
             sse_fit[i, j] = np.sum((fit.predicted[c] - problem.measured[c])[mask] ** 2)
     credited = credited_channels(problem, fit)
     weights = np.array([1.0 / problem.sigma[c] ** 2 for c in problem.channels])[:, None]
-    credited_weights = np.array([1.0 / problem.sigma[c] ** 2 if c in credited else 0.0 for c in problem.channels])[:, None]
+    credited_weights = np.array([1.0 / problem.sigma[c] ** 2 if c in credited else 0.0 for c in problem.channels])[
+        :, None
+    ]
     n = counts.sum()
     rmse = {c: float(np.sqrt(sse_fit[i].sum() / n)) for i, c in enumerate(problem.channels)}
     gain = {c: _gain(sse_fit[i].sum(), sse_base[i].sum()) for i, c in enumerate(problem.channels)}
@@ -110,10 +112,13 @@ def score(problem: Problem, baseline: Fit, fit: Fit, rng: np.random.Generator) -
     for i, c in enumerate(problem.channels):
         gains = 1.0 - np.sqrt(boot_fit[i] / np.maximum(boot_base[i], 1e-300))
         gain_ci[c] = [float(np.percentile(gains, 2.5)), float(np.percentile(gains, 97.5))]
+
     def combined_with(w):
         boot = 1.0 - np.sqrt((w * boot_fit).sum(axis=0) / np.maximum((w * boot_base).sum(axis=0), 1e-300))
-        return (_gain((w * sse_fit).sum(), (w * sse_base).sum()),
-                [float(np.percentile(boot, 2.5)), float(np.percentile(boot, 97.5))])
+        return (
+            _gain((w * sse_fit).sum(), (w * sse_base).sum()),
+            [float(np.percentile(boot, 2.5)), float(np.percentile(boot, 97.5))],
+        )
 
     combined, combined_ci = combined_with(weights)
     credited_gain, credited_ci = combined_with(credited_weights)
@@ -164,14 +169,21 @@ class Finding:
     source: str
 
     def to_json(self) -> dict:
-        return {"parameter": self.parameter, "value": self.value, "bound": self.bound, "plausible": self.plausible,
-                "source": self.source}
+        return {
+            "parameter": self.parameter,
+            "value": self.value,
+            "bound": self.bound,
+            "plausible": self.plausible,
+            "source": self.source,
+        }
 
     def sentence(self) -> str:
         if self.bound is not None:
             return f"{self.parameter} = {self.value:.4g} ended at its search bound {self.bound:.4g}"
-        return (f"{self.parameter} = {self.value:.4g} is outside its plausible range "
-                f"[{self.plausible[0]:.4g}, {self.plausible[1]:.4g}]")
+        return (
+            f"{self.parameter} = {self.value:.4g} is outside its plausible range "
+            f"[{self.plausible[0]:.4g}, {self.plausible[1]:.4g}]"
+        )
 
 
 def findings(fit: Fit) -> list[Finding]:
@@ -182,8 +194,15 @@ def findings(fit: Fit) -> list[Finding]:
         side = coordinate.at_bound(x)
         if side is None and not coordinate.implausible(value):
             continue
-        out.append(Finding(key, value, coordinate.bound_value(side) if side else None,
-                           [float(coordinate.plausible[0]), float(coordinate.plausible[1])], coordinate.source))
+        out.append(
+            Finding(
+                key,
+                value,
+                coordinate.bound_value(side) if side else None,
+                [float(coordinate.plausible[0]), float(coordinate.plausible[1])],
+                coordinate.source,
+            )
+        )
     return out
 
 
@@ -225,16 +244,23 @@ def uncredited(problem: Problem, fit: Fit, s: Score) -> list[str]:
     credited = credited_channels(problem, fit)
     out = []
     if set(credited) != set(problem.channels) and (s.credited_gain < MIN_GAIN or s.credited_ci95[0] <= 0.0):
-        out.append(f"its gain on the channels it changes ({', '.join(credited)}) is only {s.credited_gain:.3f}; "
-                   "the rest comes from channels it cannot change")
-    out += [f"it makes {c} worse (held-out gain {s.gain[c]:.2f})" for c in problem.channels
-            if c not in credited and s.gain[c] < -MIN_GAIN]
+        out.append(
+            f"its gain on the channels it changes ({', '.join(credited)}) is only {s.credited_gain:.3f}; "
+            "the rest comes from channels it cannot change"
+        )
+    out += [
+        f"it makes {c} worse (held-out gain {s.gain[c]:.2f})"
+        for c in problem.channels
+        if c not in credited and s.gain[c] < -MIN_GAIN
+    ]
     # An instrument's error explains its own channel only: structure left in the others is
     # something else, which may also be what the credited channel shows (a crosshead's travel
     # scale reads as a pressure gain error).
-    out += [f"it leaves {c}, which it cannot change, at {s.rmse[c] / problem.sigma[c]:.1f}x its noise"
-            for c in problem.channels
-            if c not in credited and s.rmse[c] > NONE_WITHIN_NOISE * problem.sigma[c]]
+    out += [
+        f"it leaves {c}, which it cannot change, at {s.rmse[c] / problem.sigma[c]:.1f}x its noise"
+        for c in problem.channels
+        if c not in credited and s.rmse[c] > NONE_WITHIN_NOISE * problem.sigma[c]
+    ]
     return out
 
 
@@ -253,37 +279,49 @@ def partial(s: Score, attainable: float) -> list[str]:
     cause, not the cause: Coulomb friction at alternating rates is fitted a quarter of the way
     by a viscoelastic bladder, which is not what the data show."""
     if attainable > 0.0 and s.combined_gain < MIN_SHARE * attainable:
-        return [f"it explains only a part of what is wrong (held-out gain {s.combined_gain:.2f} of the "
-                f"{attainable:.2f} a perfect explanation would reach)"]
+        return [
+            f"it explains only a part of what is wrong (held-out gain {s.combined_gain:.2f} of the "
+            f"{attainable:.2f} a perfect explanation would reach)"
+        ]
     return []
 
 
 def judge(problem: Problem, fit: Fit, s: Score, attainable: float) -> Judgement:
-    return Judgement(fit, s, significant(s), findings(fit),
-                     unresolved(problem, fit) + uncredited(problem, fit, s) + partial(s, attainable))
+    return Judgement(
+        fit,
+        s,
+        significant(s),
+        findings(fit),
+        unresolved(problem, fit) + uncredited(problem, fit, s) + partial(s, attainable),
+    )
 
 
 def structured(problem: Problem, fit: Fit, factor: float) -> list[str]:
     """Channels whose held-out residual RMS is above `factor` times their noise."""
-    return [c for c in problem.channels
-            if evidence.rmse((fit.predicted[c] - problem.measured[c])[problem.held_mask]) > factor * problem.sigma[c]]
+    return [
+        c
+        for c in problem.channels
+        if evidence.rmse((fit.predicted[c] - problem.measured[c])[problem.held_mask]) > factor * problem.sigma[c]
+    ]
 
 
 def noise_ratios(problem: Problem, fit: Fit) -> dict[str, float]:
     """Held-out RMSE over noise, per channel."""
-    return {c: evidence.rmse((fit.predicted[c] - problem.measured[c])[problem.held_mask]) / problem.sigma[c]
-            for c in problem.channels}
+    return {
+        c: evidence.rmse((fit.predicted[c] - problem.measured[c])[problem.held_mask]) / problem.sigma[c]
+        for c in problem.channels
+    }
 
 
 @dataclass
 class Decision:
     """The verdict and what it rests on."""
 
-    cause: str                     # an effect name, "none" or "unexplained"
-    named: Judgement | None        # the named cause (single or pair)
-    rejected: Judgement | None     # the best significant candidate, when it could not be named
-    margins: dict[str, float]      # each decision's distance from its threshold
-    left_structure: list[str]      # channels above NONE_WITHIN_NOISE after the decision
+    cause: str  # an effect name, "none" or "unexplained"
+    named: Judgement | None  # the named cause (single or pair)
+    rejected: Judgement | None  # the best significant candidate, when it could not be named
+    margins: dict[str, float]  # each decision's distance from its threshold
+    left_structure: list[str]  # channels above NONE_WITHIN_NOISE after the decision
 
 
 def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision:

@@ -31,18 +31,17 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.signal import savgol_coeffs, savgol_filter
 
-
-MAX_TERMS = 5             # an explanation with more terms is not one a reader can check
-MIN_Z = 2.0               # the chosen terms must beat "no term" by 2 standard errors (one-sided ~2 %) ...
-MIN_RMSE_DROP = 0.1       # ... and lower the held-out RMSE by a tenth of the noise to be worth reading
+MAX_TERMS = 5  # an explanation with more terms is not one a reader can check
+MIN_Z = 2.0  # the chosen terms must beat "no term" by 2 standard errors (one-sided ~2 %) ...
+MIN_RMSE_DROP = 0.1  # ... and lower the held-out RMSE by a tenth of the noise to be worth reading
 BOOTSTRAP_SAMPLES = 1000  # as the diagnosis's own gain intervals (engine.BOOTSTRAP_SAMPLES)
 
-DERIVATIVE_WINDOW_S = 0.05   # a tensile machine turns round within tens of ms
-DERIVATIVE_MIN_SAMPLES = 5   # fewest samples of the local quadratic behind a derivative
-COULOMB_FRACTION = 0.05      # v0 as a share of the typical moving speed (see _coulomb_scale)
+DERIVATIVE_WINDOW_S = 0.05  # a tensile machine turns round within tens of ms
+DERIVATIVE_MIN_SAMPLES = 5  # fewest samples of the local quadratic behind a derivative
+COULOMB_FRACTION = 0.05  # v0 as a share of the typical moving speed (see _coulomb_scale)
 DAHL_STROKE_FRACTION = 0.05  # Dahl's slip distance as a share of the stroke: friction settles within a tenth
 BRANCH_NOISE_MULTIPLE = 10.0  # pressurise/vent deadband in multiples of the pressure's noise (the range of
-                              # 10^5 Gaussian samples is 9.6 σ: a plateau's noise does not flip it) ...
+# 10^5 Gaussian samples is 9.6 σ: a plateau's noise does not flip it) ...
 BRANCH_SPAN_FRACTION = 0.005  # ... and at least this share of its span (a noiseless simulated pressure)
 
 
@@ -50,10 +49,10 @@ BRANCH_SPAN_FRACTION = 0.005  # ... and at least this share of its span (a noise
 class Term:
     """One library term: a feature computable from a record, and what it stands for."""
 
-    name: str          # e.g. "tanh(v/v0)*p"; the key that recomputes it (see _feature_columns)
-    expression: str    # human readable with symbols and scales, e.g. "p · tanh(v / 1 mm/s)"
-    unit: str          # unit of the feature itself, e.g. "kPa"
-    resembles: str     # the physical mechanism it stands for
+    name: str  # e.g. "tanh(v/v0)*p"; the key that recomputes it (see _feature_columns)
+    expression: str  # human readable with symbols and scales, e.g. "p · tanh(v / 1 mm/s)"
+    unit: str  # unit of the feature itself, e.g. "kPa"
+    resembles: str  # the physical mechanism it stands for
     parameters: tuple[tuple[str, float], ...] = ()  # data-derived scales it was computed with (v0, window, ...)
 
 
@@ -125,7 +124,7 @@ def _first_reversal(signal: np.ndarray, start: int, state: float, deadband: floa
     so a record with many reversals is not scanned to its end for each."""
     window = 256
     while True:
-        segment = signal[start:start + window]
+        segment = signal[start : start + window]
         fall = np.maximum.accumulate(segment) - segment > deadband if state >= 0.0 else np.zeros(0, bool)
         rise = segment - np.minimum.accumulate(segment) > deadband if state <= 0.0 else np.zeros(0, bool)
         first_fall = int(np.argmax(fall)) if fall.any() else segment.size
@@ -166,8 +165,17 @@ def _slip_since_reversal(x_mm: np.ndarray, branch: np.ndarray) -> np.ndarray:
 MOTION_TERMS = ("tanh(v/v0)*p", "tanh(v/v0)", "dahl(x; xc)", "v", "|v|")
 
 
-def _feature_columns(time_s, elongation_m, pressure_kPa, temperature_C, ambient_C, cycle, force_N, include_motion: bool,
-                     scales: dict[str, float] | None = None) -> list[tuple[Term, np.ndarray]]:
+def _feature_columns(
+    time_s,
+    elongation_m,
+    pressure_kPa,
+    temperature_C,
+    ambient_C,
+    cycle,
+    force_N,
+    include_motion: bool,
+    scales: dict[str, float] | None = None,
+) -> list[tuple[Term, np.ndarray]]:
     """Every library column the inputs allow, in a fixed order (of duplicates, feature_library
     keeps the first). `scales` (from Term.parameters) reuses a fitted record's v0, derivative
     window and deadband instead of deriving them from this record."""
@@ -186,49 +194,103 @@ def _feature_columns(time_s, elongation_m, pressure_kPa, temperature_C, ambient_
             coulomb = np.tanh(v_mm_s / v0)
             with_v0 = (("v0_mm_per_s", float(v0)),) + with_window
             if pressure_kPa is not None:
-                columns.append((Term("tanh(v/v0)*p", f"p · tanh(v / {v0:.3g} mm/s)", "kPa",
-                                     "Coulomb friction between fibres and bladder (pressure-proportional)", with_v0),
-                                pressure_kPa * coulomb))
-            columns.append((Term("tanh(v/v0)", f"tanh(v / {v0:.3g} mm/s)", "1",
-                                 "Coulomb friction of constant size (fixture, guides, seals)", with_v0), coulomb))
+                columns.append(
+                    (
+                        Term(
+                            "tanh(v/v0)*p",
+                            f"p · tanh(v / {v0:.3g} mm/s)",
+                            "kPa",
+                            "Coulomb friction between fibres and bladder (pressure-proportional)",
+                            with_v0,
+                        ),
+                        pressure_kPa * coulomb,
+                    )
+                )
+            columns.append(
+                (
+                    Term(
+                        "tanh(v/v0)",
+                        f"tanh(v / {v0:.3g} mm/s)",
+                        "1",
+                        "Coulomb friction of constant size (fixture, guides, seals)",
+                        with_v0,
+                    ),
+                    coulomb,
+                )
+            )
         # Dahl friction: after each reversal it goes from -Fc to +Fc over a slip distance xc,
         # F = Fc · d · (1 - 2 exp(-s / xc)), the exact solution of dF/dx = (Fc - d F) / xc.
-        slip_deadband = scales.get("slip_deadband_mm") or max(BRANCH_SPAN_FRACTION * float(np.ptp(x_mm)),
-                                                               BRANCH_NOISE_MULTIPLE * _white_noise(x_mm))
+        slip_deadband = scales.get("slip_deadband_mm") or max(
+            BRANCH_SPAN_FRACTION * float(np.ptp(x_mm)), BRANCH_NOISE_MULTIPLE * _white_noise(x_mm)
+        )
         xc = scales.get("xc_mm") or DAHL_STROKE_FRACTION * float(np.ptp(x_mm))
         if slip_deadband > 0.0 and xc > 0.0:
             stretching = _branch(x_mm, slip_deadband)
             dahl = stretching * (1.0 - 2.0 * np.exp(-_slip_since_reversal(x_mm, stretching) / xc))
-            columns.append((Term("dahl(x; xc)", f"dahl(x; {xc:.3g} mm)", "1",
-                                 "friction that builds up over a slip distance after each reversal (Dahl, "
-                                 "pre-sliding)", (("slip_deadband_mm", float(slip_deadband)), ("xc_mm", float(xc)))),
-                            dahl))
+            columns.append(
+                (
+                    Term(
+                        "dahl(x; xc)",
+                        f"dahl(x; {xc:.3g} mm)",
+                        "1",
+                        "friction that builds up over a slip distance after each reversal (Dahl, pre-sliding)",
+                        (("slip_deadband_mm", float(slip_deadband)), ("xc_mm", float(xc))),
+                    ),
+                    dahl,
+                )
+            )
         columns += [
             (Term("v", "v", "mm/s", "viscous damping (force proportional to the stretch rate)", with_window), v_mm_s),
-            (Term("|v|", "|v|", "mm/s", "a direction-independent rate effect (rate-dependent stiffening)", with_window),
-             np.abs(v_mm_s)),
+            (
+                Term(
+                    "|v|", "|v|", "mm/s", "a direction-independent rate effect (rate-dependent stiffening)", with_window
+                ),
+                np.abs(v_mm_s),
+            ),
         ]
     columns += [
         (Term("x", "x", "mm", "a linear stiffness error (bladder modulus, fixture compliance, crosshead scale)"), x_mm),
         (Term("x^2", "x²", "mm²", "a stiffness that changes with stretch (bladder hardening or softening)"), x_mm**2),
-        (Term("x^3", "x³", "mm³", "a nonlinear spring (strain stiffening of the bladder, a nonlinear load cell)"),
-         x_mm**3),
+        (
+            Term("x^3", "x³", "mm³", "a nonlinear spring (strain stiffening of the bladder, a nonlinear load cell)"),
+            x_mm**3,
+        ),
     ]
     if pressure_kPa is not None:
-        deadband = scales.get("deadband_kPa") or max(BRANCH_SPAN_FRACTION * float(np.ptp(pressure_kPa)),
-                                                     BRANCH_NOISE_MULTIPLE * _white_noise(pressure_kPa))
+        deadband = scales.get("deadband_kPa") or max(
+            BRANCH_SPAN_FRACTION * float(np.ptp(pressure_kPa)), BRANCH_NOISE_MULTIPLE * _white_noise(pressure_kPa)
+        )
         branch = _branch(pressure_kPa, deadband) if deadband > 0.0 else np.zeros(n)
         with_deadband = (("deadband_kPa", float(deadband)),)
         columns += [
-            (Term("p", "p", "kPa", "proportional to pressure (effective area; a transducer's gain error)"),
-             pressure_kPa),
-            (Term("dp/dt", "dp/dt", "kPa/s", "a lag behind the pressure (gas dynamics, sensor lag)", with_window),
-             _derivative(pressure_kPa, time_s, window)),
-            (Term("sign(dp/dt)", f"branch(p; {deadband:.3g} kPa)", "1",
-                  "pressurise/vent hysteresis of constant size (+1 pressurising, -1 venting)", with_deadband), branch),
-            (Term("sign(dp/dt)*p", f"p · branch(p; {deadband:.3g} kPa)", "kPa",
-                  "pressurise/vent hysteresis growing with pressure (bladder-braid friction at fixed length)",
-                  with_deadband), pressure_kPa * branch),
+            (
+                Term("p", "p", "kPa", "proportional to pressure (effective area; a transducer's gain error)"),
+                pressure_kPa,
+            ),
+            (
+                Term("dp/dt", "dp/dt", "kPa/s", "a lag behind the pressure (gas dynamics, sensor lag)", with_window),
+                _derivative(pressure_kPa, time_s, window),
+            ),
+            (
+                Term(
+                    "sign(dp/dt)",
+                    f"branch(p; {deadband:.3g} kPa)",
+                    "1",
+                    "pressurise/vent hysteresis of constant size (+1 pressurising, -1 venting)",
+                    with_deadband,
+                ),
+                branch,
+            ),
+            (
+                Term(
+                    "sign(dp/dt)*p",
+                    f"p · branch(p; {deadband:.3g} kPa)",
+                    "kPa",
+                    "pressurise/vent hysteresis growing with pressure (bladder-braid friction at fixed length)",
+                    with_deadband,
+                ),
+                pressure_kPa * branch,
+            ),
         ]
     if force_N is not None:
         columns += [
@@ -237,18 +299,37 @@ def _feature_columns(time_s, elongation_m, pressure_kPa, temperature_C, ambient_
         ]
     columns.append((Term("t", "t", "s", "a drift in time (creep, load-cell thermal drift, a slow leak)"), time_s))
     if cycle is not None:
-        columns.append((Term("cycle", "cycle", "cycle",
-                             "a change from cycle to cycle (Mullins softening, wear, a leak per cycle)"), cycle))
+        columns.append(
+            (
+                Term(
+                    "cycle",
+                    "cycle",
+                    "cycle",
+                    "a change from cycle to cycle (Mullins softening, wear, a leak per cycle)",
+                ),
+                cycle,
+            )
+        )
     if temperature_C is not None and ambient_C is not None:
         ambient = scales.get("ambient_C", float(ambient_C))
-        columns.append((Term("T-T_ambient", "(T - T_ambient)", "K",
-                             "a thermal effect (gas heating, thermal drift of a sensor)", (("ambient_C", ambient),)),
-                        temperature_C - ambient))
+        columns.append(
+            (
+                Term(
+                    "T-T_ambient",
+                    "(T - T_ambient)",
+                    "K",
+                    "a thermal effect (gas heating, thermal drift of a sensor)",
+                    (("ambient_C", ambient),),
+                ),
+                temperature_C - ambient,
+            )
+        )
     return columns
 
 
-def feature_library(time_s, elongation_m, pressure_kPa=None, temperature_C=None, ambient_C=None,
-                    cycle=None, force_N=None) -> dict[Term, np.ndarray]:
+def feature_library(
+    time_s, elongation_m, pressure_kPa=None, temperature_C=None, ambient_C=None, cycle=None, force_N=None
+) -> dict[Term, np.ndarray]:
     """Physically meaningful features of a record, one array per library term.
 
     Args:
@@ -276,8 +357,13 @@ def feature_library(time_s, elongation_m, pressure_kPa=None, temperature_C=None,
     not_increasing = np.flatnonzero(np.diff(time_s) <= 0.0)
     if not_increasing.size:
         raise DiscoveryError(f"time_s must increase strictly (sample {int(not_increasing[0]) + 1} does not)")
-    inputs = {"elongation_m": elongation_m, "pressure_kPa": pressure_kPa, "temperature_C": temperature_C,
-              "cycle": cycle, "force_N": force_N}
+    inputs = {
+        "elongation_m": elongation_m,
+        "pressure_kPa": pressure_kPa,
+        "temperature_C": temperature_C,
+        "cycle": cycle,
+        "force_N": force_N,
+    }
     arrays = {key: None if value is None else _as_column(key, value, time_s.size) for key, value in inputs.items()}
     if ambient_C is not None and not math.isfinite(float(ambient_C)):
         raise DiscoveryError(f"ambient_C = {ambient_C} is not a finite temperature")
@@ -285,11 +371,22 @@ def feature_library(time_s, elongation_m, pressure_kPa=None, temperature_C=None,
     # Travel within ten noise deviations (an isometric test's encoder) is no motion: its
     # "velocity" would be differentiated noise.
     moves = bool(np.ptp(x_mm) > 10.0 * _white_noise(x_mm))
-    columns = _feature_columns(time_s, arrays["elongation_m"], arrays["pressure_kPa"], arrays["temperature_C"],
-                               ambient_C, arrays["cycle"], arrays["force_N"], include_motion=moves)
+    columns = _feature_columns(
+        time_s,
+        arrays["elongation_m"],
+        arrays["pressure_kPa"],
+        arrays["temperature_C"],
+        ambient_C,
+        arrays["cycle"],
+        arrays["force_N"],
+        include_motion=moves,
+    )
     # Constant columns say what the offset says.
-    varying = [(term, values) for term, values in columns
-               if term.name == "offset" or np.ptp(values) > 1e-12 * max(float(np.max(np.abs(values))), 1e-300)]
+    varying = [
+        (term, values)
+        for term, values in columns
+        if term.name == "offset" or np.ptp(values) > 1e-12 * max(float(np.max(np.abs(values))), 1e-300)
+    ]
     # Of columns that are the same up to a factor (p·tanh(v/v0) at constant p), keep the first.
     matrix = np.column_stack([values for _, values in varying])
     gram = matrix.T @ matrix  # one product: a BLAS call per pair is slow on a busy machine
@@ -365,10 +462,15 @@ def _candidate_models(terms: list[Term], X_fit: np.ndarray, residual_fit: np.nda
     if candidates.size:
         with warnings.catch_warnings():
             # Ending early because the rest is linearly dependent is a shorter path, not an error.
-            warnings.filterwarnings("ignore", message="Orthogonal matching pursuit ended prematurely",
-                                    category=RuntimeWarning)
-            path = orthogonal_mp(columns[:, usable] / norms[usable], target,
-                                 n_nonzero_coefs=min(MAX_TERMS, int(candidates.size)), return_path=True)
+            warnings.filterwarnings(
+                "ignore", message="Orthogonal matching pursuit ended prematurely", category=RuntimeWarning
+            )
+            path = orthogonal_mp(
+                columns[:, usable] / norms[usable],
+                target,
+                n_nonzero_coefs=min(MAX_TERMS, int(candidates.size)),
+                return_path=True,
+            )
         path = path.reshape(candidates.size, -1)
         for step in range(path.shape[1]):
             chosen = candidates[np.flatnonzero(path[:, step])].tolist()
@@ -376,8 +478,17 @@ def _candidate_models(terms: list[Term], X_fit: np.ndarray, residual_fit: np.nda
     return models
 
 
-def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma: float, fit_mask: np.ndarray,
-             held_mask: np.ndarray, held_units: np.ndarray, channel: str, channel_unit: str, seed: int = 0) -> dict:
+def discover(
+    features: dict[Term, np.ndarray],
+    residual: np.ndarray,
+    noise_sigma: float,
+    fit_mask: np.ndarray,
+    held_mask: np.ndarray,
+    held_units: np.ndarray,
+    channel: str,
+    channel_unit: str,
+    seed: int = 0,
+) -> dict:
     """Sparse regression of one channel's residual on the feature library.
 
     Args:
@@ -427,8 +538,12 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
     fits = [_least_squares(X[fit_mask][:, model], residual[fit_mask]) for model in models]
     held_residual = residual[held_mask]
     # Sum of squared held-out errors per candidate and unit.
-    unit_sse = np.array([np.bincount(unit_of_sample, weights=(held_residual - X[held_mask][:, model] @ c) ** 2,
-                                     minlength=units.size) for model, c in zip(models, fits)])
+    unit_sse = np.array(
+        [
+            np.bincount(unit_of_sample, weights=(held_residual - X[held_mask][:, model] @ c) ** 2, minlength=units.size)
+            for model, c in zip(models, fits)
+        ]
+    )
     total = unit_sse.sum(axis=1)
 
     def standard_error(a: int, b: int) -> float:
@@ -450,9 +565,16 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
     chosen = next((k for k in range(1, best + 1) if as_good_as_best(k) and beats_nothing(k)), 0)
 
     attainable = 1.0 - noise_sigma / rmse[0] if rmse[0] > 0 else 0.0
-    result = {"channel": channel, "channel_unit": channel_unit, "terms": [], "gain": {channel: 0.0},
-              "gain_ci95": {channel: [0.0, 0.0]}, "gain_attainable": {channel: float(attainable)},
-              "heldout_rmse_path": [float(value) for value in rmse], "equation": _equation(channel, [])}
+    result = {
+        "channel": channel,
+        "channel_unit": channel_unit,
+        "terms": [],
+        "gain": {channel: 0.0},
+        "gain_ci95": {channel: [0.0, 0.0]},
+        "gain_attainable": {channel: float(attainable)},
+        "heldout_rmse_path": [float(value) for value in rmse],
+        "equation": _equation(channel, []),
+    }
     if chosen == 0:
         return result
 
@@ -462,8 +584,9 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
         # The path carries an offset with every model; keep it only if it matters on held-out data.
         without = [j for j in model if j != offset]
         c = _least_squares(X[fit_mask][:, without], residual[fit_mask])
-        sse = np.bincount(unit_of_sample, weights=(held_residual - X[held_mask][:, without] @ c) ** 2,
-                          minlength=units.size)
+        sse = np.bincount(
+            unit_of_sample, weights=(held_residual - X[held_mask][:, without] @ c) ** 2, minlength=units.size
+        )
         if math.sqrt(sse.sum() / held_residual.size) - rmse[chosen] <= material:
             model, coefficients, chosen_sse = without, c, sse
 
@@ -474,15 +597,20 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
     for j, column in enumerate(model):
         term, coefficient = terms[column], float(coefficients[j])
         size = abs(coefficient) * float(np.sqrt(np.mean(X[held_mask, column] ** 2)))
-        found.append((size, {
-            "expression": term.expression,
-            "coefficient": coefficient,
-            "unit": _per(channel_unit, term.unit),
-            "resembles": term.resembles,
-            "standard_error": float(math.sqrt(covariance[j, j])),
-            "name": term.name,
-            "parameters": dict(term.parameters),
-        }))
+        found.append(
+            (
+                size,
+                {
+                    "expression": term.expression,
+                    "coefficient": coefficient,
+                    "unit": _per(channel_unit, term.unit),
+                    "resembles": term.resembles,
+                    "standard_error": float(math.sqrt(covariance[j, j])),
+                    "name": term.name,
+                    "parameters": dict(term.parameters),
+                },
+            )
+        )
     reported = [entry for _, entry in sorted(found, key=lambda pair: -pair[0])]  # largest contribution first
 
     rng = np.random.default_rng(seed)
@@ -490,10 +618,12 @@ def discover(features: dict[Term, np.ndarray], residual: np.ndarray, noise_sigma
     boot_fit = chosen_sse[draws].sum(axis=1)
     boot_zero = unit_sse[0][draws].sum(axis=1)
     boot_gain = 1.0 - np.sqrt(boot_fit / np.maximum(boot_zero, 1e-300))
-    result.update({
-        "terms": reported,
-        "gain": {channel: float(1.0 - math.sqrt(chosen_sse.sum() / total[0]))},
-        "gain_ci95": {channel: [float(np.percentile(boot_gain, 2.5)), float(np.percentile(boot_gain, 97.5))]},
-        "equation": _equation(channel, reported),
-    })
+    result.update(
+        {
+            "terms": reported,
+            "gain": {channel: float(1.0 - math.sqrt(chosen_sse.sum() / total[0]))},
+            "gain_ci95": {channel: [float(np.percentile(boot_gain, 2.5)), float(np.percentile(boot_gain, 97.5))]},
+            "equation": _equation(channel, reported),
+        }
+    )
     return result

@@ -17,8 +17,22 @@ FORMAT = "pamkit.discovered_effect"
 FORMAT_VERSION = 1
 
 CHANNELS = ("force_N", "pressure_kPa", "temperature_C")
-TERM_NAMES = ("offset", *MOTION_TERMS, "x", "x^2", "x^3", "p", "dp/dt", "sign(dp/dt)", "sign(dp/dt)*p", "F", "F^2", "t",
-              "cycle", "T-T_ambient")
+TERM_NAMES = (
+    "offset",
+    *MOTION_TERMS,
+    "x",
+    "x^2",
+    "x^3",
+    "p",
+    "dp/dt",
+    "sign(dp/dt)",
+    "sign(dp/dt)*p",
+    "F",
+    "F^2",
+    "t",
+    "cycle",
+    "T-T_ambient",
+)
 
 
 def _default_cycle_index(time_s: np.ndarray, elongation_m: np.ndarray) -> np.ndarray:
@@ -41,15 +55,18 @@ class DiscoveredEffect(pamkit.Effect):
             raise DiscoveryError(f"discovered effect: channel {channel!r} is not one of {', '.join(CHANNELS)}")
         terms = result.get("terms") or []
         if not terms:
-            raise DiscoveryError(f"discovered effect: no terms were discovered for {channel} "
-                                 f"({result.get('equation', '')})")
+            raise DiscoveryError(
+                f"discovered effect: no terms were discovered for {channel} ({result.get('equation', '')})"
+            )
         for k, term in enumerate(terms):
             missing = [key for key in ("name", "expression", "coefficient", "unit") if key not in term]
             if missing:
                 raise DiscoveryError(f"discovered effect: terms[{k}] lacks {', '.join(missing)}")
             if term["name"] not in TERM_NAMES:
-                raise DiscoveryError(f"discovered effect: terms[{k}].name = {term['name']!r} is not a library term "
-                                     f"({', '.join(TERM_NAMES)})")
+                raise DiscoveryError(
+                    f"discovered effect: terms[{k}].name = {term['name']!r} is not a library term "
+                    f"({', '.join(TERM_NAMES)})"
+                )
             numbers = {"coefficient": term["coefficient"], **term.get("parameters", {})}
             for key, value in numbers.items():
                 if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
@@ -76,9 +93,16 @@ class DiscoveredEffect(pamkit.Effect):
         return fitted - reach, fitted + reach, fitted - 1.96 * spread, fitted + 1.96 * spread
 
     def parameters(self):
-        return [pamkit.EffectParameter(f"c{k}", self.coefficients[k], term["unit"], *self._bounds(k),
-                                       f"coefficient of {term['expression']}: {term.get('resembles', '')}")
-                for k, term in enumerate(self.terms)]
+        return [
+            pamkit.EffectParameter(
+                f"c{k}",
+                self.coefficients[k],
+                term["unit"],
+                *self._bounds(k),
+                f"coefficient of {term['expression']}: {term.get('resembles', '')}",
+            )
+            for k, term in enumerate(self.terms)
+        ]
 
     def set(self, key, value):
         keys = [f"c{k}" for k in range(len(self.terms))]
@@ -103,9 +127,20 @@ class DiscoveredEffect(pamkit.Effect):
         temperature = None if temperature_C is None else np.asarray(temperature_C, dtype=float)
         force = None if force_N is None else np.asarray(force_N, dtype=float)
         cycle = self._cycle_index(time_s, elongation_m) if "cycle" in names else None
-        columns = {term.name: values for term, values in _feature_columns(
-            time_s, elongation_m, pressure, temperature, scales.get("ambient_C"), cycle, force,
-            include_motion=bool(names & set(MOTION_TERMS)), scales=scales)}
+        columns = {
+            term.name: values
+            for term, values in _feature_columns(
+                time_s,
+                elongation_m,
+                pressure,
+                temperature,
+                scales.get("ambient_C"),
+                cycle,
+                force,
+                include_motion=bool(names & set(MOTION_TERMS)),
+                scales=scales,
+            )
+        }
         total = np.zeros(time_s.size)
         for term, coefficient in zip(self.terms, self.coefficients):
             if term["name"] not in columns:
@@ -115,8 +150,13 @@ class DiscoveredEffect(pamkit.Effect):
 
     def apply_to_measurement(self, measurement):
         # Every feature is read before the channel changes (the force terms read the model's force).
-        correction = self.correction(measurement.time_s, measurement.elongation_m, measurement.pressure_kPa,
-                                     measurement.temperature_C, measurement.force_N)
+        correction = self.correction(
+            measurement.time_s,
+            measurement.elongation_m,
+            measurement.pressure_kPa,
+            measurement.temperature_C,
+            measurement.force_N,
+        )
         setattr(measurement, self.channel, getattr(measurement, self.channel) + correction)
         return measurement
 
@@ -139,12 +179,23 @@ def discovered_effect(result: dict, name: str | None = None, cycle_index=None) -
 def save_effect(result: dict, path: str | Path) -> None:
     """Writes the discovered terms as a small JSON file that load_effect reads back."""
     discovered_effect(result)  # refuse to write what could not be loaded
-    document = {"format": FORMAT, "version": FORMAT_VERSION, "channel": result["channel"],
-                "channel_unit": result.get("channel_unit", ""), "equation": result["equation"],
-                "gain": result.get("gain", {}), "gain_ci95": result.get("gain_ci95", {}),
-                "terms": [{key: term[key] for key in ("name", "expression", "coefficient", "unit", "resembles",
-                                                      "standard_error", "parameters") if key in term}
-                          for term in result["terms"]]}
+    document = {
+        "format": FORMAT,
+        "version": FORMAT_VERSION,
+        "channel": result["channel"],
+        "channel_unit": result.get("channel_unit", ""),
+        "equation": result["equation"],
+        "gain": result.get("gain", {}),
+        "gain_ci95": result.get("gain_ci95", {}),
+        "terms": [
+            {
+                key: term[key]
+                for key in ("name", "expression", "coefficient", "unit", "resembles", "standard_error", "parameters")
+                if key in term
+            }
+            for term in result["terms"]
+        ],
+    }
     Path(path).write_text(json.dumps(document, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
 
 

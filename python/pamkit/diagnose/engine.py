@@ -48,12 +48,12 @@ class Diagnosis:
 
     problem: Problem
     baseline: Fit
-    candidates: list[Judgement]    # every fitted candidate, best held-out gain first
-    skipped: dict[str, str]        # candidates that could not act or whose fit failed, and why
+    candidates: list[Judgement]  # every fitted candidate, best held-out gain first
+    skipped: dict[str, str]  # candidates that could not act or whose fit failed, and why
     decision: Decision
-    extended: Fit                  # the named cause's model, or the baseline
+    extended: Fit  # the named cause's model, or the baseline
     extended_judgement: Judgement | None
-    warnings: list[Finding]        # baseline and extended parameters at a bound or implausible
+    warnings: list[Finding]  # baseline and extended parameters at a bound or implausible
     discovered: dict = field(default_factory=dict)
     seconds: dict[str, float] = field(default_factory=dict)
 
@@ -76,8 +76,9 @@ def _pool(threads: int | None) -> ThreadPoolExecutor:
     return ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1)
 
 
-def _try_pairs(problem: Problem, baseline: Fit, single: Judgement, judged: list[Judgement], factories, seed: int,
-               threads, report) -> Judgement:
+def _try_pairs(
+    problem: Problem, baseline: Fit, single: Judgement, judged: list[Judgement], factories, seed: int, threads, report
+) -> Judgement:
     """The named cause leaves structure: pair it with the next credible candidates, and keep a
     pair only if it beats the single cause as the single beat the baseline (significant on
     held-out units) and every parameter of the pair is credible."""
@@ -85,21 +86,39 @@ def _try_pairs(problem: Problem, baseline: Fit, single: Judgement, judged: list[
     partners = partners[:PAIR_PARTNERS]
     if not partners:
         return single
-    report(f"{single.fit.name} leaves {', '.join(structured(problem, single.fit, PAIR_TRIGGER))} above noise: "
-           f"trying it with {', '.join(p.fit.name for p in partners)}")
+    report(
+        f"{single.fit.name} leaves {', '.join(structured(problem, single.fit, PAIR_TRIGGER))} above noise: "
+        f"trying it with {', '.join(p.fit.name for p in partners)}"
+    )
     best = single
     with _pool(threads) as pool:
-        futures = [pool.submit(fit_pair, problem, single.fit, factories[single.fit.name], factories[p.fit.name],
-                               f"{single.fit.name}+{p.fit.name}") for p in partners]
+        futures = [
+            pool.submit(
+                fit_pair,
+                problem,
+                single.fit,
+                factories[single.fit.name],
+                factories[p.fit.name],
+                f"{single.fit.name}+{p.fit.name}",
+            )
+            for p in partners
+        ]
         for future in futures:
             pair = future.result()
             if pair.error is not None:
                 continue
             over_single = score(problem, single.fit, pair, np.random.default_rng(seed))
-            candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)),
-                              attainable_gain(problem, baseline))
-            if significant(over_single) and candidate.credible \
-                    and candidate.score.combined_gain > best.score.combined_gain:
+            candidate = judge(
+                problem,
+                pair,
+                score(problem, baseline, pair, np.random.default_rng(seed)),
+                attainable_gain(problem, baseline),
+            )
+            if (
+                significant(over_single)
+                and candidate.credible
+                and candidate.score.combined_gain > best.score.combined_gain
+            ):
                 best = candidate
     return best
 
@@ -116,27 +135,49 @@ def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
     channel = max(problem.channels, key=lambda c: ratios[c])
     experiment = problem.experiment
     # The model's own channels where the data has none (a sealed test logged without pressure).
-    simulated = problem.predictor.select(problem.predictor.measurement(fit.baseline_x, fit.effects)) \
-        if set(problem.channels) != {"force_N", "pressure_kPa", "temperature_C"} else {}
+    simulated = (
+        problem.predictor.select(problem.predictor.measurement(fit.baseline_x, fit.effects))
+        if set(problem.channels) != {"force_N", "pressure_kPa", "temperature_C"}
+        else {}
+    )
     simulated = {**simulated, **fit.predicted}
 
     def column(name):
         return experiment.columns[name] if name in experiment.columns else simulated.get(name)
 
     try:
-        features = feature_library(experiment.time_s, experiment.elongation_m, pressure_kPa=column("pressure_kPa"),
-                                   temperature_C=column("temperature_C"),
-                                   ambient_C=experiment.ambient_temperature_C if "temperature_C" in experiment.columns
-                                   else None, cycle=problem.cycle.astype(float), force_N=fit.predicted.get("force_N"))
+        features = feature_library(
+            experiment.time_s,
+            experiment.elongation_m,
+            pressure_kPa=column("pressure_kPa"),
+            temperature_C=column("temperature_C"),
+            ambient_C=experiment.ambient_temperature_C if "temperature_C" in experiment.columns else None,
+            cycle=problem.cycle.astype(float),
+            force_N=fit.predicted.get("force_N"),
+        )
         residual = problem.measured[channel] - fit.predicted[channel]
-        return discover(features, residual, problem.sigma[channel], problem.fit_mask, problem.held_mask,
-                        problem.half_cycle, channel, CHANNEL_UNITS[channel], seed=seed % 2**32)
+        return discover(
+            features,
+            residual,
+            problem.sigma[channel],
+            problem.fit_mask,
+            problem.held_mask,
+            problem.half_cycle,
+            channel,
+            CHANNEL_UNITS[channel],
+            seed=seed % 2**32,
+        )
     except DiscoveryError as error:
         return {"channel": channel, "terms": [], "error": str(error)}
 
 
-def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog | None = None, progress=None,
-             threads: int | None = None, seed: int | None = None) -> Diagnosis:
+def diagnose(
+    experiment: Experiment | str | Path,
+    effect_catalog: EffectCatalog | None = None,
+    progress=None,
+    threads: int | None = None,
+    seed: int | None = None,
+) -> Diagnosis:
     """Diagnoses one experiment. `progress(message)` is called as work proceeds; `seed` (by
     default drawn from the data) seeds the bootstrap.
 
@@ -152,8 +193,10 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
     seed = data_seed(problem) if seed is None else seed
     seconds = {}
 
-    report(f"calibrating the baseline on {len(np.unique(problem.cycle[problem.fit_mask]))} {problem.unit_name}s "
-           f"({', '.join(problem.channels)})")
+    report(
+        f"calibrating the baseline on {len(np.unique(problem.cycle[problem.fit_mask]))} {problem.unit_name}s "
+        f"({', '.join(problem.channels)})"
+    )
     baseline = fit_baseline(problem)
     seconds["baseline"] = clock.perf_counter() - started
 
@@ -172,11 +215,15 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
             fit = future.result()
             if fit.error is None:
                 # Every candidate's bootstrap draws the same units: scores differ by the fits alone.
-                judged.append(judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), attainable))
+                judged.append(
+                    judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), attainable)
+                )
             else:
                 skipped[label] = f"fit failed: {fit.error}"
-            report(f"[{done}/{len(futures)}] {label}: "
-                   + (f"held-out gain {judged[-1].score.combined_gain:+.3f}" if fit.error is None else "failed"))
+            report(
+                f"[{done}/{len(futures)}] {label}: "
+                + (f"held-out gain {judged[-1].score.combined_gain:+.3f}" if fit.error is None else "failed")
+            )
     judged.sort(key=lambda j: (-j.score.combined_gain, j.score.delta_bic, j.fit.name))
     # The baseline's calibration absorbed part of a measurement effect (an offset pulls the
     # inflation pressure to its bound): the leading ones are refitted with the baseline free.
@@ -185,8 +232,12 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
     if leaders:
         report(f"refitting {', '.join(judged[i].fit.name for i in leaders)} with the baseline")
         with _pool(threads) as pool:
-            refits = {i: pool.submit(fit_candidate, problem, baseline, factories[judged[i].fit.name],
-                                     judged[i].fit.name, judged[i].fit) for i in leaders}
+            refits = {
+                i: pool.submit(
+                    fit_candidate, problem, baseline, factories[judged[i].fit.name], judged[i].fit.name, judged[i].fit
+                )
+                for i in leaders
+            }
             for i, future in refits.items():
                 fit = future.result()
                 if fit.error is None:
@@ -206,8 +257,9 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
     # A named cause is credible, so has no finding; the rejected best candidate's are why not.
     warnings = findings(baseline)
     if decision.rejected is not None:
-        warnings += [replace(f, parameter=f"{decision.rejected.fit.name}: {f.parameter}")
-                     for f in decision.rejected.findings]
+        warnings += [
+            replace(f, parameter=f"{decision.rejected.fit.name}: {f.parameter}") for f in decision.rejected.findings
+        ]
     discovered = {}
     if decision.cause == "unexplained" or decision.left_structure:
         report("looking for what the catalog lacks in the residual (sparse regression)")
@@ -215,6 +267,9 @@ def diagnose(experiment: Experiment | str | Path, effect_catalog: EffectCatalog 
         discovered = discover_remainder(problem, extended, seed)
         seconds["discover"] = clock.perf_counter() - phase
     seconds["total"] = clock.perf_counter() - started
-    report(f"cause: {decision.cause}" + (f" with {extended.effects[1].name()}" if len(extended.effects) > 1 else "")
-           + f" ({seconds['total']:.1f} s)")
+    report(
+        f"cause: {decision.cause}"
+        + (f" with {extended.effects[1].name()}" if len(extended.effects) > 1 else "")
+        + f" ({seconds['total']:.1f} s)"
+    )
     return Diagnosis(problem, baseline, judged, skipped, decision, extended, named, warnings, discovered, seconds)

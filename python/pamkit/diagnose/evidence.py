@@ -11,7 +11,7 @@ from scipy.stats import chi2
 CHANNELS = ("force_N", "pressure_kPa", "temperature_C")
 
 
-NOISE_WINDOW = 9      # samples in the local cubic that stands for the signal
+NOISE_WINDOW = 9  # samples in the local cubic that stands for the signal
 NOISE_POLYORDER = 3
 
 
@@ -73,8 +73,9 @@ def correlations(residual: np.ndarray, regressors: dict[str, np.ndarray]) -> dic
     return out
 
 
-def lagged_correlation_peak(residual: np.ndarray, signal_rate: np.ndarray, time: np.ndarray,
-                            max_lag_s: float = 10.0) -> float:
+def lagged_correlation_peak(
+    residual: np.ndarray, signal_rate: np.ndarray, time: np.ndarray, max_lag_s: float = 10.0
+) -> float:
     """Lag [s] at which the residual correlates best (in magnitude) with the prediction's rate
     of change: near zero for noise, at the offset for a skewed or lagging channel."""
     dt = float(np.median(np.diff(time)))

@@ -2,9 +2,9 @@
 
 The unit a diagnosis fits on and holds out follows the test: the stretch cycles of a cyclic
 test, the pressurise/vent sweeps of a supplied-pressure test whose length the rig holds
-(isometric), or, with fewer than four sweeps, their pressure plateaus. The units are found from the commanded signal's structure — the crosshead's
-elongation, or the supplied pressure when the length is held — never from noise: a held
-length's encoder noise has no cycles.
+(isometric), or, with fewer than four sweeps, their pressure plateaus. The units are found from
+the commanded signal's structure — the crosshead's elongation, or the supplied pressure when the
+length is held — never from noise: a held length's encoder noise has no cycles.
 """
 
 from __future__ import annotations
@@ -12,7 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-
 from scipy.ndimage import median_filter
 
 from pamkit.diagnose import evidence
@@ -50,8 +49,8 @@ class Problem:
     fit_mask: np.ndarray
     held_mask: np.ndarray
     half_cycle: np.ndarray  # the bootstrap's unit: half a cycle (stretch / return, pressurise / vent)
-    cycle: np.ndarray       # cycle number of every sample, -1 outside any
-    unit_name: str          # what a unit is here: "stretch cycle", "pressurise/vent sweep", "pressure plateau"
+    cycle: np.ndarray  # cycle number of every sample, -1 outside any
+    unit_name: str  # what a unit is here: "stretch cycle", "pressurise/vent sweep", "pressure plateau"
     predictor: Predictor
 
     def chi(self, predicted: dict[str, np.ndarray], mask: np.ndarray) -> np.ndarray:
@@ -59,8 +58,10 @@ class Problem:
 
     def chi2_by_channel(self, predicted: dict[str, np.ndarray]) -> dict[str, float]:
         """Sum of squared noise-weighted residuals per channel on the fitted units."""
-        return {c: float(np.sum((((predicted[c] - self.measured[c]) / self.sigma[c])[self.fit_mask]) ** 2))
-                for c in self.channels}
+        return {
+            c: float(np.sum((((predicted[c] - self.measured[c]) / self.sigma[c])[self.fit_mask]) ** 2))
+            for c in self.channels
+        }
 
 
 def check_units(experiment: Experiment) -> None:
@@ -75,7 +76,8 @@ def check_units(experiment: Experiment) -> None:
         if bad.size:
             row = int(bad[0])
             raise ExperimentError(
-                f"{experiment.data_path}:{row + 2}: column {names.index(name) + 1} ({name}) = {values[row]:g} is outside "
+                f"{experiment.data_path}:{row + 2}: column {names.index(name) + 1} ({name}) = {values[row]:g} "
+                f"is outside "
                 f"[{low:g}, {high:g}]: is it in {looks_like}?"
             )
 

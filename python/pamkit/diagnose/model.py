@@ -73,7 +73,7 @@ class Coordinate:
         return self.from_value(value)
 
     def at_bound(self, x: float) -> str | None:
-        """"lower" or "upper" when x ended at an end of the search interval, else None."""
+        """ "lower" or "upper" when x ended at an end of the search interval, else None."""
         margin = AT_BOUND * (self.upper - self.lower)
         if x <= self.lower + margin:
             return "lower"
@@ -136,18 +136,37 @@ class Baseline:
         self.params = muscle_params(self.experiment)
         p0 = self.experiment.inflation_pressure_kPa
         self.space = [
-            _linear("friction_scale", 0.0, 20.0, 1.0, (0.1, 10.0),
-                    "eqs. 3.1.19-24 with the thesis's coefficients; a tenfold error either way is another "
-                    "friction mechanism, not a coefficient"),
-            _linear("bladder_scale", 0.0, 5.0, 1.0, (0.33, 3.0),
-                    "eqs. 3.1.12-13 fitted to one butyl sample; rubbers of one nominal grade differ in modulus by "
-                    "well under 3x"),
+            _linear(
+                "friction_scale",
+                0.0,
+                20.0,
+                1.0,
+                (0.1, 10.0),
+                "eqs. 3.1.19-24 with the thesis's coefficients; a tenfold error either way is another "
+                "friction mechanism, not a coefficient",
+            ),
+            _linear(
+                "bladder_scale",
+                0.0,
+                5.0,
+                1.0,
+                (0.33, 3.0),
+                "eqs. 3.1.12-13 fitted to one butyl sample; rubbers of one nominal grade differ in modulus by "
+                "well under 3x",
+            ),
         ]
         if self.experiment.gas == "sealed":
-            self.space.insert(0, _linear("inflation_pressure_kPa", p0 * (1 - PRESSURE_TOLERANCE),
-                                         p0 * (1 + PRESSURE_TOLERANCE), p0,
-                                         (p0 * (1 - PRESSURE_TOLERANCE), p0 * (1 + PRESSURE_TOLERANCE)),
-                                         "the declared inflation pressure within the hand-read transducer's 5 %"))
+            self.space.insert(
+                0,
+                _linear(
+                    "inflation_pressure_kPa",
+                    p0 * (1 - PRESSURE_TOLERANCE),
+                    p0 * (1 + PRESSURE_TOLERANCE),
+                    p0,
+                    (p0 * (1 - PRESSURE_TOLERANCE), p0 * (1 + PRESSURE_TOLERANCE)),
+                    "the declared inflation pressure within the hand-read transducer's 5 %",
+                ),
+            )
 
     def values(self, x: np.ndarray) -> dict[str, float]:
         return {c.name: float(c.value(v)) for c, v in zip(self.space, x)}
@@ -176,22 +195,32 @@ class Predictor:
         self.channels = channels
         self.baseline = Baseline(experiment)
         self.mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
-        self.motion = (programmed_motion(experiment.time_s, experiment.elongation_m) if self.mode == GasMode.sealed
-                       else measured_motion(experiment.time_s, experiment.elongation_m))
+        self.motion = (
+            programmed_motion(experiment.time_s, experiment.elongation_m)
+            if self.mode == GasMode.sealed
+            else measured_motion(experiment.time_s, experiment.elongation_m)
+        )
         self.trajectory = ElongationTrajectory(self.motion.time_s, self.motion.elongation_m)
-        self.simulator = Simulator(config if config is not None else SimulatorConfig(relative_tolerance=1e-6,
-                                                                                      absolute_tolerance_K=1e-6))
+        self.simulator = Simulator(
+            config if config is not None else SimulatorConfig(relative_tolerance=1e-6, absolute_tolerance_K=1e-6)
+        )
 
     def measurement(self, x: np.ndarray, effects: list[Effect]) -> Measurement:
         params, pressure_kPa = self.baseline.model_params(x)
         if self.mode == GasMode.supplied:
             # The measured motion (not the programmed one): samples and pressures line up.
-            return simulate_supplied_measurement(params, initial_length(self.experiment, params), self.trajectory,
-                                                 self.experiment.columns["pressure_kPa"],
-                                                 self.experiment.ambient_temperature_C, effects)
+            return simulate_supplied_measurement(
+                params,
+                initial_length(self.experiment, params),
+                self.trajectory,
+                self.experiment.columns["pressure_kPa"],
+                self.experiment.ambient_temperature_C,
+                effects,
+            )
         if self.experiment.initial_length_m is not None:
-            initial = InitialState(length_m=self.experiment.initial_length_m,
-                                   gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL)
+            initial = InitialState(
+                length_m=self.experiment.initial_length_m, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL
+            )
         else:
             initial = inflated_and_sealed(params, pressure_kPa * PASCAL_PER_KILOPASCAL)
         return simulate_measurement(params, initial, self.trajectory, effects, self.simulator)

@@ -17,11 +17,11 @@ from scipy.signal import savgol_filter
 
 from pamkit.diagnose.evidence import noise_scale
 
-STILL = 0.25          # a sample whose smoothed rate is below this share of the largest is holding
-SMOOTHING = 9         # samples in the window that smooths the rate
-ACCEPT_NOISE = 3.0    # the fit is used if the samples scatter around it by less than this many noise sigmas
+STILL = 0.25  # a sample whose smoothed rate is below this share of the largest is holding
+SMOOTHING = 9  # samples in the window that smooths the rate
+ACCEPT_NOISE = 3.0  # the fit is used if the samples scatter around it by less than this many noise sigmas
 ACCEPT_FLOOR_M = 2e-6  # ... or by less than this (an encoder's few micrometres)
-SNAP = 0.05           # a corner this close to a sample, in sample intervals, is put on it
+SNAP = 0.05  # a corner this close to a sample, in sample intervals, is put on it
 
 
 @dataclass(frozen=True)

@@ -25,8 +25,13 @@ def _residual_evidence(d: Diagnosis, fit: Fit) -> dict:
     time = p.experiment.time_s
     elongation = p.experiment.elongation_m
     velocity = np.gradient(elongation, time)
-    regressors = {"elongation": elongation, "velocity": velocity, "abs_velocity": np.abs(velocity), "time": time,
-                  "cycle": p.cycle.astype(float)}
+    regressors = {
+        "elongation": elongation,
+        "velocity": velocity,
+        "abs_velocity": np.abs(velocity),
+        "time": time,
+        "cycle": p.cycle.astype(float),
+    }
     mask = p.held_mask
     out = {"ljung_box_p": {}, "correlation": {}, "best_lag_s": {}}
     for c in p.channels:
@@ -73,12 +78,16 @@ def to_json(d: Diagnosis) -> dict:
         "evidence": {
             "noise": p.sigma,
             "peak_difference": {
-                c: evidence.peak_difference(p.measured[c][p.held_mask], d.baseline.predicted[c][p.held_mask],
-                                            p.cycle[p.held_mask]) for c in p.channels
+                c: evidence.peak_difference(
+                    p.measured[c][p.held_mask], d.baseline.predicted[c][p.held_mask], p.cycle[p.held_mask]
+                )
+                for c in p.channels
             },
             "units": p.unit_name,
-            "cycles": {"fitted": sorted(set(int(k) for k in p.cycle[p.fit_mask])),
-                       "held_out": sorted(set(int(k) for k in p.cycle[p.held_mask]))},
+            "cycles": {
+                "fitted": sorted(set(int(k) for k in p.cycle[p.fit_mask])),
+                "held_out": sorted(set(int(k) for k in p.cycle[p.held_mask])),
+            },
             "min_gain": MIN_GAIN,
             "min_bic_drop": MIN_BIC_DROP,
             "none_within_noise": NONE_WITHIN_NOISE,
@@ -87,9 +96,16 @@ def to_json(d: Diagnosis) -> dict:
         "decision": {
             "margins": d.decision.margins,
             "left_above_noise": d.decision.left_structure,
-            "rejected": ({"effect": d.decision.rejected.fit.name, "params": d.decision.rejected.fit.params,
-                          "score": d.decision.rejected.score.combined_gain, "because": d.decision.rejected.reasons()}
-                         if d.decision.rejected else None),
+            "rejected": (
+                {
+                    "effect": d.decision.rejected.fit.name,
+                    "params": d.decision.rejected.fit.params,
+                    "score": d.decision.rejected.score.combined_gain,
+                    "because": d.decision.rejected.reasons(),
+                }
+                if d.decision.rejected
+                else None
+            ),
         },
         "discovered": d.discovered,
         "warnings": [f.to_json() for f in d.warnings],
@@ -108,7 +124,9 @@ def _phrase(j: Judgement, channel: str) -> str:
 
 def _sizes(d: Diagnosis, fit: Fit) -> str:
     rmse = _heldout_rmse(d, fit)
-    return ", ".join(f"{c} {rmse[c]:.3g} {UNITS.get(c, '')} (noise {d.problem.sigma[c]:.2g})" for c in d.problem.channels)
+    return ", ".join(
+        f"{c} {rmse[c]:.3g} {UNITS.get(c, '')} (noise {d.problem.sigma[c]:.2g})" for c in d.problem.channels
+    )
 
 
 def verdict(d: Diagnosis) -> str:
@@ -124,35 +142,51 @@ def verdict(d: Diagnosis) -> str:
             j = decision.rejected
             tail = f"; best candidate {j.fit.name} gains {j.score.combined_gain:.3f} but {'; '.join(j.reasons())}"
         elif best is not None:
-            tail = (f"; best candidate {best.fit.name} gains {best.score.combined_gain:.3f} (a cause needs "
-                    f"{MIN_GAIN:.2f} with its 95 % CI above 0 and the BIC down by 10)")
+            tail = (
+                f"; best candidate {best.fit.name} gains {best.score.combined_gain:.3f} (a cause needs "
+                f"{MIN_GAIN:.2f} with its 95 % CI above 0 and the BIC down by 10)"
+            )
         else:
             tail = ""
-        return (f"no cause named: the calibrated model explains the data to within its noise (held-out RMSE "
-                f"{_sizes(d, d.baseline)}){tail}{bounds}")
+        return (
+            f"no cause named: the calibrated model explains the data to within its noise (held-out RMSE "
+            f"{_sizes(d, d.baseline)}){tail}{bounds}"
+        )
     if decision.cause == "unexplained":
         left = ", ".join(decision.left_structure) or "the residual"
         if decision.rejected is not None:
             j = decision.rejected
             channel = max(p.channels, key=lambda c: j.score.gain[c])
-            looks = (f"it looks like {_phrase(j, channel)} ({j.fit.name} gains {j.score.combined_gain:.2f}), but "
-                     f"{'; '.join(j.reasons())}")
+            looks = (
+                f"it looks like {_phrase(j, channel)} ({j.fit.name} gains {j.score.combined_gain:.2f}), but "
+                f"{'; '.join(j.reasons())}"
+            )
         else:
             looks = "no catalog effect gains significantly on the held-out units"
         found = d.discovered.get("terms") if d.discovered else None
-        discovered = (f"; sparse regression finds {d.discovered['equation']} (held-out gain "
-                      f"{d.discovered['gain'][d.discovered['channel']]:.2f}), which resembles "
-                      f"{found[0]['resembles']}") if found else ""
-        return (f"unexplained: structure is left in {left} (held-out RMSE {_sizes(d, d.baseline)}); "
-                f"{looks}{discovered}{bounds}")
+        discovered = (
+            (
+                f"; sparse regression finds {d.discovered['equation']} (held-out gain "
+                f"{d.discovered['gain'][d.discovered['channel']]:.2f}), which resembles "
+                f"{found[0]['resembles']}"
+            )
+            if found
+            else ""
+        )
+        return (
+            f"unexplained: structure is left in {left} (held-out RMSE {_sizes(d, d.baseline)}); "
+            f"{looks}{discovered}{bounds}"
+        )
     j = d.extended_judgement
     fit, s = j.fit, j.score
     channel = max(credited_channels(p, fit), key=lambda c: s.gain[c])
     numbers = ", ".join(f"{k} = {v:.3g}" for k, v in fit.params.items() if not isinstance(v, str))
     lo, hi = s.gain_ci95[channel]
     unit = UNITS.get(channel, "")
-    return (f"{_phrase(j, channel)}: {fit.name}, {numbers}; held-out {channel} RMSE {baseline_rmse[channel]:.3g} → "
-            f"{s.rmse[channel]:.3g} {unit} (gain {s.gain[channel]:.2f}, 95 % CI {lo:.2f}–{hi:.2f}){bounds}")
+    return (
+        f"{_phrase(j, channel)}: {fit.name}, {numbers}; held-out {channel} RMSE {baseline_rmse[channel]:.3g} → "
+        f"{s.rmse[channel]:.3g} {unit} (gain {s.gain[channel]:.2f}, 95 % CI {lo:.2f}–{hi:.2f}){bounds}"
+    )
 
 
 def plot(d: Diagnosis, path: str | Path) -> Path:
@@ -194,8 +228,12 @@ def plot(d: Diagnosis, path: str | Path) -> Path:
     ranking = figure.add_subplot(grid[rows, :])
     labels = [j.fit.name + ("" if j.credible else " (not credible)") for j in d.candidates]
     gains = [j.score.combined_gain for j in d.candidates]
-    errors = np.array([[j.score.combined_gain - j.score.combined_ci95[0], j.score.combined_ci95[1] - j.score.combined_gain]
-                       for j in d.candidates]).T
+    errors = np.array(
+        [
+            [j.score.combined_gain - j.score.combined_ci95[0], j.score.combined_ci95[1] - j.score.combined_gain]
+            for j in d.candidates
+        ]
+    ).T
     colors = ["C0" if j.fit.name == d.extended.name else "0.6" if j.credible else "0.85" for j in d.candidates]
     ranking.bar(range(len(labels)), gains, yerr=errors if len(labels) else None, color=colors, capsize=3)
     ranking.axhline(MIN_GAIN, color="C3", ls="--", lw=1, label=f"needed to name a cause ({MIN_GAIN:.2f})")

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <cstddef>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -78,9 +78,15 @@ ElongationTrajectory bench() { return thesis_protocol(0.05, 2.5e-3, 2, 0.1, 2.0)
 }  // namespace
 
 TEST_CASE("catalog: holds the nine effects of DESIGN.md", "[effects][catalog]") {
-  const std::vector<std::string> expected{"bladder_viscoelasticity", "dead_volume", "fiber_compliance",
-                                          "fixture_slack", "heat_transfer", "leak",
-                                          "sensor_lag", "sensor_offset", "time_skew"};
+  const std::vector<std::string> expected{"bladder_viscoelasticity",
+                                          "dead_volume",
+                                          "fiber_compliance",
+                                          "fixture_slack",
+                                          "heat_transfer",
+                                          "leak",
+                                          "sensor_lag",
+                                          "sensor_offset",
+                                          "time_skew"};
   CHECK(EffectCatalog::builtin().names() == expected);
   for (const std::string& name : expected) {
     const EffectPtr e = EffectCatalog::builtin().make(name);
@@ -125,8 +131,8 @@ TEST_CASE("catalog: realistic inside plausible, plausible reachable by the fit, 
 
 TEST_CASE("catalog: measurement effects change only the channels they name", "[effects][catalog]") {
   const Measurement truth = measure(MuscleParams(), table_c2_90(), bench(), {});
-  for (const std::string& spec : {"sensor_lag:channel=pressure_kPa,time_constant_s=2",
-                                  "time_skew:channel=force_N,offset_s=0.7", "sensor_offset:offset_kPa=3,gain=1.02"}) {
+  for (const char* spec : {"sensor_lag:channel=pressure_kPa,time_constant_s=2",
+                           "time_skew:channel=force_N,offset_s=0.7", "sensor_offset:offset_kPa=3,gain=1.02"}) {
     INFO(spec);
     const EffectPtr e = effect(spec);
     CHECK(e->stage() == EffectStage::measurement);
@@ -140,8 +146,8 @@ TEST_CASE("catalog: measurement effects change only the channels they name", "[e
       CHECK((read.channel(channel) != original.channel(channel)) == (channel == changed.front()));
     }
   }
-  for (const std::string& name : {"heat_transfer", "dead_volume", "leak", "bladder_viscoelasticity",
-                                  "fiber_compliance", "fixture_slack"}) {
+  for (const char* name :
+       {"heat_transfer", "dead_volume", "leak", "bladder_viscoelasticity", "fiber_compliance", "fixture_slack"}) {
     CHECK(effect(name)->channels_changed().empty());  // every channel
     CHECK(effect(name)->stage() != EffectStage::measurement);
   }
@@ -312,7 +318,8 @@ TEST_CASE("catalog: effects combine, each at its stage and in order", "[effects]
     MuscleParams params;
     effect(specs[0])->apply_to_params(params);
     const ElongationTrajectory crosshead = bench();
-    const ElongationTrajectory muscle(crosshead.time(), effect(specs[1])->apply_to_elongation(crosshead.time(), crosshead.elongation()));
+    const ElongationTrajectory muscle(crosshead.time(),
+                                      effect(specs[1])->apply_to_elongation(crosshead.time(), crosshead.elongation()));
     const SimulationResult r = precise_simulator().run(MuscleModel(params, table_c2_90()), muscle);
     Measurement by_hand;
     by_hand.time_s = r.time_s;
@@ -334,8 +341,10 @@ TEST_CASE("catalog: effects combine, each at its stage and in order", "[effects]
     std::vector<double> time;
     for (int k = 0; k <= 60; ++k) time.push_back(k);
     const ElongationTrajectory still(time, std::vector<double>(time.size(), 0.0));
-    const Measurement a = measure(MuscleParams(), table_c2_90(), still, {"dead_volume:volume_fraction=0.3", "leak:time_constant_s=30"});
-    const Measurement b = measure(MuscleParams(), table_c2_90(), still, {"leak:time_constant_s=30", "dead_volume:volume_fraction=0.3"});
+    const Measurement a =
+        measure(MuscleParams(), table_c2_90(), still, {"dead_volume:volume_fraction=0.3", "leak:time_constant_s=30"});
+    const Measurement b =
+        measure(MuscleParams(), table_c2_90(), still, {"leak:time_constant_s=30", "dead_volume:volume_fraction=0.3"});
     CHECK(identical(a, b));
     // The orifice lets out mass in proportion to the gauge pressure and the whole gas volume,
     // hose included, so at a fixed length the gauge pressure decays as exp(-t/tau) still.
@@ -347,10 +356,10 @@ TEST_CASE("catalog: effects combine, each at its stage and in order", "[effects]
 
   SECTION("two on one channel apply in the order given") {
     const Measurement truth = measure(MuscleParams(), table_c2_90(), bench(), {});
-    const Measurement skew_then_offset =
-        measure(MuscleParams(), table_c2_90(), bench(), {"time_skew:offset_s=1", "sensor_offset:offset_kPa=5,gain=1.1"});
-    const Measurement offset_then_skew =
-        measure(MuscleParams(), table_c2_90(), bench(), {"sensor_offset:offset_kPa=5,gain=1.1", "time_skew:offset_s=1"});
+    const Measurement skew_then_offset = measure(MuscleParams(), table_c2_90(), bench(),
+                                                 {"time_skew:offset_s=1", "sensor_offset:offset_kPa=5,gain=1.1"});
+    const Measurement offset_then_skew = measure(MuscleParams(), table_c2_90(), bench(),
+                                                 {"sensor_offset:offset_kPa=5,gain=1.1", "time_skew:offset_s=1"});
     Measurement expected = truth;
     effect("time_skew:offset_s=1")->apply_to_measurement(expected);
     effect("sensor_offset:offset_kPa=5,gain=1.1")->apply_to_measurement(expected);

@@ -26,7 +26,8 @@ inline EffectPtr effect(const std::string& spec) { return EffectCatalog::builtin
 
 /// The closed integral of y dx along samples [first, last] (trapezoids): the area of a loop
 /// that the samples trace, positive when y is higher while x increases.
-inline double loop_area(const std::vector<double>& x, const std::vector<double>& y, std::size_t first, std::size_t last) {
+inline double loop_area(const std::vector<double>& x, const std::vector<double>& y, std::size_t first,
+                        std::size_t last) {
   double area = 0.0;
   for (std::size_t k = first; k < last; ++k) area += 0.5 * (y[k] + y[k + 1]) * (x[k + 1] - x[k]);
   return area;
@@ -58,8 +59,9 @@ inline bool identical(const std::vector<double>& a, const std::vector<double>& b
 
 /// Every channel of two measurements bit for bit.
 inline bool identical(const Measurement& a, const Measurement& b) {
-  return identical(a.time_s, b.time_s) && identical(a.elongation_m, b.elongation_m) && identical(a.force_N, b.force_N) &&
-         identical(a.pressure_kPa, b.pressure_kPa) && identical(a.temperature_C, b.temperature_C);
+  return identical(a.time_s, b.time_s) && identical(a.elongation_m, b.elongation_m) &&
+         identical(a.force_N, b.force_N) && identical(a.pressure_kPa, b.pressure_kPa) &&
+         identical(a.temperature_C, b.temperature_C);
 }
 
 /// A simulator tight enough that its global error (~1e-9 relative over these runs) stays
@@ -72,8 +74,8 @@ inline Simulator precise_simulator() {
 }
 
 /// The simulated bench test with `specs` parsed from text.
-inline Measurement measure(const MuscleParams& params, const InitialState& initial, const ElongationTrajectory& crosshead,
-                           const std::vector<std::string>& specs) {
+inline Measurement measure(const MuscleParams& params, const InitialState& initial,
+                           const ElongationTrajectory& crosshead, const std::vector<std::string>& specs) {
   std::vector<EffectPtr> effects;
   for (const std::string& spec : specs) effects.push_back(effect(spec));
   return simulate_measurement(params, initial, crosshead, effects, precise_simulator());

@@ -29,9 +29,10 @@ double pressure_loop_area(const std::vector<std::string>& specs, double speed_m_
 
 }  // namespace
 
-TEST_CASE("heat_transfer: the pressure-elongation loop opens, grows with rate while the cycle is slow against tau, and "
-          "closes again when it is fast",
-          "[effects][heat_transfer]") {
+TEST_CASE(
+    "heat_transfer: the pressure-elongation loop opens, grows with rate while the cycle is slow against tau, and "
+    "closes again when it is fast",
+    "[effects][heat_transfer]") {
   const std::vector<std::string> heat{"heat_transfer:time_constant_s=2"};
   // Isothermal baseline: the pressure is a function of the volume alone, so the loop has no area
   // beyond rounding (compared with the loop's bounding box, ~200 kPa x 0.05 m).
@@ -45,7 +46,8 @@ TEST_CASE("heat_transfer: the pressure-elongation loop opens, grows with rate wh
   const double faster = pressure_loop_area(heat, 5e-3);
   const double near_peak = pressure_loop_area(heat, 10e-3);
   const double fast = pressure_loop_area(heat, 100e-3);
-  INFO("loop areas [kPa m]: 2.5 mm/s " << slow << ", 5 mm/s " << faster << ", 10 mm/s " << near_peak << ", 100 mm/s " << fast);
+  INFO("loop areas [kPa m]: 2.5 mm/s " << slow << ", 5 mm/s " << faster << ", 10 mm/s " << near_peak << ", 100 mm/s "
+                                       << fast);
   CHECK(slow > 0.0);  // pressure higher while stretching (compressing) than while returning
   CHECK(faster > slow);
   CHECK(near_peak > faster);

@@ -64,7 +64,8 @@ TEST_CASE("fixture_slack: the force stays flat for the slack's travel after each
     CHECK_REL(m.force_N[k], baseline.force_N[k], 1e-9);
   }
   // The peak force is the baseline's for a stroke shorter by the slack.
-  const Measurement shorter = measure(MuscleParams(), table_c2_90(), thesis_protocol(stroke - slack, 2.5e-3, 2, 0.1), {});
+  const Measurement shorter =
+      measure(MuscleParams(), table_c2_90(), thesis_protocol(stroke - slack, 2.5e-3, 2, 0.1), {});
   CHECK_REL(max_of(m.force_N), max_of(shorter.force_N), 1e-12);
 }
 
@@ -78,7 +79,8 @@ struct Hysteresis {
   double pressure_diff;  ///< largest |p - p_baseline| [kPa]
 };
 
-Hysteresis viscoelastic_hysteresis(const MuscleParams& params, const InitialState& initial, double stroke, double speed) {
+Hysteresis viscoelastic_hysteresis(const MuscleParams& params, const InitialState& initial, double stroke,
+                                   double speed) {
   const ElongationTrajectory crosshead = thesis_protocol(stroke, speed, 2, stroke / speed / 200.0);
   const Measurement m = measure(params, initial, crosshead, {"bladder_viscoelasticity:time_constant_s=2,strength=1"});
   const Measurement baseline = measure(params, initial, crosshead, {});
@@ -87,15 +89,17 @@ Hysteresis viscoelastic_hysteresis(const MuscleParams& params, const InitialStat
   h.viscous_area = loop_area(m.elongation_m, m.force_N, last - 400, last) -
                    loop_area(baseline.elongation_m, baseline.force_N, last - 400, last);
   h.work_scale = max_of(baseline.force_N) * stroke;
-  for (std::size_t k = 0; k <= last; ++k) h.pressure_diff = std::max(h.pressure_diff, std::abs(m.pressure_kPa[k] - baseline.pressure_kPa[k]));
+  for (std::size_t k = 0; k <= last; ++k)
+    h.pressure_diff = std::max(h.pressure_diff, std::abs(m.pressure_kPa[k] - baseline.pressure_kPa[k]));
   return h;
 }
 
 }  // namespace
 
-TEST_CASE("bladder_viscoelasticity: force hysteresis grows with rate, is larger relative to force at low pressure, and "
-          "leaves the pressure alone",
-          "[effects][bladder_viscoelasticity]") {
+TEST_CASE(
+    "bladder_viscoelasticity: force hysteresis grows with rate, is larger relative to force at low pressure, and "
+    "leaves the pressure alone",
+    "[effects][bladder_viscoelasticity]") {
   // High pressure: PAM 2, table C.3's 95 % test (0.165 m, 298.40 kPa, 57.3 mm).
   // Low pressure: PAM 1 (deflated 0.223 m, table 3.4) at 35 kPa, 0.185 m, 36.1 mm (tables 3.4-3.5).
   MuscleParams pam1;
@@ -129,7 +133,7 @@ TEST_CASE("bladder_viscoelasticity: force hysteresis grows with rate, is larger 
     relative_at_2_5[i++] = slow.viscous_area / slow.work_scale;
   }
   INFO("viscous hysteresis / (peak force x stroke): high pressure " << relative_at_2_5[0] << ", low pressure "
-                                                                   << relative_at_2_5[1]);
+                                                                    << relative_at_2_5[1]);
   CHECK(relative_at_2_5[1] > relative_at_2_5[0]);
 }
 
@@ -153,7 +157,8 @@ TEST_CASE("fiber_compliance: the braid is shorter by F Lym / (N EA), and the mus
       // The fibers' tensions sum to the force; each stretches by T Lym / EA.
       CHECK_REL(length - out.braid_length_m, out.forces.total * lym / (fibers * ea), 1e-9);
       // The same force is what the rigid muscle makes at the braid's length.
-      CHECK_REL(out.forces.total, rigid_model.evaluate(out.braid_length_m, 0.0, rigid_model.initial()).forces.total, 1e-12);
+      CHECK_REL(out.forces.total, rigid_model.evaluate(out.braid_length_m, 0.0, rigid_model.initial()).forces.total,
+                1e-12);
     }
   }
 

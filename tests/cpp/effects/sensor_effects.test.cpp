@@ -35,7 +35,8 @@ Measurement synthetic(std::size_t n, double dt, F f) {
 
 }  // namespace
 
-TEST_CASE("sensor_lag: the response to a ramp is the analytic one, and lags by tau once settled", "[effects][sensor_lag]") {
+TEST_CASE("sensor_lag: the response to a ramp is the analytic one, and lags by tau once settled",
+          "[effects][sensor_lag]") {
   const double tau = 5.0;
   const double rate = 0.05;  // [degC/s]
   const Measurement truth = synthetic(601, 0.1, [&](double t) { return 20.0 + rate * t; });

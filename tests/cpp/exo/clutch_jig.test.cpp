@@ -28,7 +28,7 @@ TEST_CASE("the clutch: switching needs the full travel, and turning back undoes 
   Clutch clutch(p, ClutchMode::engaged);
   CHECK(clutch.step(120.0) == ClutchMode::engaged);
   CHECK(clutch.step(115.0) == ClutchMode::engaged);
-  CHECK(clutch.stretch_deg(115.0) == 5.0);  // the ratchet holds the bar at 120 deg
+  CHECK(clutch.stretch_deg(115.0) == 5.0);           // the ratchet holds the bar at 120 deg
   CHECK(clutch.step(125.0) == ClutchMode::engaged);  // plantarflexion slips the ratchet
   CHECK(clutch.reference_deg() == 125.0);
   CHECK(clutch.step(140.0) == ClutchMode::releasing);
@@ -64,7 +64,8 @@ TEST_CASE("a well-fitted device engages before heel strike and releases after to
   CHECK(*run.engage_percent > cycle.toe_off_percent);
   CHECK(run.mode.front() == static_cast<int>(ClutchMode::engaged));
   // Figure 4.12 C: released at push-off, after toe-off and by the most plantarflexed angle.
-  const auto most = std::max_element(cycle.ankle_angle_deg.begin(), cycle.ankle_angle_deg.end()) - cycle.ankle_angle_deg.begin();
+  const auto most =
+      std::max_element(cycle.ankle_angle_deg.begin(), cycle.ankle_angle_deg.end()) - cycle.ankle_angle_deg.begin();
   CHECK(*run.release_percent >= cycle.toe_off_percent);
   CHECK(*run.release_percent <= cycle.percent[static_cast<std::size_t>(most)]);
   // It releases at the first sample past release screw + travel (the 7 deg of section 4.4).
@@ -90,9 +91,11 @@ TEST_CASE("chapter 5: with the trials' ankle range and play the clutch never rel
   const DeviceRun run = run_device(trial, linkage, screws, play, LinearSpring{}, 3);
   CHECK(never(run.release_percent));
   CHECK(never(run.engage_percent));
-  CHECK(std::all_of(run.mode.begin(), run.mode.end(), [](int m) { return m == static_cast<int>(ClutchMode::engaged); }));
+  CHECK(
+      std::all_of(run.mode.begin(), run.mode.end(), [](int m) { return m == static_cast<int>(ClutchMode::engaged); }));
   const double stretch = *std::max_element(run.elongation_m.begin(), run.elongation_m.end());
-  CHECK_REL(stretch, linkage.elongation(linkage.params().block_angle_deg + 15.0 - 8.0), 1e-9);  // engaged over the 7 deg
+  CHECK_REL(stretch, linkage.elongation(linkage.params().block_angle_deg + 15.0 - 8.0),
+            1e-9);  // engaged over the 7 deg
   CHECK(stretch <= 0.02);
   // Play alone does it too, if it eats the release travel: the full range less 16 deg of play
   // peaks below release screw + travel.
@@ -113,7 +116,8 @@ TEST_CASE("compliance: the straps give by c x torque, and the spring stretches l
   PlayParams play;
   play.compliance_deg_per_Nm = 0.1;
   const DeviceRun soft = run_device(cycle, linkage, screws, play, spring, 3);
-  const auto k = static_cast<std::size_t>(std::max_element(soft.torque_Nm.begin(), soft.torque_Nm.end()) - soft.torque_Nm.begin());
+  const auto k =
+      static_cast<std::size_t>(std::max_element(soft.torque_Nm.begin(), soft.torque_Nm.end()) - soft.torque_Nm.begin());
   CHECK_REL(soft.device_angle_deg[k] - soft.ankle_angle_deg[k], 0.1 * soft.torque_Nm[k], 1e-6);
   CHECK(*std::max_element(soft.elongation_m.begin(), soft.elongation_m.end()) <
         *std::max_element(rigid.elongation_m.begin(), rigid.elongation_m.end()));
@@ -126,7 +130,8 @@ TEST_CASE("the ideal spring inverts the forward model", "[exo][ideal]") {
   const IdealSpring ideal = ideal_spring(run, cycle.toe_off_percent, 0.25);
   // Driving the device with the ideal spring itself (force against elongation on its
   // stretching branch) gives back 25 % of the biological moment there.
-  std::vector<double> e(ideal.elongation_m.begin(), ideal.elongation_m.begin() + static_cast<long>(ideal.loading_samples));
+  std::vector<double> e(ideal.elongation_m.begin(),
+                        ideal.elongation_m.begin() + static_cast<long>(ideal.loading_samples));
   std::vector<double> f(ideal.force_N.begin(), ideal.force_N.begin() + static_cast<long>(ideal.loading_samples));
   auto law = [&](double x) {
     for (std::size_t i = 1; i < e.size(); ++i) {
@@ -158,7 +163,8 @@ TEST_CASE("jig conversion (G.4) agrees with the forward linkage on the same geom
     // Same triangle: the jig's theta is the linkage's heel-bar angle.
     CHECK_REL(start.muscle_length_m, linkage.pose(row.angle_deg).spring_length_m, 1e-12);
     CHECK_REL(end.muscle_length_m, linkage.pose(end.heel_bar_angle_deg).spring_length_m, 1e-12);
-    CHECK_REL(end.heel_bar_angle_deg, row.angle_deg + std::asin(row.vertical_displacement_m / 0.3) * 180.0 / 3.14159265358979323846, 1e-12);
+    CHECK_REL(end.heel_bar_angle_deg,
+              row.angle_deg + std::asin(row.vertical_displacement_m / 0.3) * 180.0 / 3.14159265358979323846, 1e-12);
     // The moment the muscle puts on the heel bar is its force times the linkage's arm...
     CHECK_REL(end.ankle_moment_Nm, end.muscle_force_N * linkage.pose(end.heel_bar_angle_deg).moment_arm_m, 1e-9);
     // ...and the moment balance of the shank (figure 4.17) makes it the crosshead force times
@@ -170,7 +176,8 @@ TEST_CASE("jig conversion (G.4) agrees with the forward linkage on the same geom
     CHECK_REL(start.muscle_length_m, row.muscle_length_m, 0.026);
   }
   // Section 4.6.2: 15 deg of rotation moves the free end about 8 cm (0.3 sin 15 deg = 7.8 cm).
-  const JigSample fifteen = Jig(linkage_params, JigParams{}).convert(0.3 * std::sin(15.0 * 3.14159265358979323846 / 180.0), 0.0);
+  const JigSample fifteen =
+      Jig(linkage_params, JigParams{}).convert(0.3 * std::sin(15.0 * 3.14159265358979323846 / 180.0), 0.0);
   CHECK_REL(fifteen.rotation_deg, 15.0, 1e-12);
   CHECK_THROWS_WITH(Jig(linkage_params, JigParams{}).convert(0.31, 0.0), Catch::Contains("upright_length_m"));
   JigParams bad;
@@ -181,13 +188,15 @@ TEST_CASE("jig conversion (G.4) agrees with the forward linkage on the same geom
 TEST_CASE("the muscle as a static spring: zero force at its free length, Boyle's law", "[exo][spring]") {
   const MuscleBuild build;
   const GasParams gas;
-  const FreeInflation free = free_inflation(BraidGeometry(build), BladderLaw::thesis(), gas.atmospheric_pressure_Pa, 70e3);
+  const FreeInflation free =
+      free_inflation(BraidGeometry(build), BladderLaw::thesis(), gas.atmospheric_pressure_Pa, 70e3);
   const PamStaticSpring pam(build, BladderLaw::thesis(), gas, free.length_m, 70e3);
   CHECK(std::abs(pam(0.0)) < 1e-6);  // free_inflation's length is where the force is zero
   const BraidGeometry geometry(build);
   const double v0 = geometry.shape(free.length_m).gas_volume;
   const double v = geometry.shape(free.length_m + 0.03).gas_volume;
-  CHECK_REL(pam.gauge_pressure(0.03) + gas.atmospheric_pressure_Pa, (70e3 + gas.atmospheric_pressure_Pa) * v0 / v, 1e-12);
+  CHECK_REL(pam.gauge_pressure(0.03) + gas.atmospheric_pressure_Pa, (70e3 + gas.atmospheric_pressure_Pa) * v0 / v,
+            1e-12);
   CHECK(pam(0.03) > pam(0.02));
   CHECK_THROWS_AS(pam(1.0), InvalidInput);  // beyond the braid
 }

@@ -22,8 +22,8 @@ double hand_length(const LinkageParams& p, double psi_deg) {
 
 TEST_CASE("Winter's table as printed in G.3 and its gait events", "[exo][gait]") {
   const GaitData data = winter_appendix_g3();
-  REQUIRE(data.size() == 84);  // G.3 declares zeros(1,84)
-  CHECK(data.leg_deg()[0] == 107.8);       // first value of legangleraw
+  REQUIRE(data.size() == 84);                  // G.3 declares zeros(1,84)
+  CHECK(data.leg_deg()[0] == 107.8);           // first value of legangleraw
   CHECK(data.ankle_moment_Nm()[35] == -89.8);  // the stance peak of anklemomentraw
   const GaitEvents events = detect_gait_events(data);
   // By eye from the printed moment: it turns dorsiflexor at frame 4 (-1.7 -> 4.6) and the
@@ -45,8 +45,8 @@ TEST_CASE("Winter's table as printed in G.3 and its gait events", "[exo][gait]")
   }
 
   const GaitCycle cycle = resample_cycle(data, events, 138, 86.0);
-  CHECK(cycle.leg_deg[0] == data.leg_deg()[3]);           // 0 % is frame 4
-  CHECK_REL(cycle.leg_deg[2], data.leg_deg()[4], 1e-12);  // 2 samples per frame: 1.45 % is frame 5
+  CHECK(cycle.leg_deg[0] == data.leg_deg()[3]);              // 0 % is frame 4
+  CHECK_REL(cycle.leg_deg[2], data.leg_deg()[4], 1e-12);     // 2 samples per frame: 1.45 % is frame 5
   CHECK_REL(cycle.moment_Nm[2], -8.3 * 86.0 / 56.7, 1e-12);  // frame 5's 8.3 N m, sign flipped, scaled to 86 kg
   CHECK_REL(cycle.ankle_angle_deg[0], 110.7 - 175.5 + 180.0, 1e-12);  // G.3 testangle at frame 4
   CHECK_THROWS_AS(resample_cycle(data, GaitEvents{20.0, 60.0, 69.0}, 100, 86.0), InvalidInput);  // runs past frame 84
@@ -96,7 +96,8 @@ TEST_CASE("the lab-frame script and the shank-frame linkage agree", "[exo][linka
   const double fha = (data.foot_deg()[11] * kDeg + pi) - (data.leg_deg()[11] * kDeg + pi - pi + 100.0 * kDeg);
   for (std::size_t row : {5u, 20u, 35u, 41u, 60u}) {  // 1-based rows
     const std::size_t i = row - 1;
-    const double hip = data.hip_deg()[i] * kDeg + pi, leg = data.leg_deg()[i] * kDeg + pi, foot = data.foot_deg()[i] * kDeg + pi;
+    const double hip = data.hip_deg()[i] * kDeg + pi, leg = data.leg_deg()[i] * kDeg + pi,
+                 foot = data.foot_deg()[i] * kDeg + pi;
     const double kx = 500.0 + row / 20.0 + std::cos(hip) * 0.42, ky = 500.0 + std::sin(hip) * 0.42;
     const double ax = kx + std::cos(leg) * 0.425, ay = ky + std::sin(leg) * 0.425;
     const double ux = kx + std::cos(leg) * (0.425 - 0.3), uy = ky + std::sin(leg) * (0.425 - 0.3);
@@ -137,7 +138,10 @@ TEST_CASE("chapter 4 kinematics: appendix G.3's parameters and the text's figure
     // 56.7 kg, where the arm is shortest; row 36's -89.8 N m meets a longer arm) and reaches
     // 953 N: within 5 %.
     const double peak = *std::max_element(s.ideal_force_N.begin(), s.ideal_force_N.end());
-    CHECK_REL(peak, 89.7 * 86.0 / 56.7 / Linkage(p).pose(100.0 + data.ankle_angle_deg(11) - data.ankle_angle_deg(34)).moment_arm_m, 1e-12);
+    CHECK_REL(
+        peak,
+        89.7 * 86.0 / 56.7 / Linkage(p).pose(100.0 + data.ankle_angle_deg(11) - data.ankle_angle_deg(34)).moment_arm_m,
+        1e-12);
     CHECK_REL(peak, 1000.0, 0.05);
   }
   SECTION("block angle 70 deg reproduces figures 4.4 and 4.5 within 10 %") {

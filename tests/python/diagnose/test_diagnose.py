@@ -25,8 +25,13 @@ def leak_dataset(tmp_path_factory):
 
 
 def run_pamkit(*arguments):
-    return subprocess.run([sys.executable, "-m", "pamkit", *map(str, arguments)], capture_output=True, text=True,
-                          env=os.environ.copy(), timeout=300)
+    return subprocess.run(
+        [sys.executable, "-m", "pamkit", *map(str, arguments)],
+        capture_output=True,
+        text=True,
+        env=os.environ.copy(),
+        timeout=300,
+    )
 
 
 def test_report_has_the_design_keys_and_names_the_leak(leak_dataset, tmp_path):
@@ -34,7 +39,7 @@ def test_report_has_the_design_keys_and_names_the_leak(leak_dataset, tmp_path):
     done = run_pamkit("diagnose", leak_dataset.experiment, "--json", report_path, "--plot", plot_path)
     assert done.returncode == 0, done.stderr
     assert "leak" in done.stdout and "gain" in done.stdout  # the one-line verdict
-    assert "calibrating the baseline" in done.stderr        # progress on stderr
+    assert "calibrating the baseline" in done.stderr  # progress on stderr
     report = json.loads(report_path.read_text())
     assert DESIGN_KEYS <= set(report)
     assert report["cause"] == "leak"
@@ -65,8 +70,10 @@ def test_python_api_returns_the_diagnosis(leak_dataset):
 def write(tmp_path, csv_text):
     (tmp_path / "run.csv").write_text(csv_text)
     path = tmp_path / "run.toml"
-    path.write_text("[muscle]\nlength_m = 0.225\n[test]\ninflation_pressure_kPa = 200\nambient_temperature_C = 22\n"
-                    'data = "run.csv"\n')
+    path.write_text(
+        "[muscle]\nlength_m = 0.225\n[test]\ninflation_pressure_kPa = 200\nambient_temperature_C = 22\n"
+        'data = "run.csv"\n'
+    )
     return path
 
 
@@ -82,7 +89,11 @@ def triangle_csv(cycles, columns="time_s,elongation_m,force_N", value="{f}", pre
 
 
 def test_too_few_cycles_is_named(tmp_path):
-    with pytest.raises(ExperimentError, match=r"run.csv: column elongation_m: found 3 stretch cycle\(s\); diagnosis fits on some and holds others out, so it needs at least 4"):
+    with pytest.raises(
+        ExperimentError,
+        match=r"run.csv: column elongation_m: found 3 stretch cycle\(s\); "
+        "diagnosis fits on some and holds others out, so it needs at least 4",
+    ):
         diagnose(write(tmp_path, triangle_csv(3)))
 
 
@@ -94,8 +105,10 @@ def test_missing_channels_are_named(tmp_path):
 
 def test_units_that_cannot_be_right_are_named(tmp_path):
     # Pressure written in pascals: row 2 of the file (the first data row), column 4.
-    path = write(tmp_path, triangle_csv(5, columns="time_s,elongation_m,force_N,pressure_kPa", value="{f},{p}",
-                                        pressure=200000.0))
+    path = write(
+        tmp_path,
+        triangle_csv(5, columns="time_s,elongation_m,force_N,pressure_kPa", value="{f},{p}", pressure=200000.0),
+    )
     with pytest.raises(ExperimentError, match=r"run.csv:2: column 4 \(pressure_kPa\) = 200000 .* pascals"):
         diagnose(path)
 

@@ -14,8 +14,8 @@ from pamkit.diagnose.discover import DiscoveryError, discover, feature_library
 from pamkit.diagnose.discovered import discovered_effect, load_effect, save_effect
 from pamkit.effects import catalog as builtin_catalog
 
-SIGMA_N = 2.0     # white load-cell noise of the stretch record [N]
-COULOMB = 0.3     # N/kPa: the friction hidden in it, 0.3 N per kPa (60 N at 200 kPa)
+SIGMA_N = 2.0  # white load-cell noise of the stretch record [N]
+COULOMB = 0.3  # N/kPa: the friction hidden in it, 0.3 N per kPa (60 N at 200 kPa)
 
 
 def stretch_record(n=10_000, cycles=10, seed=0):
@@ -64,15 +64,39 @@ def coulomb_case():
     friction = by_name(features, "tanh(v/v0)*p")
     residual = COULOMB * friction + np.random.default_rng(1).normal(0, SIGMA_N, time_s.size)
     result = discover(features, residual, SIGMA_N, fit, held, half_cycle, "force_N", "N")
-    return {"time_s": time_s, "elongation_m": elongation_m, "pressure_kPa": pressure_kPa, "features": features,
-            "friction": friction, "residual": residual, "fit": fit, "held": held, "half_cycle": half_cycle,
-            "result": result}
+    return {
+        "time_s": time_s,
+        "elongation_m": elongation_m,
+        "pressure_kPa": pressure_kPa,
+        "features": features,
+        "friction": friction,
+        "residual": residual,
+        "fit": fit,
+        "held": held,
+        "half_cycle": half_cycle,
+        "result": result,
+    }
 
 
 def test_the_library_holds_the_physical_terms_a_stretch_record_allows(coulomb_case):
     names = [term.name for term in coulomb_case["features"]]
-    assert names == ["offset", "tanh(v/v0)*p", "tanh(v/v0)", "dahl(x; xc)", "v", "|v|", "x", "x^2", "x^3", "p", "dp/dt",
-                     "sign(dp/dt)", "sign(dp/dt)*p", "t", "cycle"]
+    assert names == [
+        "offset",
+        "tanh(v/v0)*p",
+        "tanh(v/v0)",
+        "dahl(x; xc)",
+        "v",
+        "|v|",
+        "x",
+        "x^2",
+        "x^3",
+        "p",
+        "dp/dt",
+        "sign(dp/dt)",
+        "sign(dp/dt)*p",
+        "t",
+        "cycle",
+    ]
     # The smoothed derivative of the 10 µm encoder record follows the sinusoid's velocity
     # (peak 25 mm · 2π / 20 s = 7.85 mm/s) to within what the encoder's rounding leaves: white
     # noise of q / sqrt(12) through the derivative's weights (the quadratic's own error on a
@@ -147,8 +171,10 @@ def test_several_hidden_terms_are_found_with_their_units(coulomb_case):
     # Reported largest contribution first: friction (~70 N), stiffness (0.5 N/mm · ~30 mm), tare.
     assert [term["name"] for term in result["terms"]] == ["tanh(v/v0)*p", "x", "offset"]
     friction, stiffness, tare = (found[name]["coefficient"] for name in hidden)
-    assert result["equation"] == (f"force_N residual ≈ {friction:.3g} N/kPa · {found['tanh(v/v0)*p']['expression']}"
-                                  f" + {stiffness:.3g} N/mm · x + {tare:.3g} N")
+    assert result["equation"] == (
+        f"force_N residual ≈ {friction:.3g} N/kPa · {found['tanh(v/v0)*p']['expression']}"
+        f" + {stiffness:.3g} N/mm · x + {tare:.3g} N"
+    )
 
 
 def test_an_offset_is_not_taken_for_terms_of_positive_mean(coulomb_case):
@@ -299,8 +325,11 @@ def test_a_saved_effect_round_trips_and_adds_the_fitted_correction(coulomb_case,
     # Its coefficient is a parameter like any effect's, set from `--effect` text.
     halved = catalog.parse(f"discovered_force_N:c0={parameter.value / 2}")
     np.testing.assert_allclose(
-        pamkit.simulate_measurement(params, initial, crosshead, [halved]).force_N, without.force_N + expected / 2,
-        rtol=1e-12, atol=1e-9)
+        pamkit.simulate_measurement(params, initial, crosshead, [halved]).force_N,
+        without.force_N + expected / 2,
+        rtol=1e-12,
+        atol=1e-9,
+    )
     with pytest.raises(ValueError, match="discovered_force_N has no parameter 'c1'"):
         catalog.parse("discovered_force_N:c1=1")
 
@@ -329,7 +358,9 @@ def test_nothing_discovered_is_no_effect_and_a_bad_file_is_named(tmp_path):
     with pytest.raises(DiscoveryError, match=r"broken.json:3: not JSON"):
         load_effect(broken)
     other = tmp_path / "other.json"
-    other.write_text('{"format": "pamkit.discovered_effect", "version": 1, "channel": "force_N", '
-                     '"terms": [{"name": "creep", "expression": "c", "coefficient": 1, "unit": "N"}]}')
+    other.write_text(
+        '{"format": "pamkit.discovered_effect", "version": 1, "channel": "force_N", '
+        '"terms": [{"name": "creep", "expression": "c", "coefficient": 1, "unit": "N"}]}'
+    )
     with pytest.raises(DiscoveryError, match=r"other.json: discovered effect: terms\[0\].name = 'creep' is not"):
         load_effect(other)

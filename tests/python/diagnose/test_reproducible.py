@@ -26,9 +26,24 @@ def diagnose_with_threads(experiment, threads, report_path):
     environment = os.environ.copy()
     for variable in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
         environment[variable] = str(threads)
-    done = subprocess.run([sys.executable, "-m", "pamkit", "diagnose", str(experiment), "--threads", str(threads),
-                           "--json", str(report_path), "--quiet"],
-                          capture_output=True, text=True, env=environment, timeout=300)
+    done = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pamkit",
+            "diagnose",
+            str(experiment),
+            "--threads",
+            str(threads),
+            "--json",
+            str(report_path),
+            "--quiet",
+        ],
+        capture_output=True,
+        text=True,
+        env=environment,
+        timeout=300,
+    )
     assert done.returncode == 0, done.stderr
     report = json.loads(report_path.read_text())
     assert TIMING_KEYS <= set(report)  # the keys left out below exist: a rename would not hide a difference

@@ -24,11 +24,11 @@ from pamkit.cli import main as pamkit_main
 from pamkit.effects import catalog
 from pamkit.experiment import load_experiment, read_series
 from pamkit.instruments import (
+    TMP36,
     ArduinoLogger,
     ArduinoLoggerSettings,
     LoadCell,
     PressureTransducer,
-    TMP36,
     TensileMachine,
     TensileMachineSettings,
     merge_logs,
@@ -240,8 +240,9 @@ def test_force_in_the_file_has_the_load_cell_noise_stated_in_the_manifest(tmp_pa
 def test_load_cell_noise_and_resolution():
     settings = TensileMachineSettings(sample_rate_Hz=50.0, load_cell=LoadCell(noise_rms_N=1.5, resolution_N=0.2))
     t = np.linspace(0.0, 400.0, 11)
-    log = TensileMachine(settings).record(Truth(t, force_N=np.full(t.size, 300.0), elongation_m=t * 1e-4),
-                                          np.random.default_rng(3))
+    log = TensileMachine(settings).record(
+        Truth(t, force_N=np.full(t.size, 300.0), elongation_m=t * 1e-4), np.random.default_rng(3)
+    )
     assert log.time_s.size == 20001  # 400 s at 50 Hz, both ends included
     expected = math.sqrt(1.5**2 + 0.2**2 / 12)
     # The standard deviation of a standard deviation of n normal samples is sigma / sqrt(2 n): 0.5 %.
@@ -262,8 +263,12 @@ def test_logger_reads_the_adc_grid_and_the_appendix_b_calibration():
     t = np.linspace(0.0, 20.0, 201)
     truth = Truth(t, pressure_kPa=100.0 + 10.0 * t, temperature_C=23.0 + 0.1 * t)
     log = logger.record(truth, np.random.default_rng(2), 0.0, 20.0)
-    assert on_grid(pressure_counts(log.pressure_kPa, {"slope_psi_per_V": calibration.slope_psi_per_V,
-                                                      "intercept_psi": calibration.intercept_psi})).all()
+    assert on_grid(
+        pressure_counts(
+            log.pressure_kPa,
+            {"slope_psi_per_V": calibration.slope_psi_per_V, "intercept_psi": calibration.intercept_psi},
+        )
+    ).all()
     assert on_grid(temperature_counts(log.temperature_C)).all()
     np.testing.assert_array_equal(temperature_counts(log.temperature_C).round(), log.temperature_counts)
     # Readings follow the truth to within half a count plus the 2 mV noise (4 sigma).
@@ -290,15 +295,21 @@ def test_logger_clock_drift_shows_as_a_growing_skew_after_the_merge():
     # a hand synchronisation at the start, its reading at machine time t is the truth at
     # t / 1.01, i.e. late by t x 0.01 / 1.01. Noise-free sensors, and the default calibration,
     # which is the exact inverse of the nominal transducer (appendix G.2: 25 psi/V, -14 psi).
-    settings = ArduinoLoggerSettings(sample_rate_Hz=100.0, clock_offset_s=12.0, clock_drift_ppm=1e4,
-                                     pressure=PressureTransducer(noise_rms_V=0.0), temperature=TMP36(noise_rms_V=0.0))
+    settings = ArduinoLoggerSettings(
+        sample_rate_Hz=100.0,
+        clock_offset_s=12.0,
+        clock_drift_ppm=1e4,
+        pressure=PressureTransducer(noise_rms_V=0.0),
+        temperature=TMP36(noise_rms_V=0.0),
+    )
     logger = ArduinoLogger(settings)
     t = np.linspace(-2.0, 102.0, 105)
     slope_kPa_per_s = 2.0  # up to 252 kPa: inside the ADC's range (5 V is 111 psi, 765 kPa)
     truth = Truth(t, pressure_kPa=50.0 + slope_kPa_per_s * np.clip(t, 0, None))
     logger_log = logger.record(truth, np.random.default_rng(0), -1.0, 101.0)
     machine_log = TensileMachine(TensileMachineSettings(sample_rate_Hz=10.0)).record(
-        Truth(np.linspace(0.0, 100.0, 11)), np.random.default_rng(0))
+        Truth(np.linspace(0.0, 100.0, 11)), np.random.default_rng(0)
+    )
     merged = merge_logs(machine_log, logger_log, logger_clock_at_machine_zero_s=12.0)
     late = merged["time_s"] > 90.0
     expected = slope_kPa_per_s * merged["time_s"][late] * (1 - 1 / 1.01)  # about 1.9 kPa
@@ -345,14 +356,44 @@ def test_bad_effect_text_is_a_clear_error(tmp_path, capsys, spec, named):
 
 
 def test_cli_writes_the_three_files_and_exits_2_on_a_bad_spec(tmp_path):
-    ok = subprocess.run([sys.executable, "-m", "pamkit", "synth", "--effect", "dead_volume:volume_fraction=0.1",
-                         "--seed", "3", "-o", str(tmp_path / "dv")], capture_output=True, text=True)
+    ok = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pamkit",
+            "synth",
+            "--effect",
+            "dead_volume:volume_fraction=0.1",
+            "--seed",
+            "3",
+            "-o",
+            str(tmp_path / "dv"),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert ok.returncode == 0, ok.stderr
     assert sorted(p.name for p in (tmp_path / "dv").iterdir()) == ["experiment.csv", "experiment.toml", "manifest.json"]
-    assert json.loads((tmp_path / "dv" / "manifest.json").read_text())["effect"]["parameters"] == {"volume_fraction": 0.1}
+    assert json.loads((tmp_path / "dv" / "manifest.json").read_text())["effect"]["parameters"] == {
+        "volume_fraction": 0.1
+    }
     assert "volume_fraction" not in ok.stdout  # the truth is not printed
-    bad = subprocess.run([sys.executable, "-m", "pamkit", "synth", "--effect", "dead_volume:fraction=0.1",
-                          "--seed", "3", "-o", str(tmp_path / "bad")], capture_output=True, text=True)
+    bad = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pamkit",
+            "synth",
+            "--effect",
+            "dead_volume:fraction=0.1",
+            "--seed",
+            "3",
+            "-o",
+            str(tmp_path / "bad"),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert bad.returncode == 2
     assert "fraction" in bad.stderr and "volume_fraction" in bad.stderr
 

@@ -36,10 +36,20 @@ def test_the_rows_and_their_tests_are_the_thesis():
     # Table 3.6 as printed; the tests' conditions from tables C.2 and C.3 (transducer pressure at
     # inflation [kPa], maximum elongation [m], initial length [m]).
     assert [(r.pressure_kPa, r.stretch_percent, r.swing_C) for r in thesis.TABLE_3_6] == [
-        (207, 80, 0.4), (207, 90, 0.7), (207, 95, 0.7), (276, 80, 0.5), (276, 90, 0.7), (276, 95, 0.8)]
+        (207, 80, 0.4),
+        (207, 90, 0.7),
+        (207, 95, 0.7),
+        (276, 80, 0.5),
+        (276, 90, 0.7),
+        (276, 95, 0.8),
+    ]
     tables_c2_c3 = {
-        (207, 80): (218.98, 0.0463, 0.167), (207, 90): (236.63, 0.0523, 0.167), (207, 95): (245.45, 0.05535, 0.167),
-        (276, 80): (305.44, 0.04835, 0.165), (276, 90): (316.06, 0.0543, 0.165), (276, 95): (298.40, 0.0573, 0.165),
+        (207, 80): (218.98, 0.0463, 0.167),
+        (207, 90): (236.63, 0.0523, 0.167),
+        (207, 95): (245.45, 0.05535, 0.167),
+        (276, 80): (305.44, 0.04835, 0.165),
+        (276, 90): (316.06, 0.0543, 0.165),
+        (276, 95): (298.40, 0.0573, 0.165),
     }
     for row in thesis.TABLE_3_6:
         experiment = thesis.load_row(row, SOURCE_DIR / "data" / "experiments" / "thesis")
@@ -70,7 +80,7 @@ def test_the_simulated_reading_is_periodic_over_the_last_cycles():
     run = thesis.simulate_row(row, 0.4, thesis.TMP36_TIME_CONSTANT_S, SOURCE_DIR / "data" / "experiments" / "thesis")
     swings = thesis.cycle_swings(run["elongation_m"], run["temperature_C"])
     assert swings.size == 10
-    last = swings[-thesis.STEADY_CYCLES:]
+    last = swings[-thesis.STEADY_CYCLES :]
     assert np.ptp(last) < 1e-3 * last.mean()
     assert swings[0] > last.mean()  # the sensor starts settled at ambient: the first cycle reads more
 
@@ -91,7 +101,9 @@ def test_the_other_five_rows_are_predicted_within_0_3_C(result):
         if row == result.calibration.row:
             continue
         predicted = result.predicted_C[row]
-        assert abs(predicted - row.swing_C) <= TOLERANCE_C, f"{row.label}: predicted {predicted:.2f} °C, measured {row.swing_C} °C"
+        assert abs(predicted - row.swing_C) <= TOLERANCE_C, (
+            f"{row.label}: predicted {predicted:.2f} °C, measured {row.swing_C} °C"
+        )
 
 
 def test_polytropic_1_4_predicts_more_than_ten_times_the_measured_swing(result):
@@ -125,10 +137,14 @@ def test_the_physical_estimates(result, thesis_dir):
     model = pamkit.MuscleModel(params, pamkit.InitialState(length_m=length, gauge_pressure_Pa=236.63e3))
     shape = model.geometry.shape(length)
     d = params.build.end_diameter_m
-    area = math.pi * shape.diameter * shape.cylinder_length + math.pi * (shape.diameter + d) * 0.0095 + math.pi * d * d / 2
+    area = (
+        math.pi * shape.diameter * shape.cylinder_length + math.pi * (shape.diameter + d) * 0.0095 + math.pi * d * d / 2
+    )
     cv = 287.0 / 0.4
     for h in thesis.NATURAL_CONVECTION_W_PER_M2K:
-        assert thesis.gas_wall_time_constant(experiment, h) == pytest.approx(model.gas_mass * cv / (h * area), rel=1e-12)
+        assert thesis.gas_wall_time_constant(experiment, h) == pytest.approx(
+            model.gas_mass * cv / (h * area), rel=1e-12
+        )
     assert result.gas_estimate_s[0] < result.gas_estimate_s[1]
     # The TMP36 range: theta_JA (162 °C/W, TO-92) x 0.10-0.20 J/K, the low end shortened 1.8x.
     assert thesis.TMP36_TIME_CONSTANT_RANGE_S == pytest.approx((162 * 0.1 / 1.8, 162 * math.sqrt(0.02), 162 * 0.2))
@@ -148,7 +164,7 @@ def test_the_docs_table_is_current(result):
     docs = (SOURCE_DIR / "docs" / "table_3_6.md").read_text()
     begin, end = "<!-- begin: python -m pamkit.thesis -->\n", "<!-- end: python -m pamkit.thesis -->"
     assert begin in docs and end in docs
-    written = docs[docs.index(begin) + len(begin):docs.index(end)].strip("\n").splitlines()
+    written = docs[docs.index(begin) + len(begin) : docs.index(end)].strip("\n").splitlines()
     computed = thesis.format_markdown(result).strip("\n").splitlines()
     stale = "docs/table_3_6.md is stale: regenerate its table with `python -m pamkit.thesis`"
     assert len(written) == len(computed), stale

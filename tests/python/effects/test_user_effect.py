@@ -110,8 +110,11 @@ def catalog():
 @pytest.fixture
 def bench():
     """Table C.2's 90 % test (0.167 m, 236.63 kPa), two cycles of 5 cm at 2.5 mm/s with holds."""
-    return pamkit.MuscleParams(), pamkit.InitialState(length_m=0.167, gauge_pressure_Pa=236.63e3), \
-        pamkit.thesis_protocol(0.05, 2.5e-3, 2, 0.1, 2.0)
+    return (
+        pamkit.MuscleParams(),
+        pamkit.InitialState(length_m=0.167, gauge_pressure_Pa=236.63e3),
+        pamkit.thesis_protocol(0.05, 2.5e-3, 2, 0.1, 2.0),
+    )
 
 
 def assert_identical(a, b, channels=CHANNELS):
@@ -143,7 +146,9 @@ def test_parameter_stage_matches_the_builtin_dead_volume(catalog, bench):
     effects = [catalog.parse("hose_volume:volume_fraction=0.2")]
     gc.collect()  # the effect lives on in the list and in C++, not only as a temporary
     python = pamkit.simulate_measurement(params, initial, crosshead, effects)
-    builtin = pamkit.simulate_measurement(params, initial, crosshead, [catalog.parse("dead_volume:volume_fraction=0.2")])
+    builtin = pamkit.simulate_measurement(
+        params, initial, crosshead, [catalog.parse("dead_volume:volume_fraction=0.2")]
+    )
     baseline = pamkit.simulate_measurement(params, initial, crosshead, [])
     assert_identical(python, builtin)
     assert np.ptp(python.pressure_kPa) < np.ptp(baseline.pressure_kPa)  # it did act
@@ -171,11 +176,19 @@ def test_measurement_stage_shifts_the_reading_only(catalog, bench):
 
 def test_all_three_stages_through_simulate_experiment(catalog, thesis_dir):
     experiment = load_experiment(thesis_dir / "pam2_207kPa_90pct.toml")
-    specs = ["hose_volume:volume_fraction=0.05", "loose_pin:slack_m=0.001", "thermometer_offset:offset_C=-1.25",
-             "heat_transfer:time_constant_s=2"]
+    specs = [
+        "hose_volume:volume_fraction=0.05",
+        "loose_pin:slack_m=0.001",
+        "thermometer_offset:offset_C=-1.25",
+        "heat_transfer:time_constant_s=2",
+    ]
     python = simulate_experiment(experiment, effects=parse_effects(specs, catalog))
-    builtin = simulate_experiment(experiment, effects=parse_effects(
-        ["dead_volume:volume_fraction=0.05", "fixture_slack:slack_m=0.001", "heat_transfer:time_constant_s=2"]))
+    builtin = simulate_experiment(
+        experiment,
+        effects=parse_effects(
+            ["dead_volume:volume_fraction=0.05", "fixture_slack:slack_m=0.001", "heat_transfer:time_constant_s=2"]
+        ),
+    )
     assert_identical(python, builtin, ("time_s", "elongation_m", "force_N", "pressure_kPa"))
     assert python["temperature_C"].tobytes() == (builtin["temperature_C"] - 1.25).tobytes()
     # The heat exchange makes the gas temperature swing; the offset moved the whole record.
@@ -189,19 +202,26 @@ def test_an_effect_that_cannot_act_says_why(catalog, write_experiment):
     assert hose.acts_in(pamkit.GasMode.sealed) == (True, None)
     acts, why = hose.acts_in(pamkit.GasMode.supplied)
     assert not acts and why.startswith("hose_volume acts on the sealed gas")
-    supplied = load_experiment(write_experiment(
-        csv_text="time_s,elongation_m,pressure_kPa\n0,0,200\n1,0.001,210\n2,0.002,220\n3,0.003,230\n",
-        toml_test_extra='gas = "supplied"'))
+    supplied = load_experiment(
+        write_experiment(
+            csv_text="time_s,elongation_m,pressure_kPa\n0,0,200\n1,0.001,210\n2,0.002,220\n3,0.003,230\n",
+            toml_test_extra='gas = "supplied"',
+        )
+    )
     with pytest.raises(ExperimentError, match="effect hose_volume cannot act here: hose_volume acts on the sealed gas"):
         simulate_experiment(supplied, effects=[hose])
 
 
 def test_motion_and_reading_stages_act_in_a_supplied_test(catalog, write_experiment):
-    supplied = load_experiment(write_experiment(
-        csv_text="time_s,elongation_m,pressure_kPa\n0,0,200\n1,0.001,210\n2,0.002,220\n3,0.003,230\n",
-        toml_test_extra='gas = "supplied"'))
-    python = simulate_experiment(supplied, effects=parse_effects(
-        ["loose_pin:slack_m=0.0015", "thermometer_offset:offset_C=0.5"], catalog))
+    supplied = load_experiment(
+        write_experiment(
+            csv_text="time_s,elongation_m,pressure_kPa\n0,0,200\n1,0.001,210\n2,0.002,220\n3,0.003,230\n",
+            toml_test_extra='gas = "supplied"',
+        )
+    )
+    python = simulate_experiment(
+        supplied, effects=parse_effects(["loose_pin:slack_m=0.0015", "thermometer_offset:offset_C=0.5"], catalog)
+    )
     builtin = simulate_experiment(supplied, effects=parse_effects(["fixture_slack:slack_m=0.0015"]))
     assert_identical(python, builtin, ("time_s", "elongation_m", "force_N", "pressure_kPa"))
     np.testing.assert_array_equal(python["temperature_C"], supplied.ambient_temperature_C + 0.5)

@@ -49,8 +49,10 @@ def test_chapter4_side_by_side():
     assert appendix["ideal_force_peak_N"] == pytest.approx(thesis["ideal_force_N"], rel=0.05)
     assert appendix["ideal_force_at_40mm_N"] is None
     # A 70 deg block angle gives figures 4.4-4.5 within 10 %.
-    for low_high, target in ((text["spring_length_m"], thesis["spring_length_m"]),
-                             (text["horizontal_lever_m"], thesis["moment_arm_m"])):
+    for low_high, target in (
+        (text["spring_length_m"], thesis["spring_length_m"]),
+        (text["horizontal_lever_m"], thesis["moment_arm_m"]),
+    ):
         assert low_high == pytest.approx(target, rel=0.10)
     assert text["elongation_max_m"] == pytest.approx(thesis["elongation_max_m"], rel=0.10)
 
@@ -80,20 +82,34 @@ def test_cli_writes_json_and_png(tmp_path, capsys):
     out_json, out_png = tmp_path / "exo.json", tmp_path / "exo.png"
     assert main(["exo", "--strides", "2", "--json", str(out_json), "--plot", str(out_png)]) == 0
     report = json.loads(out_json.read_text())
-    for key in ("moment_arm_m", "spring_length_m", "elongation_max_m", "ideal_force_at_40mm_N", "peak_torque_Nm",
-                "torque_share_of_biological", "engage_pct", "release_pct"):
+    for key in (
+        "moment_arm_m",
+        "spring_length_m",
+        "elongation_max_m",
+        "ideal_force_at_40mm_N",
+        "peak_torque_Nm",
+        "torque_share_of_biological",
+        "engage_pct",
+        "release_pct",
+    ):
         assert key in report
     assert len(report["moment_arm_m"]) == 2 and report["moment_arm_m"][0] <= report["moment_arm_m"][1]
     assert report["engage_pct"] > report["toe_off_pct"] and report["release_pct"] > report["toe_off_pct"]
-    assert math.isclose(report["torque_share_of_biological"], report["peak_torque_Nm"] / report["peak_biological_torque_Nm"])
+    assert math.isclose(
+        report["torque_share_of_biological"], report["peak_torque_Nm"] / report["peak_biological_torque_Nm"]
+    )
     assert out_png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "walking" in report and "chapter4" in report
 
 
 def test_cli_chapter5_never_releases(tmp_path):
     out_json = tmp_path / "trial.json"
-    assert main(["exo", "--ankle-range", "15", "--play", "8", "--cadence", "105", "--strides", "2",
-                 "--json", str(out_json)]) == 0
+    assert (
+        main(
+            ["exo", "--ankle-range", "15", "--play", "8", "--cadence", "105", "--strides", "2", "--json", str(out_json)]
+        )
+        == 0
+    )
     report = json.loads(out_json.read_text())
     assert report["release_pct"] is None and report["engage_pct"] is None
     assert report["clutch"]["never_releases"] is True

@@ -19,10 +19,10 @@ import numpy as np
 import pytest
 
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[3]))
-sys.path.insert(0, str(SOURCE_DIR / "tests"))
+sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
 
-from independent.families import FAMILIES, HONEST
-from independent.physics import Build, Geometry, Motion, Physics, SealedMuscle
+from independent.families import FAMILIES, HONEST  # noqa: E402 (needs the path above)
+from independent.physics import Build, Geometry, Motion, Physics, SealedMuscle  # noqa: E402
 
 SEED = 1
 # Catalog effects hidden in the independent model that diagnosis does not name yet, and why:
@@ -31,22 +31,30 @@ SEED = 1
 # Honest families that still get a wrong name, with the name and why: an expected failure while
 # the name is that one (any other name, or an honest verdict, is reported as it is).
 KNOWN_WRONG = {
-    "travel_scale": ("sensor_offset",
-                     "a crosshead reading 3.8 % long is named a pressure gain error (0.951): with the pressure "
-                     "freed by the offset the baseline fits the force to within its noise. A travel_scale catalog "
-                     "effect was tried and absorbed the independent model's stiffness in 6 of 18 families"),
+    "travel_scale": (
+        "sensor_offset",
+        "a crosshead reading 3.8 % long is named a pressure gain error (0.951): with the pressure "
+        "freed by the offset the baseline fits the force to within its noise. A travel_scale catalog "
+        "effect was tried and absorbed the independent model's stiffness in 6 of 18 families",
+    ),
 }
 KNOWN_MISSES = {
     "independent_dead_volume": "the independent model's dead volume (15 %) on top of its other physics leaves "
-                               "the baseline 4-7x the noise; pamkit's dead_volume explains less than a "
-                               "pressure offset, which is rejected as implausible (about 20 kPa): unexplained",
+    "the baseline 4-7x the noise; pamkit's dead_volume explains less than a "
+    "pressure offset, which is rejected as implausible (about 20 kPa): unexplained",
 }
 
 
 def diagnose(toml: Path) -> dict:
     report = toml.with_name("report.json")
-    done = subprocess.run([sys.executable, "-m", "pamkit", "diagnose", str(toml), "--json", str(report), "--quiet"],
-                          check=False, capture_output=True, text=True, env=os.environ.copy(), timeout=600)
+    done = subprocess.run(
+        [sys.executable, "-m", "pamkit", "diagnose", str(toml), "--json", str(report), "--quiet"],
+        check=False,
+        capture_output=True,
+        text=True,
+        env=os.environ.copy(),
+        timeout=600,
+    )
     assert done.returncode == 0, f"diagnose failed: {done.stderr.strip()[-500:]}"
     return json.loads(report.read_text())
 
@@ -64,8 +72,9 @@ def test_diagnosis_of_a_family(family, tmp_path):
         assert cause in ("none", "unexplained"), f"named {cause} for {dataset.truth}: {verdict}"
     else:
         # ACCEPTANCE (#17 "never a wrong name"): the truth, or an honest verdict.
-        assert cause in (dataset.expected, "none", "unexplained"), \
+        assert cause in (dataset.expected, "none", "unexplained"), (
             f"hidden {dataset.expected} {dataset.truth}, named {cause}: {verdict}"
+        )
         if family in KNOWN_MISSES and cause != dataset.expected:
             pytest.xfail(KNOWN_MISSES[family])
         # ACCEPTANCE (#9 "effects hidden in [an independent implementation]", #17 "the truth when
@@ -83,11 +92,15 @@ def test_diagnosis_of_a_family(family, tmp_path):
 
 
 def test_the_generator_never_imports_pamkit(tmp_path):
-    script = ("import sys; from pathlib import Path; from independent.families import FAMILIES\n"
-              "for name, make in FAMILIES.items(): make(3, Path(sys.argv[1]) / name)\n"
-              "assert not any(m == 'pamkit' or m.startswith('pamkit.') for m in sys.modules), 'pamkit was imported'\n")
+    script = (
+        "import sys; from pathlib import Path; from independent.families import FAMILIES\n"
+        "for name, make in FAMILIES.items(): make(3, Path(sys.argv[1]) / name)\n"
+        "assert not any(m == 'pamkit' or m.startswith('pamkit.') for m in sys.modules), 'pamkit was imported'\n"
+    )
     env = {**os.environ, "PYTHONPATH": str(SOURCE_DIR / "tests")}
-    done = subprocess.run([sys.executable, "-c", script, str(tmp_path)], check=False, capture_output=True, text=True, env=env, timeout=300)
+    done = subprocess.run(
+        [sys.executable, "-c", script, str(tmp_path)], check=False, capture_output=True, text=True, env=env, timeout=300
+    )
     assert done.returncode == 0, done.stderr
 
 

@@ -18,8 +18,13 @@ CASES = [(name, seed) for name in catalog().names() for seed in SEEDS] + [("none
 
 
 def run_pamkit(*arguments):
-    return subprocess.run([sys.executable, "-m", "pamkit", *map(str, arguments)], capture_output=True, text=True,
-                          env=os.environ.copy(), timeout=300)
+    return subprocess.run(
+        [sys.executable, "-m", "pamkit", *map(str, arguments)],
+        capture_output=True,
+        text=True,
+        env=os.environ.copy(),
+        timeout=300,
+    )
 
 
 @pytest.mark.parametrize("effect, seed", CASES, ids=[f"{name}-{seed}" for name, seed in CASES])
