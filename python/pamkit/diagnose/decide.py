@@ -226,15 +226,15 @@ class Judgement:
     fit: Fit
     score: Score
     significant: bool
-    findings: list[Finding] = field(default_factory=list)
-    unresolved: list[str] = field(default_factory=list)
+    findings: list[Finding] = field(default_factory=list)  # parameters at a bound or implausible
+    objections: list[str] = field(default_factory=list)  # unresolved, uncredited or partial, as sentences
 
     @property
     def credible(self) -> bool:
-        return not self.findings and not self.unresolved
+        return not self.findings and not self.objections
 
     def reasons(self) -> list[str]:
-        return [f.sentence() for f in self.findings] + self.unresolved
+        return [f.sentence() for f in self.findings] + self.objections
 
 
 def uncredited(problem: Problem, fit: Fit, s: Score) -> list[str]:
