@@ -77,7 +77,15 @@ def _pool(threads: int | None) -> ThreadPoolExecutor:
 
 
 def _try_pairs(
-    problem: Problem, baseline: Fit, single: Judgement, judged: list[Judgement], factories, seed: int, threads, report
+    problem: Problem,
+    baseline: Fit,
+    single: Judgement,
+    judged: list[Judgement],
+    factories,
+    attainable: float,
+    seed: int,
+    threads,
+    report,
 ) -> Judgement:
     """The named cause leaves structure: pair it with the next credible candidates, and keep a
     pair only if it beats the single cause as the single beat the baseline (significant on
@@ -108,12 +116,7 @@ def _try_pairs(
             if pair.error is not None:
                 continue
             over_single = score(problem, single.fit, pair, np.random.default_rng(seed))
-            candidate = judge(
-                problem,
-                pair,
-                score(problem, baseline, pair, np.random.default_rng(seed)),
-                attainable_gain(problem, baseline),
-            )
+            candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), attainable)
             if (
                 significant(over_single)
                 and candidate.credible
@@ -251,7 +254,7 @@ def diagnose(
     extended, named = baseline, decision.named
     if named is not None:
         if structured(problem, named.fit, PAIR_TRIGGER):
-            named = _try_pairs(problem, baseline, named, judged, factories, seed, threads, report)
+            named = _try_pairs(problem, baseline, named, judged, factories, attainable, seed, threads, report)
             decision.named = named
         extended = named.fit
     # A named cause is credible, so has no finding; the rejected best candidate's are why not.
