@@ -11,7 +11,8 @@ from pathlib import Path
 import numpy as np
 
 import pamkit
-from pamkit.diagnose.discover import MOTION_TERMS, DiscoveryError, _equation, _feature_columns
+from pamkit.diagnose.discover import _equation
+from pamkit.diagnose.features import MOTION_TERMS, DiscoveryError, _feature_columns
 
 FORMAT = "pamkit.discovered_effect"
 FORMAT_VERSION = 1
