@@ -17,7 +17,7 @@ from pamkit.diagnose.features import MOTION_TERMS, DiscoveryError, _feature_colu
 FORMAT = "pamkit.discovered_effect"
 FORMAT_VERSION = 1
 
-CHANNELS = ("force_N", "pressure_kPa", "temperature_C")
+CHANNELS = tuple(pamkit.measured_channels())  # declared once, in C++ (effect.hpp)
 TERM_NAMES = (
     "offset",
     *MOTION_TERMS,

@@ -126,7 +126,7 @@ def _try_pairs(
     return best
 
 
-CHANNEL_UNITS = {"force_N": "N", "pressure_kPa": "kPa", "temperature_C": "degC"}
+CHANNEL_UNITS = {"force_N": "N", "pressure_kPa": "kPa", "temperature_C": "°C"}  # as the report prints them
 
 
 def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:

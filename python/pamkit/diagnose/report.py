@@ -10,9 +10,8 @@ import numpy as np
 from pamkit.diagnose import evidence
 from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Judgement, credited_channels
+from pamkit.diagnose.engine import CHANNEL_UNITS as UNITS
 from pamkit.diagnose.engine import Diagnosis
-
-UNITS = {"force_N": "N", "pressure_kPa": "kPa", "temperature_C": "°C"}
 
 
 def _heldout_rmse(d: Diagnosis, fit: Fit) -> dict[str, float]:
