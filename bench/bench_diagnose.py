@@ -23,10 +23,9 @@ import numpy as np
 
 from pamkit.diagnose import diagnose
 from pamkit.diagnose.report import to_json
-from pamkit.effects import catalog
 from pamkit.experiment import load_experiment
 from pamkit.simulate import simulate_experiment
-from pamkit.synth import synthesize
+from pamkit.synth import hideable_effects, synthesize
 
 
 def main() -> int:
@@ -37,7 +36,7 @@ def main() -> int:
     parser.add_argument("--json", help="write every dataset's truth, cause, gain and timing")
     arguments = parser.parse_args()
 
-    names = ["none"] + catalog().names()
+    names = ["none"] + hideable_effects()
     rows = []
     with tempfile.TemporaryDirectory() as scratch:
         for i in range(arguments.datasets):

@@ -261,6 +261,24 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
       py::arg("ambient_temperature_C"), py::arg("effects"),
       "Simulates a supplied-pressure test: the measured gauge pressure [kPa] drives the static model at each "
       "sample of crosshead (lengths from length_m [m]); force is predicted. Releases the GIL.");
+  m.def(
+      "static_forces",
+      [](const MuscleParams& params, const py::array_t<double, py::array::c_style | py::array::forcecast>& lengths_m,
+         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_kPa,
+         const std::vector<EffectPtr>& effects) {
+        const std::vector<double> lengths = vector(lengths_m);
+        const std::vector<double> pressures = vector(gauge_pressures_kPa);
+        std::vector<double> force;
+        {
+          py::gil_scoped_release release;
+          force = static_forces(params, lengths, pressures, effects);
+        }
+        return py::array_t<double>(static_cast<py::ssize_t>(force.size()), force.data());
+      },
+      py::arg("params"), py::arg("lengths_m"), py::arg("gauge_pressures_kPa"),
+      py::arg("effects") = std::vector<EffectPtr>{},
+      "The muscle's force at rest [N] at each row of a static table (length [m], supplied gauge pressure [kPa]), "
+      "with physical effects applied. Releases the GIL.");
 }
 
 }  // namespace pamkit::python

@@ -17,17 +17,33 @@ void bind_muscle(py::module_& m) {
                                 "The muscle as built and deflated (SI units; thesis tables 3.4, C.4).");
   bind_fields(build);
 
-  py::class_<BladderLaw>(m, "BladderLaw",
-                         "Biaxial bladder stress law: polynomials c0..c6 [Pa] of the strain in each direction.")
-      .def(py::init<>())
+  py::class_<BiaxialStress>(m, "BiaxialStress", "Stresses or tangent moduli of the bladder in its two directions [Pa].")
+      .def_readonly("longitudinal", &BiaxialStress::longitudinal)
+      .def_readonly("hoop", &BiaxialStress::hoop)
+      .def("__repr__", [](const BiaxialStress& s) {
+        return "BiaxialStress(longitudinal=" + py::repr(py::float_(s.longitudinal)).cast<std::string>() +
+               ", hoop=" + py::repr(py::float_(s.hoop)).cast<std::string>() + ")";
+      });
+
+  py::class_<BladderLaw> law(m, "BladderLaw",
+                             "The bladder's membrane law: the thesis's polynomials of each strain, or an "
+                             "incompressible neo-Hookean membrane.");
+  py::enum_<BladderLaw::Form>(law, "Form")
+      .value("polynomial", BladderLaw::Form::polynomial)
+      .value("neo_hookean", BladderLaw::Form::neo_hookean);
+  law.def(py::init<>())
+      .def_readwrite("form", &BladderLaw::form, "polynomial or neo_hookean")
       .def_readwrite("longitudinal_Pa", &BladderLaw::longitudinal_Pa, "coefficients c0..c6 of sigma_l(eps_l) [Pa]")
       .def_readwrite("hoop_Pa", &BladderLaw::hoop_Pa, "coefficients c0..c6 of sigma_h(eps_h) [Pa]")
+      .def_readwrite("shear_modulus_Pa", &BladderLaw::shear_modulus_Pa, "neo-Hookean shear modulus mu [Pa]")
       .def_static("thesis", &BladderLaw::thesis, "Eqs. 3.1.12-3.1.13 (with the lost '+' of the eps^4 term restored).")
+      .def_static("neo_hookean", &BladderLaw::neo_hookean, py::arg("shear_modulus_Pa"),
+                  "An incompressible neo-Hookean membrane of shear modulus mu [Pa].")
       .def_static("none", &BladderLaw::none, "No bladder stress.")
-      .def("longitudinal_stress", py::vectorize(&BladderLaw::longitudinal_stress), py::arg("strain"),
-           "sigma_l [Pa] at longitudinal strain (scalar or array)")
-      .def("hoop_stress", py::vectorize(&BladderLaw::hoop_stress), py::arg("strain"),
-           "sigma_h [Pa] at hoop strain (scalar or array)");
+      .def("stresses", &BladderLaw::stresses, py::arg("longitudinal_strain"), py::arg("hoop_strain"),
+           "Engineering stresses [Pa] at the two strains.")
+      .def("tangent_moduli", &BladderLaw::tangent_moduli, py::arg("longitudinal_strain"), py::arg("hoop_strain"),
+           "d sigma / d eps [Pa] of each direction in its own strain.");
 
   py::class_<FrictionParams> friction(m, "FrictionParams",
                                       "Fiber-fiber and fiber-bladder friction (eqs. 3.1.19-3.1.24).");
@@ -96,6 +112,12 @@ void bind_muscle(py::module_& m) {
         return "FreeInflation(length_m=" + std::to_string(f.length_m) + ", diameter_m=" + std::to_string(f.diameter_m) +
                ", contracted=" + (f.contracted ? "True" : "False") + ")";
       });
+  m.def("deflated_braid_angle_deg", &deflated_braid_angle_deg, py::arg("build"),
+        "Braid angle of the deflated build's cylinder [deg]: tan(theta) = pi n D / Lm.");
+  m.def("fiber_revolutions_for_braid_angle", &fiber_revolutions_for_braid_angle, py::arg("build"),
+        py::arg("braid_angle_deg"), "The fiber revolutions n that give the deflated build this braid angle [deg].");
+  m.def("braid_tension", &braid_tension, py::arg("force_N"), py::arg("band_N"),
+        "What a braid transmits of a gas-and-bladder force [N]: it cannot push (smooth over band_N).");
   m.def("free_inflation", &free_inflation, py::arg("geometry"), py::arg("bladder"), py::arg("atmospheric_pressure_Pa"),
         py::arg("gauge_pressure_Pa"), "Length and diameter of the unloaded muscle inflated to a gauge pressure.");
 }

@@ -299,6 +299,22 @@ def sensor_offset() -> Path:
     return save(fig, "sensor_offset")
 
 
+def braid_slack() -> Path:
+    spec = "braid_slack:band_N=2"
+    fig, axes = figure(f"{spec} (PAM 2 held at fixed lengths, supplied pressure): no push below the free length")
+    for axis, pressure_kPa in zip(axes, (138.0, 276.0)):
+        lengths = np.linspace(free_length(pressure_kPa) - 0.015, free_length(pressure_kPa) + 0.02, 120)
+        pressures = np.full_like(lengths, pressure_kPa)
+        base = pamkit.static_forces(params(), lengths, pressures)
+        slack = pamkit.static_forces(params(), lengths, pressures, parse_effects([spec]))
+        axis.plot(lengths * 1e3, base, **BASE, label="baseline (the braid pushes)")
+        axis.plot(lengths * 1e3, slack, color=COLORS[0], label="braid_slack")
+        axis.axhline(0.0, color="0.5", lw=0.6)
+        axis.set_title(f"{pressure_kPa:.0f} kPa", fontsize=9)
+        label(axis, "held length [mm]", "force [N]", legend=axis is axes[0])
+    return save(fig, "braid_slack")
+
+
 GALLERY = {
     f.__name__: f
     for f in (
@@ -308,6 +324,7 @@ GALLERY = {
         bladder_viscoelasticity,
         fiber_compliance,
         fixture_slack,
+        braid_slack,
         sensor_lag,
         time_skew,
         sensor_offset,

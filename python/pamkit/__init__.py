@@ -6,6 +6,7 @@ where a name carries its unit (``pressure_kPa``).
 """
 
 from pamkit._core import (
+    BiaxialStress,
     BladderLaw,
     BraidGeometry,
     Effect,
@@ -42,6 +43,9 @@ from pamkit._core import (
     braid_cylinder_length,
     braid_diameter,
     braid_fiber_length,
+    braid_tension,
+    deflated_braid_angle_deg,
+    fiber_revolutions_for_braid_angle,
     free_inflation,
     inflated_and_sealed,
     measured_channels,
@@ -51,6 +55,7 @@ from pamkit._core import (
     polytropic_temperature,
     simulate_measurement,
     simulate_supplied_measurement,
+    static_forces,
     thesis_protocol,
 )
 

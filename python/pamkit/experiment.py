@@ -19,24 +19,47 @@ try:
 except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
-from pamkit._core import FrictionParams, GasParams, GasProcess, MuscleBuild
+from pamkit._core import (
+    BladderLaw,
+    FrictionParams,
+    GasParams,
+    GasProcess,
+    MuscleBuild,
+    deflated_braid_angle_deg,
+    fiber_revolutions_for_braid_angle,
+)
 from pamkit.units import KELVIN_AT_ZERO_CELSIUS
 
 REQUIRED_COLUMNS = ("time_s", "elongation_m")
 OPTIONAL_COLUMNS = ("force_N", "pressure_kPa", "temperature_C")
 GAS_MODES = ("sealed", "supplied")
 
-# [test] keys, their meaning, and whether they must be present.
+# Experiment kinds (DESIGN.md, "Experiment kinds"): a time series, or a static table of settled
+# rows whose columns are all required.
+SERIES_KIND = "series"
+TABLE_COLUMNS = {
+    "isometric_map": ("length_m", "pressure_kPa", "force_N"),
+    "free_inflation": ("pressure_kPa", "length_m", "diameter_m"),
+}
+KINDS = (SERIES_KIND, *TABLE_COLUMNS)
+
+# [test] keys, their meaning, and whether a time series needs them (a static table does not).
 TEST_KEYS = {
     "inflation_pressure_kPa": (True, "gauge pressure after inflation, before the first stretch [kPa]"),
     "ambient_temperature_C": (True, "ambient temperature, the gas's initial temperature [°C]"),
     "data": (True, "CSV file, relative to the TOML file"),
+    "kind": (False, f"{' or '.join(repr(k) for k in KINDS)} (default {SERIES_KIND!r})"),
     "gas": (False, '"sealed" (default) or "supplied"'),
     "initial_length_m": (False, "muscle length at zero elongation [m]"),
     "description": (False, "free text: where the test comes from"),
 }
+TABLE_DEFAULTS = {"inflation_pressure_kPa": 0.0, "ambient_temperature_C": 20.0}
 # [gas] keys beyond GasParams' fields: the process by name.
 GAS_PROCESS_KEY = "process"
+# [muscle] key beyond MuscleBuild's fields: what a datasheet gives instead of fiber_revolutions.
+BRAID_ANGLE_KEY = "braid_angle_deg"
+# [bladder] keys: the law by name, and the neo-Hookean modulus.
+BLADDER_LAWS = ("thesis", "neo_hookean", "none")
 
 
 class ExperimentError(ValueError):
@@ -58,7 +81,15 @@ class Experiment:
     description: str = ""
     friction: FrictionParams = field(default_factory=FrictionParams)
     gas_params: GasParams = field(default_factory=GasParams)
+    bladder: BladderLaw = field(default_factory=BladderLaw.thesis)
+    kind: str = SERIES_KIND
+    calibrate: dict[str, tuple[float, float]] = field(default_factory=dict)
     columns: dict[str, np.ndarray] = field(default_factory=dict)
+
+    @property
+    def is_table(self) -> bool:
+        """A static table of settled rows, not a time series."""
+        return self.kind in TABLE_COLUMNS
 
     @property
     def time_s(self) -> np.ndarray:
@@ -103,6 +134,97 @@ def _fill_struct(path: Path, section: str, table: dict, struct, extra_keys=()):
     return struct
 
 
+def _read_build(path: Path, table: dict) -> MuscleBuild:
+    """[muscle]: MuscleBuild's fields, or braid_angle_deg instead of fiber_revolutions."""
+    table = dict(table)
+    angle = table.pop(BRAID_ANGLE_KEY, None)
+    if angle is not None and "fiber_revolutions" in table:
+        raise _fail(path, f"[muscle] gives both {BRAID_ANGLE_KEY} and fiber_revolutions: give one, they say the same")
+    build = MuscleBuild()
+    if angle is None:
+        return _fill_struct(path, "muscle", table, build)
+    angle = _number(path, "muscle", BRAID_ANGLE_KEY, angle)
+    for key, value in table.items():  # the angle converts through the other dimensions
+        if key in type(build).fields():
+            setattr(build, key, _number(path, "muscle", key, value))
+    try:
+        build.fiber_revolutions = fiber_revolutions_for_braid_angle(build, angle)
+    except ValueError as error:
+        raise _fail(path, f"[muscle] {error}") from None
+    return _fill_struct(path, "muscle", table, build)
+
+
+def _read_bladder(path: Path, table: dict) -> BladderLaw:
+    """[bladder]: law = "thesis" (default), "neo_hookean" (with shear_modulus_Pa) or "none"."""
+    known = {"law", "shear_modulus_Pa"}
+    for key in table:
+        if key not in known:
+            raise _fail(path, f"unknown key [bladder] {key} (known: {', '.join(sorted(known))})")
+    law = table.get("law", "thesis")
+    if law not in BLADDER_LAWS:
+        raise _fail(path, f"[bladder] law = {law!r} must be one of {', '.join(BLADDER_LAWS)}")
+    if law == "neo_hookean":
+        if "shear_modulus_Pa" not in table:
+            raise _fail(path, "[bladder] law = 'neo_hookean' needs shear_modulus_Pa (rubbers: 0.2e6-3e6 Pa)")
+        try:
+            return BladderLaw.neo_hookean(_number(path, "bladder", "shear_modulus_Pa", table["shear_modulus_Pa"]))
+        except ValueError as error:
+            raise _fail(path, f"[bladder] {error}") from None
+    if "shear_modulus_Pa" in table:
+        raise _fail(path, f"[bladder] shear_modulus_Pa belongs to law = 'neo_hookean', not {law!r}")
+    return BladderLaw.thesis() if law == "thesis" else BladderLaw.none()
+
+
+def calibratable_fields() -> dict[str, tuple[float, float, str]]:
+    """What [calibrate] may name: each field with its allowed range and unit."""
+    fields = {name: (info["min"], info["max"], info["unit"]) for name, info in MuscleBuild.fields().items()}
+    fields[BRAID_ANGLE_KEY] = (1.0, 89.0, "deg")
+    fields["bladder.shear_modulus_Pa"] = (0.0, 1e9, "Pa")
+    return fields
+
+
+def declared_value(name: str, build: MuscleBuild, bladder: BladderLaw) -> float:
+    """The value an experiment file declares for a [calibrate] name."""
+    if name == BRAID_ANGLE_KEY:
+        return deflated_braid_angle_deg(build)
+    if name == "bladder.shear_modulus_Pa":
+        return bladder.shear_modulus_Pa
+    return getattr(build, name)
+
+
+def _read_calibrate(path: Path, table: dict, build: MuscleBuild, bladder: BladderLaw) -> dict[str, tuple[float, float]]:
+    """[calibrate]: fields not known, each with [lower, upper] bounds within its allowed range."""
+    flat: dict[str, object] = {}
+    for key, value in table.items():
+        if isinstance(value, dict):  # [calibrate.bladder] or bladder.shear_modulus_Pa = [...]
+            flat.update({f"{key}.{inner}": bounds for inner, bounds in value.items()})
+        else:
+            flat[key] = value
+    allowed = calibratable_fields()
+    out = {}
+    for name, bounds in flat.items():
+        if name not in allowed:
+            raise _fail(path, f"[calibrate] {name}: not a field pamkit can calibrate (known: {', '.join(allowed)})")
+        if (
+            not isinstance(bounds, list)
+            or len(bounds) != 2
+            or not all(isinstance(b, (int, float)) and not isinstance(b, bool) for b in bounds)
+        ):
+            raise _fail(path, f"[calibrate] {name} = {bounds!r} must be [lower, upper]")
+        lower, upper = float(bounds[0]), float(bounds[1])
+        low, high, unit = allowed[name]
+        if not (math.isfinite(lower) and math.isfinite(upper) and lower < upper):
+            raise _fail(path, f"[calibrate] {name} = [{lower}, {upper}] needs finite lower < upper")
+        if lower < low or upper > high:
+            raise _fail(path, f"[calibrate] {name} = [{lower}, {upper}] {unit} leaves the allowed [{low}, {high}]")
+        if name == "bladder.shear_modulus_Pa" and bladder.form != BladderLaw.Form.neo_hookean:
+            raise _fail(path, "[calibrate] bladder.shear_modulus_Pa needs [bladder] law = 'neo_hookean'")
+        if name == "fiber_revolutions" and BRAID_ANGLE_KEY in flat:
+            raise _fail(path, f"[calibrate] names both fiber_revolutions and {BRAID_ANGLE_KEY}: they are one unknown")
+        out[name] = (lower, upper)
+    return out
+
+
 def load_experiment(path: str | Path) -> Experiment:
     """Reads an experiment TOML and its CSV.
 
@@ -118,7 +240,7 @@ def load_experiment(path: str | Path) -> Experiment:
     except tomllib.TOMLDecodeError as error:
         raise _fail(path, f"not valid TOML: {error}") from None
 
-    known_sections = {"muscle", "test", "friction", "gas"}
+    known_sections = {"muscle", "test", "friction", "gas", "bladder", "calibrate"}
     for section in document:
         if section not in known_sections:
             raise _fail(path, f"unknown section [{section}] (known: {', '.join(sorted(known_sections))})")
@@ -126,7 +248,8 @@ def load_experiment(path: str | Path) -> Experiment:
         if section not in document:
             raise _fail(path, f"missing section [{section}]")
 
-    build = _fill_struct(path, "muscle", document["muscle"], MuscleBuild())
+    build = _read_build(path, document["muscle"])
+    bladder = _read_bladder(path, document.get("bladder", {}))
     friction = _fill_struct(path, "friction", document.get("friction", {}), FrictionParams())
     gas_table = document.get("gas", {})
     gas_params = GasParams()
@@ -137,10 +260,20 @@ def load_experiment(path: str | Path) -> Experiment:
         gas_params.process = GasProcess.__members__[name]
     _fill_struct(path, "gas", gas_table, gas_params, extra_keys=(GAS_PROCESS_KEY,))
 
-    test = document["test"]
+    test = dict(document["test"])
     for key in test:
         if key not in TEST_KEYS:
             raise _fail(path, f"unknown key [test] {key} (known: {', '.join(TEST_KEYS)})")
+    kind = test.get("kind", SERIES_KIND)
+    if kind not in KINDS:
+        raise _fail(path, f"[test] kind = {kind!r} must be one of {', '.join(KINDS)}")
+    if kind in TABLE_COLUMNS:
+        # A table of settled rows at supplied pressures: no inflation to seal, no gas to warm.
+        for key, default in TABLE_DEFAULTS.items():
+            test.setdefault(key, default)
+        if test.get("gas", "supplied") != "supplied":
+            raise _fail(path, f"[test] gas = {test['gas']!r}: a {kind} table is measured at supplied pressures")
+        test["gas"] = "supplied"
     for key, (required, meaning) in TEST_KEYS.items():
         if required and key not in test:
             raise _fail(path, f"missing key [test] {key} ({meaning})")
@@ -174,7 +307,13 @@ def load_experiment(path: str | Path) -> Experiment:
         description=str(test.get("description", "")),
         friction=friction,
         gas_params=gas_params,
+        bladder=bladder,
+        kind=kind,
+        calibrate=_read_calibrate(path, document.get("calibrate", {}), build, bladder),
     )
+    if kind in TABLE_COLUMNS:
+        experiment.columns = read_table(data_path, TABLE_COLUMNS[kind])
+        return experiment
     experiment.columns = read_series(data_path)
     if gas == "supplied" and "pressure_kPa" not in experiment.columns:
         raise _fail(data_path, 'a "supplied" test drives the model with pressure_kPa: the column is missing')
@@ -188,7 +327,21 @@ def read_series(path: str | Path) -> dict[str, np.ndarray]:
     Raises:
         ExperimentError: naming the file, line and column of the first bad value.
     """
-    path = Path(path)
+    return _read_csv(Path(path), REQUIRED_COLUMNS, OPTIONAL_COLUMNS, increasing="time_s")
+
+
+def read_table(path: str | Path, columns: tuple[str, ...]) -> dict[str, np.ndarray]:
+    """Reads a static table (one settled row per line): exactly `columns`, in any order.
+
+    Raises:
+        ExperimentError: naming the file, line and column of the first bad value.
+    """
+    return _read_csv(Path(path), columns, (), increasing=None)
+
+
+def _read_csv(
+    path: Path, required: tuple[str, ...], optional: tuple[str, ...], increasing: str | None
+) -> dict[str, np.ndarray]:
     try:
         handle = path.open(newline="")
     except FileNotFoundError:
@@ -199,15 +352,16 @@ def read_series(path: str | Path) -> dict[str, np.ndarray]:
             header = [name.strip() for name in next(reader)]
         except StopIteration:
             raise ExperimentError(f"{path}: empty file, expected a header row") from None
-        known = REQUIRED_COLUMNS + OPTIONAL_COLUMNS
+        known = required + optional
         for number, name in enumerate(header, start=1):
             if name not in known:
                 raise ExperimentError(f"{path}:1: column {number} '{name}' is not a known channel ({', '.join(known)})")
             if header.count(name) > 1:
                 raise ExperimentError(f"{path}:1: column '{name}' appears twice")
-        for name in REQUIRED_COLUMNS:
+        for name in required:
             if name not in header:
                 raise ExperimentError(f"{path}:1: required column '{name}' is missing")
+        order = header.index(increasing) if increasing else None
         values: list[list[float]] = []
         for row in reader:
             line = reader.line_num
@@ -226,10 +380,9 @@ def read_series(path: str | Path) -> dict[str, np.ndarray]:
                 if not math.isfinite(value):
                     raise ExperimentError(f"{path}:{line}: column {column} ({name}) = {cell.strip()!r} is not finite")
                 parsed.append(value)
-            if values and parsed[header.index("time_s")] <= values[-1][header.index("time_s")]:
+            if order is not None and values and parsed[order] <= values[-1][order]:
                 raise ExperimentError(
-                    f"{path}:{line}: column {header.index('time_s') + 1} (time_s) = {parsed[header.index('time_s')]} "
-                    "does not increase"
+                    f"{path}:{line}: column {order + 1} ({increasing}) = {parsed[order]} does not increase"
                 )
             values.append(parsed)
     if len(values) < 2:

@@ -25,10 +25,10 @@ from pamkit.units import PASCAL_PER_KILOPASCAL
 
 
 def muscle_params(experiment: Experiment, bladder: BladderLaw | None = None) -> MuscleParams:
-    """The model parameters an experiment file describes (thesis bladder law unless given)."""
+    """The model parameters an experiment file describes (its [bladder] law unless given)."""
     return MuscleParams(
         build=experiment.build,
-        bladder=bladder if bladder is not None else BladderLaw.thesis(),
+        bladder=bladder if bladder is not None else experiment.bladder,
         friction=experiment.friction,
         gas=experiment.gas_params,
     )

@@ -46,6 +46,7 @@ from pamkit._core import (
     EffectCatalog,
     ElongationTrajectory,
     FrictionParams,
+    GasMode,
     GasParams,
     InitialState,
     MuscleBuild,
@@ -328,6 +329,12 @@ def configure_effect(
 
 # ----------------------------------------------------------------------------------------------
 # the dataset
+
+
+def hideable_effects(effect_catalog: EffectCatalog | None = None) -> list[str]:
+    """The catalog's effects synth can hide: those that act in the sealed test it writes."""
+    effect_catalog = effect_catalog if effect_catalog is not None else builtin_catalog()
+    return [name for name in effect_catalog.names() if effect_catalog.make(name).acts_in(GasMode.sealed)[0]]
 
 
 def synthesize(

@@ -104,3 +104,56 @@ def test_read_series_keeps_measured_channels(tmp_path):
     path.write_text("time_s,elongation_m,force_N,pressure_kPa,temperature_C\n0,0,1,2,3\n1,0.1,4,5,6\n")
     columns = read_series(path)
     np.testing.assert_array_equal(columns["temperature_C"], [3, 6])
+
+
+def _commercial(tmp_path, muscle="", sections="", test_extra=""):
+    (tmp_path / "map.csv").write_text("length_m,pressure_kPa,force_N\n0.25,100,50\n0.24,100,20\n")
+    path = tmp_path / "map.toml"
+    path.write_text(
+        "[muscle]\nlength_m = 0.25\ndiameter_m = 0.01\nbladder_diameter_m = 0.0097\nbladder_thickness_m = 0.0005\n"
+        f"fiber_thickness_m = 0.0\ncone_generator_m = 0.0\nend_diameter_m = 0.005\n{muscle}\n"
+        f'{sections}\n[test]\nkind = "isometric_map"\ndata = "map.csv"\n{test_extra}'
+    )
+    return path
+
+
+def test_a_datasheet_braid_angle_becomes_fiber_revolutions(tmp_path):
+    import math
+
+    experiment = load_experiment(_commercial(tmp_path, "braid_angle_deg = 21.0"))
+    # Flat ends: tan(theta) = pi n D / L over the whole deflated length.
+    assert experiment.build.fiber_revolutions == pytest.approx(0.25 * math.tan(math.radians(21)) / (math.pi * 0.01))
+    assert experiment.is_table and experiment.kind == "isometric_map"
+    assert set(experiment.columns) == {"length_m", "pressure_kPa", "force_N"}
+    with pytest.raises(ExperimentError, match="both braid_angle_deg and fiber_revolutions"):
+        load_experiment(_commercial(tmp_path, "braid_angle_deg = 21.0\nfiber_revolutions = 1.0"))
+    with pytest.raises(ExperimentError, match="between 0 and 90"):
+        load_experiment(_commercial(tmp_path, "braid_angle_deg = 95.0"))
+
+
+@pytest.mark.parametrize(
+    "sections, message",
+    [
+        ('[bladder]\nlaw = "mooney"', "law = 'mooney' must be one of thesis, neo_hookean, none"),
+        ('[bladder]\nlaw = "neo_hookean"', "needs shear_modulus_Pa"),
+        ('[bladder]\nlaw = "thesis"\nshear_modulus_Pa = 1e6', "belongs to law = 'neo_hookean'"),
+        ("[calibrate]\nfiber_colour = [1, 2]", "fiber_colour: not a field pamkit can calibrate"),
+        ("[calibrate]\nbraid_angle_deg = [30, 20]", "needs finite lower < upper"),
+        ("[calibrate]\nbraid_angle_deg = 20", "must be \\[lower, upper\\]"),
+        ("[calibrate]\nlength_m = [0.001, 0.3]", "leaves the allowed"),
+        ("[calibrate]\nbladder.shear_modulus_Pa = [1e4, 1e7]", "needs \\[bladder\\] law = 'neo_hookean'"),
+    ],
+)
+def test_bladder_and_calibrate_tables_name_what_is_wrong(tmp_path, sections, message):
+    with pytest.raises(ExperimentError, match=message):
+        load_experiment(_commercial(tmp_path, "braid_angle_deg = 21.0", sections))
+
+
+def test_a_table_names_its_missing_column_and_its_kind(tmp_path):
+    path = _commercial(tmp_path, "braid_angle_deg = 21.0")
+    (tmp_path / "map.csv").write_text("length_m,pressure_kPa\n0.25,100\n0.24,100\n")
+    with pytest.raises(ExperimentError, match="map.csv:1: required column 'force_N' is missing"):
+        load_experiment(path)
+    path.write_text(path.read_text().replace('kind = "isometric_map"', 'kind = "isobaric"'))
+    with pytest.raises(ExperimentError, match="kind = 'isobaric' must be one of"):
+        load_experiment(path)

@@ -311,6 +311,47 @@ class FiberComplianceEffect : public detail::ParametricEffect<FiberCompliancePar
   }
 };
 
+/// braid_slack: the braid carries tension but cannot push.
+struct BraidSlackParams {
+  static constexpr const char* kName = "braid_slack";
+  static constexpr const char* kDescription =
+      "a braid of fibers that cannot push: held shorter than its free length at the pressure, the muscle goes "
+      "slack and carries nothing, where the thesis's braid would push. Gives it away: the measured force stays "
+      "at zero where the model's turns negative (short lengths, low pressures of an isometric map; contraction "
+      "below the free length).";
+  static constexpr const char* kSignature = "force stays at zero where the model pushes";
+  static constexpr EffectStage kStage = EffectStage::physics;
+  static constexpr bool kHasChannel = false;
+  double band_N = 1.0;  ///< width of the smooth transition to slack [N]
+  template <class V>
+  static void for_each_field(V&& visit) {
+    visit("band_N", &BraidSlackParams::band_N, FieldInfo{"N", 1e-3, 1e4, "width of the smooth slack transition"},
+          EffectFieldInfo{{0.5, 5.0},
+                          false,
+                          {0.0, detail::kInfinity,
+                           "a smoothing width, not a property of the braid: the data cannot tell one width from "
+                           "another, so a diagnosis holds it at 1 N"},
+                          {FitScale::linear, 1.0, 1.0, 1.0}});
+  }
+};
+class BraidSlackEffect : public detail::ParametricEffect<BraidSlackParams> {
+ public:
+  /// A sealed test stretched from its free length keeps the braid taut, and where it would not
+  /// (a sealed muscle pushed below its free length) the gas volume should follow the free
+  /// length, which the slack force alone does not model. The simulator still honours
+  /// ModelExtensions::slack_band_N in sealed runs for those who set it.
+  bool acts_in(GasMode mode, std::string* why_not) const override {
+    if (mode == GasMode::supplied) return true;
+    if (why_not) {
+      *why_not =
+          "braid_slack acts in supplied tests and static tables; a sealed muscle stretched from its free length "
+          "keeps its braid taut";
+    }
+    return false;
+  }
+  void apply_to_params(MuscleParams& p) const override { p.extensions.slack_band_N = params_.band_N; }
+};
+
 /// fixture_slack: play between crosshead and muscle (loose pins).
 struct FixtureSlackParams {
   static constexpr const char* kName = "fixture_slack";
@@ -483,6 +524,7 @@ inline EffectCatalog EffectCatalog::builtin() {
   catalog.add(BladderViscoelasticityParams::kName, [] { return std::make_shared<BladderViscoelasticityEffect>(); });
   catalog.add(FiberComplianceParams::kName, [] { return std::make_shared<FiberComplianceEffect>(); });
   catalog.add(FixtureSlackParams::kName, [] { return std::make_shared<FixtureSlackEffect>(); });
+  catalog.add(BraidSlackParams::kName, [] { return std::make_shared<BraidSlackEffect>(); });
   catalog.add(SensorLagParams::kName, [] { return std::make_shared<SensorLagEffect>(); });
   catalog.add(TimeSkewParams::kName, [] { return std::make_shared<TimeSkewEffect>(); });
   catalog.add(SensorOffsetParams::kName, [] { return std::make_shared<SensorOffsetEffect>(); });

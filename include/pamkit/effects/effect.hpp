@@ -74,7 +74,8 @@ struct PlausibleRange {
   const char* source;  ///< why: a material property, a datasheet, a geometric limit
 };
 
-/// Where a diagnosis searches a parameter, in the parameter's own unit.
+/// Where a diagnosis searches a parameter, in the parameter's own unit. An interval of one point
+/// (min == max) holds the parameter there: a smoothing width that the data cannot resolve.
 struct FitSpace {
   FitScale scale;  ///< how the search moves it
   double min;      ///< search interval's lower end; ending here is "at a bound"
@@ -173,7 +174,7 @@ class EffectCatalog {
  public:
   using Factory = std::function<EffectPtr()>;
 
-  /// The nine effects of DESIGN.md's catalog.
+  /// The effects of DESIGN.md's catalog, and braid_slack.
   static EffectCatalog builtin();
 
   /// Adds or replaces an effect. \throws InvalidParameter for an empty name.

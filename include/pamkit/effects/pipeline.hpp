@@ -89,12 +89,59 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
       throw InvalidInput(detail::message("sample ", k + 1, " (time ", time[k], " s, elongation ", motion[k], " m): ",
                                          error.what(), "; check the elongation's zero and [test] initial_length_m"));
     }
-    m.force_N[k] = muscle_forces(geometry, shape, extended.bladder, extended.friction,
-                                 atmosphere + units::pascal_from_kilopascal(pressure_kPa[k]), atmosphere, velocity)
-                       .total;
+    m.force_N[k] =
+        braid_tension(muscle_forces(geometry, shape, extended.bladder, extended.friction,
+                                    atmosphere + units::pascal_from_kilopascal(pressure_kPa[k]), atmosphere, velocity)
+                          .total,
+                      extended.extensions.slack_band_N);
   }
   for (const EffectPtr& effect : effects) effect->apply_to_measurement(m);
   return m;
+}
+
+/// The muscle's force at rest [N] at each (length, supplied gauge pressure) of a static table: an
+/// isometric map, a free-inflation or isotonic table of settled steps. Friction, which needs a
+/// velocity, is zero at rest. Only physical effects act (through the parameters): a table has
+/// no time axis for motion and instrument effects.
+/// \param lengths_m            muscle length of each row [m]
+/// \param gauge_pressures_kPa  supplied gauge pressure of each row [kPa]
+/// \throws InvalidParameter for an effect that cannot act on a static table; InvalidInput naming
+///         the row whose length leaves the braid's range.
+inline std::vector<double> static_forces(const MuscleParams& params, const std::vector<double>& lengths_m,
+                                         const std::vector<double>& gauge_pressures_kPa,
+                                         const std::vector<EffectPtr>& effects = {}) {
+  if (lengths_m.size() != gauge_pressures_kPa.size()) {
+    throw InvalidInput(detail::message("static_forces: ", lengths_m.size(), " lengths for ", gauge_pressures_kPa.size(),
+                                       " pressures"));
+  }
+  MuscleParams extended = params;
+  for (const EffectPtr& effect : effects) {
+    std::string why_not;
+    if (effect->stage() != EffectStage::physics) {
+      throw InvalidParameter(detail::message(effect->name(),
+                                             " acts on the motion or the instruments over time; a static table of "
+                                             "settled rows has no time axis for it"));
+    }
+    if (!effect->acts_in(GasMode::supplied, &why_not)) throw InvalidParameter(why_not);
+    effect->apply_to_params(extended);
+  }
+  extended.validate();
+  const BraidGeometry geometry(extended.build);
+  const double atmosphere = extended.gas.atmospheric_pressure_Pa;
+  std::vector<double> force(lengths_m.size());
+  for (std::size_t k = 0; k < lengths_m.size(); ++k) {
+    MuscleShape shape;
+    try {
+      shape = geometry.shape(lengths_m[k]);
+    } catch (const InvalidInput& error) {
+      throw InvalidInput(detail::message("row ", k + 1, " (length ", lengths_m[k], " m): ", error.what()));
+    }
+    const double gauge = units::pascal_from_kilopascal(gauge_pressures_kPa[k]);
+    force[k] = braid_tension(
+        muscle_forces(geometry, shape, extended.bladder, extended.friction, atmosphere + gauge, atmosphere, 0.0).total,
+        extended.extensions.slack_band_N);
+  }
+  return force;
 }
 
 }  // namespace pamkit

@@ -52,6 +52,19 @@ inline MuscleForces muscle_forces(const BraidGeometry& geometry, const MuscleSha
   return f;
 }
 
+/// What a braid transmits of the axial force `force_N` of its gas and bladder [N]: a braid of
+/// fibers carries tension but cannot push. Held shorter than its free length, a real muscle goes
+/// slack (the braid bunches and the load cell reads zero), where the virtual-work force would
+/// turn negative. `band_N` > 0 makes the transition C1-smooth over |force| < band_N (a quadratic
+/// blend, so the ODE solver and the fits see no kink); band_N = 0 keeps the thesis's braid,
+/// which pushes as readily as it pulls.
+/// The slack acts on the force only: the gas volume still follows the length the ends impose.
+inline double braid_tension(double force_N, double band_N) {
+  if (band_N <= 0.0 || force_N >= band_N) return force_N;
+  if (force_N <= -band_N) return 0.0;
+  return (force_N + band_N) * (force_N + band_N) / (4.0 * band_N);
+}
+
 /// Fiber tensions of the thesis's Newtonian model [N per fiber] and the force they give.
 struct FiberTensions {
   double cylinder_hoop;  ///< Th1, eq. 3.1.6: hoop balance of the cylinder

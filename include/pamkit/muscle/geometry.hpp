@@ -19,6 +19,16 @@ double braid_cylinder_length(double fiber_length_m, double braid_angle_rad);
 /// length Lm [m] and diameter D [m] with n turns.
 double braid_fiber_length(double cylinder_length_m, double diameter_m, double revolutions);
 
+/// Braid angle [deg] of the deflated build's cylinder, from the axis: tan(theta_0) = pi n D / Lm,
+/// the angle a datasheet quotes.
+double deflated_braid_angle_deg(const MuscleBuild& build);
+
+/// The fiber revolutions n that give the deflated build braid angle `braid_angle_deg` (eq. 3.1.9
+/// with eq. 3.1.10 at the deflated cylinder length, which the end cones fix): a datasheet gives
+/// the angle, the model counts turns.
+/// \throws InvalidParameter if the angle is outside (0, 90) degrees.
+double fiber_revolutions_for_braid_angle(const MuscleBuild& build, double braid_angle_deg);
+
 /// Shape of the muscle at one length, with the derivatives with respect to that length that
 /// the force (virtual work) and the gas equation need. Angles in rad, lengths in m, volumes in m^3.
 struct MuscleShape {

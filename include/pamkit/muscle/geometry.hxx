@@ -31,14 +31,36 @@ inline double braid_fiber_length(double cylinder_length_m, double diameter_m, do
   return std::hypot(cylinder_length_m, detail::kPi * revolutions * diameter_m);
 }
 
+namespace detail {
+inline double deflated_cylinder_length(const MuscleBuild& build) {
+  const bool has_cones = build.cone_generator_m > 0.0;
+  return build.length_m -
+         2.0 * (has_cones ? cone_axial_length(build.cone_generator_m, build.diameter_m, build.end_diameter_m) : 0.0);
+}
+}  // namespace detail
+
+inline double deflated_braid_angle_deg(const MuscleBuild& build) {
+  const double tangent =
+      detail::kPi * build.fiber_revolutions * build.diameter_m / detail::deflated_cylinder_length(build);
+  return std::atan(tangent) * 180.0 / detail::kPi;
+}
+
+inline double fiber_revolutions_for_braid_angle(const MuscleBuild& build, double braid_angle_deg) {
+  if (!(braid_angle_deg > 0.0 && braid_angle_deg < 90.0)) {
+    throw InvalidParameter(
+        detail::message("braid_angle_deg = ", braid_angle_deg, " must lie strictly between 0 and 90 degrees"));
+  }
+  return detail::deflated_cylinder_length(build) * std::tan(braid_angle_deg * detail::kPi / 180.0) /
+         (detail::kPi * build.diameter_m);
+}
+
 inline BraidGeometry::BraidGeometry(const MuscleBuild& build) : build_(build) {
   build_.validate();
   const double d = build_.end_diameter_m;
   const double lz = build_.cone_generator_m;
   const double turns = detail::kPi * build_.fiber_revolutions;
   const bool has_cones = lz > 0.0;
-  deflated_cylinder_length_ =
-      build_.length_m - 2.0 * (has_cones ? detail::cone_axial_length(lz, build_.diameter_m, d) : 0.0);
+  deflated_cylinder_length_ = detail::deflated_cylinder_length(build_);
   fiber_length_ = braid_fiber_length(deflated_cylinder_length_, build_.diameter_m, build_.fiber_revolutions);
   if (has_cones) {
     // Shortest: the cones lie flat (D = d + 2 Lz, LL = 0). Longest: the braid narrows to d.

@@ -24,6 +24,7 @@ struct ModelExtensions {
   double viscoelastic_strength = 0.0;  ///< modulus of the bladder's Maxwell branch over the law's tangent modulus [1]
   double viscoelastic_time_constant_s = 1.0;  ///< relaxation time of that branch [s]
   double fiber_compliance_per_N = 0.0;        ///< 1 / axial stiffness EA of one fiber [1/N]; 0: inextensible
+  double slack_band_N = 0.0;  ///< the braid cannot push: width of its smooth slack transition [N]; 0: it can (thesis)
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
@@ -37,6 +38,8 @@ struct ModelExtensions {
           FieldInfo{"s", 1e-4, 1e6, "bladder relaxation time"});
     visit("fiber_compliance_per_N", &ModelExtensions::fiber_compliance_per_N,
           FieldInfo{"1/N", 0.0, 1.0, "1 / fiber axial stiffness"});
+    visit("slack_band_N", &ModelExtensions::slack_band_N,
+          FieldInfo{"N", 0.0, 1e4, "width of the slack braid's smooth transition (0: the braid pushes)"});
   }
   void validate() const { validate_fields(*this); }
 };

@@ -35,8 +35,9 @@ inline double MuscleModel::elastic_force(double braid_length, const State& y) co
   const MuscleForces f =
       muscle_forces(geometry_, shape, params_.bladder, no_friction, pressure, g.atmospheric_pressure_Pa, 0.0);
   const BladderState b = bladder_state(geometry_, shape, params_.bladder);
-  return f.total + rubber_volume_ * (y[State::viscous_stress_l_Pa] * b.d_longitudinal_strain +
-                                     y[State::viscous_stress_h_Pa] * b.d_hoop_strain);
+  return braid_tension(f.total + rubber_volume_ * (y[State::viscous_stress_l_Pa] * b.d_longitudinal_strain +
+                                                   y[State::viscous_stress_h_Pa] * b.d_hoop_strain),
+                       params_.extensions.slack_band_N);
 }
 
 inline double MuscleModel::braid_length(double length_m, const State& y) const {
@@ -116,15 +117,15 @@ inline MuscleOutputs MuscleModel::evaluate(double length_m, double velocity_m_pe
   const double viscous = rubber_volume_ * (y[State::viscous_stress_l_Pa] * b.d_longitudinal_strain +
                                            y[State::viscous_stress_h_Pa] * b.d_hoop_strain);
   out.forces.bladder += viscous;
-  out.forces.total += viscous;
+  out.forces.total = braid_tension(out.forces.total + viscous, x.slack_band_N);
   const double relaxation = 1.0 / x.viscoelastic_time_constant_s;
-  rate[State::viscous_stress_l_Pa] = x.viscoelastic_strength *
-                                         params_.bladder.longitudinal_modulus(b.longitudinal_strain) *
-                                         b.d_longitudinal_strain * out.braid_velocity_m_per_s -
-                                     relaxation * y[State::viscous_stress_l_Pa];
-  rate[State::viscous_stress_h_Pa] = x.viscoelastic_strength * params_.bladder.hoop_modulus(b.hoop_strain) *
-                                         b.d_hoop_strain * out.braid_velocity_m_per_s -
-                                     relaxation * y[State::viscous_stress_h_Pa];
+  const BiaxialStress modulus = params_.bladder.tangent_moduli(b.longitudinal_strain, b.hoop_strain);
+  rate[State::viscous_stress_l_Pa] =
+      x.viscoelastic_strength * modulus.longitudinal * b.d_longitudinal_strain * out.braid_velocity_m_per_s -
+      relaxation * y[State::viscous_stress_l_Pa];
+  rate[State::viscous_stress_h_Pa] =
+      x.viscoelastic_strength * modulus.hoop * b.d_hoop_strain * out.braid_velocity_m_per_s -
+      relaxation * y[State::viscous_stress_h_Pa];
 
   rate[State::work_J] = out.forces.total * velocity_m_per_s;
   rate[State::heat_lost_J] = out.heat_loss_rate_W;

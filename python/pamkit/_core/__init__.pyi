@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import logger
 from . import units
-__all__: list[str] = ['BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'InvalidInput', 'InvalidParameter', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'detect_gait_events', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_supplied_measurement', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range']
+__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'InvalidInput', 'InvalidParameter', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range']
 class Error(RuntimeError):
     pass
 class SolverError(RuntimeError):
@@ -110,10 +110,72 @@ class MuscleBuild:
     @length_m.setter
     def length_m(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+class BiaxialStress:
+    """
+    Stresses or tangent moduli of the bladder in its two directions [Pa].
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def hoop(self) -> float:
+        ...
+    @property
+    def longitudinal(self) -> float:
+        ...
 class BladderLaw:
     """
-    Biaxial bladder stress law: polynomials c0..c6 [Pa] of the strain in each direction.
+    The bladder's membrane law: the thesis's polynomials of each strain, or an incompressible neo-Hookean membrane.
     """
+    class Form:
+        """
+        Members:
+        
+          polynomial
+        
+          neo_hookean
+        """
+        __members__: typing.ClassVar[dict[str, BladderLaw.Form]]
+        neo_hookean: typing.ClassVar[BladderLaw.Form]
+        polynomial: typing.ClassVar[BladderLaw.Form]
+        @typing.overload
+        def __eq__(self, other: BladderLaw.Form) -> bool:
+            ...
+        @typing.overload
+        def __eq__(self, other: typing.Any) -> bool:
+            ...
+        def __getstate__(self) -> int:
+            ...
+        def __hash__(self) -> int:
+            ...
+        def __index__(self) -> int:
+            ...
+        def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+            ...
+        def __int__(self) -> int:
+            ...
+        @typing.overload
+        def __ne__(self, other: BladderLaw.Form) -> bool:
+            ...
+        @typing.overload
+        def __ne__(self, other: typing.Any) -> bool:
+            ...
+        def __repr__(self) -> str:
+            ...
+        def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+            ...
+        def __str__(self) -> str:
+            ...
+        @property
+        def name(self) -> str:
+            ...
+        @property
+        def value(self) -> int:
+            ...
+    @staticmethod
+    def neo_hookean(shear_modulus_Pa: typing.SupportsFloat | typing.SupportsIndex) -> BladderLaw:
+        """
+        An incompressible neo-Hookean membrane of shear modulus mu [Pa].
+        """
     @staticmethod
     def none() -> BladderLaw:
         """
@@ -126,14 +188,22 @@ class BladderLaw:
         """
     def __init__(self) -> None:
         ...
-    def hoop_stress(self, strain: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    def stresses(self, longitudinal_strain: typing.SupportsFloat | typing.SupportsIndex, hoop_strain: typing.SupportsFloat | typing.SupportsIndex) -> BiaxialStress:
         """
-        sigma_h [Pa] at hoop strain (scalar or array)
+        Engineering stresses [Pa] at the two strains.
         """
-    def longitudinal_stress(self, strain: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    def tangent_moduli(self, longitudinal_strain: typing.SupportsFloat | typing.SupportsIndex, hoop_strain: typing.SupportsFloat | typing.SupportsIndex) -> BiaxialStress:
         """
-        sigma_l [Pa] at longitudinal strain (scalar or array)
+        d sigma / d eps [Pa] of each direction in its own strain.
         """
+    @property
+    def form(self) -> BladderLaw.Form:
+        """
+        polynomial or neo_hookean
+        """
+    @form.setter
+    def form(self, arg0: BladderLaw.Form) -> None:
+        ...
     @property
     def hoop_Pa(self) -> typing.Annotated[list[float], "FixedSize(7)"]:
         """
@@ -149,6 +219,14 @@ class BladderLaw:
         """
     @longitudinal_Pa.setter
     def longitudinal_Pa(self, arg0: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(7)"]) -> None:
+        ...
+    @property
+    def shear_modulus_Pa(self) -> float:
+        """
+        neo-Hookean shear modulus mu [Pa]
+        """
+    @shear_modulus_Pa.setter
+    def shear_modulus_Pa(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
 class FrictionParams:
     """
@@ -516,6 +594,14 @@ class ModelExtensions:
         """
     @leak_rate_per_s.setter
     def leak_rate_per_s(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def slack_band_N(self) -> float:
+        """
+        width of the slack braid's smooth transition (0: the braid pushes) [N], allowed [0.000000, 10000.000000]
+        """
+    @slack_band_N.setter
+    def slack_band_N(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def viscoelastic_strength(self) -> float:
@@ -1957,9 +2043,21 @@ def braid_fiber_length(cylinder_length_m: typing.SupportsFloat | typing.Supports
     """
     Eq. 3.1.11 solved for Lym [m].
     """
+def braid_tension(force_N: typing.SupportsFloat | typing.SupportsIndex, band_N: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    """
+    What a braid transmits of a gas-and-bladder force [N]: it cannot push (smooth over band_N).
+    """
+def deflated_braid_angle_deg(build: MuscleBuild) -> float:
+    """
+    Braid angle of the deflated build's cylinder [deg]: tan(theta) = pi n D / Lm.
+    """
 def detect_gait_events(data: GaitData) -> GaitEvents:
     """
     Stride, heel strike and toe-off from the data alone.
+    """
+def fiber_revolutions_for_braid_angle(build: MuscleBuild, braid_angle_deg: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    """
+    The fiber revolutions n that give the deflated build this braid angle [deg].
     """
 def fit_clutch(cycle: GaitCycle, travel_deg: typing.SupportsFloat | typing.SupportsIndex = 7.0, margin_deg: typing.SupportsFloat | typing.SupportsIndex = 0.5) -> ClutchParams:
     """
@@ -2028,6 +2126,10 @@ def simulate_measurement(params: MuscleParams, initial: InitialState, crosshead:
 def simulate_supplied_measurement(params: MuscleParams, length_m: typing.SupportsFloat | typing.SupportsIndex, crosshead: ElongationTrajectory, pressure_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], ambient_temperature_C: typing.SupportsFloat | typing.SupportsIndex, effects: collections.abc.Sequence[Effect]) -> Measurement:
     """
     Simulates a supplied-pressure test: the measured gauge pressure [kPa] drives the static model at each sample of crosshead (lengths from length_m [m]); force is predicted. Releases the GIL.
+    """
+def static_forces(params: MuscleParams, lengths_m: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], gauge_pressures_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], effects: collections.abc.Sequence[Effect] = []) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    The muscle's force at rest [N] at each row of a static table (length [m], supplied gauge pressure [kPa]), with physical effects applied. Releases the GIL.
     """
 def table_4_2() -> list[Table42Row]:
     """

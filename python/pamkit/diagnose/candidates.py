@@ -91,6 +91,8 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
     try:
         if start is not None:
             best_u = np.clip(x_to_unit(space, np.array([c.of(start.params[c.name]) for c in space])), 0, 1)
+        elif not space:  # every parameter held: only the baseline moves
+            best_u = np.array([])
         else:
             # Scan the first coordinate over its range (the others at their starts).
             first = start_unit(space)
@@ -106,7 +108,7 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
             def residual(u):
                 return chi_or_penalty(baseline.baseline_x, unit_to_x(space, u))
 
-            u = solve(residual, best_u, 30 * (len(space) + 1))
+            u = solve(residual, best_u, 30 * (len(space) + 1)) if space else best_u
             base_x, effect_x = baseline.baseline_x, unit_to_x(space, u)
             count = len(space)
         else:
@@ -186,7 +188,7 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
     )
     best_u, best_chi2 = start, math.inf
     # Finer than a single effect's scan: the first effect already absorbed part of the second.
-    for point in np.linspace(0.0, 1.0, 2 * SCAN_POINTS - 1):
+    for point in np.linspace(0.0, 1.0, 2 * SCAN_POINTS - 1) if spaces[1] else ():
         u = start.copy()
         u[n_base + n_first] = point
         chi2 = float(np.sum(residual(u) ** 2))

@@ -34,6 +34,7 @@ from pamkit.diagnose.decide import (
     structured,
 )
 from pamkit.diagnose.kinds import Problem, build_problem
+from pamkit.diagnose.tables import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.experiment import Experiment, load_experiment
 
@@ -180,9 +181,10 @@ def diagnose(
     progress=None,
     threads: int | None = None,
     seed: int | None = None,
-) -> Diagnosis:
+) -> Diagnosis | TableDiagnosis:
     """Diagnoses one experiment. `progress(message)` is called as work proceeds; `seed` (by
-    default drawn from the data) seeds the bootstrap.
+    default drawn from the data) seeds the bootstrap. A static table (an isometric map, a
+    free-inflation table) is diagnosed by tables.py, on held-out lengths or rows.
 
     Raises:
         ExperimentError: for data that cannot be diagnosed, naming file, row and column.
@@ -192,6 +194,8 @@ def diagnose(
     if not isinstance(experiment, Experiment):
         experiment = load_experiment(experiment)
     effect_catalog = effect_catalog if effect_catalog is not None else builtin_catalog()
+    if experiment.is_table:
+        return diagnose_table(experiment, effect_catalog, progress=progress, threads=threads)
     problem = build_problem(experiment)
     seed = data_seed(problem) if seed is None else seed
     seconds = {}

@@ -114,8 +114,9 @@ def parameter_coordinate(p: EffectParameter) -> Coordinate:
 
 
 def effect_space(effect: Effect) -> list[Coordinate]:
-    """The fit coordinates of an effect, one per numeric parameter."""
-    return [parameter_coordinate(p) for p in effect.parameters()]
+    """The fit coordinates of an effect, one per numeric parameter it lets a diagnosis search
+    (a parameter whose search interval is one point is held at it)."""
+    return [parameter_coordinate(p) for p in effect.parameters() if p.fit_min != p.fit_max]
 
 
 def configure(effect: Effect, space: list[Coordinate], x: np.ndarray) -> Effect:
@@ -179,12 +180,18 @@ class Baseline:
         friction.fiber_fiber_coefficient *= values["friction_scale"]
         friction.fiber_bladder_coefficient *= values["friction_scale"]
         params.friction = friction
-        law = BladderLaw.thesis()
-        scale = values["bladder_scale"]
-        law.longitudinal_Pa = [scale * c for c in params.bladder.longitudinal_Pa]
-        law.hoop_Pa = [scale * c for c in params.bladder.hoop_Pa]
-        params.bladder = law
+        params.bladder = scaled_law(params.bladder, values["bladder_scale"])
         return params, values.get("inflation_pressure_kPa", self.experiment.inflation_pressure_kPa)
+
+
+def scaled_law(law: BladderLaw, scale: float) -> BladderLaw:
+    """The membrane law with every stress multiplied by `scale` (a stiffer or softer bladder)."""
+    if law.form == BladderLaw.Form.neo_hookean:
+        return BladderLaw.neo_hookean(scale * law.shear_modulus_Pa)
+    scaled = BladderLaw()
+    scaled.longitudinal_Pa = [scale * c for c in law.longitudinal_Pa]
+    scaled.hoop_Pa = [scale * c for c in law.hoop_Pa]
+    return scaled
 
 
 class Predictor:

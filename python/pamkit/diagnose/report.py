@@ -7,11 +7,12 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.diagnose import evidence
+from pamkit.diagnose import evidence, tables
 from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Judgement, credited_channels
 from pamkit.diagnose.engine import CHANNEL_UNITS as UNITS
 from pamkit.diagnose.engine import Diagnosis
+from pamkit.diagnose.tables import TableDiagnosis
 
 
 def _heldout_rmse(d: Diagnosis, fit: Fit) -> dict[str, float]:
@@ -42,8 +43,10 @@ def _residual_evidence(d: Diagnosis, fit: Fit) -> dict:
     return out
 
 
-def to_json(d: Diagnosis) -> dict:
+def to_json(d: Diagnosis | TableDiagnosis) -> dict:
     """The report, with DESIGN.md's keys (and a few more: noise, evidence, verdict, timing)."""
+    if isinstance(d, TableDiagnosis):
+        return tables.to_json(d)
     p = d.problem
     baseline_rmse = _heldout_rmse(d, d.baseline)
     named = d.extended_judgement
@@ -128,8 +131,10 @@ def _sizes(d: Diagnosis, fit: Fit) -> str:
     )
 
 
-def verdict(d: Diagnosis) -> str:
+def verdict(d: Diagnosis | TableDiagnosis) -> str:
     """One sentence a person reads in ten seconds."""
+    if isinstance(d, TableDiagnosis):
+        return tables.verdict(d)
     p = d.problem
     baseline_rmse = _heldout_rmse(d, d.baseline)
     decision = d.decision
@@ -188,8 +193,10 @@ def verdict(d: Diagnosis) -> str:
     )
 
 
-def plot(d: Diagnosis, path: str | Path) -> Path:
+def plot(d: Diagnosis | TableDiagnosis, path: str | Path) -> Path:
     """Measured vs baseline vs extended per channel, residuals before and after, the ranking."""
+    if isinstance(d, TableDiagnosis):
+        return tables.plot(d, path)
     import matplotlib
 
     matplotlib.use("Agg")
@@ -256,7 +263,9 @@ def _shade(axis, time, mask):
         axis.axvspan(time[start], time[min(end, time.size - 1)], color="C2", alpha=0.08, lw=0)
 
 
-def write(d: Diagnosis, json_path: str | Path | None = None, plot_path: str | Path | None = None) -> None:
+def write(
+    d: Diagnosis | TableDiagnosis, json_path: str | Path | None = None, plot_path: str | Path | None = None
+) -> None:
     if json_path:
         Path(json_path).parent.mkdir(parents=True, exist_ok=True)
         Path(json_path).write_text(json.dumps(to_json(d), indent=2, default=float) + "\n")

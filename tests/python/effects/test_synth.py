@@ -34,11 +34,11 @@ from pamkit.instruments import (
     merge_logs,
 )
 from pamkit.simulate import simulate_experiment
-from pamkit.synth import LOGGED_CHANNELS, configure_effect, synthesize
+from pamkit.synth import LOGGED_CHANNELS, configure_effect, hideable_effects, synthesize
 
 KPA_PER_PSI = 6.894757293168  # 1 psi in kPa (NIST SP 811: 6894.757293168 Pa)
 VOLTS_PER_COUNT = 5.0 / 1024  # 10-bit ADC, 5 V reference
-EFFECTS = catalog().names()
+EFFECTS = hideable_effects()
 
 
 class Truth:

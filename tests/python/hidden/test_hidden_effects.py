@@ -10,11 +10,11 @@ import sys
 
 import pytest
 
-from pamkit.effects import catalog
+from pamkit.synth import hideable_effects
 
 SEEDS = (11, 12)
 NULL_SEEDS = (21, 22, 23)
-CASES = [(name, seed) for name in catalog().names() for seed in SEEDS] + [("none", seed) for seed in NULL_SEEDS]
+CASES = [(name, seed) for name in hideable_effects() for seed in SEEDS] + [("none", seed) for seed in NULL_SEEDS]
 
 
 def run_pamkit(*arguments):

@@ -1,0 +1,573 @@
+"""Diagnosis of static tables: an isometric map (force at held lengths and supplied pressures) or
+a free-inflation table (free length and diameter at each pressure), as DESIGN.md's experiment
+kinds describe them.
+
+A table has no time axis, so the units held out are its groups: the held lengths of a map
+(leave one length out: does the model carry to a length it was not fitted on?) or the rows of a
+free-inflation table. The baseline is the model the file declares with its `[calibrate]` unknowns
+fitted; each catalog effect that acts on a static table is fitted with the same unknowns free
+(one yardstick) and scored by the held-out RMSE it leaves. The rules of decide.py hold: a cause
+needs a significant gain (MIN_GAIN, 95 % interval above zero, over held-out groups) and credible
+parameters (none at a search bound, none outside its plausible range); `none` only within
+NONE_WITHIN_NOISE of the table's noise; otherwise `unexplained`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import os
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from pamkit._core import (
+    BladderLaw,
+    BraidGeometry,
+    Effect,
+    EffectCatalog,
+    EffectStage,
+    GasMode,
+    MuscleParams,
+    fiber_revolutions_for_braid_angle,
+    free_inflation,
+    static_forces,
+)
+from pamkit.diagnose.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
+from pamkit.diagnose.model import Coordinate, configure, effect_space
+from pamkit.effects import catalog as builtin_catalog
+from pamkit.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, declared_value
+from pamkit.simulate import muscle_params
+from pamkit.units import PASCAL_PER_KILOPASCAL
+
+# The channels each kind predicts, and how its rows are grouped for holding out.
+PREDICTED = {"isometric_map": ("force_N",), "free_inflation": ("length_m", "diameter_m")}
+CHANNEL_UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
+# Fewer held-out groups than this cannot say whether a model carries beyond its fitted rows.
+MIN_GROUPS = 3
+# A fit coordinate within this fraction of its interval from an end is "at a bound".
+AT_BOUND = 1e-3
+# Local least squares from the declared values, then from these points of each unknown's
+# interval: the static force is not convex in a braid angle and a modulus together.
+STARTS = (0.25, 0.75)
+# Unknowns whose declared range spans more than this ratio are searched on a log scale.
+LOG_SPAN = 20.0
+
+
+@dataclass
+class TableFit:
+    """One fitted model of a table: the calibrated unknowns, the effect's parameters, and its
+    predictions on every row (fitted on all rows) and held out (each group predicted by the
+    model fitted without it)."""
+
+    name: str
+    effects: list[Effect]
+    params: dict[str, float]
+    coordinates: dict[str, tuple[Coordinate, float]]
+    predicted: dict[str, np.ndarray]
+    heldout: dict[str, np.ndarray]
+    intervals: dict[str, tuple[float, float]]  # jackknife 95 % over held-out groups
+    error: str | None = None
+
+    def rmse(self, channel: str, rows: np.ndarray | None = None) -> float:
+        residual = self.predicted[channel] - self._measured[channel]
+        return float(np.sqrt(np.mean(residual[rows] ** 2 if rows is not None else residual**2)))
+
+    _measured: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
+
+
+@dataclass
+class TableCandidate:
+    fit: TableFit
+    gain: dict[str, float]
+    gain_ci95: dict[str, tuple[float, float]]
+    score: float  # mean held-out gain over the predicted channels
+    significant: bool
+    findings: list[dict]  # parameters at a bound or implausible
+
+    @property
+    def credible(self) -> bool:
+        return not self.findings
+
+
+@dataclass
+class TableDiagnosis:
+    experiment: Experiment
+    channels: tuple[str, ...]
+    groups: np.ndarray  # group label of each row
+    group_name: str
+    noise: dict[str, float]
+    baseline: TableFit
+    candidates: list[TableCandidate]
+    skipped: dict[str, str]
+    cause: str
+    reason: str
+    extended: TableFit
+    extended_candidate: TableCandidate | None
+    warnings: list[dict]
+    margins: dict[str, float]
+
+
+class TableModel:
+    """Maps calibrated unknowns and effect parameters to a table's predicted channels."""
+
+    def __init__(self, experiment: Experiment):
+        self.experiment = experiment
+        self.kind = experiment.kind
+        self.columns = experiment.columns
+        self.unknowns = [self._coordinate(name, bounds) for name, bounds in experiment.calibrate.items()]
+
+    def _coordinate(self, name: str, bounds: tuple[float, float]) -> Coordinate:
+        lower, upper = bounds
+        declared = declared_value(name, self.experiment.build, self.experiment.bladder)
+        start = declared if lower < declared < upper else 0.5 * (lower + upper)
+        source = "the [calibrate] bounds the experiment file declares"
+        if lower > 0 and upper / lower > LOG_SPAN:
+            return Coordinate(
+                name, math.log(lower), math.log(upper), math.log(start), math.exp, math.log, (lower, upper), source
+            )
+        return Coordinate(name, lower, upper, start, plausible=(lower, upper), source=source)
+
+    def params(self, values: dict[str, float]) -> MuscleParams:
+        params = muscle_params(self.experiment)
+        build = params.build
+        for name, value in values.items():
+            if name in type(build).fields():
+                setattr(build, name, value)
+        if BRAID_ANGLE_KEY in values:
+            build.fiber_revolutions = fiber_revolutions_for_braid_angle(build, values[BRAID_ANGLE_KEY])
+        params.build = build
+        if "bladder.shear_modulus_Pa" in values:
+            params.bladder = BladderLaw.neo_hookean(values["bladder.shear_modulus_Pa"])
+        return params
+
+    def predict(self, values: dict[str, float], effects: list[Effect], rows: np.ndarray) -> dict[str, np.ndarray]:
+        params = self.params(values)
+        pressure = self.columns["pressure_kPa"][rows]
+        if self.kind == "isometric_map":
+            return {"force_N": static_forces(params, self.columns["length_m"][rows], pressure, effects)}
+        geometry = BraidGeometry(params.build)
+        atmosphere = params.gas.atmospheric_pressure_Pa
+        states = [free_inflation(geometry, params.bladder, atmosphere, p * PASCAL_PER_KILOPASCAL) for p in pressure]
+        return {
+            "length_m": np.array([s.length_m for s in states]),
+            "diameter_m": np.array([s.diameter_m for s in states]),
+        }
+
+
+def groups_of(experiment: Experiment) -> tuple[np.ndarray, str]:
+    """The held-out unit of each row: a map's held length, a free-inflation table's row."""
+    if experiment.kind == "isometric_map":
+        return np.round(experiment.columns["length_m"], 9), "held length"
+    return np.arange(len(experiment.columns["pressure_kPa"]), dtype=float), "row"
+
+
+def noise_of(experiment: Experiment, channels: tuple[str, ...], groups: np.ndarray) -> dict[str, float]:
+    """The table's noise per channel, model-free: the residual of a quadratic in pressure fitted
+    to each group's loaded rows (a map's rows with force > 0; a free-inflation table whole).
+    A smooth curve through settled steps leaves what the instruments add."""
+    pressure = experiment.columns["pressure_kPa"]
+    out = {}
+    for channel in channels:
+        values = experiment.columns[channel]
+        squares, dof = 0.0, 0
+        labels = np.unique(groups) if experiment.kind == "isometric_map" else [None]
+        for label in labels:
+            rows = np.ones(len(values), bool) if label is None else groups == label
+            if channel == "force_N":
+                rows &= values > 0
+            if rows.sum() < 5:
+                continue
+            coefficients = np.polyfit(pressure[rows], values[rows], 2)
+            squares += float(np.sum((np.polyval(coefficients, pressure[rows]) - values[rows]) ** 2))
+            dof += int(rows.sum()) - 3
+        out[channel] = math.sqrt(squares / dof) if dof > 0 else float("nan")
+    return out
+
+
+class _Fitter:
+    """Least squares of one model (unknowns plus an effect's parameters) on chosen rows."""
+
+    def __init__(self, model: TableModel, channels, scales: dict[str, float], make_effect=None):
+        self.model = model
+        self.channels = channels
+        self.scales = scales
+        self.make_effect = make_effect  # a fresh effect per evaluation: folds run in threads
+        self.effect_space = effect_space(make_effect()) if make_effect is not None else []
+        self.space = model.unknowns + self.effect_space
+
+    def values(self, x: np.ndarray) -> dict[str, float]:
+        return {c.name: float(c.value(v)) for c, v in zip(self.model.unknowns, x)}
+
+    def effects(self, x: np.ndarray) -> list[Effect]:
+        if self.make_effect is None:
+            return []
+        return [configure(self.make_effect(), self.effect_space, x[len(self.model.unknowns) :])]
+
+    def predict(self, x: np.ndarray, rows: np.ndarray) -> dict[str, np.ndarray]:
+        return self.model.predict(self.values(x), self.effects(x), rows)
+
+    def residual(self, x: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        try:
+            predicted = self.predict(x, rows)
+        except ValueError:
+            # A trial outside the braid's range: a large, finite residual steers the search back.
+            return np.full(len(rows) * len(self.channels), 1e3)
+        return np.concatenate([(predicted[c] - self.model.columns[c][rows]) / self.scales[c] for c in self.channels])
+
+    def fit(self, rows: np.ndarray, starts: list[np.ndarray]) -> np.ndarray:
+        if not self.space:
+            return np.array([])
+        lower = np.array([c.lower for c in self.space])
+        upper = np.array([c.upper for c in self.space])
+        best = None
+        for x0 in starts:
+            result = least_squares(
+                lambda x: self.residual(x, rows),
+                np.clip(x0, lower, upper),
+                bounds=(lower, upper),
+                x_scale=upper - lower,
+                diff_step=1e-6,
+            )
+            if best is None or result.cost < best.cost:
+                best = result
+        return best.x
+
+    def starts(self) -> list[np.ndarray]:
+        declared = np.array([c.start for c in self.space])
+        out = [declared]
+        for fraction in STARTS:
+            point = declared.copy()
+            point[: len(self.model.unknowns)] = [c.lower + fraction * (c.upper - c.lower) for c in self.model.unknowns]
+            out.append(point)
+        return out
+
+
+def _fit_table(name: str, model: TableModel, channels, scales, make_effect, groups: np.ndarray, pool) -> TableFit:
+    fitter = _Fitter(model, channels, scales, make_effect)
+    every = np.arange(len(groups))
+    x = fitter.fit(every, fitter.starts())
+    labels = np.unique(groups)
+
+    def leave_out(label):
+        kept = np.flatnonzero(groups != label)
+        held = np.flatnonzero(groups == label)
+        x_fold = fitter.fit(kept, [x])
+        return held, x_fold, fitter.predict(x_fold, held)
+
+    folds = list(pool.map(leave_out, labels))
+    heldout = {c: np.empty(len(groups)) for c in channels}
+    for held, _, predicted in folds:
+        for c in channels:
+            heldout[c][held] = predicted[c]
+    coordinates = {c.name: (c, float(v)) for c, v in zip(fitter.space, x)}
+    params = {c.name: float(c.value(v)) for c, v in zip(fitter.space, x)}
+    intervals = {}
+    count = len(folds)
+    for index, c in enumerate(fitter.space):
+        values = np.array([float(c.value(x_fold[index])) for _, x_fold, _ in folds])
+        spread = math.sqrt((count - 1) / count * float(np.sum((values - values.mean()) ** 2)))
+        intervals[c.name] = (params[c.name] - 1.96 * spread, params[c.name] + 1.96 * spread)
+    fit = TableFit(name, fitter.effects(x), params, coordinates, fitter.predict(x, every), heldout, intervals)
+    fit._measured = {c: model.columns[c] for c in channels}
+    return fit
+
+
+def _heldout_rmse(fit: TableFit, measured, channel: str, rows=None) -> float:
+    residual = fit.heldout[channel] - measured[channel]
+    if rows is not None:
+        residual = residual[rows]
+    return float(np.sqrt(np.mean(residual**2)))
+
+
+def _findings(fit: TableFit) -> list[dict]:
+    out = []
+    for key, (coordinate, x) in fit.coordinates.items():
+        value = float(coordinate.value(x))
+        margin = AT_BOUND * (coordinate.upper - coordinate.lower)
+        side = "lower" if x <= coordinate.lower + margin else "upper" if x >= coordinate.upper - margin else None
+        if side is None and coordinate.plausible[0] <= value <= coordinate.plausible[1]:
+            continue
+        out.append(
+            {
+                "parameter": key,
+                "value": value,
+                "bound": float(coordinate.bound_value(side)) if side else None,
+                "plausible": [float(coordinate.plausible[0]), float(coordinate.plausible[1])],
+                "source": coordinate.source,
+            }
+        )
+    return out
+
+
+def _seed(experiment: Experiment, channels) -> int:
+    digest = hashlib.sha256()
+    for name in sorted(experiment.columns):
+        digest.update(np.ascontiguousarray(experiment.columns[name], dtype="<f8").tobytes())
+    return int.from_bytes(digest.digest()[:8], "little")
+
+
+def _judge(fit: TableFit, baseline: TableFit, measured, channels, groups: np.ndarray, seed: int) -> TableCandidate:
+    labels = np.unique(groups)
+    index = [np.flatnonzero(groups == label) for label in labels]
+    rng = np.random.default_rng(seed)
+    draws = rng.integers(0, len(labels), size=(BOOTSTRAP_SAMPLES, len(labels)))
+    gain, ci = {}, {}
+    for c in channels:
+        base = [float(np.sum((baseline.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index]
+        ext = [float(np.sum((fit.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index]
+        base, ext = np.array(base), np.array(ext)
+        gain[c] = 1.0 - math.sqrt(ext.sum() / base.sum()) if base.sum() > 0 else 0.0
+        samples = 1.0 - np.sqrt(ext[draws].sum(axis=1) / np.maximum(base[draws].sum(axis=1), 1e-300))
+        ci[c] = (float(np.quantile(samples, 0.025)), float(np.quantile(samples, 0.975)))
+    score = float(np.mean([gain[c] for c in channels]))
+    significant = all(gain[c] >= MIN_GAIN and ci[c][0] > 0.0 for c in channels)
+    return TableCandidate(fit, gain, ci, score, significant, _findings(fit))
+
+
+def static_candidates(catalog: EffectCatalog) -> tuple[list[str], dict[str, str]]:
+    """The catalog's effects that can act on a static table (physical ones that act at supplied
+    pressure), and why each other one cannot."""
+    out, skipped = [], {}
+    for name in catalog.names():
+        effect = catalog.make(name)
+        if effect.stage() != EffectStage.physics:
+            skipped[name] = "acts on the motion or the instruments over time; a table has no time axis"
+            continue
+        acts, why_not = effect.acts_in(GasMode.supplied)
+        if not acts:
+            skipped[name] = why_not
+            continue
+        out.append(name)
+    return out, skipped
+
+
+def diagnose_table(
+    experiment: Experiment,
+    catalog: EffectCatalog | None = None,
+    progress=None,
+    threads: int | None = None,
+) -> TableDiagnosis:
+    """Calibrates the table's unknowns, scores every static catalog effect on held-out groups,
+    and decides. Raises ExperimentError when the table has too few groups to hold out."""
+    progress = progress or (lambda message: None)
+    channels = PREDICTED[experiment.kind]
+    groups, group_name = groups_of(experiment)
+    labels = np.unique(groups)
+    if len(labels) < MIN_GROUPS:
+        raise ExperimentError(
+            f"{experiment.data_path}: {len(labels)} {group_name}(s); holding out needs at least {MIN_GROUPS} "
+            f"({'measure the map at more held lengths' if experiment.kind == 'isometric_map' else 'add rows'})"
+        )
+    model = TableModel(experiment)
+    measured = {c: experiment.columns[c] for c in channels}
+    noise = noise_of(experiment, channels, groups)
+    # Residuals of channels with different units are compared in units of their spread.
+    scales = {c: float(np.std(measured[c])) or 1.0 for c in channels}
+    seed = _seed(experiment, channels)
+    catalog = catalog or builtin_catalog()
+    names, skipped = static_candidates(catalog)
+    unknowns = ", ".join(c.name for c in model.unknowns) or "nothing"
+    with ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
+        progress(f"calibrating {unknowns} on {len(groups)} rows, holding out each of {len(labels)} {group_name}s")
+        baseline = _fit_table("baseline", model, channels, scales, None, groups, pool)
+        candidates = []
+        for name in names:
+
+            def make_effect(name=name):
+                return catalog.make(name)
+
+            start = _Fitter(model, channels, scales, make_effect)
+            x0 = start.starts()[0]
+            rows = np.arange(len(groups))
+            try:
+                with_effect = start.predict(x0, rows)
+                without = _Fitter(model, channels, scales).predict(x0[: len(model.unknowns)], rows)
+            except ValueError as error:
+                skipped[name] = f"cannot be evaluated on this table: {error}"
+                continue
+            if all(np.array_equal(with_effect[c], without[c]) for c in channels):
+                skipped[name] = "does not change a static table's prediction"
+                continue
+            progress(f"fitting {name}")
+            fit = _fit_table(name, model, channels, scales, make_effect, groups, pool)
+            candidates.append(_judge(fit, baseline, measured, channels, groups, seed))
+    candidates.sort(key=lambda j: -j.score)
+    cause, reason, chosen, margins = _decide(candidates, baseline, measured, channels, noise)
+    extended = chosen.fit if chosen else baseline
+    warnings = _findings(baseline) + (chosen.findings if chosen else [])
+    return TableDiagnosis(
+        experiment,
+        channels,
+        groups,
+        group_name,
+        noise,
+        baseline,
+        candidates,
+        skipped,
+        cause,
+        reason,
+        extended,
+        chosen,
+        warnings,
+        margins,
+    )
+
+
+def _decide(candidates, baseline, measured, channels, noise):
+    significant = [j for j in candidates if j.significant]
+    margins: dict[str, float] = {}
+    if significant:
+        best = significant[0]
+        if not best.credible:
+            what = "; ".join(
+                f"{f['parameter']} = {f['value']:.4g}"
+                + (f" at its search bound {f['bound']:.4g}" if f["bound"] else "")
+                for f in best.findings
+            )
+            return "unexplained", f"the best candidate, {best.fit.name}, fits only with {what}", None, margins
+        runner = next((j for j in candidates if j is not best), None)
+        margins["over_none"] = float(min(best.gain_ci95[c][0] for c in channels))
+        if runner is not None:
+            margins["over_runner_up"] = float(best.score - runner.score)
+        return best.fit.name, "its held-out gain is significant and its parameters plausible", best, margins
+    ratios = {c: _heldout_rmse(baseline, measured, c) / noise[c] for c in channels if noise[c] > 0}
+    if ratios and max(ratios.values()) <= NONE_WITHIN_NOISE:
+        margins["within_noise"] = float(NONE_WITHIN_NOISE - max(ratios.values()))
+        return "none", "the calibrated model carries to held-out groups within the noise", None, margins
+    left = ", ".join(f"{c} at {r:.1f}x its noise" for c, r in ratios.items())
+    return "unexplained", f"no catalog effect gains significantly; held-out error left: {left}", None, margins
+
+
+def to_json(d: TableDiagnosis) -> dict:
+    measured = {c: d.experiment.columns[c] for c in d.channels}
+
+    def rmse(fit, heldout):
+        return {c: (_heldout_rmse(fit, measured, c) if heldout else fit.rmse(c)) for c in d.channels}
+
+    def per_group(fit):
+        out = {}
+        for label in np.unique(d.groups):
+            rows = d.groups == label
+            out[f"{label:g}"] = {c: _heldout_rmse(fit, measured, c, rows) for c in d.channels}
+        return out
+
+    report = {
+        "kind": d.experiment.kind,
+        "held_out": d.group_name,
+        "noise": d.noise,
+        "baseline": {
+            "params": d.baseline.params,
+            "intervals": {k: list(v) for k, v in d.baseline.intervals.items()},
+            "rmse": rmse(d.baseline, False),
+            "heldout_rmse": rmse(d.baseline, True),
+            "heldout_rmse_by_group": per_group(d.baseline),
+        },
+        "candidates": [
+            {
+                "effect": j.fit.name,
+                "params": j.fit.params,
+                "heldout_rmse": rmse(j.fit, True),
+                "gain": j.gain,
+                "gain_ci95": {c: list(v) for c, v in j.gain_ci95.items()},
+                "score": j.score,
+                "significant": j.significant,
+                "credible": j.credible,
+                "findings": j.findings,
+            }
+            for j in d.candidates
+        ],
+        "skipped": d.skipped,
+        "cause": d.cause,
+        "reason": d.reason,
+        "extended": {
+            "effects": [e.name() for e in d.extended.effects],
+            "params": d.extended.params,
+            "intervals": {k: list(v) for k, v in d.extended.intervals.items()},
+            "rmse": rmse(d.extended, False),
+            "heldout_rmse": rmse(d.extended, True),
+            "heldout_rmse_by_group": per_group(d.extended),
+        },
+        "gain": d.extended_candidate.gain if d.extended_candidate else {c: 0.0 for c in d.channels},
+        "gain_ci95": ({c: list(v) for c, v in d.extended_candidate.gain_ci95.items()} if d.extended_candidate else {}),
+        "decision": {"cause": d.cause, "reason": d.reason, "margins": d.margins},
+        "warnings": d.warnings,
+    }
+    return report
+
+
+def _calibrated(fit: TableFit) -> str:
+    return ", ".join(
+        f"{k} = {v:.4g} [{fit.intervals[k][0]:.4g}, {fit.intervals[k][1]:.4g}]" for k, v in fit.params.items()
+    )
+
+
+def verdict(d: TableDiagnosis) -> str:
+    """What a person reads first: the calibrated unknowns with their intervals, the held-out
+    error before and after, the cause and its gain, and every parameter at a bound."""
+    measured = {c: d.experiment.columns[c] for c in d.channels}
+    lines = [f"{d.experiment.path}: {d.experiment.kind}, {len(d.groups)} rows, each {d.group_name} held out in turn"]
+    models = [("baseline", d.baseline)] + ([(f"with {d.cause}", d.extended)] if d.extended is not d.baseline else [])
+    for name, fit in models:
+        error = ", ".join(
+            f"{c} {_heldout_rmse(fit, measured, c):.4g} {CHANNEL_UNITS[c]} (noise {d.noise[c]:.2g})" for c in d.channels
+        )
+        lines.append(f"{name}: held-out RMSE {error}")
+        if fit.params:
+            lines.append(f"  calibrated (jackknife 95 %): {_calibrated(fit)}")
+    if d.extended_candidate is None:
+        lines.append(f"cause: {d.cause} — {d.reason}")
+    else:
+        gain = ", ".join(
+            f"{c} {d.extended_candidate.gain[c]:.2f} [{d.extended_candidate.gain_ci95[c][0]:.2f}, "
+            f"{d.extended_candidate.gain_ci95[c][1]:.2f}]"
+            for c in d.channels
+        )
+        lines.append(f"cause: {d.cause} — held-out gain {gain}")
+    for w in d.warnings:
+        where = f"at its bound {w['bound']:.4g}" if w["bound"] is not None else "outside its plausible range"
+        lines.append(f"warning: {w['parameter']} = {w['value']:.4g} {where} ({w['source']})")
+    return "\n".join(lines)
+
+
+def plot(d: TableDiagnosis, path: str | Path) -> Path:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    columns = d.experiment.columns
+    pressure = columns["pressure_kPa"]
+    figure, axes = plt.subplots(1, len(d.channels), figsize=(6.5 * len(d.channels), 4.8), squeeze=False)
+    for axis, channel in zip(axes[0], d.channels):
+        labels = np.unique(d.groups) if d.experiment.kind == "isometric_map" else [None]
+        colors = plt.cm.viridis(np.linspace(0, 0.9, len(labels)))
+        for label, color in zip(labels, colors):
+            rows = np.ones(len(pressure), bool) if label is None else d.groups == label
+            order = np.argsort(pressure[rows])
+            p = pressure[rows][order]
+            name = f"L = {label * 1e3:.0f} mm" if label is not None else "measured"
+            axis.plot(p, columns[channel][rows][order], "o", color=color, ms=4, label=name)
+            axis.plot(p, d.baseline.heldout[channel][rows][order], ":", color=color, lw=1)
+            if d.extended is not d.baseline:
+                axis.plot(p, d.extended.heldout[channel][rows][order], "-", color=color, lw=1.5)
+        axis.set_xlabel("supplied pressure [kPa]")
+        axis.set_ylabel(f"{channel.rsplit('_', 1)[0]} [{CHANNEL_UNITS[channel]}]")
+        axis.grid(alpha=0.3)
+        axis.legend(fontsize=7, loc="best")
+    extended = f"solid: with {d.cause}" if d.extended is not d.baseline else ""
+    figure.suptitle(
+        f"{Path(d.experiment.path).name}: cause {d.cause}\n"
+        f"points: measured; dotted: calibrated baseline; {extended}\n"
+        f"each {d.group_name} predicted by the model fitted without it",
+        fontsize=8,
+    )
+    figure.tight_layout()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    return path
