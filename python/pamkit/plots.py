@@ -50,3 +50,39 @@ def plot_simulation(
     figure.savefig(path, dpi=110)
     plt.close(figure)
     return path
+
+
+def plot_table(path: str | Path, experiment, predicted: dict[str, np.ndarray], title: str = "") -> Path:
+    """A static table against its supplied pressure: measured points and the prediction, one
+    curve per held length of an isometric map; free length and diameter of a free-inflation
+    table."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    channels = ["force_N"] if experiment.kind == "isometric_map" else ["length_m", "diameter_m"]
+    pressure = experiment.columns["pressure_kPa"]
+    curves = (
+        np.round(experiment.columns["length_m"], 9) if experiment.kind == "isometric_map" else np.zeros(len(pressure))
+    )
+    figure, axes = plt.subplots(1, len(channels), figsize=(6.5 * len(channels), 4.8), squeeze=False)
+    for axis, channel in zip(axes[0], channels):
+        scale, unit = (1e3, "mm") if channel.endswith("_m") else (1.0, "N")
+        for curve, color in zip(np.unique(curves), plt.cm.viridis(np.linspace(0, 0.9, len(np.unique(curves))))):
+            rows = np.flatnonzero(curves == curve)
+            rows = rows[np.argsort(pressure[rows])]
+            name = f"L = {curve * 1e3:.0f} mm" if experiment.kind == "isometric_map" else "measured"
+            axis.plot(pressure[rows], scale * experiment.columns[channel][rows], "o", color=color, ms=4, label=name)
+            axis.plot(pressure[rows], scale * predicted[channel][rows], "-", color=color, lw=1.2)
+        axis.set_xlabel("supplied pressure [kPa]")
+        axis.set_ylabel(f"{channel.rsplit('_', 1)[0]} [{unit}]")
+        axis.grid(alpha=0.3)
+        axis.legend(fontsize=7, loc="best")
+    figure.suptitle(f"{title}\npoints: measured; lines: pamkit", fontsize=9)
+    figure.tight_layout()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    return path

@@ -9,6 +9,7 @@ import numpy as np
 
 from pamkit._core import (
     BladderLaw,
+    BraidGeometry,
     Effect,
     ElongationTrajectory,
     GasMode,
@@ -16,9 +17,11 @@ from pamkit._core import (
     MuscleParams,
     Simulator,
     SimulatorConfig,
+    free_inflation,
     inflated_and_sealed,
     simulate_measurement,
     simulate_supplied_measurement,
+    static_forces,
 )
 from pamkit.experiment import Experiment, ExperimentError
 from pamkit.units import PASCAL_PER_KILOPASCAL
@@ -61,6 +64,8 @@ def simulate_experiment(
             cannot follow (naming the file and sample).
     """
     params = params if params is not None else muscle_params(experiment)
+    if experiment.is_table:
+        return simulate_table(experiment, params, effects)
     mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
     for effect in effects:
         acts, why_not = effect.acts_in(mode)
@@ -89,4 +94,43 @@ def simulate_experiment(
     return {
         name: getattr(measurement, name)
         for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
+    }
+
+
+def simulate_table(
+    experiment: Experiment,
+    params: MuscleParams | None = None,
+    effects: Sequence[Effect] = (),
+    rows: np.ndarray | None = None,
+) -> dict[str, np.ndarray]:
+    """Predicts a static table row by row (all rows, or `rows`): an isometric map's force at its
+    held length and supplied pressure, a free-inflation table's free length and diameter at its
+    pressure. Returns the table's columns with the measured ones replaced by the prediction.
+
+    Raises:
+        ExperimentError: for an effect that cannot act on a static table, or a row the model
+            cannot reach (naming the file and row).
+    """
+    params = params if params is not None else muscle_params(experiment)
+    rows = np.arange(len(experiment.columns["pressure_kPa"])) if rows is None else rows
+    pressure = experiment.columns["pressure_kPa"][rows]
+    try:
+        if experiment.kind == "isometric_map":
+            length = experiment.columns["length_m"][rows]
+            return {
+                "length_m": length,
+                "pressure_kPa": pressure,
+                "force_N": static_forces(params, length, pressure, list(effects)),
+            }
+        if effects:
+            raise ExperimentError(f"{experiment.path}: a free-inflation table is predicted without effects")
+        geometry = BraidGeometry(params.build)
+        atmosphere = params.gas.atmospheric_pressure_Pa
+        states = [free_inflation(geometry, params.bladder, atmosphere, p * PASCAL_PER_KILOPASCAL) for p in pressure]
+    except ValueError as error:
+        raise ExperimentError(f"{experiment.data_path}: {error}") from None
+    return {
+        "pressure_kPa": pressure,
+        "length_m": np.array([s.length_m for s in states]),
+        "diameter_m": np.array([s.diameter_m for s in states]),
     }

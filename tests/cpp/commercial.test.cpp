@@ -69,8 +69,9 @@ TEST_CASE("The neo-Hookean stresses and tangent moduli are the derivatives of it
                 (neo_hookean_energy(eps_l + h, eps_h) - neo_hookean_energy(eps_l - h, eps_h)) / (2 * h) + 1.0, 1e-6);
       CHECK_REL(s.hoop + 1.0,
                 (neo_hookean_energy(eps_l, eps_h + h) - neo_hookean_energy(eps_l, eps_h - h)) / (2 * h) + 1.0, 1e-6);
-      CHECK_REL(k.longitudinal, (law.stresses(eps_l + h, eps_h).longitudinal -
-                                 law.stresses(eps_l - h, eps_h).longitudinal) / (2 * h), 1e-6);
+      CHECK_REL(k.longitudinal,
+                (law.stresses(eps_l + h, eps_h).longitudinal - law.stresses(eps_l - h, eps_h).longitudinal) / (2 * h),
+                1e-6);
       CHECK_REL(k.hoop, (law.stresses(eps_l, eps_h + h).hoop - law.stresses(eps_l, eps_h - h).hoop) / (2 * h), 1e-6);
     }
   }
@@ -89,8 +90,8 @@ TEST_CASE("The bladder force of a neo-Hookean membrane is the derivative of its 
   const double h = 1e-7;
   for (double L : {0.19, 0.21, 0.23, 0.245}) {
     INFO("L = " << L);
-    const double force = muscle_forces(geometry, geometry.shape(L), law, kNoFriction, kAtmosphere, kAtmosphere, 0.0)
-                             .bladder;
+    const double force =
+        muscle_forces(geometry, geometry.shape(L), law, kNoFriction, kAtmosphere, kAtmosphere, 0.0).bladder;
     CHECK_REL(force, (energy(L + h) - energy(L - h)) / (2 * h), 1e-5);
   }
 }

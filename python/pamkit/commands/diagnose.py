@@ -1,4 +1,4 @@
-"""pamkit diagnose EXPERIMENT.toml [--json REPORT.json] [--plot REPORT.png]"""
+"""pamkit diagnose EXPERIMENT.toml [MORE.toml ...] [--json REPORT.json] [--plot REPORT.png]"""
 
 from __future__ import annotations
 
@@ -13,7 +13,12 @@ def register(subparsers) -> None:
         description="Calibrates the model on some cycles, fits every catalog effect, scores each on held-out "
         "cycles and names a cause only when its gain is significant.",
     )
-    parser.add_argument("experiment", help="experiment TOML file (with its CSV of measured channels)")
+    parser.add_argument(
+        "experiment",
+        nargs="+",
+        help="experiment TOML file (with its CSV of measured channels); several static tables of one muscle "
+        "(isometric maps, free-inflation tables) form a campaign that shares its [calibrate] unknowns",
+    )
     parser.add_argument("--json", help="write the report as JSON")
     parser.add_argument("--plot", help="write the report as a PNG figure")
     parser.add_argument("--threads", type=int, default=None, help="fits in parallel (default: all cores)")

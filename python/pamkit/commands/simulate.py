@@ -36,8 +36,16 @@ def run(arguments: argparse.Namespace) -> int:
     experiment = load_experiment(arguments.experiment)
     predicted = simulate_experiment(experiment, effects=effects)
     write_series(arguments.output, predicted)
-    print(f"wrote {arguments.output} ({len(predicted['time_s'])} samples: {', '.join(predicted)})")
-    if arguments.plot:
+    rows = len(next(iter(predicted.values())))
+    print(f"wrote {arguments.output} ({rows} {'rows' if experiment.is_table else 'samples'}: {', '.join(predicted)})")
+    if arguments.plot and experiment.is_table:
+        from pamkit.plots import plot_table
+
+        plot_table(
+            arguments.plot, experiment, predicted, title=experiment.description or Path(arguments.experiment).stem
+        )
+        print(f"wrote {arguments.plot}")
+    elif arguments.plot:
         from pamkit.plots import plot_simulation
 
         measured = experiment.columns if experiment.measured() else None

@@ -36,7 +36,7 @@ from pamkit.diagnose.decide import (
 from pamkit.diagnose.kinds import Problem, build_problem
 from pamkit.diagnose.tables import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.experiment import Experiment, load_experiment
+from pamkit.experiment import Experiment, ExperimentError, load_experiment
 
 __all__ = ["MIN_GAIN", "Diagnosis", "diagnose", "data_seed"]
 
@@ -176,26 +176,33 @@ def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
 
 
 def diagnose(
-    experiment: Experiment | str | Path,
+    experiment: Experiment | str | Path | list,
     effect_catalog: EffectCatalog | None = None,
     progress=None,
     threads: int | None = None,
     seed: int | None = None,
 ) -> Diagnosis | TableDiagnosis:
-    """Diagnoses one experiment. `progress(message)` is called as work proceeds; `seed` (by
-    default drawn from the data) seeds the bootstrap. A static table (an isometric map, a
-    free-inflation table) is diagnosed by tables.py, on held-out lengths or rows.
+    """Diagnoses one experiment, or a campaign (a list) of static tables of one muscle.
+    `progress(message)` is called as work proceeds; `seed` (by default drawn from the data)
+    seeds the bootstrap. Static tables (isometric maps, free-inflation tables) are diagnosed by
+    tables.py, on held-out lengths or rows.
 
     Raises:
         ExperimentError: for data that cannot be diagnosed, naming file, row and column.
     """
     started = clock.perf_counter()
     report = progress or (lambda message: None)
-    if not isinstance(experiment, Experiment):
-        experiment = load_experiment(experiment)
+    tests = list(experiment) if isinstance(experiment, (list, tuple)) else [experiment]
+    tests = [e if isinstance(e, Experiment) else load_experiment(e) for e in tests]
     effect_catalog = effect_catalog if effect_catalog is not None else builtin_catalog()
-    if experiment.is_table:
-        return diagnose_table(experiment, effect_catalog, progress=progress, threads=threads)
+    if all(e.is_table for e in tests):
+        return diagnose_table(tests, effect_catalog, progress=progress, threads=threads)
+    if len(tests) > 1:
+        raise ExperimentError(
+            f"{tests[0].path}: a campaign of several tests is diagnosed for static tables (isometric_map, "
+            "free_inflation) only; diagnose each time series alone"
+        )
+    experiment = tests[0]
     problem = build_problem(experiment)
     seed = data_seed(problem) if seed is None else seed
     seconds = {}

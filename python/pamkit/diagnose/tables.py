@@ -26,22 +26,18 @@ from scipy.optimize import least_squares
 
 from pamkit._core import (
     BladderLaw,
-    BraidGeometry,
     Effect,
     EffectCatalog,
     EffectStage,
     GasMode,
     MuscleParams,
     fiber_revolutions_for_braid_angle,
-    free_inflation,
-    static_forces,
 )
 from pamkit.diagnose.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
 from pamkit.diagnose.model import Coordinate, configure, effect_space
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, declared_value
-from pamkit.simulate import muscle_params
-from pamkit.units import PASCAL_PER_KILOPASCAL
+from pamkit.simulate import muscle_params, simulate_table
 
 # The channels each kind predicts, and how its rows are grouped for holding out.
 PREDICTED = {"isometric_map": ("force_N",), "free_inflation": ("length_m", "diameter_m")}
@@ -94,11 +90,53 @@ class TableCandidate:
 
 
 @dataclass
-class TableDiagnosis:
-    experiment: Experiment
-    channels: tuple[str, ...]
-    groups: np.ndarray  # group label of each row
+class Campaign:
+    """One or more tables of one muscle (DESIGN.md, "Campaigns"), as one table: each test keeps
+    its own build and rows; the [calibrate] unknowns are shared."""
+
+    experiments: list[Experiment]
+    kind: str
+    columns: dict[str, np.ndarray]  # every test's rows, concatenated
+    test: np.ndarray  # the test of each row
+    groups: np.ndarray  # the held-out group of each row (an index into group_labels)
+    group_labels: list[str]
     group_name: str
+
+    @property
+    def name(self) -> str:
+        return " + ".join(str(e.path) for e in self.experiments)
+
+
+def campaign_of(experiments: list[Experiment]) -> Campaign:
+    """Joins tables of one kind; a map's groups are its held lengths, a free-inflation table's its
+    rows (DESIGN.md: the held-out unit follows the kind)."""
+    kinds = {e.kind for e in experiments}
+    if len(kinds) != 1:
+        raise ExperimentError(f"a campaign's tables must be of one kind; found {', '.join(sorted(kinds))}")
+    kind = kinds.pop()
+    columns = {c: np.concatenate([e.columns[c] for e in experiments]) for c in experiments[0].columns}
+    test = np.concatenate([np.full(len(e.columns["pressure_kPa"]), i) for i, e in enumerate(experiments)])
+    labels: list[str] = []
+    groups = np.empty(len(test), dtype=int)
+    prefix = (lambda e: f"{Path(e.path).stem} ") if len(experiments) > 1 else (lambda e: "")
+    for i, e in enumerate(experiments):
+        rows = np.flatnonzero(test == i)
+        if kind == "isometric_map":
+            for length in np.unique(np.round(e.columns["length_m"], 9)):
+                groups[rows[np.round(e.columns["length_m"], 9) == length]] = len(labels)
+                labels.append(f"{prefix(e)}L={length:g}")
+        else:
+            for row, pressure in zip(rows, e.columns["pressure_kPa"]):
+                groups[row] = len(labels)
+                labels.append(f"{prefix(e)}p={pressure:g}")
+    name = "held length" if kind == "isometric_map" else "row"
+    return Campaign(experiments, kind, columns, test, groups, labels, name)
+
+
+@dataclass
+class TableDiagnosis:
+    campaign: Campaign
+    channels: tuple[str, ...]
     noise: dict[str, float]
     baseline: TableFit
     candidates: list[TableCandidate]
@@ -110,19 +148,32 @@ class TableDiagnosis:
     warnings: list[dict]
     margins: dict[str, float]
 
+    @property
+    def groups(self) -> np.ndarray:
+        return self.campaign.groups
+
 
 class TableModel:
-    """Maps calibrated unknowns and effect parameters to a table's predicted channels."""
+    """Maps calibrated unknowns and effect parameters to a campaign's predicted channels."""
 
-    def __init__(self, experiment: Experiment):
-        self.experiment = experiment
-        self.kind = experiment.kind
-        self.columns = experiment.columns
-        self.unknowns = [self._coordinate(name, bounds) for name, bounds in experiment.calibrate.items()]
+    def __init__(self, campaign: Campaign):
+        self.campaign = campaign
+        self.kind = campaign.kind
+        self.columns = campaign.columns
+        declared: dict[str, tuple[tuple[float, float], Experiment]] = {}
+        for e in campaign.experiments:
+            for name, bounds in e.calibrate.items():
+                if name in declared and declared[name][0] != bounds:
+                    raise ExperimentError(
+                        f"{e.path}: [calibrate] {name} = {list(bounds)} differs from {list(declared[name][0])} in "
+                        f"{declared[name][1].path}: a campaign shares its unknowns"
+                    )
+                declared.setdefault(name, (bounds, e))
+        self.unknowns = [self._coordinate(name, bounds, e) for name, (bounds, e) in declared.items()]
 
-    def _coordinate(self, name: str, bounds: tuple[float, float]) -> Coordinate:
+    def _coordinate(self, name: str, bounds: tuple[float, float], experiment: Experiment) -> Coordinate:
         lower, upper = bounds
-        declared = declared_value(name, self.experiment.build, self.experiment.bladder)
+        declared = declared_value(name, experiment.build, experiment.bladder)
         start = declared if lower < declared < upper else 0.5 * (lower + upper)
         source = "the [calibrate] bounds the experiment file declares"
         if lower > 0 and upper / lower > LOG_SPAN:
@@ -131,8 +182,9 @@ class TableModel:
             )
         return Coordinate(name, lower, upper, start, plausible=(lower, upper), source=source)
 
-    def params(self, values: dict[str, float]) -> MuscleParams:
-        params = muscle_params(self.experiment)
+    @staticmethod
+    def params(experiment: Experiment, values: dict[str, float]) -> MuscleParams:
+        params = muscle_params(experiment)
         build = params.build
         for name, value in values.items():
             if name in type(build).fields():
@@ -145,38 +197,30 @@ class TableModel:
         return params
 
     def predict(self, values: dict[str, float], effects: list[Effect], rows: np.ndarray) -> dict[str, np.ndarray]:
-        params = self.params(values)
-        pressure = self.columns["pressure_kPa"][rows]
-        if self.kind == "isometric_map":
-            return {"force_N": static_forces(params, self.columns["length_m"][rows], pressure, effects)}
-        geometry = BraidGeometry(params.build)
-        atmosphere = params.gas.atmospheric_pressure_Pa
-        states = [free_inflation(geometry, params.bladder, atmosphere, p * PASCAL_PER_KILOPASCAL) for p in pressure]
-        return {
-            "length_m": np.array([s.length_m for s in states]),
-            "diameter_m": np.array([s.diameter_m for s in states]),
-        }
+        out = {c: np.empty(len(rows)) for c in PREDICTED[self.kind]}
+        for i, experiment in enumerate(self.campaign.experiments):
+            mine = np.flatnonzero(self.campaign.test[rows] == i)
+            if len(mine) == 0:
+                continue
+            local = rows[mine] - int(np.flatnonzero(self.campaign.test == i)[0])
+            predicted = simulate_table(experiment, self.params(experiment, values), effects, local)
+            for channel in out:
+                out[channel][mine] = predicted[channel]
+        return out
 
 
-def groups_of(experiment: Experiment) -> tuple[np.ndarray, str]:
-    """The held-out unit of each row: a map's held length, a free-inflation table's row."""
-    if experiment.kind == "isometric_map":
-        return np.round(experiment.columns["length_m"], 9), "held length"
-    return np.arange(len(experiment.columns["pressure_kPa"]), dtype=float), "row"
-
-
-def noise_of(experiment: Experiment, channels: tuple[str, ...], groups: np.ndarray) -> dict[str, float]:
+def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
     """The table's noise per channel, model-free: the residual of a quadratic in pressure fitted
-    to each group's loaded rows (a map's rows with force > 0; a free-inflation table whole).
+    to each held length's loaded rows (force > 0) of a map, or to each free-inflation table.
     A smooth curve through settled steps leaves what the instruments add."""
-    pressure = experiment.columns["pressure_kPa"]
+    pressure = campaign.columns["pressure_kPa"]
+    units = campaign.groups if campaign.kind == "isometric_map" else campaign.test
     out = {}
     for channel in channels:
-        values = experiment.columns[channel]
+        values = campaign.columns[channel]
         squares, dof = 0.0, 0
-        labels = np.unique(groups) if experiment.kind == "isometric_map" else [None]
-        for label in labels:
-            rows = np.ones(len(values), bool) if label is None else groups == label
+        for unit in np.unique(units):
+            rows = units == unit
             if channel == "force_N":
                 rows &= values > 0
             if rows.sum() < 5:
@@ -303,10 +347,11 @@ def _findings(fit: TableFit) -> list[dict]:
     return out
 
 
-def _seed(experiment: Experiment, channels) -> int:
+def _seed(columns: dict[str, np.ndarray]) -> int:
+    """The bootstrap's seed, drawn from the data: the same tables give the same report."""
     digest = hashlib.sha256()
-    for name in sorted(experiment.columns):
-        digest.update(np.ascontiguousarray(experiment.columns[name], dtype="<f8").tobytes())
+    for name in sorted(columns):
+        digest.update(np.ascontiguousarray(columns[name], dtype="<f8").tobytes())
     return int.from_bytes(digest.digest()[:8], "little")
 
 
@@ -346,28 +391,30 @@ def static_candidates(catalog: EffectCatalog) -> tuple[list[str], dict[str, str]
 
 
 def diagnose_table(
-    experiment: Experiment,
+    experiments: Experiment | list[Experiment],
     catalog: EffectCatalog | None = None,
     progress=None,
     threads: int | None = None,
 ) -> TableDiagnosis:
-    """Calibrates the table's unknowns, scores every static catalog effect on held-out groups,
-    and decides. Raises ExperimentError when the table has too few groups to hold out."""
+    """Calibrates the tables' unknowns, scores every static catalog effect on held-out groups,
+    and decides. Several tables of one muscle form a campaign. Raises ExperimentError when there
+    are too few groups to hold out."""
     progress = progress or (lambda message: None)
-    channels = PREDICTED[experiment.kind]
-    groups, group_name = groups_of(experiment)
+    campaign = campaign_of(experiments if isinstance(experiments, list) else [experiments])
+    channels = PREDICTED[campaign.kind]
+    groups, group_name = campaign.groups, campaign.group_name
     labels = np.unique(groups)
     if len(labels) < MIN_GROUPS:
+        what = "measure the map at more held lengths" if campaign.kind == "isometric_map" else "add rows"
         raise ExperimentError(
-            f"{experiment.data_path}: {len(labels)} {group_name}(s); holding out needs at least {MIN_GROUPS} "
-            f"({'measure the map at more held lengths' if experiment.kind == 'isometric_map' else 'add rows'})"
+            f"{campaign.name}: {len(labels)} {group_name}(s); holding out needs at least {MIN_GROUPS} ({what})"
         )
-    model = TableModel(experiment)
-    measured = {c: experiment.columns[c] for c in channels}
-    noise = noise_of(experiment, channels, groups)
+    model = TableModel(campaign)
+    measured = {c: campaign.columns[c] for c in channels}
+    noise = noise_of(campaign, channels)
     # Residuals of channels with different units are compared in units of their spread.
     scales = {c: float(np.std(measured[c])) or 1.0 for c in channels}
-    seed = _seed(experiment, channels)
+    seed = _seed(campaign.columns)
     catalog = catalog or builtin_catalog()
     names, skipped = static_candidates(catalog)
     unknowns = ", ".join(c.name for c in model.unknowns) or "nothing"
@@ -400,10 +447,8 @@ def diagnose_table(
     extended = chosen.fit if chosen else baseline
     warnings = _findings(baseline) + (chosen.findings if chosen else [])
     return TableDiagnosis(
-        experiment,
+        campaign,
         channels,
-        groups,
-        group_name,
         noise,
         baseline,
         candidates,
@@ -443,21 +488,22 @@ def _decide(candidates, baseline, measured, channels, noise):
 
 
 def to_json(d: TableDiagnosis) -> dict:
-    measured = {c: d.experiment.columns[c] for c in d.channels}
+    measured = {c: d.campaign.columns[c] for c in d.channels}
 
     def rmse(fit, heldout):
         return {c: (_heldout_rmse(fit, measured, c) if heldout else fit.rmse(c)) for c in d.channels}
 
     def per_group(fit):
         out = {}
-        for label in np.unique(d.groups):
-            rows = d.groups == label
-            out[f"{label:g}"] = {c: _heldout_rmse(fit, measured, c, rows) for c in d.channels}
+        for index, label in enumerate(d.campaign.group_labels):
+            rows = d.groups == index
+            out[label] = {c: _heldout_rmse(fit, measured, c, rows) for c in d.channels}
         return out
 
     report = {
-        "kind": d.experiment.kind,
-        "held_out": d.group_name,
+        "kind": d.campaign.kind,
+        "tests": [str(e.path) for e in d.campaign.experiments],
+        "held_out": d.campaign.group_name,
         "noise": d.noise,
         "baseline": {
             "params": d.baseline.params,
@@ -508,8 +554,9 @@ def _calibrated(fit: TableFit) -> str:
 def verdict(d: TableDiagnosis) -> str:
     """What a person reads first: the calibrated unknowns with their intervals, the held-out
     error before and after, the cause and its gain, and every parameter at a bound."""
-    measured = {c: d.experiment.columns[c] for c in d.channels}
-    lines = [f"{d.experiment.path}: {d.experiment.kind}, {len(d.groups)} rows, each {d.group_name} held out in turn"]
+    measured = {c: d.campaign.columns[c] for c in d.channels}
+    c = d.campaign
+    lines = [f"{c.name}: {c.kind}, {len(c.groups)} rows, each {c.group_name} held out in turn"]
     models = [("baseline", d.baseline)] + ([(f"with {d.cause}", d.extended)] if d.extended is not d.baseline else [])
     for name, fit in models:
         error = ", ".join(
@@ -534,35 +581,40 @@ def verdict(d: TableDiagnosis) -> str:
 
 
 def plot(d: TableDiagnosis, path: str | Path) -> Path:
+    """Each channel against the supplied pressure: measured points, and each group as the
+    calibrated baseline (dotted) and the named cause's model (solid) predicted it held out. A
+    map draws one curve per held length; a free-inflation table one per test."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    columns = d.experiment.columns
-    pressure = columns["pressure_kPa"]
+    c = d.campaign
+    pressure = c.columns["pressure_kPa"]
+    curves = c.groups if c.kind == "isometric_map" else c.test
+    names = c.group_labels if c.kind == "isometric_map" else [Path(e.path).stem for e in c.experiments]
     figure, axes = plt.subplots(1, len(d.channels), figsize=(6.5 * len(d.channels), 4.8), squeeze=False)
     for axis, channel in zip(axes[0], d.channels):
-        labels = np.unique(d.groups) if d.experiment.kind == "isometric_map" else [None]
-        colors = plt.cm.viridis(np.linspace(0, 0.9, len(labels)))
-        for label, color in zip(labels, colors):
-            rows = np.ones(len(pressure), bool) if label is None else d.groups == label
-            order = np.argsort(pressure[rows])
-            p = pressure[rows][order]
-            name = f"L = {label * 1e3:.0f} mm" if label is not None else "measured"
-            axis.plot(p, columns[channel][rows][order], "o", color=color, ms=4, label=name)
-            axis.plot(p, d.baseline.heldout[channel][rows][order], ":", color=color, lw=1)
+        unit = CHANNEL_UNITS[channel]
+        scale = 1e3 if unit == "m" else 1.0
+        shown_unit = "mm" if unit == "m" else unit
+        colors = plt.cm.viridis(np.linspace(0, 0.9, len(np.unique(curves))))
+        for curve, color in zip(np.unique(curves), colors):
+            rows = np.flatnonzero(curves == curve)
+            rows = rows[np.argsort(pressure[rows])]
+            axis.plot(pressure[rows], scale * c.columns[channel][rows], "o", color=color, ms=4, label=names[curve])
+            axis.plot(pressure[rows], scale * d.baseline.heldout[channel][rows], ":", color=color, lw=1)
             if d.extended is not d.baseline:
-                axis.plot(p, d.extended.heldout[channel][rows][order], "-", color=color, lw=1.5)
+                axis.plot(pressure[rows], scale * d.extended.heldout[channel][rows], "-", color=color, lw=1.5)
         axis.set_xlabel("supplied pressure [kPa]")
-        axis.set_ylabel(f"{channel.rsplit('_', 1)[0]} [{CHANNEL_UNITS[channel]}]")
+        axis.set_ylabel(f"{channel.rsplit('_', 1)[0]} [{shown_unit}]")
         axis.grid(alpha=0.3)
         axis.legend(fontsize=7, loc="best")
-    extended = f"solid: with {d.cause}" if d.extended is not d.baseline else ""
+    extended = f"solid: with {d.cause}; " if d.extended is not d.baseline else ""
     figure.suptitle(
-        f"{Path(d.experiment.path).name}: cause {d.cause}\n"
+        f"{', '.join(Path(e.path).name for e in c.experiments)}: cause {d.cause}\n"
         f"points: measured; dotted: calibrated baseline; {extended}\n"
-        f"each {d.group_name} predicted by the model fitted without it",
+        f"each {c.group_name} predicted by the model fitted without it",
         fontsize=8,
     )
     figure.tight_layout()

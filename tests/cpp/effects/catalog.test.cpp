@@ -115,6 +115,11 @@ TEST_CASE("catalog: realistic inside plausible, plausible reachable by the fit, 
       CHECK(p.realistic_max <= p.plausible_max);
       CHECK(p.min <= p.fit_min);
       CHECK(p.fit_max <= p.max);
+      if (p.fit_min == p.fit_max) {  // held, not searched: at the effect's default
+        CHECK(p.fit_start == p.fit_min);
+        CHECK(p.value == p.fit_start);
+        continue;
+      }
       CHECK(p.fit_min < p.fit_start);
       CHECK(p.fit_start < p.fit_max);
       CHECK(p.plausible_max <= p.fit_max);  // plausible values are reachable: the bound lies beyond
