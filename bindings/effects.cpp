@@ -279,6 +279,37 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
       py::arg("effects") = std::vector<EffectPtr>{},
       "The muscle's force at rest [N] at each row of a static table (length [m], supplied gauge pressure [kPa]), "
       "with physical effects applied. Releases the GIL.");
+  py::class_<IsotonicLengths>(m, "IsotonicLengths", "Where an isotonic test's muscle settles at each row.")
+      .def_property_readonly(
+          "length_m",
+          [](const IsotonicLengths& r) {
+            return py::array_t<double>(static_cast<py::ssize_t>(r.length_m.size()), r.length_m.data());
+          },
+          "length at each row [m]")
+      .def_property_readonly(
+          "at_limit", [](const IsotonicLengths& r) { return std::vector<bool>(r.at_limit); },
+          "whether each row's equilibrium lay beyond the range searched");
+  m.def(
+      "isotonic_lengths",
+      [](const MuscleParams& params,
+         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_kPa, double load_N,
+         double start_length_m, const std::vector<EffectPtr>& effects) {
+        const std::vector<double> pressures = vector(gauge_pressures_kPa);
+        py::gil_scoped_release release;
+        return isotonic_lengths(params, pressures, load_N, start_length_m, effects);
+      },
+      py::arg("params"), py::arg("gauge_pressures_kPa"), py::arg("load_N"), py::arg("start_length_m"),
+      py::arg("effects") = std::vector<EffectPtr>{},
+      "The length [m] at which the muscle carries load_N at each supplied gauge pressure [kPa], rows in the order "
+      "measured, following the quasi-static path from start_length_m. Releases the GIL.");
+  m.def(
+      "pressure_branches",
+      [](const py::array_t<double, py::array::c_style | py::array::forcecast>& pressure_kPa, double play_kPa) {
+        const std::vector<double> branch = pressure_branches(vector(pressure_kPa), play_kPa);
+        return py::array_t<double>(static_cast<py::ssize_t>(branch.size()), branch.data());
+      },
+      py::arg("pressure_kPa"), py::arg("play_kPa") = 2.0,
+      "+1 where a supplied pressure is being raised, -1 where lowered (a play operator of half-width play_kPa).");
 }
 
 }  // namespace pamkit::python

@@ -315,6 +315,24 @@ def braid_slack() -> Path:
     return save(fig, "braid_slack")
 
 
+def pressure_hysteresis() -> Path:
+    spec = "pressure_hysteresis:coefficient=0.1"
+    up = np.linspace(20.0, 300.0, 60)
+    pressures = np.concatenate([up, up[::-1]])
+    fig, (held, loaded) = figure(f"{spec} (PAM 2, supplied pressure raised and lowered)")
+    lengths = np.full_like(pressures, 0.19)
+    for specs, style in (((), BASE), ([spec], {"color": COLORS[0]})):
+        force = pamkit.static_forces(params(), lengths, pressures, parse_effects(list(specs)))
+        held.plot(pressures, force, **style, label=specs[0].split(":")[0] if specs else "baseline")
+        path = pamkit.isotonic_lengths(params(), pressures, 60.0, params().build.length_m, parse_effects(list(specs)))
+        loaded.plot(pressures, path.length_m * 1e3, **style)
+    held.set_title("held at 190 mm", fontsize=9)
+    loaded.set_title("under a 60 N load", fontsize=9)
+    label(held, "supplied pressure [kPa]", "force [N]")
+    label(loaded, "supplied pressure [kPa]", "length [mm]", legend=False)
+    return save(fig, "pressure_hysteresis")
+
+
 GALLERY = {
     f.__name__: f
     for f in (
@@ -325,6 +343,7 @@ GALLERY = {
         fiber_compliance,
         fixture_slack,
         braid_slack,
+        pressure_hysteresis,
         sensor_lag,
         time_skew,
         sensor_offset,

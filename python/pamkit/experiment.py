@@ -40,6 +40,7 @@ SERIES_KIND = "series"
 TABLE_COLUMNS = {
     "isometric_map": ("length_m", "pressure_kPa", "force_N"),
     "free_inflation": ("pressure_kPa", "length_m", "diameter_m"),
+    "isotonic": ("pressure_kPa", "length_m"),  # or contraction_m from the deflated length; time_s optional
 }
 KINDS = (SERIES_KIND, *TABLE_COLUMNS)
 
@@ -51,6 +52,7 @@ TEST_KEYS = {
     "kind": (False, f"{' or '.join(repr(k) for k in KINDS)} (default {SERIES_KIND!r})"),
     "gas": (False, '"sealed" (default) or "supplied"'),
     "initial_length_m": (False, "muscle length at zero elongation [m]"),
+    "load_N": (False, "isotonic: the constant load the muscle carries [N] (or unknown in [calibrate])"),
     "description": (False, "free text: where the test comes from"),
 }
 TABLE_DEFAULTS = {"inflation_pressure_kPa": 0.0, "ambient_temperature_C": 20.0}
@@ -84,6 +86,7 @@ class Experiment:
     bladder: BladderLaw = field(default_factory=BladderLaw.thesis)
     kind: str = SERIES_KIND
     calibrate: dict[str, tuple[float, float]] = field(default_factory=dict)
+    load_N: float | None = None
     columns: dict[str, np.ndarray] = field(default_factory=dict)
 
     @property
@@ -179,12 +182,15 @@ def calibratable_fields() -> dict[str, tuple[float, float, str]]:
     """What [calibrate] may name: each field with its allowed range and unit."""
     fields = {name: (info["min"], info["max"], info["unit"]) for name, info in MuscleBuild.fields().items()}
     fields[BRAID_ANGLE_KEY] = (1.0, 89.0, "deg")
+    fields["load_N"] = (0.0, 1e5, "N")
     fields["bladder.shear_modulus_Pa"] = (0.0, 1e9, "Pa")
     return fields
 
 
-def declared_value(name: str, build: MuscleBuild, bladder: BladderLaw) -> float:
-    """The value an experiment file declares for a [calibrate] name."""
+def declared_value(name: str, build: MuscleBuild, bladder: BladderLaw, load_N: float | None = None) -> float:
+    """The value an experiment file declares for a [calibrate] name (NaN for a load it leaves out)."""
+    if name == "load_N":
+        return load_N if load_N is not None else math.nan
     if name == BRAID_ANGLE_KEY:
         return deflated_braid_angle_deg(build)
     if name == "bladder.shear_modulus_Pa":
@@ -292,6 +298,18 @@ def load_experiment(path: str | Path) -> Experiment:
         initial_length = _number(path, "test", "initial_length_m", initial_length)
         if not 0 < initial_length <= 5:
             raise _fail(path, f"[test] initial_length_m = {initial_length} is outside (0, 5] m")
+    calibrate = _read_calibrate(path, document.get("calibrate", {}), build, bladder)
+    load = test.get("load_N")
+    if load is not None:
+        load = _number(path, "test", "load_N", load)
+        if kind != "isotonic":
+            raise _fail(path, f'[test] load_N belongs to kind = "isotonic", not {kind!r}')
+        if not 0 <= load <= 1e5:
+            raise _fail(path, f"[test] load_N = {load} is outside [0, 1e5] N")
+    elif kind == "isotonic" and "load_N" not in calibrate:
+        raise _fail(path, "[test] load_N is missing: an isotonic test needs its load, or load_N in [calibrate]")
+    if "load_N" in calibrate and kind != "isotonic":
+        raise _fail(path, f'[calibrate] load_N belongs to kind = "isotonic", not {kind!r}')
     if not isinstance(test["data"], str):
         raise _fail(path, f"[test] data = {test['data']!r} must be a file name")
     data_path = (path.parent / test["data"]).resolve()
@@ -309,8 +327,12 @@ def load_experiment(path: str | Path) -> Experiment:
         gas_params=gas_params,
         bladder=bladder,
         kind=kind,
-        calibrate=_read_calibrate(path, document.get("calibrate", {}), build, bladder),
+        calibrate=calibrate,
+        load_N=load,
     )
+    if kind == "isotonic":
+        experiment.columns = _read_isotonic(data_path, build)
+        return experiment
     if kind in TABLE_COLUMNS:
         experiment.columns = read_table(data_path, TABLE_COLUMNS[kind])
         return experiment
@@ -328,6 +350,32 @@ def read_series(path: str | Path) -> dict[str, np.ndarray]:
         ExperimentError: naming the file, line and column of the first bad value.
     """
     return _read_csv(Path(path), REQUIRED_COLUMNS, OPTIONAL_COLUMNS, increasing="time_s")
+
+
+def _read_isotonic(path: Path, build: MuscleBuild) -> dict[str, np.ndarray]:
+    """An isotonic test's rows: pressure_kPa and the muscle's length_m, or its contraction_m
+    from the deflated length (converted to length_m); time_s when there is one."""
+    header = _header(path)
+    measures = [name for name in ("length_m", "contraction_m") if name in header]
+    if len(measures) != 1:
+        raise ExperimentError(
+            f"{path}:1: an isotonic test gives its length as one of length_m or contraction_m; found "
+            f"{', '.join(measures) or 'neither'}"
+        )
+    columns = _read_csv(
+        path, ("pressure_kPa", measures[0]), tuple(c for c in ("time_s",) if c in header), increasing=None
+    )
+    if "contraction_m" in columns:
+        columns["length_m"] = build.length_m - columns.pop("contraction_m")
+    return columns
+
+
+def _header(path: Path) -> list[str]:
+    try:
+        with path.open(newline="") as handle:
+            return [name.strip() for name in next(csv.reader(handle), [])]
+    except FileNotFoundError:
+        raise ExperimentError(f"{path}: no such data file") from None
 
 
 def read_table(path: str | Path, columns: tuple[str, ...]) -> dict[str, np.ndarray]:

@@ -19,6 +19,7 @@ from pamkit._core import (
     SimulatorConfig,
     free_inflation,
     inflated_and_sealed,
+    isotonic_lengths,
     simulate_measurement,
     simulate_supplied_measurement,
     static_forces,
@@ -102,10 +103,13 @@ def simulate_table(
     params: MuscleParams | None = None,
     effects: Sequence[Effect] = (),
     rows: np.ndarray | None = None,
+    load_N: float | None = None,
 ) -> dict[str, np.ndarray]:
     """Predicts a static table row by row (all rows, or `rows`): an isometric map's force at its
     held length and supplied pressure, a free-inflation table's free length and diameter at its
-    pressure. Returns the table's columns with the measured ones replaced by the prediction.
+    pressure, an isotonic test's length under its load (`load_N`, by default the file's) along
+    the quasi-static path of every row from the deflated length. Returns the table's columns
+    with the measured ones replaced by the prediction.
 
     Raises:
         ExperimentError: for an effect that cannot act on a static table, or a row the model
@@ -122,6 +126,12 @@ def simulate_table(
                 "pressure_kPa": pressure,
                 "force_N": static_forces(params, length, pressure, list(effects)),
             }
+        if experiment.kind == "isotonic":
+            load = experiment.load_N if load_N is None else load_N
+            path = isotonic_lengths(
+                params, experiment.columns["pressure_kPa"], load, params.build.length_m, list(effects)
+            )
+            return {"pressure_kPa": pressure, "length_m": path.length_m[rows]}
         if effects:
             raise ExperimentError(f"{experiment.path}: a free-inflation table is predicted without effects")
         geometry = BraidGeometry(params.build)

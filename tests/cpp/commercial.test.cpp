@@ -170,3 +170,51 @@ TEST_CASE("static_forces is the supplied test's force at rest", "[slack][supplie
   CHECK_THROWS_AS(static_forces(params, {0.23}, {100.0}, {EffectCatalog::builtin().make("sensor_lag")}),
                   InvalidParameter);
 }
+
+TEST_CASE("An isotonic muscle settles where Gaylord's force equals its load", "[isotonic]") {
+  // Thin walls, flat ends, no bladder: the force is -p dV/dL of a cylinder of inextensible
+  // fibers, p pi D0^2 / (4 sin^2 theta0) (3 cos^2 theta - 1), so the length carrying a load F
+  // at gauge p is L = Lf cos(theta) with cos^2 theta = (1 + 4 F sin^2 theta0 / (p pi D0^2)) / 3.
+  MuscleParams params;
+  params.build = commercial_build();
+  params.build.bladder_thickness_m = 0.0;
+  params.build.bladder_diameter_m = params.build.diameter_m;
+  params.bladder = BladderLaw::none();
+  const double theta0 = 21.0 * kPi / 180.0;
+  const double fiber = params.build.length_m / std::cos(theta0);
+  const double d0 = params.build.diameter_m;
+  const double load = 80.0;
+  const std::vector<double> pressures{200.0, 400.0, 600.0, 400.0, 200.0};
+  const IsotonicLengths path = isotonic_lengths(params, pressures, load, params.build.length_m);
+  for (std::size_t k = 0; k < pressures.size(); ++k) {
+    INFO("p = " << pressures[k] << " kPa");
+    const double p = pressures[k] * 1e3;
+    const double cos2 = (1.0 + 4.0 * load * std::sin(theta0) * std::sin(theta0) / (p * kPi * d0 * d0)) / 3.0;
+    CHECK_REL(path.length_m[k], fiber * std::sqrt(cos2), 1e-8);
+    CHECK_FALSE(path.at_limit[k]);
+  }
+  // No hysteresis: the same pressure gives the same length on the way up and down.
+  CHECK(path.length_m[1] == Approx(path.length_m[3]).epsilon(1e-10));
+}
+
+TEST_CASE("Pressurise/vent friction makes the muscle shorter on venting than on pressurising", "[isotonic]") {
+  MuscleParams params;
+  params.build = commercial_build();
+  params.bladder = BladderLaw::neo_hookean(kShearModulus);
+  const EffectPtr hysteresis = EffectCatalog::builtin().make("pressure_hysteresis");
+  hysteresis->set_value("coefficient", 0.1);
+  const std::vector<double> pressures{200.0, 400.0, 600.0, 400.0, 200.0};
+  const std::vector<double> branch = pressure_branches(pressures);
+  CHECK(branch == std::vector<double>{1.0, 1.0, 1.0, -1.0, -1.0});
+  const IsotonicLengths path = isotonic_lengths(params, pressures, 100.0, params.build.length_m, {hysteresis});
+  CHECK(path.length_m[3] < path.length_m[1]);
+  CHECK(path.length_m[4] < path.length_m[0]);
+  // At a held length the same friction shows as force: venting reads more than pressurising.
+  const std::vector<double> held(pressures.size(), 0.23);
+  const std::vector<double> force = static_forces(params, held, pressures, {hysteresis});
+  const double pressure_force =
+      0.1 * 400e3 * 0.25 * kPi * std::pow(BraidGeometry(params.build).shape(0.23).diameter, 2);
+  CHECK_REL(force[3] - force[1], 2.0 * pressure_force, 1e-9);
+  // Noise within the play does not flip the branch.
+  CHECK(pressure_branches({100.0, 101.0, 100.5, 101.5, 100.8}) == std::vector<double>(5, 1.0));
+}

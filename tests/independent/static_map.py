@@ -99,3 +99,73 @@ data = "map.csv"
 """
     )
     return folder / "map.toml"
+
+
+def isotonic_length(gauge_Pa, load_N, branch, *, hysteresis, **truth):
+    """The length at which the muscle carries `load_N` [m]: Gaylord's force less a friction of
+    `hysteresis` x p pi D^2 / 4 that resists the motion the pressure drives (branch +1 while the
+    pressure rises). The force falls monotonically as the muscle shortens here, so the root is
+    unique; SciPy's brentq finds it."""
+    from scipy.optimize import brentq
+
+    theta0 = math.radians(truth["braid_angle_deg"])
+    fiber = truth["rest_length_m"] / math.cos(theta0)
+    radius_per_sine = truth["diameter_m"] / math.sin(theta0)
+
+    def imbalance(length):
+        diameter = radius_per_sine * math.sqrt(1 - (length / fiber) ** 2)
+        friction = hysteresis * gauge_Pa * math.pi * diameter**2 / 4
+        return float(gaylord_membrane_force(length, gauge_Pa, **truth)) - branch * friction - load_N
+
+    return brentq(imbalance, 0.6 * truth["rest_length_m"], 0.999 * fiber, xtol=1e-9)
+
+
+def write_isotonic(
+    folder: Path, *, sweeps, load_N: float, hysteresis: float, seed: int, noise_m: float = 0.1e-3, **truth
+) -> Path:
+    """Writes an isotonic test (TOML + CSV): `sweeps` lists of settled pressures [kPa] (each up,
+    then down), the length measured with `noise_m` of noise in 0.01 mm steps. The TOML leaves
+    the braid angle, the membrane and the load unknown."""
+    rng = np.random.default_rng(seed)
+    folder.mkdir(parents=True, exist_ok=True)
+    rows, previous = [], None
+    branch = 1.0
+    for sweep in sweeps:
+        for pressure in sweep:
+            if previous is not None and pressure != previous:
+                branch = 1.0 if pressure > previous else -1.0
+            previous = pressure
+            length = isotonic_length(pressure * 1e3, load_N, branch, hysteresis=hysteresis, **truth)
+            rows.append((pressure, round((length + rng.normal(0, noise_m)) * 1e5) / 1e5))
+    with (folder / "isotonic.csv").open("w") as handle:
+        handle.write("pressure_kPa,length_m\n")
+        handle.writelines(f"{pressure:.1f},{length:.5f}\n" for pressure, length in rows)
+    diameter = truth["diameter_m"]
+    (folder / "isotonic.toml").write_text(
+        f"""[muscle]
+length_m = {truth["rest_length_m"]}
+diameter_m = {diameter}
+bladder_diameter_m = {0.97 * diameter}
+bladder_thickness_m = {truth["thickness_m"]}
+fiber_count = 100
+braid_angle_deg = 20.0
+fiber_thickness_m = 0.0
+end_diameter_m = {diameter / 2}
+cone_generator_m = 0.0
+
+[bladder]
+law = "neo_hookean"
+shear_modulus_Pa = 1.0e6
+
+[calibrate]
+braid_angle_deg = [10.0, 45.0]
+bladder_diameter_m = [{0.8 * diameter}, {diameter}]
+bladder.shear_modulus_Pa = [1.0e4, 2.0e7]
+load_N = [1.0, 500.0]
+
+[test]
+kind = "isotonic"
+data = "isotonic.csv"
+"""
+    )
+    return folder / "isotonic.toml"

@@ -90,7 +90,7 @@ def test_missing_data_file(write_experiment, tmp_path):
 
 
 def test_every_thesis_experiment_loads(thesis_dir):
-    paths = sorted(thesis_dir.glob("*.toml"))
+    paths = sorted(thesis_dir.glob("pam*.toml"))
     assert len(paths) == 15  # 6 low-pressure tests (table 3.5) + 3 x 3 high-pressure (tables C.1-C.3)
     for path in paths:
         experiment = load_experiment(path)

@@ -174,7 +174,7 @@ class EffectCatalog {
  public:
   using Factory = std::function<EffectPtr()>;
 
-  /// The effects of DESIGN.md's catalog, and braid_slack.
+  /// The effects of DESIGN.md's catalog, and what real muscles add (braid_slack, pressure_hysteresis).
   static EffectCatalog builtin();
 
   /// Adds or replaces an effect. \throws InvalidParameter for an empty name.

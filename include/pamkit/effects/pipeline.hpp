@@ -4,6 +4,9 @@
 /// fixture, read through the sensors.
 
 #include <algorithm>
+#include <cstdint>
+
+#include <boost/math/tools/roots.hpp>
 
 #include "pamkit/effects/effect.hpp"
 #include "pamkit/sim/simulator.hpp"
@@ -43,6 +46,44 @@ inline Measurement simulate_measurement(const MuscleParams& params, const Initia
   return m;
 }
 
+/// The branch of each sample of a supplied pressure: +1 while it is raised, -1 while it is
+/// lowered. A play operator of half-width `play_kPa` decides, so that noise in a hold or a
+/// settled step does not flip it; the record starts on the pressurising branch.
+inline std::vector<double> pressure_branches(const std::vector<double>& pressure_kPa, double play_kPa = 2.0) {
+  std::vector<double> branch(pressure_kPa.size(), 1.0);
+  if (pressure_kPa.empty()) return branch;
+  double extreme = pressure_kPa.front();
+  double direction = 1.0;
+  for (std::size_t k = 0; k < pressure_kPa.size(); ++k) {
+    const double p = pressure_kPa[k];
+    if (direction > 0.0 ? p > extreme : p < extreme) {
+      extreme = p;
+    } else if (std::abs(p - extreme) > 2.0 * play_kPa) {
+      direction = -direction;
+      extreme = p;
+    }
+    branch[k] = direction;
+  }
+  return branch;
+}
+
+namespace detail {
+/// What the load cell reads of a muscle under a supplied pressure on one branch: gas, bladder
+/// and friction, less the rate-independent bladder-braid friction, through a braid that cannot
+/// push. The friction resists the motion the pressure drives: raising the pressure contracts the
+/// muscle, so the tension it shows is lower than the elastic force; lowering it, higher.
+inline double supplied_force(const BraidGeometry& geometry, const MuscleParams& extended, const MuscleShape& shape,
+                             double gauge_Pa, double velocity_m_per_s, double branch) {
+  const double atmosphere = extended.gas.atmospheric_pressure_Pa;
+  const double elastic = muscle_forces(geometry, shape, extended.bladder, extended.friction, atmosphere + gauge_Pa,
+                                       atmosphere, velocity_m_per_s)
+                             .total;
+  const double hysteresis = extended.extensions.pressure_hysteresis * std::max(gauge_Pa, 0.0) * 0.25 * detail::kPi *
+                            shape.diameter * shape.diameter;
+  return braid_tension(elastic - branch * hysteresis, extended.extensions.slack_band_N);
+}
+}  // namespace detail
+
 /// Simulates a supplied-pressure test as its instruments read it: the muscle hangs on a
 /// regulator, so the measured gauge pressure drives the static model sample by sample (the gas
 /// stays at `ambient_temperature_C`), and force is what is predicted. `effects` act at every
@@ -70,13 +111,13 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
     motion = effect->apply_to_elongation(time, motion);
   }
   const BraidGeometry geometry(extended.build);
-  const double atmosphere = extended.gas.atmospheric_pressure_Pa;
   Measurement m;
   m.time_s = time;
   m.elongation_m = crosshead.elongation();
   m.pressure_kPa = pressure_kPa;
   m.temperature_C.assign(time.size(), ambient_temperature_C);
   m.force_N.resize(time.size());
+  const std::vector<double> branch = pressure_branches(pressure_kPa);
   for (std::size_t k = 0; k < time.size(); ++k) {
     // The rate of the segment ending at each sample (of the first segment at the start), as
     // the sealed simulation's piecewise-linear trajectory has it.
@@ -89,20 +130,18 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
       throw InvalidInput(detail::message("sample ", k + 1, " (time ", time[k], " s, elongation ", motion[k], " m): ",
                                          error.what(), "; check the elongation's zero and [test] initial_length_m"));
     }
-    m.force_N[k] =
-        braid_tension(muscle_forces(geometry, shape, extended.bladder, extended.friction,
-                                    atmosphere + units::pascal_from_kilopascal(pressure_kPa[k]), atmosphere, velocity)
-                          .total,
-                      extended.extensions.slack_band_N);
+    m.force_N[k] = detail::supplied_force(geometry, extended, shape, units::pascal_from_kilopascal(pressure_kPa[k]),
+                                          velocity, branch[k]);
   }
   for (const EffectPtr& effect : effects) effect->apply_to_measurement(m);
   return m;
 }
 
 /// The muscle's force at rest [N] at each (length, supplied gauge pressure) of a static table: an
-/// isometric map, a free-inflation or isotonic table of settled steps. Friction, which needs a
-/// velocity, is zero at rest. Only physical effects act (through the parameters): a table has
-/// no time axis for motion and instrument effects.
+/// isometric map, a free-inflation or isotonic table of settled steps, rows in the order they
+/// were measured (the pressurise/vent branch follows it). Friction, which needs a velocity, is
+/// zero at rest. Only physical effects act (through the parameters): a table has no time axis
+/// for motion and instrument effects.
 /// \param lengths_m            muscle length of each row [m]
 /// \param gauge_pressures_kPa  supplied gauge pressure of each row [kPa]
 /// \throws InvalidParameter for an effect that cannot act on a static table; InvalidInput naming
@@ -127,7 +166,7 @@ inline std::vector<double> static_forces(const MuscleParams& params, const std::
   }
   extended.validate();
   const BraidGeometry geometry(extended.build);
-  const double atmosphere = extended.gas.atmospheric_pressure_Pa;
+  const std::vector<double> branch = pressure_branches(gauge_pressures_kPa);
   std::vector<double> force(lengths_m.size());
   for (std::size_t k = 0; k < lengths_m.size(); ++k) {
     MuscleShape shape;
@@ -136,12 +175,75 @@ inline std::vector<double> static_forces(const MuscleParams& params, const std::
     } catch (const InvalidInput& error) {
       throw InvalidInput(detail::message("row ", k + 1, " (length ", lengths_m[k], " m): ", error.what()));
     }
-    const double gauge = units::pascal_from_kilopascal(gauge_pressures_kPa[k]);
-    force[k] = braid_tension(
-        muscle_forces(geometry, shape, extended.bladder, extended.friction, atmosphere + gauge, atmosphere, 0.0).total,
-        extended.extensions.slack_band_N);
+    force[k] = detail::supplied_force(geometry, extended, shape, units::pascal_from_kilopascal(gauge_pressures_kPa[k]),
+                                      0.0, branch[k]);
   }
   return force;
+}
+
+/// Where an isotonic test's muscle settles at each row: its length [m], and whether the
+/// equilibrium lay beyond the range searched (then the length is that end of the range).
+struct IsotonicLengths {
+  std::vector<double> length_m;
+  std::vector<bool> at_limit;
+};
+
+/// The length at which the muscle carries `load_N` at each supplied gauge pressure of an
+/// isotonic test (a hanging mass, a slide, or nothing), rows in the order measured. The path is
+/// quasi-static: each row starts from the previous row's length (`start_length_m` for the first)
+/// and moves to the nearest equilibrium in the direction the imbalance drives it, shorter while
+/// the muscle pulls more than the load. Where a light load has several equilibria, the muscle
+/// stays on the branch it is on, as a real one does. The search spans half the deflated length
+/// to 1.2 times it, within the braid's range.
+/// 	hrows InvalidParameter for an effect that cannot act on a static table.
+inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::vector<double>& gauge_pressures_kPa,
+                                        double load_N, double start_length_m,
+                                        const std::vector<EffectPtr>& effects = {}) {
+  MuscleParams extended = params;
+  for (const EffectPtr& effect : effects) {
+    std::string why_not;
+    if (effect->stage() != EffectStage::physics || !effect->acts_in(GasMode::supplied, &why_not)) {
+      throw InvalidParameter(why_not.empty() ? detail::message(effect->name(), " cannot act on a static table")
+                                             : why_not);
+    }
+    effect->apply_to_params(extended);
+  }
+  extended.validate();
+  const BraidGeometry geometry(extended.build);
+  const double deflated = extended.build.length_m;
+  const double shortest = std::max(geometry.min_length() * (1.0 + 1e-9), 0.5 * deflated);
+  const double longest = std::min(geometry.max_length() * (1.0 - 1e-6), 1.2 * deflated);
+  const double step = (longest - shortest) / 400.0;
+  const std::vector<double> branch = pressure_branches(gauge_pressures_kPa);
+  IsotonicLengths out;
+  double length = std::clamp(start_length_m, shortest, longest);
+  for (std::size_t k = 0; k < gauge_pressures_kPa.size(); ++k) {
+    const double gauge = units::pascal_from_kilopascal(gauge_pressures_kPa[k]);
+    auto imbalance = [&](double L) {
+      return detail::supplied_force(geometry, extended, geometry.shape(L), gauge, 0.0, branch[k]) - load_N;
+    };
+    const double here = imbalance(length);
+    const double direction = here > 0.0 ? -1.0 : 1.0;  // pulling more than the load: shorten
+    double from = length;
+    bool found = here == 0.0;
+    while (!found) {
+      const double to = std::clamp(from + direction * step, shortest, longest);
+      if (to == from) break;
+      const double there = imbalance(to);
+      if ((there > 0.0) != (here > 0.0) || there == 0.0) {
+        std::uintmax_t iterations = 100;
+        const auto root = boost::math::tools::toms748_solve(imbalance, std::min(from, to), std::max(from, to),
+                                                            boost::math::tools::eps_tolerance<double>(40), iterations);
+        length = 0.5 * (root.first + root.second);
+        found = true;
+      }
+      from = to;
+    }
+    if (!found) length = from;
+    out.length_m.push_back(length);
+    out.at_limit.push_back(!found);
+  }
+  return out;
 }
 
 }  // namespace pamkit

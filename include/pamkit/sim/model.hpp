@@ -25,6 +25,8 @@ struct ModelExtensions {
   double viscoelastic_time_constant_s = 1.0;  ///< relaxation time of that branch [s]
   double fiber_compliance_per_N = 0.0;        ///< 1 / axial stiffness EA of one fiber [1/N]; 0: inextensible
   double slack_band_N = 0.0;  ///< the braid cannot push: width of its smooth slack transition [N]; 0: it can (thesis)
+  double pressure_hysteresis =
+      0.0;  ///< bladder-braid friction under a supplied pressure, as a fraction of p pi D^2/4 [1]
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
@@ -40,6 +42,8 @@ struct ModelExtensions {
           FieldInfo{"1/N", 0.0, 1.0, "1 / fiber axial stiffness"});
     visit("slack_band_N", &ModelExtensions::slack_band_N,
           FieldInfo{"N", 0.0, 1e4, "width of the slack braid's smooth transition (0: the braid pushes)"});
+    visit("pressure_hysteresis", &ModelExtensions::pressure_hysteresis,
+          FieldInfo{"1", 0.0, 10.0, "pressurise/vent friction over the pressure force p pi D^2/4"});
   }
   void validate() const { validate_fields(*this); }
 };

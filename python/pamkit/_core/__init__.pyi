@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import logger
 from . import units
-__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'InvalidInput', 'InvalidParameter', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range']
+__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range']
 class Error(RuntimeError):
     pass
 class SolverError(RuntimeError):
@@ -594,6 +594,14 @@ class ModelExtensions:
         """
     @leak_rate_per_s.setter
     def leak_rate_per_s(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def pressure_hysteresis(self) -> float:
+        """
+        pressurise/vent friction over the pressure force p pi D^2/4 [1], allowed [0.000000, 10.000000]
+        """
+    @pressure_hysteresis.setter
+    def pressure_hysteresis(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def slack_band_N(self) -> float:
@@ -1395,6 +1403,20 @@ class EffectCatalog:
         """
         'NAME' or 'NAME:key=value,...'
         """
+class IsotonicLengths:
+    """
+    Where an isotonic test's muscle settles at each row.
+    """
+    @property
+    def at_limit(self) -> list[bool]:
+        """
+        whether each row's equilibrium lay beyond the range searched
+        """
+    @property
+    def length_m(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        length at each row [m]
+        """
 class GaitData:
     """
     Winter's gait data as printed in appendix G.3: one row per frame.
@@ -2073,6 +2095,10 @@ def inflated_and_sealed(params: MuscleParams, gauge_pressure_Pa: typing.Supports
     """
     The start of a sealed test: inflated freely to gauge_pressure_Pa [Pa], sealed at the free length it gives.
     """
+def isotonic_lengths(params: MuscleParams, gauge_pressures_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], load_N: typing.SupportsFloat | typing.SupportsIndex, start_length_m: typing.SupportsFloat | typing.SupportsIndex, effects: collections.abc.Sequence[Effect] = []) -> IsotonicLengths:
+    """
+    The length [m] at which the muscle carries load_N at each supplied gauge pressure [kPa], rows in the order measured, following the quasi-static path from start_length_m. Releases the GIL.
+    """
 def measured_channels() -> list[str]:
     """
     names of the channels effects may act on
@@ -2092,6 +2118,10 @@ def polytropic_pressure(p0_abs_Pa: typing.Annotated[numpy.typing.ArrayLike, nump
 def polytropic_temperature(t0_K: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], v0_m3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], v_m3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], n: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
     """
     Eq. 3.1.18: temperature after a polytropic change [K].
+    """
+def pressure_branches(pressure_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], play_kPa: typing.SupportsFloat | typing.SupportsIndex = 2.0) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    +1 where a supplied pressure is being raised, -1 where lowered (a play operator of half-width play_kPa).
     """
 def reproduce_g3_script(data: GaitData, linkage: Linkage, body_mass_kg: typing.SupportsFloat | typing.SupportsIndex, begin_row: typing.SupportsInt | typing.SupportsIndex = 12, end_row: typing.SupportsInt | typing.SupportsIndex = 43, ideal_rows: typing.SupportsInt | typing.SupportsIndex = 45) -> ScriptKinematics:
     ...

@@ -32,6 +32,7 @@ from pamkit._core import (
     GasMode,
     MuscleParams,
     fiber_revolutions_for_braid_angle,
+    pressure_branches,
 )
 from pamkit.diagnose.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
 from pamkit.diagnose.model import Coordinate, configure, effect_space
@@ -40,7 +41,7 @@ from pamkit.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, decl
 from pamkit.simulate import muscle_params, simulate_table
 
 # The channels each kind predicts, and how its rows are grouped for holding out.
-PREDICTED = {"isometric_map": ("force_N",), "free_inflation": ("length_m", "diameter_m")}
+PREDICTED = {"isometric_map": ("force_N",), "free_inflation": ("length_m", "diameter_m"), "isotonic": ("length_m",)}
 CHANNEL_UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
 # Fewer held-out groups than this cannot say whether a model carries beyond its fitted rows.
 MIN_GROUPS = 3
@@ -125,11 +126,18 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
             for length in np.unique(np.round(e.columns["length_m"], 9)):
                 groups[rows[np.round(e.columns["length_m"], 9) == length]] = len(labels)
                 labels.append(f"{prefix(e)}L={length:g}")
+        elif kind == "isotonic":
+            # A sweep: pressurised, then vented; the next starts where the pressure rises again.
+            branch = pressure_branches(e.columns["pressure_kPa"])
+            sweep = np.concatenate([[0], np.cumsum((branch[1:] > 0) & (branch[:-1] < 0))])
+            for number in np.unique(sweep):
+                groups[rows[sweep == number]] = len(labels)
+                labels.append(f"{prefix(e)}sweep {number + 1}")
         else:
             for row, pressure in zip(rows, e.columns["pressure_kPa"]):
                 groups[row] = len(labels)
                 labels.append(f"{prefix(e)}p={pressure:g}")
-    name = "held length" if kind == "isometric_map" else "row"
+    name = {"isometric_map": "held length", "isotonic": "sweep"}.get(kind, "row")
     return Campaign(experiments, kind, columns, test, groups, labels, name)
 
 
@@ -173,7 +181,7 @@ class TableModel:
 
     def _coordinate(self, name: str, bounds: tuple[float, float], experiment: Experiment) -> Coordinate:
         lower, upper = bounds
-        declared = declared_value(name, experiment.build, experiment.bladder)
+        declared = declared_value(name, experiment.build, experiment.bladder, experiment.load_N)
         start = declared if lower < declared < upper else 0.5 * (lower + upper)
         source = "the [calibrate] bounds the experiment file declares"
         if lower > 0 and upper / lower > LOG_SPAN:
@@ -203,31 +211,45 @@ class TableModel:
             if len(mine) == 0:
                 continue
             local = rows[mine] - int(np.flatnonzero(self.campaign.test == i)[0])
-            predicted = simulate_table(experiment, self.params(experiment, values), effects, local)
+            load = values.get("load_N")
+            predicted = simulate_table(experiment, self.params(experiment, values), effects, local, load)
             for channel in out:
                 out[channel][mine] = predicted[channel]
         return out
 
 
 def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
-    """The table's noise per channel, model-free: the residual of a quadratic in pressure fitted
-    to each held length's loaded rows (force > 0) of a map, or to each free-inflation table.
-    A smooth curve through settled steps leaves what the instruments add."""
+    """The table's noise per channel, model-free. Where rows repeat (the same pressure on the same
+    branch of several isotonic sweeps, the same length and pressure in several maps), the pooled
+    spread of the repeats; otherwise the residual of a cubic in pressure fitted to each held
+    length's loaded rows (force > 0) of a map or to each free-inflation table. Either leaves
+    what the instruments add, not what the model misses."""
     pressure = campaign.columns["pressure_kPa"]
-    units = campaign.groups if campaign.kind == "isometric_map" else campaign.test
+    branch = pressure_branches(pressure) if campaign.kind == "isotonic" else np.ones(len(pressure))
+    key = np.column_stack([campaign.test, branch, np.round(pressure, 6)])
+    if campaign.kind == "isometric_map":
+        key = np.column_stack([key, np.round(campaign.columns["length_m"], 9)])
+    _, repeat, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    repeat = repeat.ravel()
     out = {}
     for channel in channels:
         values = campaign.columns[channel]
+        if np.sum(counts - 1) >= 5:
+            means = np.bincount(repeat, weights=values) / counts
+            squares = float(np.sum((values - means[repeat]) ** 2))
+            out[channel] = math.sqrt(squares / float(np.sum(counts - 1)))
+            continue
+        units = campaign.groups if campaign.kind == "isometric_map" else campaign.test
         squares, dof = 0.0, 0
         for unit in np.unique(units):
             rows = units == unit
             if channel == "force_N":
                 rows &= values > 0
-            if rows.sum() < 5:
+            if rows.sum() < 6:
                 continue
-            coefficients = np.polyfit(pressure[rows], values[rows], 2)
+            coefficients = np.polyfit(pressure[rows], values[rows], 3)
             squares += float(np.sum((np.polyval(coefficients, pressure[rows]) - values[rows]) ** 2))
-            dof += int(rows.sum()) - 3
+            dof += int(rows.sum()) - 4
         out[channel] = math.sqrt(squares / dof) if dof > 0 else float("nan")
     return out
 
@@ -591,8 +613,9 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
 
     c = d.campaign
     pressure = c.columns["pressure_kPa"]
-    curves = c.groups if c.kind == "isometric_map" else c.test
-    names = c.group_labels if c.kind == "isometric_map" else [Path(e.path).stem for e in c.experiments]
+    by_group = c.kind in ("isometric_map", "isotonic")
+    curves = c.groups if by_group else c.test
+    names = c.group_labels if by_group else [Path(e.path).stem for e in c.experiments]
     figure, axes = plt.subplots(1, len(d.channels), figsize=(6.5 * len(d.channels), 4.8), squeeze=False)
     for axis, channel in zip(axes[0], d.channels):
         unit = CHANNEL_UNITS[channel]
@@ -601,7 +624,8 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
         colors = plt.cm.viridis(np.linspace(0, 0.9, len(np.unique(curves))))
         for curve, color in zip(np.unique(curves), colors):
             rows = np.flatnonzero(curves == curve)
-            rows = rows[np.argsort(pressure[rows])]
+            if c.kind != "isotonic":  # an isotonic sweep is drawn in the order measured: up, then down
+                rows = rows[np.argsort(pressure[rows])]
             axis.plot(pressure[rows], scale * c.columns[channel][rows], "o", color=color, ms=4, label=names[curve])
             axis.plot(pressure[rows], scale * d.baseline.heldout[channel][rows], ":", color=color, lw=1)
             if d.extended is not d.baseline:

@@ -14,7 +14,7 @@ from pamkit.diagnose import diagnose, to_json, verdict
 from pamkit.experiment import ExperimentError
 
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
-from independent.static_map import write_map  # noqa: E402 (needs the path above)
+from independent.static_map import write_isotonic, write_map  # noqa: E402 (needs the path above)
 
 FESTO = SOURCE_DIR / "data" / "experiments" / "festo"
 TRUTH = dict(
@@ -140,3 +140,41 @@ def test_simulate_writes_a_tables_prediction(tmp_path):
     assert np.array_equal(predicted["length_m"], measured["length_m"])
     assert predicted["force_N"].min() >= 0.0  # the slack braid never pushes
     assert (tmp_path / "map.png").stat().st_size > 0
+
+
+# A thin membrane (0.2 mm, the same mu t as TRUTH's): the independent wall conserves its volume,
+# pamkit's keeps its thickness (eq. 3.1.3) and so does work against the absolute pressure as the
+# muscle moves; the two agree to first order in the thickness only.
+THIN = dict(TRUTH, thickness_m=0.2e-3, shear_modulus_Pa=3.75e6)
+
+
+def test_an_isotonic_campaign_names_the_pressurise_vent_hysteresis(tmp_path):
+    up = list(np.arange(100.0, 601.0, 50.0))
+    sweep = up + up[::-1][1:]  # settled steps up to 6 bar and back, three times
+    toml = write_isotonic(tmp_path, sweeps=[sweep] * 3, load_N=120.0, hysteresis=0.1, seed=4, **THIN)
+    d = diagnose(toml, threads=2)
+    report = to_json(d)
+    assert report["held_out"] == "sweep" and len(report["baseline"]["heldout_rmse_by_group"]) == 3
+    best = report["candidates"][0]
+    assert best["effect"] == "pressure_hysteresis", verdict(d)
+    assert best["gain"]["length_m"] >= 0.8 and best["gain_ci95"]["length_m"][0] > 0
+    assert best["params"]["coefficient"] == pytest.approx(0.1, rel=0.1)
+    assert abs(best["params"]["braid_angle_deg"] - THIN["braid_angle_deg"]) <= 1.0
+    # Named, or unexplained because the membrane's pre-stretch ends at its bound (no pre-stretch):
+    # never another catalog effect.
+    assert d.cause in ("pressure_hysteresis", "unexplained"), verdict(d)
+
+
+def test_an_isotonic_table_reads_contraction_and_needs_its_load(tmp_path):
+    toml = write_isotonic(tmp_path, sweeps=[[100.0, 300.0, 100.0]], load_N=50.0, hysteresis=0.0, seed=5, **THIN)
+    from pamkit.experiment import load_experiment
+
+    data = np.genfromtxt(tmp_path / "isotonic.csv", delimiter=",", names=True)
+    (tmp_path / "isotonic.csv").write_text(
+        "pressure_kPa,contraction_m\n" + "".join(f"{p},{0.25 - length}\n" for p, length in data)
+    )
+    experiment = load_experiment(toml)
+    assert np.allclose(experiment.columns["length_m"], data["length_m"])
+    toml.write_text(toml.read_text().replace("load_N = [1.0, 500.0]\n", ""))
+    with pytest.raises(ExperimentError, match="load_N is missing"):
+        load_experiment(toml)
