@@ -81,8 +81,8 @@ void Reader::write_lines(const std::string& lines) {
         throw Error(message("logger: writing ", csv_path_, " failed (", std::strerror(code),
                             ") and cutting it back to its last whole line failed too (", std::strerror(errno), ")"));
       }
-      throw Error(message("logger: writing ", csv_path_, " failed: ", std::strerror(code), "; it holds ", stats_.rows,
-                          " rows, every one whole"));
+      throw Error(message("logger: writing ", csv_path_, " failed: ", std::strerror(code),
+                          "; the file ends at its last whole line"));
     }
     done += static_cast<std::size_t>(count);
   }

@@ -114,6 +114,8 @@ class Board:
         return remaining
 
     def close(self) -> None:
+        if self._thread.is_alive():
+            self.stop()
         os.close(self.master)
         os.close(self.queue_fd)
 

@@ -227,6 +227,36 @@ def test_log_stops_with_one_line_on_a_newer_frame_format(tmp_path, capsys):
     assert [row["seq"] for row in read_rows(output)] == list(range(20))
 
 
+def test_log_on_a_full_disk_stops_with_one_line_and_leaves_whole_lines(tmp_path):
+    # A file size limit (RLIMIT_FSIZE; Python ignores SIGXFSZ, so write() fails with EFBIG) makes
+    # the write that crosses it a partial one, as a full disk does.
+    import resource
+
+    limit = 10_000  # bytes: a few hundred rows, inside the board's 2000 frames
+    output = tmp_path / "run.csv"
+    board = Board(banner() + frames(2000))
+    try:
+        board.start()
+        result = subprocess.run(
+            log_command(Path(board.path), output, tmp_path / "unused.toml", "--uncalibrated", "--duration", "3"),
+            capture_output=True,
+            text=True,
+            timeout=60,
+            preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit)),
+        )
+    finally:
+        board.close()
+    assert result.returncode == 2
+    data = output.read_bytes()
+    assert len(data) <= limit and data.endswith(b"\n")  # cut back to its last whole line
+    rows = read_rows(output)
+    assert 0 < len(rows) and [row["seq"] for row in rows] == list(range(len(rows)))
+    assert result.stderr.splitlines()[-1] == (
+        f"pamkit log: error: logger: writing {output} failed: File too large; the file ends at its last whole "
+        f"line (the {len(rows)} rows before it are in {output})"
+    )
+
+
 # --- align --------------------------------------------------------------------------------------
 
 
