@@ -98,9 +98,10 @@ class Board:
         self._stop.set()
         self._thread.join()
 
-    def drain_queue(self, quiet_s: float = 0.2) -> int:
+    def drain_queue(self, quiet_s: float = 0.5) -> int:
         """Reads what is still queued for the slave; returns its size. The kernel moves bytes from
-        the pty's buffer to the line discipline's in the background, so read until quiet."""
+        the pty's buffer to the line discipline's in the background, so read until nothing came
+        for `quiet_s`: far longer than that work takes, even on a loaded machine."""
         os.set_blocking(self.queue_fd, False)
         remaining = 0
         while select.select([self.queue_fd], [], [], quiet_s)[0]:
