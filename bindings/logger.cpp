@@ -93,24 +93,32 @@ void bind_logger(py::module_& m) {
   lm.attr("FRAME_SIZE") = PAMKIT_FRAME_SIZE;
   lm.attr("FRAME_VERSION") = PAMKIT_FRAME_VERSION;
   lm.attr("FIRMWARE_VERSION") = PAMKIT_FIRMWARE_VERSION;
+  // The most a killed reader can have taken from the port and not written (besides frames held
+  // for the banner): one read.
+  lm.attr("READ_BYTES") = logger::Reader::kReadBytes;
 
   py::class_<logger::Reader>(lm, "Reader",
                              "Reads the logger on `port` into the CSV `output` (time_s, [pressure_kPa,] temperature_C, "
-                             "pressure_V, temperature_V, boot, seq), flushed after every read.")
+                             "pressure_V, temperature_V, boot, seq), whole lines written after every read; "
+                             "fsync_interval_s [s]: fsync at most this often (0: every read, inf: never); an "
+                             "existing output is refused (ValueError) unless replace_existing.")
       .def(py::init([](const std::string& port, const std::string& output, const logger::LoggerCalibration& calibration,
                        bool pressure_calibrated, unsigned baud, bool assert_dtr, double banner_timeout_s,
-                       double reconnect_interval_s) {
+                       double reconnect_interval_s, double fsync_interval_s, bool replace_existing) {
              logger::ReaderOptions options;
              options.port = port;
              options.baud = baud;
              options.assert_dtr = assert_dtr;
              options.banner_timeout_s = banner_timeout_s;
              options.reconnect_interval_s = reconnect_interval_s;
+             options.fsync_interval_s = fsync_interval_s;
+             options.replace_existing = replace_existing;
              return std::make_unique<logger::Reader>(options, calibration, pressure_calibrated, output);
            }),
            py::arg("port"), py::arg("output"), py::arg("calibration"), py::arg("pressure_calibrated") = true,
            py::arg("baud") = 115200, py::arg("assert_dtr") = true, py::arg("banner_timeout_s") = 3.0,
-           py::arg("reconnect_interval_s") = 0.25)
+           py::arg("reconnect_interval_s") = 0.25, py::arg("fsync_interval_s") = 1.0,
+           py::arg("replace_existing") = false)
       .def("poll", &logger::Reader::poll, py::arg("timeout_s"), py::call_guard<py::gil_scoped_release>(),
            "Waits up to timeout_s [s] for data, writes the rows; reopens a lost port. Returns rows written.")
       .def(

@@ -41,9 +41,9 @@ if(PAMKIT_CHECK_SUNDIALS_INCLUDE_DIR AND EXISTS ${PAMKIT_CHECK_SUNDIALS_INCLUDE_
        REGEX "^#define SUNDIALS_VERSION_MAJOR [0-9]+")
   string(REGEX REPLACE ".* ([0-9]+)$" "\\1" pamkit_check_sundials_major "${pamkit_check_sundials_major}")
 endif()
-if(NOT pamkit_check_sundials_major OR pamkit_check_sundials_major LESS 6)
+if(NOT pamkit_check_sundials_major OR pamkit_check_sundials_major LESS 6 OR pamkit_check_sundials_major GREATER 7)
   list(APPEND pamkit_missing
-    "SUNDIALS >= 6 (CVODES)    Debian: libsundials-dev   Homebrew: sundials                 conda: sundials")
+    "SUNDIALS 6 or 7 (CVODES)  Debian: libsundials-dev   Homebrew: sundials                 conda: sundials")
 endif()
 
 find_path(PAMKIT_CHECK_SERIALPORT_INCLUDE_DIR libserialport.h HINTS ${pamkit_check_hints} PATH_SUFFIXES include)

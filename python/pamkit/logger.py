@@ -11,9 +11,11 @@ column for CSV data.
 from __future__ import annotations
 
 import csv
+import io
 import json
 import math
 import re
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -57,6 +59,10 @@ _CALIBRATION_KEYS = {
 
 class LoggerError(ValueError):
     """A logger, machine or calibration file cannot be used; the message says where."""
+
+
+class LoggerWarning(UserWarning):
+    """Something in a logger file was left out (an unterminated last line); the message says where."""
 
 
 @dataclass
@@ -224,27 +230,49 @@ def read_machine_csv(path: str | Path) -> dict[str, np.ndarray]:
 
 
 def read_logger_csv(path: str | Path) -> dict[str, np.ndarray]:
-    """Reads a `pamkit log` CSV (time_s, pressure_kPa, temperature_C, ...). Raises LoggerError."""
+    """Reads a `pamkit log` CSV (time_s, pressure_kPa, temperature_C, ...).
+
+    A last line without a line end is a row the logger was writing when it was stopped (killed,
+    or the machine lost power, docs/logger.md): it is dropped with a :class:`LoggerWarning`
+    naming the file and line, never read as a row - cut short, it could still parse as numbers.
+
+    Raises:
+        LoggerError: naming the file and line of the first problem.
+    """
     path = Path(path)
     try:
-        handle = path.open(newline="")
+        with path.open(newline="") as handle:
+            text = handle.read()
     except FileNotFoundError:
         raise LoggerError(f"{path}: no such logger file") from None
-    with handle:
-        reader = csv.reader(handle)
-        header = [name.strip() for name in next(reader, [])]
-        if "time_s" not in header:
-            raise LoggerError(f"{path}:1: no time_s column: is this a `pamkit log` file?")
-        table = []
-        for row in reader:
-            if not row:
-                continue
-            try:
-                table.append([float(cell) for cell in row])
-            except ValueError:
-                raise LoggerError(f"{path}:{reader.line_num}: a value is not a number: {row}") from None
-            if len(row) != len(header):
-                raise LoggerError(f"{path}:{reader.line_num}: {len(row)} values, the header has {len(header)}")
+    except IsADirectoryError:
+        raise LoggerError(f"{path}: is a folder, not a logger file") from None
+    except UnicodeDecodeError as error:
+        raise LoggerError(f"{path}: not a text file (byte {error.start} is not UTF-8)") from None
+    if text and not text.endswith("\n"):
+        kept, _, cut = text.rpartition("\n")
+        line = kept.count("\n") + 2 if kept else 1
+        warnings.warn(
+            f"{path}:{line}: the last line has no line end (the logger was stopped while writing it): "
+            f"{cut[:60]!r} dropped",
+            LoggerWarning,
+            stacklevel=2,
+        )
+        text = kept + "\n" if kept else ""
+    reader = csv.reader(io.StringIO(text, newline=""))
+    header = [name.strip() for name in next(reader, [])]
+    if "time_s" not in header:
+        raise LoggerError(f"{path}:1: no time_s column: is this a `pamkit log` file?")
+    table = []
+    for row in reader:
+        if not row:
+            continue
+        try:
+            table.append([float(cell) for cell in row])
+        except ValueError:
+            raise LoggerError(f"{path}:{reader.line_num}: a value is not a number: {row}") from None
+        if len(row) != len(header):
+            raise LoggerError(f"{path}:{reader.line_num}: {len(row)} values, the header has {len(header)}")
     if len(table) < 2:
         raise LoggerError(f"{path}: needs at least 2 rows, found {len(table)}")
     data = np.asarray(table)

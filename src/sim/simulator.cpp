@@ -5,6 +5,7 @@
 
 #include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
+#include <sundials/sundials_config.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -43,14 +44,27 @@ struct CvodeDeleter {
 };
 using Vector = std::unique_ptr<_generic_N_Vector, VectorDeleter>;
 
-/// pamkit reports every failed flag itself, as an exception with the flag's name; CVODES's
-/// own printing to stderr would only repeat it (and cannot be caught).
+// pamkit reports every failed flag itself, as an exception with the flag's name; CVODES's own
+// printing to stderr would only repeat it (and cannot be caught). SUNDIALS 6 silences it per
+// solver (CVodeSetErrHandlerFn); SUNDIALS 7 removed that function and prints through handlers
+// held by the context, which make_context() clears.
+#if SUNDIALS_VERSION_MAJOR < 7
 void silent_error_handler(int, const char*, const char*, char*, void*) {}
+#endif
 
 std::unique_ptr<SUNContext, ContextDeleter> make_context() {
   auto context = std::make_unique<SUNContext>();
+#if SUNDIALS_VERSION_MAJOR >= 7
+  // SUNDIALS 7 takes the MPI communicator as a SUNComm: SUN_COMM_NULL without MPI.
+  if (SUNContext_Create(SUN_COMM_NULL, context.get()) != 0) throw SolverError("SUNContext_Create failed");
+  std::unique_ptr<SUNContext, ContextDeleter> owned(context.release());
+  if (SUNContext_ClearErrHandlers(*owned) != 0) throw SolverError("SUNContext_ClearErrHandlers failed");
+  return owned;
+#else
+  // SUNDIALS 6 takes a pointer to the MPI communicator: null without MPI.
   if (SUNContext_Create(nullptr, context.get()) != 0) throw SolverError("SUNContext_Create failed");
   return std::unique_ptr<SUNContext, ContextDeleter>(context.release());
+#endif
 }
 
 State to_state(N_Vector v) {
@@ -189,7 +203,9 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
   const double t0 = time.front();
   check_flag(CVodeInit(cv, muscle_rhs, t0, y.get()), "CVodeInit", t0);
   check_flag(CVodeSetUserData(cv, &workspace), "CVodeSetUserData", t0);
+#if SUNDIALS_VERSION_MAJOR < 7
   check_flag(CVodeSetErrHandlerFn(cv, silent_error_handler, nullptr), "CVodeSetErrHandlerFn", t0);
+#endif
   check_flag(CVodeSVtolerances(cv, config_.relative_tolerance, tolerances.get()), "CVodeSVtolerances", t0);
   check_flag(CVodeSetMaxNumSteps(cv, static_cast<long>(config_.max_steps)), "CVodeSetMaxNumSteps", t0);
   if (config_.max_step_s > 0.0) check_flag(CVodeSetMaxStep(cv, config_.max_step_s), "CVodeSetMaxStep", t0);

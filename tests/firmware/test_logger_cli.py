@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from fake_board import Board, banner, frames
 
 from pamkit.cli import main
 from pamkit.experiment import load_experiment
@@ -138,6 +139,124 @@ def test_log_keeps_what_arrived_when_stopped(tmp_path, how):
         assert f"interrupted; wrote {len(rows)} rows" in stdout
 
 
+# --- pamkit log: refusals and failures, each one line (a fake board on a pty, fake_board.py) ------
+
+
+def run_log(capsys, *arguments: str) -> tuple[int, str, str]:
+    status = main(["log", *arguments])
+    captured = capsys.readouterr()
+    return status, captured.out, captured.err
+
+
+def test_log_refuses_to_overwrite_without_force(tmp_path, capsys):
+    output = tmp_path / "run.csv"
+    output.write_text("an earlier recording\n")
+    status, _, err = run_log(capsys, "--port", str(tmp_path / "tty"), "-o", str(output), "--uncalibrated")
+    assert status == 2
+    assert err == f"pamkit log: error: {output}: exists already; give --force to replace it, or another -o\n"
+    assert output.read_text() == "an earlier recording\n"
+
+    board = Board(banner() + frames(50))
+    try:
+        board.start()
+        status, out, err = run_log(
+            capsys, "--port", board.path, "-o", str(output), "--uncalibrated", "--force", "--duration", "1"
+        )
+    finally:
+        board.close()
+    assert status == 0, err
+    assert "wrote 50 rows" in out
+    assert [row["seq"] for row in read_rows(output)] == list(range(50))
+
+
+def test_log_into_a_missing_folder_says_so(tmp_path, capsys):
+    output = tmp_path / "no such folder" / "run.csv"
+    status, _, err = run_log(capsys, "--port", str(tmp_path / "tty"), "-o", str(output), "--uncalibrated")
+    assert status == 2
+    assert err == f"pamkit log: error: {output}: the folder {output.parent} does not exist\n"
+
+
+def test_log_fails_when_the_port_never_opens(tmp_path, capsys):
+    output = tmp_path / "run.csv"
+    port = tmp_path / "ttyNOPE"
+    status, _, err = run_log(capsys, "--port", str(port), "-o", str(output), "--uncalibrated", "--duration", "0.5")
+    assert status == 2
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert err.startswith(f"pamkit log: error: nothing recorded: the port {port} never opened (")
+    assert not output.exists()  # it held the header only: a second attempt needs no --force
+
+
+@pytest.mark.parametrize(
+    "stream,reason",
+    [
+        (b"", "opened but sent nothing"),
+        (b"\x00\x13 line noise at another baud rate \xff" * 20, "sent 720 bytes but no frame"),
+    ],
+    ids=["silent", "noise"],
+)
+def test_log_fails_when_nothing_is_recorded(tmp_path, capsys, stream, reason):
+    output = tmp_path / "run.csv"
+    board = Board(stream)
+    try:
+        board.start()
+        status, _, err = run_log(capsys, "--port", board.path, "-o", str(output), "--uncalibrated", "--duration", "0.5")
+    finally:
+        board.close()
+    assert status == 2
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert err.startswith(f"pamkit log: error: nothing recorded: {board.path} {reason}")
+    assert not output.exists()
+
+
+def test_log_stops_with_one_line_on_a_newer_frame_format(tmp_path, capsys):
+    output = tmp_path / "run.csv"
+    board = Board(banner() + frames(20) + banner(frame_version=2, firmware_version="2.0.0") + frames(20))
+    try:
+        board.start()
+        status, _, err = run_log(capsys, "--port", board.path, "-o", str(output), "--uncalibrated", "--duration", "5")
+    finally:
+        board.close()
+    assert status == 2
+    assert "Traceback" not in err
+    message = err.splitlines()[-1]
+    assert message == (
+        f"pamkit log: error: logger on {board.path}: the board sends frame format 2 (firmware 2.0.0), this reader "
+        "knows format 1: update pamkit, or flash the sketch that comes with this pamkit "
+        f"(the 20 rows before it are in {output})"
+    )
+    assert [row["seq"] for row in read_rows(output)] == list(range(20))
+
+
+def test_log_on_a_full_disk_stops_with_one_line_and_leaves_whole_lines(tmp_path):
+    # A file size limit (RLIMIT_FSIZE; Python ignores SIGXFSZ, so write() fails with EFBIG) makes
+    # the write that crosses it a partial one, as a full disk does.
+    import resource
+
+    limit = 10_000  # bytes: a few hundred rows, inside the board's 2000 frames
+    output = tmp_path / "run.csv"
+    board = Board(banner() + frames(2000))
+    try:
+        board.start()
+        result = subprocess.run(
+            log_command(Path(board.path), output, tmp_path / "unused.toml", "--uncalibrated", "--duration", "3"),
+            capture_output=True,
+            text=True,
+            timeout=60,
+            preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit)),
+        )
+    finally:
+        board.close()
+    assert result.returncode == 2
+    data = output.read_bytes()
+    assert len(data) <= limit and data.endswith(b"\n")  # cut back to its last whole line
+    rows = read_rows(output)
+    assert 0 < len(rows) and [row["seq"] for row in rows] == list(range(len(rows)))
+    assert result.stderr.splitlines()[-1] == (
+        f"pamkit log: error: logger: writing {output} failed: File too large; the file ends at its last whole "
+        f"line (the {len(rows)} rows before it are in {output})"
+    )
+
+
 # --- align --------------------------------------------------------------------------------------
 
 
@@ -201,6 +320,29 @@ def test_align_recovers_a_known_offset_within_one_sample(tmp_path, capsys, offse
     assert experiment.ambient_temperature_C == pytest.approx(22.85, abs=0.05)
     assert experiment.elongation_m[0] == 0.0
     assert "before the first stretch" in output.read_text()
+
+
+def test_a_cut_last_line_is_dropped_with_a_warning_not_read_as_a_row(tmp_path, capsys):
+    from pamkit.logger import LoggerWarning, read_logger_csv
+
+    logger, machine, _ = synthetic_logs(tmp_path, 4.71, 2)
+    whole = read_logger_csv(logger)
+    text = logger.read_text()
+    last = text.splitlines()[-1].split(",")
+    # the next row as a kill could leave it: its seq cut after the first digit, every cell a number
+    cut = ",".join([f"{float(last[0]) + 0.01:.6f}", *last[1:6], str(int(last[6]) + 1)[:1]])
+    logger.write_text(text + cut)
+    line = text.count("\n") + 1
+    with pytest.warns(LoggerWarning, match=rf"logger.csv:{line}: the last line has no line end") as caught:
+        data = read_logger_csv(logger)
+    assert repr(cut[:60]) in str(caught[0].message)
+    for name, values in whole.items():
+        np.testing.assert_array_equal(data[name], values)
+
+    output = tmp_path / "aligned.toml"
+    assert main(["align", str(logger), str(machine), "-o", str(output), "--muscle", str(THESIS)]) == 0
+    printed = capsys.readouterr().out
+    assert f"warning: {logger}:{line}: the last line has no line end" in printed
 
 
 def test_aligned_experiment_is_accepted_by_simulate(tmp_path):

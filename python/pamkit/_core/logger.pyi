@@ -4,7 +4,7 @@ The Arduino Mega logger's host side (firmware/pamkit_logger).
 from __future__ import annotations
 import collections.abc
 import typing
-__all__: list[str] = ['FIRMWARE_VERSION', 'FRAME_SIZE', 'FRAME_VERSION', 'LoggerCalibration', 'Reader', 'fit_pressure', 'list_ports']
+__all__: list[str] = ['FIRMWARE_VERSION', 'FRAME_SIZE', 'FRAME_VERSION', 'LoggerCalibration', 'READ_BYTES', 'Reader', 'fit_pressure', 'list_ports']
 class LoggerCalibration:
     """
     Counts to volts (ADC reference), volts to gauge kPa (61CP fit) and to degC (TMP36).
@@ -80,13 +80,13 @@ class LoggerCalibration:
         ...
 class Reader:
     """
-    Reads the logger on `port` into the CSV `output` (time_s, [pressure_kPa,] temperature_C, pressure_V, temperature_V, boot, seq), flushed after every read.
+    Reads the logger on `port` into the CSV `output` (time_s, [pressure_kPa,] temperature_C, pressure_V, temperature_V, boot, seq), whole lines written after every read; fsync_interval_s [s]: fsync at most this often (0: every read, inf: never); an existing output is refused (ValueError) unless replace_existing.
     """
     def __enter__(self) -> Reader:
         ...
     def __exit__(self, *args) -> None:
         ...
-    def __init__(self, port: str, output: str, calibration: LoggerCalibration, pressure_calibrated: bool = True, baud: typing.SupportsInt | typing.SupportsIndex = 115200, assert_dtr: bool = True, banner_timeout_s: typing.SupportsFloat | typing.SupportsIndex = 3.0, reconnect_interval_s: typing.SupportsFloat | typing.SupportsIndex = 0.25) -> None:
+    def __init__(self, port: str, output: str, calibration: LoggerCalibration, pressure_calibrated: bool = True, baud: typing.SupportsInt | typing.SupportsIndex = 115200, assert_dtr: bool = True, banner_timeout_s: typing.SupportsFloat | typing.SupportsIndex = 3.0, reconnect_interval_s: typing.SupportsFloat | typing.SupportsIndex = 0.25, fsync_interval_s: typing.SupportsFloat | typing.SupportsIndex = 1.0, replace_existing: bool = False) -> None:
         ...
     def banner(self) -> typing.Any:
         """
@@ -125,3 +125,4 @@ def list_ports() -> list:
 FIRMWARE_VERSION: str = '1.0.0'
 FRAME_SIZE: int = 16
 FRAME_VERSION: int = 1
+READ_BYTES: int = 4096

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import warnings
 
 import numpy as np
 
@@ -62,6 +63,7 @@ def register(subparsers) -> None:
 def run(arguments: argparse.Namespace) -> int:
     from pamkit.logger import (
         LoggerError,
+        LoggerWarning,
         align,
         read_logger_csv,
         read_machine_csv,
@@ -69,7 +71,11 @@ def run(arguments: argparse.Namespace) -> int:
         write_experiment,
     )
 
-    logger = read_logger_csv(arguments.logger)
+    with warnings.catch_warnings(record=True) as dropped:
+        warnings.simplefilter("always", LoggerWarning)
+        logger = read_logger_csv(arguments.logger)
+    for warning in dropped:
+        print(f"warning: {warning.message}")
     machine = read_machine_csv(arguments.machine)
     sections = read_muscle_source(arguments.muscle)
     for name in ("pressure_kPa", "temperature_C"):

@@ -20,7 +20,8 @@ def register(subparsers) -> None:
         "found again), and counts each.",
     )
     parser.add_argument("--port", help="serial port: /dev/serial/by-id/..., /dev/ttyACM0, or a pty")
-    parser.add_argument("-o", "--output", help="CSV file to write")
+    parser.add_argument("-o", "--output", help="CSV file to write (an existing one only with --force)")
+    parser.add_argument("--force", action="store_true", help="replace OUT.csv if it exists")
     parser.add_argument("--duration", type=float, metavar="S", help="stop after S seconds (default: until Ctrl-C)")
     parser.add_argument(
         "--calibration",
@@ -41,6 +42,15 @@ def register(subparsers) -> None:
         default=3.0,
         metavar="S",
         help="wait this long after opening for the board's banner (default: 3)",
+    )
+    parser.add_argument(
+        "--fsync",
+        type=float,
+        default=1.0,
+        metavar="S",
+        help="make the kernel put the file on the disk at most every S seconds: what a power cut can lose "
+        "(default: 1; 0: after every read; inf: leave it to the kernel). A killed or crashed pamkit log loses "
+        "at most the frames of its last read (256), whatever S is",
     )
     parser.add_argument("--list", action="store_true", help="list serial ports and exit")
     parser.add_argument(
@@ -68,6 +78,7 @@ def _status(stats: dict, last: dict | None, rate: float, reader) -> str:
 
 
 def run(arguments: argparse.Namespace) -> int:
+    from pamkit._core import Error
     from pamkit._core.logger import LoggerCalibration, Reader, list_ports
     from pamkit.logger import CALIBRATION_TEMPLATE, LoggerError, load_calibration
 
@@ -89,6 +100,15 @@ def run(arguments: argparse.Namespace) -> int:
         raise LoggerError("--port and -o/--output are required (or --list, --write-calibration-template)")
     if arguments.duration is not None and not arguments.duration > 0:
         raise LoggerError(f"--duration {arguments.duration} must be positive")
+    if not arguments.fsync >= 0:
+        raise LoggerError(f"--fsync {arguments.fsync} must be >= 0 seconds (inf: never)")
+    output = Path(arguments.output)
+    if output.is_dir():
+        raise LoggerError(f"{output}: is a folder; give a file name with -o")
+    if not output.parent.is_dir():
+        raise LoggerError(f"{output}: the folder {output.parent} does not exist")
+    if output.exists() and not arguments.force:
+        raise LoggerError(f"{output}: exists already; give --force to replace it, or another -o")
 
     if arguments.uncalibrated:
         calibration, calibrated = LoggerCalibration(), False
@@ -103,15 +123,20 @@ def run(arguments: argparse.Namespace) -> int:
         )
 
     live = sys.stderr.isatty()
-    reader = Reader(
-        arguments.port,
-        arguments.output,
-        calibration,
-        pressure_calibrated=calibrated,
-        baud=arguments.baud,
-        assert_dtr=not arguments.no_dtr,
-        banner_timeout_s=arguments.banner_timeout,
-    )
+    try:
+        reader = Reader(
+            arguments.port,
+            arguments.output,
+            calibration,
+            pressure_calibrated=calibrated,
+            baud=arguments.baud,
+            assert_dtr=not arguments.no_dtr,
+            banner_timeout_s=arguments.banner_timeout,
+            fsync_interval_s=arguments.fsync,
+            replace_existing=arguments.force,
+        )
+    except Error as error:  # the file cannot be created: the message names it and the reason
+        raise LoggerError(str(error)) from None
     print(
         f"logging {arguments.port} to {arguments.output}"
         + (f" for {arguments.duration:g} s" if arguments.duration else " until Ctrl-C")
@@ -119,7 +144,7 @@ def run(arguments: argparse.Namespace) -> int:
     start = time.monotonic()
     last_report, report_every = start, (0.25 if live else 5.0)
     frames_at_report, banner_shown = 0, False
-    interrupted = False
+    interrupted, failure = False, None
     try:
         while arguments.duration is None or time.monotonic() - start < arguments.duration:
             reader.poll(0.1)
@@ -140,11 +165,26 @@ def run(arguments: argparse.Namespace) -> int:
                 print(f"\r{line}\033[K" if live else line, end="" if live else "\n", file=sys.stderr, flush=True)
     except KeyboardInterrupt:
         interrupted = True
+    except Error as error:  # a board with another frame format, a disk that is full: stop, say why below
+        failure = str(error)
     finally:
         stats = reader.stats()
         reader.close()
     if live:
         print(file=sys.stderr)
+    if stats["rows"] == 0 and not failure:
+        # The file holds the header only: remove it, so that the next attempt needs no --force.
+        output.unlink()
+        if stats["opens"] == 0:
+            reason = f"the port {arguments.port} never opened ({reader.last_error or 'no reason given'})"
+        elif stats["bytes"] == 0:
+            reason = f"{arguments.port} opened but sent nothing (is the logger sketch flashed and running?)"
+        else:
+            reason = (
+                f"{arguments.port} sent {stats['bytes']} bytes but no frame (is --baud {arguments.baud} the "
+                "sketch's PAMKIT_BAUD?)"
+            )
+        raise LoggerError(f"nothing recorded: {reason}; removed {arguments.output}, which held the header only")
     print(
         f"{'interrupted; ' if interrupted else ''}wrote {stats['rows']} rows to {arguments.output} "
         f"in {stats['seconds']:.1f} s"
@@ -158,4 +198,6 @@ def run(arguments: argparse.Namespace) -> int:
         f"board resets {stats['resets']}; port lost {stats['disconnects']} times; frames from before a reset dropped "
         f"{stats['stale_frames']}"
     )
+    if failure:
+        raise LoggerError(f"{failure} (the {stats['rows']} rows before it are in {arguments.output})")
     return 0
