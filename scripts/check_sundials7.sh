@@ -23,7 +23,7 @@ else
 fi
 
 if [ ! -f "$work/sundials/lib64/cmake/sundials/SUNDIALSConfig.cmake" ]; then
-  pip download "sundials4py==$version" --no-deps --only-binary :all: --python-version 3.12 \
+  "${PYTHON:-$root/.venv/bin/python}" -m pip download "sundials4py==$version" --no-deps --only-binary :all: --python-version 3.12 \
     --platform "manylinux_2_28_$(uname -m)" -d "$work/wheel" --quiet
   python3 -m zipfile -e "$work"/wheel/sundials4py-*.whl "$work/sundials"
 fi

@@ -6,6 +6,7 @@ import argparse
 import importlib
 import pkgutil
 import sys
+import warnings
 
 import pamkit.commands
 from pamkit.experiment import ExperimentError
@@ -19,10 +20,16 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    print(f"pamkit: warning: {message}", file=sys.stderr)
+
+
 def main(argv: list[str] | None = None) -> int:
     arguments = build_parser().parse_args(argv)
     try:
-        return arguments.run(arguments)
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning  # one line per repair, not Python's source echo
+            return arguments.run(arguments)
     except (ExperimentError, ValueError) as error:
         print(f"pamkit {arguments.command}: error: {error}", file=sys.stderr)
         return 2

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import csv
 import math
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -66,6 +67,11 @@ BLADDER_LAWS = ("thesis", "neo_hookean", "none")
 
 class ExperimentError(ValueError):
     """An experiment file or its data cannot be used; the message says where."""
+
+
+class ExperimentWarning(UserWarning):
+    """Data that can be used after a stated repair (a cut last line dropped, repeated time stamps
+    merged); the message says where and what was done."""
 
 
 @dataclass
@@ -410,33 +416,73 @@ def _read_csv(
             if name not in header:
                 raise ExperimentError(f"{path}:1: required column '{name}' is missing")
         order = header.index(increasing) if increasing else None
-        values: list[list[float]] = []
-        for row in reader:
-            line = reader.line_num
-            if not row or all(not cell.strip() for cell in row):
+        rows = [(reader.line_num, row) for row in reader]
+    cut_last_line = _ends_unterminated(path)
+    values: list[list[float]] = []
+    merged: list[int] = []  # lines whose time stamp repeated the one before
+    weight: list[int] = []  # rows averaged into each value row
+    for position, (line, row) in enumerate(rows):
+        if not row or all(not cell.strip() for cell in row):
+            continue
+        try:
+            parsed = _parse_row(path, line, header, row)
+        except ExperimentError as error:
+            if cut_last_line and position == len(rows) - 1:
+                # A recording cut mid-line (a killed logger, a pulled cable): keep what came whole.
+                warnings.warn(f"{path}:{line}: the last line is cut off ({error}); dropped", ExperimentWarning, 2)
                 continue
-            if len(row) != len(header):
-                raise ExperimentError(f"{path}:{line}: {len(row)} values, the header has {len(header)}")
-            parsed = []
-            for column, (name, cell) in enumerate(zip(header, row), start=1):
-                try:
-                    value = float(cell)
-                except ValueError:
-                    raise ExperimentError(
-                        f"{path}:{line}: column {column} ({name}) = {cell.strip()!r} is not a number"
-                    ) from None
-                if not math.isfinite(value):
-                    raise ExperimentError(f"{path}:{line}: column {column} ({name}) = {cell.strip()!r} is not finite")
-                parsed.append(value)
-            if order is not None and values and parsed[order] <= values[-1][order]:
-                raise ExperimentError(
-                    f"{path}:{line}: column {order + 1} ({increasing}) = {parsed[order]} does not increase"
-                )
-            values.append(parsed)
+            raise
+        if order is not None and values and parsed[order] == values[-1][order]:
+            # A repeated stamp (a logger's clock resolution): one sample, the mean of the rows.
+            n = weight[-1]
+            values[-1] = [(n * old + new) / (n + 1) for old, new in zip(values[-1], parsed)]
+            weight[-1] += 1
+            merged.append(line)
+            continue
+        if order is not None and values and parsed[order] < values[-1][order]:
+            raise ExperimentError(
+                f"{path}:{line}: column {order + 1} ({increasing}) = {parsed[order]} does not increase"
+            )
+        values.append(parsed)
+        weight.append(1)
+    if merged:
+        warnings.warn(
+            f"{path}:{merged[0]}: {len(merged)} row(s) repeat the time stamp before them (first at line {merged[0]}); "
+            "each is merged with it into one sample (their mean)",
+            ExperimentWarning,
+            2,
+        )
     if len(values) < 2:
         raise ExperimentError(f"{path}: needs at least 2 data rows, found {len(values)}")
     table = np.asarray(values)
     return {name: table[:, index].copy() for index, name in enumerate(header)}
+
+
+def _ends_unterminated(path: Path) -> bool:
+    """Whether the file's last byte is not a line end."""
+    with path.open("rb") as handle:
+        handle.seek(0, 2)
+        if handle.tell() == 0:
+            return False
+        handle.seek(-1, 2)
+        return handle.read(1) not in (b"\n", b"\r")
+
+
+def _parse_row(path: Path, line: int, header: list[str], row: list[str]) -> list[float]:
+    if len(row) != len(header):
+        raise ExperimentError(f"{path}:{line}: {len(row)} values, the header has {len(header)}")
+    parsed = []
+    for column, (name, cell) in enumerate(zip(header, row), start=1):
+        try:
+            value = float(cell)
+        except ValueError:
+            raise ExperimentError(
+                f"{path}:{line}: column {column} ({name}) = {cell.strip()!r} is not a number"
+            ) from None
+        if not math.isfinite(value):
+            raise ExperimentError(f"{path}:{line}: column {column} ({name}) = {cell.strip()!r} is not finite")
+        parsed.append(value)
+    return parsed
 
 
 def write_series(path: str | Path, columns: dict[str, np.ndarray], digits: int = 10) -> None:

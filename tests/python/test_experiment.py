@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from pamkit.experiment import ExperimentError, load_experiment, read_series
+from pamkit.experiment import ExperimentError, ExperimentWarning, load_experiment, read_series
 
 
 def test_reads_build_test_and_series(write_experiment):
@@ -64,7 +64,7 @@ def test_missing_required_key(write_experiment):
     [
         ("time_s,elongation_m\n0,0\n1,nan\n", r"run.csv:3: column 2 \(elongation_m\) = 'nan' is not finite"),
         ("time_s,elongation_m\n0,0\n1,abc\n", r"run.csv:3: column 2 \(elongation_m\) = 'abc' is not a number"),
-        ("time_s,elongation_m\n0,0\n2,0.001\n2,0.002\n", r"run.csv:4: column 1 \(time_s\) = 2.0 does not increase"),
+        ("time_s,elongation_m\n0,0\n2,0.001\n1.5,0.002\n", r"run.csv:4: column 1 \(time_s\) = 1.5 does not increase"),
         ("time_s,force_N\n0,0\n1,1\n", r"run.csv:1: required column 'elongation_m' is missing"),
         ("time_s,elongation_m,force_kN\n0,0,1\n1,1,1\n", r"run.csv:1: column 3 'force_kN' is not a known channel"),
         ("time_s,elongation_m\n0,0\n1\n", r"run.csv:3: 1 values, the header has 2"),
@@ -157,3 +157,26 @@ def test_a_table_names_its_missing_column_and_its_kind(tmp_path):
     path.write_text(path.read_text().replace('kind = "isometric_map"', 'kind = "isobaric"'))
     with pytest.raises(ExperimentError, match="kind = 'isobaric' must be one of"):
         load_experiment(path)
+
+
+def test_repeated_time_stamps_are_merged_with_a_warning(tmp_path):
+    # A logger whose millisecond clock repeats a stamp: one sample, the mean of the rows.
+    path = tmp_path / "run.csv"
+    path.write_text("time_s,elongation_m,force_N\n0,0,1\n0.001,0.001,2\n0.001,0.003,4\n0.002,0.004,5\n")
+    with pytest.warns(ExperimentWarning, match=r"run.csv:4: 1 row\(s\) repeat the time stamp"):
+        columns = read_series(path)
+    assert list(columns["time_s"]) == [0, 0.001, 0.002]
+    assert columns["elongation_m"][1] == pytest.approx(0.002) and columns["force_N"][1] == pytest.approx(3.0)
+
+
+def test_a_cut_last_line_is_dropped_with_a_warning_and_a_whole_one_kept(tmp_path):
+    path = tmp_path / "run.csv"
+    path.write_text("time_s,elongation_m\n0,0\n1,0.001\n2,0.002\n3,")  # the recording stopped mid-line
+    with pytest.warns(ExperimentWarning, match=r"run.csv:5: the last line is cut off"):
+        columns = read_series(path)
+    assert list(columns["time_s"]) == [0, 1, 2]
+    path.write_text("time_s,elongation_m\n0,0\n1,0.001\n2,0.002")  # no final line end, but whole
+    assert list(read_series(path)["time_s"]) == [0, 1, 2]
+    path.write_text("time_s,elongation_m\n0,0\n1,\n2,0.002\n")  # inside the file it is an error
+    with pytest.raises(ExperimentError, match="run.csv:3: column 2"):
+        read_series(path)
