@@ -5,7 +5,7 @@ with pamkit (this file does not import it), the same equations:
 
 * braid with end cones: the closure (pi n D)^2 + (L - 2 LL(D))^2 = Lym^2 solved for the braid
   diameter D by ``scipy.optimize.brentq`` (eqs. 3.1.9-3.1.11 plus cones of fixed slant Lz);
-* volumes, eqs. 3.1.1-3.1.3, and their derivatives with respect to the muscle length L;
+* volumes, eqs. 3.1.1-3.1.3 (the bladder's rubber conserved), and their derivatives with respect to L;
 * force by virtual work: -p_abs dV_gas/dL + p_atm dV_total/dL, plus the bladder
   V_ref (sigma_l deps_l/dL + sigma_h deps_h/dL) with the polynomials of eqs. 3.1.12-3.1.13,
   plus friction (eqs. 3.1.19-3.1.24 as in pamkit/muscle/friction.hpp);
@@ -155,6 +155,8 @@ class ReferenceMuscle:
         self.lm0 = float(b["length_m"]) - 2.0 * self._cone_length(d0)
         self.lym = math.sqrt(self.lm0**2 + (self.k * d0) ** 2)
         self.v_rubber = math.pi * self.dbo * self.tb * self.lm0  # reference volume of the stress laws
+        deflated_ring = (d0 / 2.0) ** 2 - (d0 / 2.0 - self.tb) ** 2
+        self.v_wall = float(b["length_m"]) * math.pi * deflated_ring  # the bladder's rubber, conserved
 
         # Friction magnitude per pascal of gauge pressure (eqs. 3.1.19-3.1.24), times tanh(Kf v).
         N = float(b["fiber_count"])
@@ -222,11 +224,10 @@ class ReferenceMuscle:
             + pi * D / 2.0 * lm
             + pi * D * D / 4.0 * dlm_dD
         )
-        # Eq. 3.1.3: a tube of the full length L, outer diameter D, wall tb.
-        tb = self.tb
-        ring = (D / 2.0) ** 2 - (D / 2.0 - tb) ** 2
-        v_bladder = L * pi * ring
-        dvb_dL = pi * ring + L * pi * tb * dD_dL  # d(ring)/dD = (D/2) - (D/2 - tb) = tb
+        # The rubber is incompressible: its volume is eq. 3.1.3's tube (length L, outer diameter
+        # D, wall tb) on the deflated build, at every length.
+        v_bladder = self.v_wall
+        dvb_dL = 0.0
         dvt_dL = dvt_dD * dD_dL
         return {
             "length": L,

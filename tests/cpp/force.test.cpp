@@ -80,17 +80,22 @@ TEST_CASE("Newtonian fiber tensions with flat ends equal -p dV/dL and the closed
   }
 }
 
-TEST_CASE("Newtonian and virtual-work forces agree with flat ends and the thesis bladder", "[force][physics]") {
+TEST_CASE("Newtonian and virtual-work forces differ only by the wall's work, with flat ends and the thesis bladder",
+          "[force][physics]") {
   // One algorithm against another. The bladder is on (eqs. 3.1.12-3.1.13, table C.4's 0.254 mm)
   // and both formulations apply the engineering stresses to the deflated cross-sections
-  // (pi Dbo tb lengthwise, tb Lm0 per side around), so they agree term by term. Fiber thickness
-  // is 0: the Newtonian balance takes tf off the gas's radius, eq. 3.1.2's gas volume does not.
+  // (pi Dbo tb lengthwise, tb Lm0 per side around), so the bladder terms agree term by term.
+  // Fiber thickness is 0: the Newtonian balance takes tf off the gas's radius.
   //
-  // The Newtonian balance is written in gauge pressure. The virtual-work force also counts the
-  // atmosphere's work on the bladder's outside: eq. 3.1.3 lets the rubber volume change with L,
-  // so F_vw = F_newton + p_atm dV_bladder/dL exactly. Both are checked.
+  // The walls differ. The Newtonian balance takes the gas's radius as D/2 - tb at every length:
+  // a wall of constant thickness, whose rubber volume is eq. 3.1.3's V_w(L) = pi L (D tb - tb^2).
+  // pamkit's wall conserves its volume (rubber is incompressible), so the gas does work on the
+  // whole braid volume: F_newton = F_vw + p dV_w/dL exactly, with dV_w/dL from eq. 3.1.3 in
+  // closed form. And the atmosphere does no net work on a wall of constant volume: the force
+  // depends on the gauge pressure alone.
   MuscleBuild build = thin_walls(0.0);
   build.bladder_thickness_m = 0.254e-3;
+  const double tb = build.bladder_thickness_m;
   const BraidGeometry geometry(build);
   const BladderLaw law = BladderLaw::thesis();
   for (double gauge : {35e3, 104e3, 276e3}) {  // the range of table 3.4
@@ -101,12 +106,27 @@ TEST_CASE("Newtonian and virtual-work forces agree with flat ends and the thesis
       const MuscleForces gauge_only = muscle_forces(geometry, s, law, kNoFriction, gauge, 0.0, 0.0);
       const MuscleForces with_atmosphere =
           muscle_forces(geometry, s, law, kNoFriction, kAtmosphere + gauge, kAtmosphere, 0.0);
+      const double d_wall_3_1_3 = kPi * (s.diameter * tb - tb * tb) + kPi * L * tb * s.d_diameter;
       // Round-off only: 1e-12 of the largest term (the pressure force) the sum is made of.
       const double scale = gauge * 0.25 * kPi * s.diameter * s.diameter;
-      REQUIRE(std::abs(gauge_only.bladder) > 1e-3 * std::abs(gauge_only.total));  // the bladder matters
-      CHECK(std::abs(newtonian - gauge_only.total) <= 1e-12 * scale);
-      CHECK(std::abs(newtonian + kAtmosphere * s.d_bladder_volume - with_atmosphere.total) <= 1e-12 * scale);
+      REQUIRE(std::abs(gauge_only.bladder) > 1e-3 * std::abs(gauge_only.total));    // the bladder matters
+      REQUIRE(std::abs(gauge * d_wall_3_1_3) > 1e-3 * std::abs(gauge_only.total));  // and so does the wall
+      CHECK(std::abs(newtonian - (gauge_only.total + gauge * d_wall_3_1_3)) <= 1e-12 * scale);
+      CHECK(std::abs(with_atmosphere.total - gauge_only.total) <= 1e-12 * scale);
     }
+  }
+}
+
+TEST_CASE("At zero gauge pressure the gas and the atmosphere exert no force at any length", "[force][physics]") {
+  // The invariant of a wall that conserves its volume: inside and outside pressures are equal,
+  // so the gas and the atmosphere do equal and opposite work whatever the braid does.
+  MuscleBuild build;  // PAM 2, with its cones and its 0.254 mm bladder
+  const BraidGeometry geometry(build);
+  for (double L : working_lengths()) {
+    INFO("L = " << L);
+    const MuscleForces f =
+        muscle_forces(geometry, geometry.shape(L), BladderLaw::none(), kNoFriction, kAtmosphere, kAtmosphere, 0.0);
+    CHECK(std::abs(f.pressure) <= 1e-12 * kAtmosphere * geometry.shape(L).total_volume / L);
   }
 }
 

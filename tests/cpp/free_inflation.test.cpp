@@ -61,8 +61,8 @@ TEST_CASE("Table 3.4: free length and diameter with table C.4's 0.254 mm bladder
     INFO(row.gauge_kPa << " kPa: L = " << f.length_m << " m (measured " << row.measured_length_m
                        << "), D = " << f.diameter_m << " m (measured " << row.measured_diameter_m << ")");
     CHECK(f.contracted);
-    // What the model meets honestly: length within 5 % (worst -4.0 % at 138 kPa) and diameter
-    // within 10 % (worst -8.9 % at 207 kPa: PAM 2's measured 33 mm is wider than the braid
+    // What the model meets honestly: length within 5 % (worst -3.4 % at 138 kPa) and diameter
+    // within 10 % (worst -9.3 % at 207 kPa: PAM 2's measured 33 mm is wider than the braid
     // gets before its cones flatten, 32 mm = d + 2 Lz).
     CHECK(std::abs(percent(f.length_m, row.measured_length_m)) < 5.0);
     CHECK(std::abs(percent(f.diameter_m, row.measured_diameter_m)) < 10.0);
@@ -73,19 +73,20 @@ TEST_CASE("Table 3.4: free length and diameter with table C.4's 0.254 mm bladder
   std::cout << table.str() << std::flush;
 }
 
-TEST_CASE("Table 3.4 with the measured 0.9 mm bladder: the muscle cannot inflate at low pressure",
+TEST_CASE("Table 3.4 with the measured 0.9 mm bladder: the muscle barely inflates at low pressure",
           "[free_inflation][thesis]") {
   // Section 3.1.2 measured the butyl tube at 0.9 mm. Strains count from the deflated tube as
   // in table 3.1, so the deflated 20 mm braid already holds the 15.45 mm bladder at 29 % hoop
   // strain, where eq. 3.1.13 gives 376 kPa. On a 0.9 mm wall that pushes the ends apart with
-  // 51 N while 35 and 48 kPa pull them together with only 32 and 47 N: the model stays at its
-  // deflated length, while table 3.4 shows the muscle contracted by 17-19 %. Table C.4's
-  // 0.254 mm is the thickness the thesis's model was run with (DESIGN.md).
+  // 51.5 N while 35 and 48 kPa pull them together with 44.6 and 61.1 N: at 35 kPa the model
+  // stays at its deflated length, at 48 kPa it contracts by 1.8 %, while table 3.4 shows the
+  // muscle contracted by 17-19 %. Table C.4's 0.254 mm is the thickness the thesis's model was
+  // run with (DESIGN.md).
+  const FreeInflation lowest = inflate(kTable34[0], 0.9e-3);
+  CHECK_FALSE(lowest.contracted);
+  CHECK(lowest.length_m == kTable34[0].deflated_length_m);
   for (const Row& row : {kTable34[0], kTable34[1]}) {
     INFO(row.gauge_kPa << " kPa");
-    const FreeInflation f = inflate(row, 0.9e-3);
-    CHECK_FALSE(f.contracted);
-    CHECK(f.length_m == row.deflated_length_m);
-    CHECK(percent(f.length_m, row.measured_length_m) > 15.0);
+    CHECK(percent(inflate(row, 0.9e-3).length_m, row.measured_length_m) > 15.0);
   }
 }

@@ -41,12 +41,12 @@ struct MuscleShape {
   double cone_angle;         ///< beta, inclination of the cone's slant from the axis
   double mean_braid_angle;   ///< theta_a = (theta + theta_e) / 2 (section 3.1.1)
   double total_volume;       ///< eq. 3.1.1, inside the braid, bladder included
-  double bladder_volume;     ///< eq. 3.1.3
+  double bladder_volume;     ///< the bladder's rubber: eq. 3.1.3 on the deflated build, conserved
   double gas_volume;         ///< eq. 3.1.2: total minus bladder
   double d_diameter;         ///< dD/dL [1]
   double d_cylinder_length;  ///< dLm/dL [1]
   double d_total_volume;     ///< dV_total/dL [m^2]
-  double d_bladder_volume;   ///< dV_bladder/dL [m^2]
+  double d_bladder_volume;   ///< dV_bladder/dL [m^2]: 0, the wall conserves its volume
   double d_gas_volume;       ///< dV_gas/dL [m^2]
 };
 
@@ -80,6 +80,7 @@ class BraidGeometry {
   double deflated_cylinder_length_;
   double min_length_;
   double max_length_;
+  double wall_volume_;  ///< the bladder's rubber [m^3], conserved
 };
 
 }  // namespace pamkit

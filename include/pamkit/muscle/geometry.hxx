@@ -61,6 +61,8 @@ inline BraidGeometry::BraidGeometry(const MuscleBuild& build) : build_(build) {
   const double turns = detail::kPi * build_.fiber_revolutions;
   const bool has_cones = lz > 0.0;
   deflated_cylinder_length_ = detail::deflated_cylinder_length(build_);
+  const double tb = build_.bladder_thickness_m;
+  wall_volume_ = detail::kPi * build_.length_m * (build_.diameter_m * tb - tb * tb);
   fiber_length_ = braid_fiber_length(deflated_cylinder_length_, build_.diameter_m, build_.fiber_revolutions);
   if (has_cones) {
     // Shortest: the cones lie flat (D = d + 2 Lz, LL = 0). Longest: the braid narrows to d.
@@ -141,10 +143,12 @@ inline MuscleShape BraidGeometry::shape(double length_m) const {
   s.total_volume = (2.0 / 3.0) * pi * ll * frustum + 0.25 * pi * D * D * lm;
   s.d_total_volume = (2.0 / 3.0) * pi * (d_cone_length * frustum + ll * d_frustum) +
                      0.25 * pi * (2.0 * D * s.d_diameter * lm + D * D * s.d_cylinder_length);
-  // Eq. 3.1.3: a tube of the full length with the braid's outer diameter.
-  const double tb = build_.bladder_thickness_m;
-  s.bladder_volume = pi * length_m * (D * tb - tb * tb);
-  s.d_bladder_volume = pi * (D * tb - tb * tb) + pi * length_m * tb * s.d_diameter;
+  // The wall conserves its volume: rubber is incompressible. Eq. 3.1.3 (a tube of the full
+  // length, the braid's diameter and a fixed thickness) gives that volume on the deflated build;
+  // evaluated at every length, as the thesis does, it would let the rubber's volume follow the
+  // length and the absolute pressure do work on it (a force at zero gauge pressure).
+  s.bladder_volume = wall_volume_;
+  s.d_bladder_volume = 0.0;
   s.gas_volume = s.total_volume - s.bladder_volume;
   s.d_gas_volume = s.d_total_volume - s.d_bladder_volume;
   return s;

@@ -52,22 +52,21 @@ def test_an_independent_map_gives_back_its_braid_angle_and_membrane(tmp_path):
     assert d.cause == "braid_slack", verdict(d)
     params = report["extended"]["params"]
     assert abs(params["braid_angle_deg"] - TRUTH["braid_angle_deg"]) <= 1.0, verdict(d)
-    assert params["bladder.shear_modulus_Pa"] == pytest.approx(TRUTH["shear_modulus_Pa"], rel=0.15)
-    # Not asserted: the membrane's pre-stretch (fitted 1.02 for a true 1.06). The independent
-    # wall is thin; pamkit's bladder keeps its thickness (eq. 3.1.3) and takes gas volume.
+    assert params["bladder.shear_modulus_Pa"] == pytest.approx(TRUTH["shear_modulus_Pa"], rel=0.1)
+    prestretch = TRUTH["diameter_m"] / params["bladder_diameter_m"]
+    assert prestretch == pytest.approx(TRUTH["prestretch"], abs=0.01)
     assert report["gain"]["force_N"] >= 0.5 and report["gain_ci95"]["force_N"][0] > 0
+    # What is left is the load cell's noise: held out within 1.5x the table's noise estimate.
+    assert report["extended"]["heldout_rmse"]["force_N"] <= 1.5 * d.noise["force_N"], verdict(d)
 
 
-def test_a_map_of_taut_rows_only_names_no_catalog_effect(tmp_path):
+def test_a_map_of_taut_rows_only_is_explained_within_its_noise(tmp_path):
     toml = write_map(
         tmp_path, lengths_m=[0.25, 0.245, 0.24, 0.235], pressures_kPa=np.arange(400, 651, 25), seed=2, **TRUTH
     )
     d = diagnose(toml, threads=2)
     assert "braid_slack" in d.skipped  # no row where the braid would push: it cannot act
-    # Honest, not "none": pamkit's bladder keeps its thickness where the independent membrane
-    # thins, which leaves 2.3x the noise held out; within 3x, nothing else is left.
-    assert d.cause in ("none", "unexplained"), verdict(d)
-    assert to_json(d)["baseline"]["heldout_rmse"]["force_N"] < 3 * d.noise["force_N"], verdict(d)
+    assert d.cause == "none", verdict(d)
 
 
 def test_a_map_at_two_lengths_cannot_hold_one_out(tmp_path):
@@ -142,31 +141,26 @@ def test_simulate_writes_a_tables_prediction(tmp_path):
     assert (tmp_path / "map.png").stat().st_size > 0
 
 
-# A thin membrane (0.2 mm, the same mu t as TRUTH's): the independent wall conserves its volume,
-# pamkit's keeps its thickness (eq. 3.1.3) and so does work against the absolute pressure as the
-# muscle moves; the two agree to first order in the thickness only.
-THIN = dict(TRUTH, thickness_m=0.2e-3, shear_modulus_Pa=3.75e6)
-
-
-def test_an_isotonic_campaign_names_the_pressurise_vent_hysteresis(tmp_path):
+def test_an_isotonic_campaign_recovers_its_load_braid_and_hysteresis(tmp_path):
+    # Issue "Isotonic tests": load within 5 %, braid angle within 1 degree, the hysteresis named,
+    # held-out RMSE at the noise (0.1 mm written, estimated from the repeated sweeps).
     up = list(np.arange(100.0, 601.0, 50.0))
     sweep = up + up[::-1][1:]  # settled steps up to 6 bar and back, three times
-    toml = write_isotonic(tmp_path, sweeps=[sweep] * 3, load_N=120.0, hysteresis=0.1, seed=4, **THIN)
+    toml = write_isotonic(tmp_path, sweeps=[sweep] * 3, load_N=120.0, hysteresis=0.1, seed=4, **TRUTH)
     d = diagnose(toml, threads=2)
     report = to_json(d)
     assert report["held_out"] == "sweep" and len(report["baseline"]["heldout_rmse_by_group"]) == 3
-    best = report["candidates"][0]
-    assert best["effect"] == "pressure_hysteresis", verdict(d)
-    assert best["gain"]["length_m"] >= 0.8 and best["gain_ci95"]["length_m"][0] > 0
-    assert best["params"]["coefficient"] == pytest.approx(0.1, rel=0.1)
-    assert abs(best["params"]["braid_angle_deg"] - THIN["braid_angle_deg"]) <= 1.0
-    # Named, or unexplained because the membrane's pre-stretch ends at its bound (no pre-stretch):
-    # never another catalog effect.
-    assert d.cause in ("pressure_hysteresis", "unexplained"), verdict(d)
+    assert d.cause == "pressure_hysteresis", verdict(d)
+    params = report["extended"]["params"]
+    assert params["load_N"] == pytest.approx(120.0, rel=0.05), verdict(d)
+    assert abs(params["braid_angle_deg"] - TRUTH["braid_angle_deg"]) <= 1.0
+    assert params["coefficient"] == pytest.approx(0.1, rel=0.1)
+    assert report["gain"]["length_m"] >= 0.8 and report["gain_ci95"]["length_m"][0] > 0
+    assert report["extended"]["heldout_rmse"]["length_m"] <= 1.5 * d.noise["length_m"], verdict(d)
 
 
 def test_an_isotonic_table_reads_contraction_and_needs_its_load(tmp_path):
-    toml = write_isotonic(tmp_path, sweeps=[[100.0, 300.0, 100.0]], load_N=50.0, hysteresis=0.0, seed=5, **THIN)
+    toml = write_isotonic(tmp_path, sweeps=[[100.0, 300.0, 100.0]], load_N=50.0, hysteresis=0.0, seed=5, **TRUTH)
     from pamkit.experiment import load_experiment
 
     data = np.genfromtxt(tmp_path / "isotonic.csv", delimiter=",", names=True)
