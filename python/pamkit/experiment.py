@@ -8,6 +8,7 @@ file, and for CSV data the line and column.
 from __future__ import annotations
 
 import csv
+import io
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -245,10 +246,7 @@ def load_experiment(path: str | Path) -> Experiment:
     """
     path = Path(path)
     try:
-        with path.open("rb") as handle:
-            document = tomllib.load(handle)
-    except FileNotFoundError:
-        raise ExperimentError(f"{path}: no such experiment file") from None
+        document = tomllib.loads(_text(path, "experiment"))
     except tomllib.TOMLDecodeError as error:
         raise _fail(path, f"not valid TOML: {error}") from None
 
@@ -377,11 +375,16 @@ def _read_isotonic(path: Path, build: MuscleBuild) -> dict[str, np.ndarray]:
 
 
 def _header(path: Path) -> list[str]:
-    try:
-        with path.open(newline="") as handle:
-            return [name.strip() for name in next(csv.reader(handle), [])]
-    except FileNotFoundError:
-        raise ExperimentError(f"{path}: no such data file") from None
+    first_line = _text(path, "data").split("\n", 1)[0]
+    return [name.strip() for name in next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])]
+
+
+def _delimiter(first_line: str) -> str:
+    """The CSV's delimiter, from its header: European spreadsheets write "time_s;force_N" (and
+    decimal commas), some machines tabs."""
+    if ";" in first_line and "," not in first_line:
+        return ";"
+    return "\t" if "\t" in first_line else ","
 
 
 def read_table(path: str | Path, columns: tuple[str, ...]) -> dict[str, np.ndarray]:
@@ -396,12 +399,11 @@ def read_table(path: str | Path, columns: tuple[str, ...]) -> dict[str, np.ndarr
 def _read_csv(
     path: Path, required: tuple[str, ...], optional: tuple[str, ...], increasing: str | None
 ) -> dict[str, np.ndarray]:
-    try:
-        handle = path.open(newline="")
-    except FileNotFoundError:
-        raise ExperimentError(f"{path}: no such data file") from None
-    with handle:
-        reader = csv.reader(handle)
+    text = _text(path, "data")
+    delimiter = _delimiter(text.split("\n", 1)[0])
+    decimal_comma = delimiter != ","
+    with io.StringIO(text, newline="") as handle:
+        reader = csv.reader(handle, delimiter=delimiter)
         try:
             header = [name.strip() for name in next(reader)]
         except StopIteration:
@@ -425,7 +427,7 @@ def _read_csv(
         if not row or all(not cell.strip() for cell in row):
             continue
         try:
-            parsed = _parse_row(path, line, header, row)
+            parsed = _parse_row(path, line, header, [c.replace(",", ".") for c in row] if decimal_comma else row)
         except ExperimentError as error:
             if cut_last_line and position == len(rows) - 1:
                 # A recording cut mid-line (a killed logger, a pulled cable): keep what came whole.
@@ -456,6 +458,26 @@ def _read_csv(
         raise ExperimentError(f"{path}: needs at least 2 data rows, found {len(values)}")
     table = np.asarray(values)
     return {name: table[:, index].copy() for index, name in enumerate(header)}
+
+
+def _text(path: Path, what: str) -> str:
+    """A file's text (UTF-8, a spreadsheet's byte-order mark dropped), or an ExperimentError that
+    says why it cannot be read: missing, a folder, not a regular file, not UTF-8 (with the line)."""
+    if not path.exists():
+        raise ExperimentError(f"{path}: no such {what} file")
+    if path.is_dir():
+        raise ExperimentError(f"{path}: is a folder; give the {what} file itself")
+    if not path.is_file():
+        raise ExperimentError(f"{path}: not a regular file (a device or a pipe?): give the {what} file itself")
+    try:
+        raw = path.read_bytes()
+    except OSError as error:
+        raise ExperimentError(f"{path}: cannot be read: {error.strerror}") from None
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as error:
+        line = raw[: error.start].count(b"\n") + 1
+        raise ExperimentError(f"{path}:{line}: byte 0x{raw[error.start]:02x} is not UTF-8 text") from None
 
 
 def _ends_unterminated(path: Path) -> bool:

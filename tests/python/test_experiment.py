@@ -180,3 +180,29 @@ def test_a_cut_last_line_is_dropped_with_a_warning_and_a_whole_one_kept(tmp_path
     path.write_text("time_s,elongation_m\n0,0\n1,\n2,0.002\n")  # inside the file it is an error
     with pytest.raises(ExperimentError, match="run.csv:3: column 2"):
         read_series(path)
+
+
+def test_spreadsheet_exports_load_a_bom_semicolons_and_decimal_commas(tmp_path):
+    path = tmp_path / "run.csv"
+    path.write_bytes("\ufefftime_s,elongation_m\n0,0\n1,0.001\n".encode())  # Excel's UTF-8 with BOM
+    assert list(read_series(path)["time_s"]) == [0, 1]
+    path.write_text("time_s;elongation_m;force_N\n0;0;1,5\n1;0,001;2,25\n")  # a European export
+    columns = read_series(path)
+    assert list(columns["force_N"]) == [1.5, 2.25] and columns["elongation_m"][1] == 0.001
+    path.write_text("time_s;elongation_m\n0;0\n1;abc\n")
+    with pytest.raises(ExperimentError, match=r"run.csv:3: column 2 \(elongation_m\) = 'abc' is not a number"):
+        read_series(path)
+
+
+def test_what_is_not_a_readable_text_file_is_named(tmp_path, write_experiment):
+    with pytest.raises(ExperimentError, match="is a folder; give the data file itself"):
+        read_series(tmp_path)
+    (tmp_path / "bad.csv").write_bytes(b"time_s,elongation_m\n0,0\n1,\xff\n")
+    with pytest.raises(ExperimentError, match=r"bad.csv:3: byte 0xff is not UTF-8 text"):
+        read_series(tmp_path / "bad.csv")
+    loop = tmp_path / "loop.csv"
+    loop.symlink_to(loop)
+    with pytest.raises(ExperimentError, match="loop.csv"):
+        read_series(loop)
+    with pytest.raises(ExperimentError, match="is a folder; give the experiment file itself"):
+        load_experiment(tmp_path)
