@@ -218,3 +218,18 @@ TEST_CASE("Pressurise/vent friction makes the muscle shorter on venting than on 
   // Noise within the play does not flip the branch.
   CHECK(pressure_branches({100.0, 101.0, 100.5, 101.5, 100.8}) == std::vector<double>(5, 1.0));
 }
+
+TEST_CASE("Free inflation is the isotonic solve with no load", "[isotonic][free_inflation]") {
+  // Table 3.4's pressures on PAM 2: the muscle inflated with nothing on its ends settles where
+  // the force is zero, whichever solve finds it.
+  MuscleParams params;  // PAM 2, the thesis bladder
+  const BraidGeometry geometry(params.build);
+  const std::vector<double> pressures{138.0, 207.0, 276.0};
+  const IsotonicLengths path = isotonic_lengths(params, pressures, 0.0, params.build.length_m);
+  for (std::size_t k = 0; k < pressures.size(); ++k) {
+    INFO("p = " << pressures[k] << " kPa");
+    const double free =
+        free_inflation(geometry, params.bladder, params.gas.atmospheric_pressure_Pa, pressures[k] * 1e3).length_m;
+    CHECK_REL(path.length_m[k], free, 1e-9);
+  }
+}
