@@ -89,7 +89,7 @@ def structure_left(report: dict) -> dict:
     return {c: rmse[c] / noise[c] for c in rmse if c in noise and noise[c] > 0 and rmse[c] > factor * noise[c]}
 
 
-def classify(expected: str, outcome: dict) -> dict:
+def classify(expected: str, outcome: dict, present: tuple[str, ...] = ()) -> dict:
     if "error" in outcome:
         return {"outcome": "error", "cause": None, "message": outcome["error"]}
     report = outcome["report"]
@@ -106,7 +106,7 @@ def classify(expected: str, outcome: dict) -> dict:
         row["outcome"] = "honest"
         if cause == "none":
             row["structure"] = structure_left(report)
-    elif expected != HONEST and cause == expected:
+    elif (expected != HONEST and cause == expected) or cause in present:
         row["outcome"] = "right"
     else:
         row["outcome"] = "wrong"
@@ -173,7 +173,7 @@ def main() -> int:
                 "expected": dataset.expected,
                 "truth": dataset.truth,
                 "seconds": outcome["seconds"],
-                **classify(dataset.expected, outcome),
+                **classify(dataset.expected, outcome, dataset.present),
             }
             extra = f" ({row['message']})" if row["outcome"] == "error" else ""
             print(

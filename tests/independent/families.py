@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from . import bench
-from .physics import Build, Motion, Physics, SealedMuscle, supplied_tension
+from .physics import Build, Geometry, Motion, Physics, SealedMuscle, supplied_tension
 
 HONEST = "honest"
 INFLATION_KPA = (35.0, 276.0)  # gauge, the thesis's range (tables 3.4, C.1-C.3)
@@ -36,6 +36,9 @@ class Dataset:
     experiment: Path
     expected: str
     truth: dict = field(default_factory=dict)
+    # catalog names of physics the independent model has built in and this dataset shows (its
+    # braid goes slack where its force would turn negative): right if named, though not hidden
+    present: tuple[str, ...] = ()
 
 
 @dataclass
@@ -349,6 +352,7 @@ def isometric_sweep(seed, folder, *, transducer=None, expected=HONEST, truth=Non
     for i in range(1, times.size):
         pressure[i] = decay * pressure[i - 1] + (1 - decay) * command[i - 1]
     force = supplied_tension(build, Physics(), held, pressure)
+    pushing = int(np.sum(Geometry(build).static_tension(held, pressure * 1e3, Physics().shear_modulus_Pa) < 0))
     read = pressure if transducer is None else transducer(pressure)
     columns = {
         "time_s": times,
@@ -371,7 +375,9 @@ def isometric_sweep(seed, folder, *, transducer=None, expected=HONEST, truth=Non
         columns,
         "Written by tests/independent (not pamkit): a muscle held by the rig, supplied pressure swept.",
     )
-    return Dataset(path, expected, {"held_m": held, "top_kPa": top, "steps": steps, **(truth or {})})
+    present = ("braid_slack",) if pushing else ()
+    truth = {"held_m": held, "top_kPa": top, "steps": steps, "slack_samples": pushing, **(truth or {})}
+    return Dataset(path, expected, truth, present)
 
 
 def isometric_null(seed, folder):
