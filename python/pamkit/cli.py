@@ -6,14 +6,26 @@ import argparse
 import importlib
 import pkgutil
 import sys
+import traceback
 import warnings
 
 import pamkit.commands
-from pamkit.experiment import ExperimentError
+from pamkit._core import Error, SolverError
+
+# Exit statuses, as `pamkit --help` lists them.
+EXIT_OK = 0
+EXIT_BUG = 1  # an error pamkit did not expect: a traceback and a request to report it
+EXIT_BAD_INPUT = 2  # a file, a value or an option that cannot be used; the message says which
+EXIT_MODEL = 3  # the model or its solver cannot follow the input (e.g. CVODES gave up)
+EXIT_INTERRUPTED = 130
+EPILOG = """exit status: 0 done; 2 bad input (the message names the file, line or option); 3 the model or its
+solver could not follow the input; 130 interrupted; 1 a bug in pamkit (a traceback; please report it)."""
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="pamkit", description="Simulate and test pneumatic artificial muscles.")
+    parser = argparse.ArgumentParser(
+        prog="pamkit", description="Simulate and test pneumatic artificial muscles.", epilog=EPILOG
+    )
     subparsers = parser.add_subparsers(dest="command", required=True)
     for module in sorted(pkgutil.iter_modules(pamkit.commands.__path__), key=lambda m: m.name):
         importlib.import_module(f"pamkit.commands.{module.name}").register(subparsers)
@@ -30,12 +42,27 @@ def main(argv: list[str] | None = None) -> int:
         with warnings.catch_warnings():
             warnings.showwarning = _show_warning  # one line per repair, not Python's source echo
             return arguments.run(arguments)
-    except (ExperimentError, ValueError) as error:
+    except ValueError as error:  # ExperimentError, LoggerError, InvalidInput, InvalidParameter
         print(f"pamkit {arguments.command}: error: {error}", file=sys.stderr)
-        return 2
+        return EXIT_BAD_INPUT
+    except OSError as error:  # an output that cannot be written, a file that vanished
+        where = f" {error.filename}" if error.filename else ""
+        print(f"pamkit {arguments.command}: error:{where}: {error.strerror or error}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except (SolverError, Error) as error:
+        print(f"pamkit {arguments.command}: the model cannot follow this input: {error}", file=sys.stderr)
+        return EXIT_MODEL
     except KeyboardInterrupt:
         print(f"pamkit {arguments.command}: interrupted", file=sys.stderr)
-        return 130
+        return EXIT_INTERRUPTED
+    except Exception:  # noqa: BLE001 - the last resort: a bug, shown whole
+        traceback.print_exc()
+        print(
+            f"pamkit {arguments.command}: this is a bug in pamkit; please report it with the command line and "
+            "the files it read",
+            file=sys.stderr,
+        )
+        return EXIT_BUG
 
 
 if __name__ == "__main__":

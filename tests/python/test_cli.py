@@ -4,9 +4,12 @@ import csv
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
+
+import pamkit
 
 
 def run_pamkit(*arguments):
@@ -70,3 +73,41 @@ def test_simulate_names_the_row_that_leaves_the_braid_range(write_experiment, tm
     done = run_pamkit("simulate", path, "-o", tmp_path / "x.csv")
     assert done.returncode == 2
     assert "run.csv" in done.stderr and "trajectory sample 2" in done.stderr
+
+
+def test_help_lists_the_exit_statuses(capsys):
+    from pamkit.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    assert "2 bad input" in capsys.readouterr().out
+
+
+def test_an_output_that_cannot_be_written_is_one_line_with_status_2(tmp_path, capsys):
+    from pamkit.cli import main
+
+    blocker = tmp_path / "a_file"
+    blocker.write_text("")
+    experiment = Path(__file__).resolve().parents[2] / "data" / "experiments" / "festo" / "DMSP-10-250.toml"
+    assert main(["simulate", str(experiment), "-o", str(blocker / "out.csv")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("pamkit simulate: error:") and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize(
+    "raised, status, says",
+    [
+        (pamkit.SolverError("CV_CONV_FAILURE at t = 1.2 s"), 3, "the model cannot follow this input"),
+        (ZeroDivisionError("division by zero"), 1, "this is a bug in pamkit; please report it"),
+    ],
+)
+def test_solver_failures_and_bugs_have_their_own_status(monkeypatch, capsys, raised, status, says):
+    import pamkit.commands.simulate as simulate_command
+    from pamkit.cli import main
+
+    def fail(arguments):
+        raise raised
+
+    monkeypatch.setattr(simulate_command, "run", fail)
+    assert main(["simulate", "x.toml", "-o", "y.csv"]) == status
+    assert says in capsys.readouterr().err
