@@ -188,6 +188,15 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
             return py::make_tuple(ok, ok ? py::none() : py::cast(why));
           },
           py::arg("mode"), "(True, None) or (False, reason)")
+      .def("reads_supplied_pressure", &Effect::reads_supplied_pressure,
+           "whether it is an error of the transducer whose reading drives a supplied test")
+      .def(
+          "apply_to_supplied_pressure",
+          [](const Effect& e, std::vector<double> pressure_kPa) {
+            e.apply_to_supplied_pressure(pressure_kPa);
+            return pressure_kPa;
+          },
+          py::arg("pressure_kPa"), "the true pressure [kPa] that drives a supplied test, from the reading")
       .def("apply_to_params",
            [](const Effect& e, MuscleParams params) {
              e.apply_to_params(params);

@@ -233,3 +233,29 @@ TEST_CASE("Free inflation is the isotonic solve with no load", "[isotonic][free_
     CHECK_REL(path.length_m[k], free, 1e-9);
   }
 }
+
+TEST_CASE("A transducer error in a supplied test acts on the pressure that drives the model",
+          "[supplied][instruments]") {
+  // The rig's transducer reads 0.96 p - 10 kPa. Given its readings, sensor_offset with those
+  // numbers drives the model with the true pressures and reports the readings unchanged.
+  MuscleParams params;
+  params.build = commercial_build();
+  params.bladder = BladderLaw::neo_hookean(kShearModulus);
+  const EffectPtr transducer = EffectCatalog::builtin().make("sensor_offset");
+  transducer->set_value("gain", 0.96);
+  transducer->set_value("offset_kPa", -10.0);
+  const std::vector<double> truth{150.0, 300.0, 450.0, 300.0};
+  std::vector<double> reading;
+  for (double p : truth) reading.push_back(0.96 * p - 10.0);
+  const std::vector<double> time{0.0, 1.0, 2.0, 3.0};
+  const ElongationTrajectory held(time, std::vector<double>(time.size(), 0.0));
+  const Measurement m = simulate_supplied_measurement(params, 0.23, held, reading, 20.0, {transducer});
+  const Measurement exact = simulate_supplied_measurement(params, 0.23, held, truth, 20.0, {});
+  for (std::size_t k = 0; k < time.size(); ++k) {
+    CHECK_REL(m.force_N[k], exact.force_N[k], 1e-12);
+    CHECK_REL(m.pressure_kPa[k], reading[k], 1e-12);
+  }
+  const std::vector<double> lengths(truth.size(), 0.23);
+  const std::vector<double> table = static_forces(params, lengths, reading, {transducer});
+  for (std::size_t k = 0; k < time.size(); ++k) CHECK_REL(table[k], exact.force_N[k], 1e-12);
+}

@@ -554,6 +554,12 @@ struct SensorOffsetParams {
 };
 class SensorOffsetEffect : public detail::ParametricEffect<SensorOffsetParams> {
  public:
+  /// In a supplied test the transducer's reading is the model's input: the true pressure is
+  /// the reading with the calibration error undone, and the reported channel is read again.
+  bool reads_supplied_pressure() const override { return true; }
+  void apply_to_supplied_pressure(std::vector<double>& pressure_kPa) const override {
+    for (double& p : pressure_kPa) p = (p - params_.offset_kPa) / params_.gain;
+  }
   void apply_to_measurement(Measurement& m) const override {
     for (double& p : m.pressure_kPa) p = params_.gain * p + params_.offset_kPa;
   }

@@ -157,6 +157,12 @@ class Effect {
   /// Whether the effect can act in a test of this kind; `why_not` says why when it cannot.
   virtual bool acts_in(GasMode mode, std::string* why_not) const;
 
+  /// Whether the effect is an error of the instrument that reads a supplied pressure, so that
+  /// in a supplied test (and a static table) it acts on the pressure that drives the model.
+  virtual bool reads_supplied_pressure() const { return false; }
+  /// Stage 0, supplied tests only: the true pressure that drives the model from the
+  /// transducer's reading, sample by sample [kPa gauge].
+  virtual void apply_to_supplied_pressure(std::vector<double>& pressure_kPa) const;
   /// Stage 1: changes the model's parameters.
   virtual void apply_to_params(MuscleParams& params) const;
   /// Stage 2: the muscle's elongation from the crosshead's, sample by sample.

@@ -82,6 +82,24 @@ inline double supplied_force(const BraidGeometry& geometry, const MuscleParams& 
                             shape.diameter * shape.diameter;
   return braid_tension(elastic - branch * hysteresis, extended.extensions.slack_band_N);
 }
+
+/// The effects a static table admits: physical ones that act at a supplied pressure, and
+/// errors of the transducer whose reading drives the model. \throws InvalidParameter otherwise.
+inline void apply_static_effects(const std::vector<EffectPtr>& effects, MuscleParams& extended,
+                                 std::vector<double>& driving_kPa) {
+  for (const EffectPtr& effect : effects) {
+    std::string why_not;
+    if (!effect->acts_in(GasMode::supplied, &why_not)) throw InvalidParameter(why_not);
+    if (effect->stage() != EffectStage::physics && !effect->reads_supplied_pressure()) {
+      throw InvalidParameter(detail::message(effect->name(),
+                                             " acts on the motion or the instruments over time; a static table of "
+                                             "settled rows has no time axis for it"));
+    }
+    effect->apply_to_supplied_pressure(driving_kPa);
+    effect->apply_to_params(extended);
+  }
+  extended.validate();
+}
 }  // namespace detail
 
 /// Simulates a supplied-pressure test as its instruments read it: the muscle hangs on a
@@ -104,9 +122,11 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
   }
   MuscleParams extended = params;
   std::vector<double> motion = crosshead.elongation();
+  std::vector<double> driving = pressure_kPa;
   for (const EffectPtr& effect : effects) {
     std::string why_not;
     if (!effect->acts_in(GasMode::supplied, &why_not)) throw InvalidParameter(why_not);
+    effect->apply_to_supplied_pressure(driving);
     effect->apply_to_params(extended);
     motion = effect->apply_to_elongation(time, motion);
   }
@@ -114,10 +134,10 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
   Measurement m;
   m.time_s = time;
   m.elongation_m = crosshead.elongation();
-  m.pressure_kPa = pressure_kPa;
+  m.pressure_kPa = driving;  // the instruments' stage reads it back
   m.temperature_C.assign(time.size(), ambient_temperature_C);
   m.force_N.resize(time.size());
-  const std::vector<double> branch = pressure_branches(pressure_kPa);
+  const std::vector<double> branch = pressure_branches(driving);
   for (std::size_t k = 0; k < time.size(); ++k) {
     // The rate of the segment ending at each sample (of the first segment at the start), as
     // the sealed simulation's piecewise-linear trajectory has it.
@@ -130,7 +150,7 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
       throw InvalidInput(detail::message("sample ", k + 1, " (time ", time[k], " s, elongation ", motion[k], " m): ",
                                          error.what(), "; check the elongation's zero and [test] initial_length_m"));
     }
-    m.force_N[k] = detail::supplied_force(geometry, extended, shape, units::pascal_from_kilopascal(pressure_kPa[k]),
+    m.force_N[k] = detail::supplied_force(geometry, extended, shape, units::pascal_from_kilopascal(driving[k]),
                                           velocity, branch[k]);
   }
   for (const EffectPtr& effect : effects) effect->apply_to_measurement(m);
@@ -154,19 +174,10 @@ inline std::vector<double> static_forces(const MuscleParams& params, const std::
                                        " pressures"));
   }
   MuscleParams extended = params;
-  for (const EffectPtr& effect : effects) {
-    std::string why_not;
-    if (effect->stage() != EffectStage::physics) {
-      throw InvalidParameter(detail::message(effect->name(),
-                                             " acts on the motion or the instruments over time; a static table of "
-                                             "settled rows has no time axis for it"));
-    }
-    if (!effect->acts_in(GasMode::supplied, &why_not)) throw InvalidParameter(why_not);
-    effect->apply_to_params(extended);
-  }
-  extended.validate();
+  std::vector<double> driving = gauge_pressures_kPa;
+  detail::apply_static_effects(effects, extended, driving);
   const BraidGeometry geometry(extended.build);
-  const std::vector<double> branch = pressure_branches(gauge_pressures_kPa);
+  const std::vector<double> branch = pressure_branches(driving);
   std::vector<double> force(lengths_m.size());
   for (std::size_t k = 0; k < lengths_m.size(); ++k) {
     MuscleShape shape;
@@ -175,8 +186,8 @@ inline std::vector<double> static_forces(const MuscleParams& params, const std::
     } catch (const InvalidInput& error) {
       throw InvalidInput(detail::message("row ", k + 1, " (length ", lengths_m[k], " m): ", error.what()));
     }
-    force[k] = detail::supplied_force(geometry, extended, shape, units::pascal_from_kilopascal(gauge_pressures_kPa[k]),
-                                      0.0, branch[k]);
+    force[k] =
+        detail::supplied_force(geometry, extended, shape, units::pascal_from_kilopascal(driving[k]), 0.0, branch[k]);
   }
   return force;
 }
@@ -200,25 +211,18 @@ inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::v
                                         double load_N, double start_length_m,
                                         const std::vector<EffectPtr>& effects = {}) {
   MuscleParams extended = params;
-  for (const EffectPtr& effect : effects) {
-    std::string why_not;
-    if (effect->stage() != EffectStage::physics || !effect->acts_in(GasMode::supplied, &why_not)) {
-      throw InvalidParameter(why_not.empty() ? detail::message(effect->name(), " cannot act on a static table")
-                                             : why_not);
-    }
-    effect->apply_to_params(extended);
-  }
-  extended.validate();
+  std::vector<double> driving = gauge_pressures_kPa;
+  detail::apply_static_effects(effects, extended, driving);
   const BraidGeometry geometry(extended.build);
   const double deflated = extended.build.length_m;
   const double shortest = std::max(geometry.min_length() * (1.0 + 1e-9), 0.5 * deflated);
   const double longest = std::min(geometry.max_length() * (1.0 - 1e-6), 1.2 * deflated);
   const double step = (longest - shortest) / 400.0;
-  const std::vector<double> branch = pressure_branches(gauge_pressures_kPa);
+  const std::vector<double> branch = pressure_branches(driving);
   IsotonicLengths out;
   double length = std::clamp(start_length_m, shortest, longest);
-  for (std::size_t k = 0; k < gauge_pressures_kPa.size(); ++k) {
-    const double gauge = units::pascal_from_kilopascal(gauge_pressures_kPa[k]);
+  for (std::size_t k = 0; k < driving.size(); ++k) {
+    const double gauge = units::pascal_from_kilopascal(driving[k]);
     auto imbalance = [&](double L) {
       return detail::supplied_force(geometry, extended, geometry.shape(L), gauge, 0.0, branch[k]) - load_N;
     };

@@ -1350,6 +1350,10 @@ class Effect:
         ...
     def apply_to_params(self, arg0: MuscleParams) -> MuscleParams:
         ...
+    def apply_to_supplied_pressure(self, pressure_kPa: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
+        """
+        the true pressure [kPa] that drives a supplied test, from the reading
+        """
     def channels_changed(self) -> list[str]:
         """
         the measured channels it changes ([]: all)
@@ -1362,6 +1366,10 @@ class Effect:
         ...
     def parameters(self) -> list[EffectParameter]:
         ...
+    def reads_supplied_pressure(self) -> bool:
+        """
+        whether it is an error of the transducer whose reading drives a supplied test
+        """
     @typing.overload
     def set(self, key: str, value: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """

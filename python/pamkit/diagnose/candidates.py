@@ -65,15 +65,18 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
     space = effect_space(effect)
     base_space = problem.predictor.baseline.space
     measurement_only = effect.stage() == EffectStage.measurement and start is None
+    # A transducer whose reading drives a supplied test changes the model's input: its fit runs
+    # the model (on the calibrated baseline), not only the instruments' stage.
+    drives_model = problem.experiment.gas == "supplied" and effect.reads_supplied_pressure()
     evaluations = 0
-    if measurement_only:
+    if measurement_only and not drives_model:
         base_measurement = problem.predictor.measurement(baseline.baseline_x, [])
 
     def predict(base_x, effect_x):
         nonlocal evaluations
         evaluations += 1
         configure(effect, space, effect_x)
-        if measurement_only:
+        if measurement_only and not drives_model:
             m = Measurement()
             for name in CHANNEL_FIELDS:
                 setattr(m, name, getattr(base_measurement, name))

@@ -79,6 +79,8 @@ def credited_channels(problem: Problem, fit: Fit) -> list[str]:
     for effect in fit.effects:
         named = effect.channels_changed()
         changed.update(named if named else problem.channels)
+        if problem.experiment.gas == "supplied" and effect.reads_supplied_pressure():
+            changed.add("force_N")  # its reading drives the model, so it acts on the force
     return [c for c in problem.channels if c in changed] if fit.effects else list(problem.channels)
 
 

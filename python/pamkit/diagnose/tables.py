@@ -397,11 +397,12 @@ def _judge(fit: TableFit, baseline: TableFit, measured, channels, groups: np.nda
 
 def static_candidates(catalog: EffectCatalog) -> tuple[list[str], dict[str, str]]:
     """The catalog's effects that can act on a static table (physical ones that act at supplied
-    pressure), and why each other one cannot."""
+    pressure, and errors of the transducer whose reading drives it), and why each other one
+    cannot."""
     out, skipped = [], {}
     for name in catalog.names():
         effect = catalog.make(name)
-        if effect.stage() != EffectStage.physics:
+        if effect.stage() != EffectStage.physics and not effect.reads_supplied_pressure():
             skipped[name] = "acts on the motion or the instruments over time; a table has no time axis"
             continue
         acts, why_not = effect.acts_in(GasMode.supplied)

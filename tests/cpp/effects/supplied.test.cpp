@@ -56,10 +56,14 @@ TEST_CASE("supplied: effects act at their stages, and a sealed-only effect is re
   const ElongationTrajectory crosshead = smooth_stretch();
   const std::vector<double> pressure(crosshead.time().size(), 200.0);
   const Measurement plain = simulate_supplied_measurement(params, 0.167, crosshead, pressure, 20.0, {});
+  // The transducer reads 3 kPa high: the model is driven by 197 kPa, the channel still reads 200.
   const Measurement offset =
       simulate_supplied_measurement(params, 0.167, crosshead, pressure, 20.0, {effect("sensor_offset:offset_kPa=3")});
-  CHECK(identical(offset.force_N, plain.force_N));
-  CHECK(offset.pressure_kPa.front() == 203.0);
+  const std::vector<double> lower(pressure.size(), 197.0);
+  const Measurement truth = simulate_supplied_measurement(params, 0.167, crosshead, lower, 20.0, {});
+  CHECK(identical(offset.force_N, truth.force_N));
+  CHECK_FALSE(identical(offset.force_N, plain.force_N));
+  CHECK(offset.pressure_kPa.front() == 200.0);
   CHECK_THROWS_WITH(simulate_supplied_measurement(params, 0.167, crosshead, pressure, 20.0, {effect("leak")}),
                     Catch::Matchers::Contains("supplied test"));
 }
