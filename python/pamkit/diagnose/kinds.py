@@ -9,11 +9,13 @@ length is held — never from noise: a held length's encoder noise has no cycles
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.ndimage import median_filter
 
+from pamkit._core import deflated_braid_angle_deg
 from pamkit.diagnose import evidence
 from pamkit.diagnose.cycles import Cycles, find_cycles, split_cycles
 from pamkit.diagnose.model import Predictor
@@ -82,6 +84,59 @@ def check_units(experiment: Experiment) -> None:
             )
 
 
+# The measured pressure at the start of a sealed test may differ from the declared inflation
+# pressure by the transducer's calibration error (sensor_offset's plausible 12 kPa and 7 % gain)
+# and the 5 % tolerance the baseline allows; beyond both it is a different test.
+INFLATION_MISMATCH_KPA = 25.0
+INFLATION_MISMATCH_FRACTION = 0.25
+# arctan(sqrt(2)): a braid at this angle neither contracts nor extends under pressure.
+LOCKING_ANGLE_DEG = math.degrees(math.atan(math.sqrt(2.0)))
+# A stretch test sampled every 5 s or slower whose crosshead never exceeds 0.1 mm/s while it
+# travels more than a millimetre most likely counts milliseconds: bench tests sample at 5-1000 Hz
+# and stretch at 2.5-50 mm/s (thesis section 3.2.1), which a millisecond column shows as one
+# sample per 1-200 s and 2.5-50 um/s.
+SLOW_SAMPLE_INTERVAL_S = 5.0
+SLOWEST_STRETCH_M_PER_S = 100e-6
+SMALLEST_TRAVEL_M = 1e-3
+
+
+def check_consistency(experiment: Experiment) -> None:
+    """Raises ExperimentError when the data contradict the declared test before anything is
+    fitted (DESIGN.md, issue "Diagnosis that holds outside its own world", item 8): a sealed
+    test whose pressure at t = 0 is not its inflation pressure, a time column that counts
+    milliseconds, a braid wound past its locking angle."""
+    angle = deflated_braid_angle_deg(experiment.build)
+    if angle >= LOCKING_ANGLE_DEG:
+        raise ExperimentError(
+            f"{experiment.path}: [muscle] gives a deflated braid angle of {angle:.1f} deg, past the locking angle "
+            f"{LOCKING_ANGLE_DEG:.1f} deg: such a braid lengthens when pressurised. Check fiber_revolutions (turns "
+            "over the whole length, not per unit length) or braid_angle_deg"
+        )
+    time, elongation = experiment.time_s, experiment.elongation_m
+    interval = float(np.median(np.diff(time)))
+    fastest = float(np.max(np.abs(np.diff(elongation)) / np.diff(time)))
+    if (
+        interval >= SLOW_SAMPLE_INTERVAL_S
+        and np.ptp(elongation) > SMALLEST_TRAVEL_M
+        and fastest < SLOWEST_STRETCH_M_PER_S
+    ):
+        raise ExperimentError(
+            f"{experiment.data_path}: one sample per {interval:g} s and a crosshead never faster than "
+            f"{fastest * 1e6:.2g} um/s over {np.ptp(elongation) * 1e3:.3g} mm of travel: is the time column in "
+            "milliseconds? (time_s is in seconds)"
+        )
+    if experiment.gas != "sealed" or "pressure_kPa" not in experiment.columns:
+        return
+    start = float(np.median(experiment.columns["pressure_kPa"][:5]))
+    declared = experiment.inflation_pressure_kPa
+    if abs(start - declared) > max(INFLATION_MISMATCH_KPA, INFLATION_MISMATCH_FRACTION * declared):
+        raise ExperimentError(
+            f"{experiment.path}: [test] inflation_pressure_kPa = {declared:g}, but the data start at "
+            f"{start:.1f} kPa ({experiment.data_path}, first samples): the declared test and the measured one "
+            "differ; correct the inflation pressure (or the pressure column's unit) before diagnosing"
+        )
+
+
 def length_is_held(experiment: Experiment) -> bool:
     """Whether the rig holds the length: the elongation moves by no more than its own noise."""
     elongation = experiment.elongation_m
@@ -121,6 +176,7 @@ def build_problem(experiment: Experiment) -> Problem:
             hold any out (saying what would do).
     """
     check_units(experiment)
+    check_consistency(experiment)
     channels = experiment.measured()
     if experiment.gas == "supplied":
         channels = [c for c in channels if c != "pressure_kPa"]  # an input there, not a prediction

@@ -178,3 +178,35 @@ def test_programmed_motion_keeps_a_curve_as_measured():
     motion = programmed_motion(time, curve)
     np.testing.assert_array_equal(motion.time_s, time)
     np.testing.assert_array_equal(motion.elongation_m, curve)
+
+
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        # Issue "Diagnosis that holds outside its own world", item 8: each of these once came back
+        # as a confident cause with its parameters at their bounds.
+        (
+            lambda toml, csv: (toml.replace("inflation_pressure_kPa = ", "inflation_pressure_kPa = 1999 #"), csv),
+            "inflation_pressure_kPa = 1999, but the data start at",
+        ),
+        (lambda toml, csv: (toml, _times_in_milliseconds(csv)), "is the time column in milliseconds"),
+        (
+            lambda toml, csv: (toml.replace("fiber_revolutions = 2", "fiber_revolutions = 20"), csv),
+            "past the locking angle 54.7 deg",
+        ),
+    ],
+    ids=["inflation pressure", "milliseconds", "locking angle"],
+)
+def test_data_that_contradict_the_declared_test_are_named_before_fitting(tmp_path, change, message):
+    files = synthesize("none", 21, tmp_path)
+    toml, csv = change(files.experiment.read_text(), files.data.read_text())
+    files.experiment.write_text(toml)
+    files.data.write_text(csv)
+    with pytest.raises(ExperimentError, match=message):
+        diagnose(files.experiment)
+
+
+def _times_in_milliseconds(csv: str) -> str:
+    lines = csv.splitlines()
+    rows = [line.split(",") for line in lines[1:]]
+    return "\n".join([lines[0]] + [",".join([f"{float(r[0]) * 1000:g}", *r[1:]]) for r in rows]) + "\n"
