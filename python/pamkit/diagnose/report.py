@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.diagnose import evidence, tables
+from pamkit.diagnose import evidence, table_report
 from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Judgement, credited_channels
 from pamkit.diagnose.engine import CHANNEL_UNITS as UNITS
@@ -46,7 +46,7 @@ def _residual_evidence(d: Diagnosis, fit: Fit) -> dict:
 def to_json(d: Diagnosis | TableDiagnosis) -> dict:
     """The report, with DESIGN.md's keys (and a few more: noise, evidence, verdict, timing)."""
     if isinstance(d, TableDiagnosis):
-        return tables.to_json(d)
+        return table_report.to_json(d)
     p = d.problem
     baseline_rmse = _heldout_rmse(d, d.baseline)
     named = d.extended_judgement
@@ -134,7 +134,7 @@ def _sizes(d: Diagnosis, fit: Fit) -> str:
 def verdict(d: Diagnosis | TableDiagnosis) -> str:
     """One sentence a person reads in ten seconds."""
     if isinstance(d, TableDiagnosis):
-        return tables.verdict(d)
+        return table_report.verdict(d)
     p = d.problem
     baseline_rmse = _heldout_rmse(d, d.baseline)
     decision = d.decision
@@ -196,7 +196,7 @@ def verdict(d: Diagnosis | TableDiagnosis) -> str:
 def plot(d: Diagnosis | TableDiagnosis, path: str | Path) -> Path:
     """Measured vs baseline vs extended per channel, residuals before and after, the ranking."""
     if isinstance(d, TableDiagnosis):
-        return tables.plot(d, path)
+        return table_report.plot(d, path)
     import matplotlib
 
     matplotlib.use("Agg")

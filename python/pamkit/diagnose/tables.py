@@ -1,15 +1,15 @@
-"""Diagnosis of static tables: an isometric map (force at held lengths and supplied pressures) or
-a free-inflation table (free length and diameter at each pressure), as DESIGN.md's experiment
-kinds describe them.
+"""Diagnosis of static tables: isometric maps, isotonic tests of settled steps and
+free-inflation tables, as DESIGN.md's experiment kinds describe them; their units and noise are
+in table_kinds.py, their report in table_report.py.
 
 A table has no time axis, so the units held out are its groups: the held lengths of a map
-(leave one length out: does the model carry to a length it was not fitted on?) or the rows of a
-free-inflation table. The baseline is the model the file declares with its `[calibrate]` unknowns
-fitted; each catalog effect that acts on a static table is fitted with the same unknowns free
-(one yardstick) and scored by the held-out RMSE it leaves. The rules of decide.py hold: a cause
-needs a significant gain (MIN_GAIN, 95 % interval above zero, over held-out groups) and credible
-parameters (none at a search bound, none outside its plausible range); `none` only within
-NONE_WITHIN_NOISE of the table's noise; otherwise `unexplained`.
+(leave one length out: does the model carry to a length it was not fitted on?), an isotonic
+test's sweeps, the rows of a free-inflation table. The baseline is the model the file declares
+with its `[calibrate]` unknowns fitted; each catalog effect that acts on a static table is fitted
+with the same unknowns free (one yardstick) and scored by the held-out RMSE it leaves. The rules
+of decide.py hold: a cause needs a significant gain (MIN_GAIN, 95 % interval above zero, over
+held-out groups) and credible parameters (none at a search bound, none outside its plausible
+range); `none` only within NONE_WITHIN_NOISE of the table's noise; otherwise `unexplained`.
 """
 
 from __future__ import annotations
@@ -19,7 +19,6 @@ import math
 import os
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -32,10 +31,10 @@ from pamkit._core import (
     GasMode,
     MuscleParams,
     fiber_revolutions_for_braid_angle,
-    pressure_branches,
 )
 from pamkit.diagnose.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
 from pamkit.diagnose.model import Coordinate, configure, effect_space
+from pamkit.diagnose.table_kinds import Campaign, campaign_of, noise_of
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, declared_value
 from pamkit.simulate import muscle_params, simulate_table
@@ -88,57 +87,6 @@ class TableCandidate:
     @property
     def credible(self) -> bool:
         return not self.findings
-
-
-@dataclass
-class Campaign:
-    """One or more tables of one muscle (DESIGN.md, "Campaigns"), as one table: each test keeps
-    its own build and rows; the [calibrate] unknowns are shared."""
-
-    experiments: list[Experiment]
-    kind: str
-    columns: dict[str, np.ndarray]  # every test's rows, concatenated
-    test: np.ndarray  # the test of each row
-    groups: np.ndarray  # the held-out group of each row (an index into group_labels)
-    group_labels: list[str]
-    group_name: str
-
-    @property
-    def name(self) -> str:
-        return " + ".join(str(e.path) for e in self.experiments)
-
-
-def campaign_of(experiments: list[Experiment]) -> Campaign:
-    """Joins tables of one kind; a map's groups are its held lengths, a free-inflation table's its
-    rows (DESIGN.md: the held-out unit follows the kind)."""
-    kinds = {e.kind for e in experiments}
-    if len(kinds) != 1:
-        raise ExperimentError(f"a campaign's tables must be of one kind; found {', '.join(sorted(kinds))}")
-    kind = kinds.pop()
-    columns = {c: np.concatenate([e.columns[c] for e in experiments]) for c in experiments[0].columns}
-    test = np.concatenate([np.full(len(e.columns["pressure_kPa"]), i) for i, e in enumerate(experiments)])
-    labels: list[str] = []
-    groups = np.empty(len(test), dtype=int)
-    prefix = (lambda e: f"{Path(e.path).stem} ") if len(experiments) > 1 else (lambda e: "")
-    for i, e in enumerate(experiments):
-        rows = np.flatnonzero(test == i)
-        if kind == "isometric_map":
-            for length in np.unique(np.round(e.columns["length_m"], 9)):
-                groups[rows[np.round(e.columns["length_m"], 9) == length]] = len(labels)
-                labels.append(f"{prefix(e)}L={length:g}")
-        elif kind == "isotonic":
-            # A sweep: pressurised, then vented; the next starts where the pressure rises again.
-            branch = pressure_branches(e.columns["pressure_kPa"])
-            sweep = np.concatenate([[0], np.cumsum((branch[1:] > 0) & (branch[:-1] < 0))])
-            for number in np.unique(sweep):
-                groups[rows[sweep == number]] = len(labels)
-                labels.append(f"{prefix(e)}sweep {number + 1}")
-        else:
-            for row, pressure in zip(rows, e.columns["pressure_kPa"]):
-                groups[row] = len(labels)
-                labels.append(f"{prefix(e)}p={pressure:g}")
-    name = {"isometric_map": "held length", "isotonic": "sweep"}.get(kind, "row")
-    return Campaign(experiments, kind, columns, test, groups, labels, name)
 
 
 @dataclass
@@ -216,42 +164,6 @@ class TableModel:
             for channel in out:
                 out[channel][mine] = predicted[channel]
         return out
-
-
-def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
-    """The table's noise per channel, model-free. Where rows repeat (the same pressure on the same
-    branch of several isotonic sweeps, the same length and pressure in several maps), the pooled
-    spread of the repeats; otherwise the residual of a cubic in pressure fitted to each held
-    length's loaded rows (force > 0) of a map or to each free-inflation table. Either leaves
-    what the instruments add, not what the model misses."""
-    pressure = campaign.columns["pressure_kPa"]
-    branch = pressure_branches(pressure) if campaign.kind == "isotonic" else np.ones(len(pressure))
-    key = np.column_stack([campaign.test, branch, np.round(pressure, 6)])
-    if campaign.kind == "isometric_map":
-        key = np.column_stack([key, np.round(campaign.columns["length_m"], 9)])
-    _, repeat, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-    repeat = repeat.ravel()
-    out = {}
-    for channel in channels:
-        values = campaign.columns[channel]
-        if np.sum(counts - 1) >= 5:
-            means = np.bincount(repeat, weights=values) / counts
-            squares = float(np.sum((values - means[repeat]) ** 2))
-            out[channel] = math.sqrt(squares / float(np.sum(counts - 1)))
-            continue
-        units = campaign.groups if campaign.kind == "isometric_map" else campaign.test
-        squares, dof = 0.0, 0
-        for unit in np.unique(units):
-            rows = units == unit
-            if channel == "force_N":
-                rows &= values > 0
-            if rows.sum() < 6:
-                continue
-            coefficients = np.polyfit(pressure[rows], values[rows], 3)
-            squares += float(np.sum((np.polyval(coefficients, pressure[rows]) - values[rows]) ** 2))
-            dof += int(rows.sum()) - 4
-        out[channel] = math.sqrt(squares / dof) if dof > 0 else float("nan")
-    return out
 
 
 class _Fitter:
@@ -342,7 +254,7 @@ def _fit_table(name: str, model: TableModel, channels, scales, make_effect, grou
     return fit
 
 
-def _heldout_rmse(fit: TableFit, measured, channel: str, rows=None) -> float:
+def heldout_rmse(fit: TableFit, measured, channel: str, rows=None) -> float:
     residual = fit.heldout[channel] - measured[channel]
     if rows is not None:
         residual = residual[rows]
@@ -502,149 +414,9 @@ def _decide(candidates, baseline, measured, channels, noise):
         if runner is not None:
             margins["over_runner_up"] = float(best.score - runner.score)
         return best.fit.name, "its held-out gain is significant and its parameters plausible", best, margins
-    ratios = {c: _heldout_rmse(baseline, measured, c) / noise[c] for c in channels if noise[c] > 0}
+    ratios = {c: heldout_rmse(baseline, measured, c) / noise[c] for c in channels if noise[c] > 0}
     if ratios and max(ratios.values()) <= NONE_WITHIN_NOISE:
         margins["within_noise"] = float(NONE_WITHIN_NOISE - max(ratios.values()))
         return "none", "the calibrated model carries to held-out groups within the noise", None, margins
     left = ", ".join(f"{c} at {r:.1f}x its noise" for c, r in ratios.items())
     return "unexplained", f"no catalog effect gains significantly; held-out error left: {left}", None, margins
-
-
-def to_json(d: TableDiagnosis) -> dict:
-    measured = {c: d.campaign.columns[c] for c in d.channels}
-
-    def rmse(fit, heldout):
-        return {c: (_heldout_rmse(fit, measured, c) if heldout else fit.rmse(c)) for c in d.channels}
-
-    def per_group(fit):
-        out = {}
-        for index, label in enumerate(d.campaign.group_labels):
-            rows = d.groups == index
-            out[label] = {c: _heldout_rmse(fit, measured, c, rows) for c in d.channels}
-        return out
-
-    report = {
-        "kind": d.campaign.kind,
-        "tests": [str(e.path) for e in d.campaign.experiments],
-        "held_out": d.campaign.group_name,
-        "noise": d.noise,
-        "baseline": {
-            "params": d.baseline.params,
-            "intervals": {k: list(v) for k, v in d.baseline.intervals.items()},
-            "rmse": rmse(d.baseline, False),
-            "heldout_rmse": rmse(d.baseline, True),
-            "heldout_rmse_by_group": per_group(d.baseline),
-        },
-        "candidates": [
-            {
-                "effect": j.fit.name,
-                "params": j.fit.params,
-                "heldout_rmse": rmse(j.fit, True),
-                "gain": j.gain,
-                "gain_ci95": {c: list(v) for c, v in j.gain_ci95.items()},
-                "score": j.score,
-                "significant": j.significant,
-                "credible": j.credible,
-                "findings": j.findings,
-            }
-            for j in d.candidates
-        ],
-        "skipped": d.skipped,
-        "cause": d.cause,
-        "reason": d.reason,
-        "extended": {
-            "effects": [e.name() for e in d.extended.effects],
-            "params": d.extended.params,
-            "intervals": {k: list(v) for k, v in d.extended.intervals.items()},
-            "rmse": rmse(d.extended, False),
-            "heldout_rmse": rmse(d.extended, True),
-            "heldout_rmse_by_group": per_group(d.extended),
-        },
-        "gain": d.extended_candidate.gain if d.extended_candidate else {c: 0.0 for c in d.channels},
-        "gain_ci95": ({c: list(v) for c, v in d.extended_candidate.gain_ci95.items()} if d.extended_candidate else {}),
-        "decision": {"cause": d.cause, "reason": d.reason, "margins": d.margins},
-        "warnings": d.warnings,
-    }
-    return report
-
-
-def _calibrated(fit: TableFit) -> str:
-    return ", ".join(
-        f"{k} = {v:.4g} [{fit.intervals[k][0]:.4g}, {fit.intervals[k][1]:.4g}]" for k, v in fit.params.items()
-    )
-
-
-def verdict(d: TableDiagnosis) -> str:
-    """What a person reads first: the calibrated unknowns with their intervals, the held-out
-    error before and after, the cause and its gain, and every parameter at a bound."""
-    measured = {c: d.campaign.columns[c] for c in d.channels}
-    c = d.campaign
-    lines = [f"{c.name}: {c.kind}, {len(c.groups)} rows, each {c.group_name} held out in turn"]
-    models = [("baseline", d.baseline)] + ([(f"with {d.cause}", d.extended)] if d.extended is not d.baseline else [])
-    for name, fit in models:
-        error = ", ".join(
-            f"{c} {_heldout_rmse(fit, measured, c):.4g} {CHANNEL_UNITS[c]} (noise {d.noise[c]:.2g})" for c in d.channels
-        )
-        lines.append(f"{name}: held-out RMSE {error}")
-        if fit.params:
-            lines.append(f"  calibrated (jackknife 95 %): {_calibrated(fit)}")
-    if d.extended_candidate is None:
-        lines.append(f"cause: {d.cause} — {d.reason}")
-    else:
-        gain = ", ".join(
-            f"{c} {d.extended_candidate.gain[c]:.2f} [{d.extended_candidate.gain_ci95[c][0]:.2f}, "
-            f"{d.extended_candidate.gain_ci95[c][1]:.2f}]"
-            for c in d.channels
-        )
-        lines.append(f"cause: {d.cause} — held-out gain {gain}")
-    for w in d.warnings:
-        where = f"at its bound {w['bound']:.4g}" if w["bound"] is not None else "outside its plausible range"
-        lines.append(f"warning: {w['parameter']} = {w['value']:.4g} {where} ({w['source']})")
-    return "\n".join(lines)
-
-
-def plot(d: TableDiagnosis, path: str | Path) -> Path:
-    """Each channel against the supplied pressure: measured points, and each group as the
-    calibrated baseline (dotted) and the named cause's model (solid) predicted it held out. A
-    map draws one curve per held length; a free-inflation table one per test."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    c = d.campaign
-    pressure = c.columns["pressure_kPa"]
-    by_group = c.kind in ("isometric_map", "isotonic")
-    curves = c.groups if by_group else c.test
-    names = c.group_labels if by_group else [Path(e.path).stem for e in c.experiments]
-    figure, axes = plt.subplots(1, len(d.channels), figsize=(6.5 * len(d.channels), 4.8), squeeze=False)
-    for axis, channel in zip(axes[0], d.channels):
-        unit = CHANNEL_UNITS[channel]
-        scale = 1e3 if unit == "m" else 1.0
-        shown_unit = "mm" if unit == "m" else unit
-        colors = plt.cm.viridis(np.linspace(0, 0.9, len(np.unique(curves))))
-        for curve, color in zip(np.unique(curves), colors):
-            rows = np.flatnonzero(curves == curve)
-            if c.kind != "isotonic":  # an isotonic sweep is drawn in the order measured: up, then down
-                rows = rows[np.argsort(pressure[rows])]
-            axis.plot(pressure[rows], scale * c.columns[channel][rows], "o", color=color, ms=4, label=names[curve])
-            axis.plot(pressure[rows], scale * d.baseline.heldout[channel][rows], ":", color=color, lw=1)
-            if d.extended is not d.baseline:
-                axis.plot(pressure[rows], scale * d.extended.heldout[channel][rows], "-", color=color, lw=1.5)
-        axis.set_xlabel("supplied pressure [kPa]")
-        axis.set_ylabel(f"{channel.rsplit('_', 1)[0]} [{shown_unit}]")
-        axis.grid(alpha=0.3)
-        axis.legend(fontsize=7, loc="best")
-    extended = f"solid: with {d.cause}; " if d.extended is not d.baseline else ""
-    figure.suptitle(
-        f"{', '.join(Path(e.path).name for e in c.experiments)}: cause {d.cause}\n"
-        f"points: measured; dotted: calibrated baseline; {extended}\n"
-        f"each {c.group_name} predicted by the model fitted without it",
-        fontsize=8,
-    )
-    figure.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return path

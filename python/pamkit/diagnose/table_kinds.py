@@ -1,0 +1,102 @@
+"""The units of a static table (DESIGN.md, "Experiment kinds"): a campaign of one or more
+tables of one muscle, the held-out group of each row (a map's held lengths, an isotonic test's
+pressurise/vent sweeps, a free-inflation table's rows) and the noise, estimated without the
+model."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from pamkit._core import pressure_branches
+from pamkit.experiment import Experiment, ExperimentError
+
+
+@dataclass
+class Campaign:
+    """One or more tables of one muscle (DESIGN.md, "Campaigns"), as one table: each test keeps
+    its own build and rows; the [calibrate] unknowns are shared."""
+
+    experiments: list[Experiment]
+    kind: str
+    columns: dict[str, np.ndarray]  # every test's rows, concatenated
+    test: np.ndarray  # the test of each row
+    groups: np.ndarray  # the held-out group of each row (an index into group_labels)
+    group_labels: list[str]
+    group_name: str
+
+    @property
+    def name(self) -> str:
+        return " + ".join(str(e.path) for e in self.experiments)
+
+
+def campaign_of(experiments: list[Experiment]) -> Campaign:
+    """Joins tables of one kind; a map's groups are its held lengths, a free-inflation table's its
+    rows (DESIGN.md: the held-out unit follows the kind)."""
+    kinds = {e.kind for e in experiments}
+    if len(kinds) != 1:
+        raise ExperimentError(f"a campaign's tables must be of one kind; found {', '.join(sorted(kinds))}")
+    kind = kinds.pop()
+    columns = {c: np.concatenate([e.columns[c] for e in experiments]) for c in experiments[0].columns}
+    test = np.concatenate([np.full(len(e.columns["pressure_kPa"]), i) for i, e in enumerate(experiments)])
+    labels: list[str] = []
+    groups = np.empty(len(test), dtype=int)
+    prefix = (lambda e: f"{Path(e.path).stem} ") if len(experiments) > 1 else (lambda e: "")
+    for i, e in enumerate(experiments):
+        rows = np.flatnonzero(test == i)
+        if kind == "isometric_map":
+            for length in np.unique(np.round(e.columns["length_m"], 9)):
+                groups[rows[np.round(e.columns["length_m"], 9) == length]] = len(labels)
+                labels.append(f"{prefix(e)}L={length:g}")
+        elif kind == "isotonic":
+            # A sweep: pressurised, then vented; the next starts where the pressure rises again.
+            branch = pressure_branches(e.columns["pressure_kPa"])
+            sweep = np.concatenate([[0], np.cumsum((branch[1:] > 0) & (branch[:-1] < 0))])
+            for number in np.unique(sweep):
+                groups[rows[sweep == number]] = len(labels)
+                labels.append(f"{prefix(e)}sweep {number + 1}")
+        else:
+            for row, pressure in zip(rows, e.columns["pressure_kPa"]):
+                groups[row] = len(labels)
+                labels.append(f"{prefix(e)}p={pressure:g}")
+    name = {"isometric_map": "held length", "isotonic": "sweep"}.get(kind, "row")
+    return Campaign(experiments, kind, columns, test, groups, labels, name)
+
+
+def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
+    """The table's noise per channel, model-free. Where rows repeat (the same pressure on the same
+    branch of several isotonic sweeps, the same length and pressure in several maps), the pooled
+    spread of the repeats; otherwise the residual of a cubic in pressure fitted to each held
+    length's loaded rows (force > 0) of a map or to each free-inflation table. Either leaves
+    what the instruments add, not what the model misses."""
+    pressure = campaign.columns["pressure_kPa"]
+    branch = pressure_branches(pressure) if campaign.kind == "isotonic" else np.ones(len(pressure))
+    key = np.column_stack([campaign.test, branch, np.round(pressure, 6)])
+    if campaign.kind == "isometric_map":
+        key = np.column_stack([key, np.round(campaign.columns["length_m"], 9)])
+    _, repeat, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    repeat = repeat.ravel()
+    out = {}
+    for channel in channels:
+        values = campaign.columns[channel]
+        if np.sum(counts - 1) >= 5:
+            means = np.bincount(repeat, weights=values) / counts
+            squares = float(np.sum((values - means[repeat]) ** 2))
+            out[channel] = math.sqrt(squares / float(np.sum(counts - 1)))
+            continue
+        units = campaign.groups if campaign.kind == "isometric_map" else campaign.test
+        squares, dof = 0.0, 0
+        for unit in np.unique(units):
+            rows = units == unit
+            if channel == "force_N":
+                rows &= values > 0
+            if rows.sum() < 6:
+                continue
+            coefficients = np.polyfit(pressure[rows], values[rows], 3)
+            squares += float(np.sum((np.polyval(coefficients, pressure[rows]) - values[rows]) ** 2))
+            dof += int(rows.sum()) - 4
+        out[channel] = math.sqrt(squares / dof) if dof > 0 else float("nan")
+    return out

@@ -1,0 +1,151 @@
+"""The report of a static table's diagnosis: DESIGN.md's JSON keys (with the calibrated
+unknowns' intervals and the held-out error per unit), the verdict a person reads first, and the
+figure (each channel against the supplied pressure, every unit as predicted held out)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from pamkit.diagnose.tables import CHANNEL_UNITS, TableDiagnosis, TableFit, heldout_rmse
+
+
+def to_json(d: TableDiagnosis) -> dict:
+    measured = {c: d.campaign.columns[c] for c in d.channels}
+
+    def rmse(fit, heldout):
+        return {c: (heldout_rmse(fit, measured, c) if heldout else fit.rmse(c)) for c in d.channels}
+
+    def per_group(fit):
+        out = {}
+        for index, label in enumerate(d.campaign.group_labels):
+            rows = d.groups == index
+            out[label] = {c: heldout_rmse(fit, measured, c, rows) for c in d.channels}
+        return out
+
+    report = {
+        "kind": d.campaign.kind,
+        "tests": [str(e.path) for e in d.campaign.experiments],
+        "held_out": d.campaign.group_name,
+        "noise": d.noise,
+        "baseline": {
+            "params": d.baseline.params,
+            "intervals": {k: list(v) for k, v in d.baseline.intervals.items()},
+            "rmse": rmse(d.baseline, False),
+            "heldout_rmse": rmse(d.baseline, True),
+            "heldout_rmse_by_group": per_group(d.baseline),
+        },
+        "candidates": [
+            {
+                "effect": j.fit.name,
+                "params": j.fit.params,
+                "heldout_rmse": rmse(j.fit, True),
+                "gain": j.gain,
+                "gain_ci95": {c: list(v) for c, v in j.gain_ci95.items()},
+                "score": j.score,
+                "significant": j.significant,
+                "credible": j.credible,
+                "findings": j.findings,
+            }
+            for j in d.candidates
+        ],
+        "skipped": d.skipped,
+        "cause": d.cause,
+        "reason": d.reason,
+        "extended": {
+            "effects": [e.name() for e in d.extended.effects],
+            "params": d.extended.params,
+            "intervals": {k: list(v) for k, v in d.extended.intervals.items()},
+            "rmse": rmse(d.extended, False),
+            "heldout_rmse": rmse(d.extended, True),
+            "heldout_rmse_by_group": per_group(d.extended),
+        },
+        "gain": d.extended_candidate.gain if d.extended_candidate else {c: 0.0 for c in d.channels},
+        "gain_ci95": ({c: list(v) for c, v in d.extended_candidate.gain_ci95.items()} if d.extended_candidate else {}),
+        "decision": {"cause": d.cause, "reason": d.reason, "margins": d.margins},
+        "warnings": d.warnings,
+    }
+    return report
+
+
+def _calibrated(fit: TableFit) -> str:
+    return ", ".join(
+        f"{k} = {v:.4g} [{fit.intervals[k][0]:.4g}, {fit.intervals[k][1]:.4g}]" for k, v in fit.params.items()
+    )
+
+
+def verdict(d: TableDiagnosis) -> str:
+    """What a person reads first: the calibrated unknowns with their intervals, the held-out
+    error before and after, the cause and its gain, and every parameter at a bound."""
+    measured = {c: d.campaign.columns[c] for c in d.channels}
+    c = d.campaign
+    lines = [f"{c.name}: {c.kind}, {len(c.groups)} rows, each {c.group_name} held out in turn"]
+    models = [("baseline", d.baseline)] + ([(f"with {d.cause}", d.extended)] if d.extended is not d.baseline else [])
+    for name, fit in models:
+        error = ", ".join(
+            f"{c} {heldout_rmse(fit, measured, c):.4g} {CHANNEL_UNITS[c]} (noise {d.noise[c]:.2g})" for c in d.channels
+        )
+        lines.append(f"{name}: held-out RMSE {error}")
+        if fit.params:
+            lines.append(f"  calibrated (jackknife 95 %): {_calibrated(fit)}")
+    if d.extended_candidate is None:
+        lines.append(f"cause: {d.cause} — {d.reason}")
+    else:
+        gain = ", ".join(
+            f"{c} {d.extended_candidate.gain[c]:.2f} [{d.extended_candidate.gain_ci95[c][0]:.2f}, "
+            f"{d.extended_candidate.gain_ci95[c][1]:.2f}]"
+            for c in d.channels
+        )
+        lines.append(f"cause: {d.cause} — held-out gain {gain}")
+    for w in d.warnings:
+        where = f"at its bound {w['bound']:.4g}" if w["bound"] is not None else "outside its plausible range"
+        lines.append(f"warning: {w['parameter']} = {w['value']:.4g} {where} ({w['source']})")
+    return "\n".join(lines)
+
+
+def plot(d: TableDiagnosis, path: str | Path) -> Path:
+    """Each channel against the supplied pressure: measured points, and each group as the
+    calibrated baseline (dotted) and the named cause's model (solid) predicted it held out. A
+    map draws one curve per held length; a free-inflation table one per test."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    c = d.campaign
+    pressure = c.columns["pressure_kPa"]
+    by_group = c.kind in ("isometric_map", "isotonic")
+    curves = c.groups if by_group else c.test
+    names = c.group_labels if by_group else [Path(e.path).stem for e in c.experiments]
+    figure, axes = plt.subplots(1, len(d.channels), figsize=(6.5 * len(d.channels), 4.8), squeeze=False)
+    for axis, channel in zip(axes[0], d.channels):
+        unit = CHANNEL_UNITS[channel]
+        scale = 1e3 if unit == "m" else 1.0
+        shown_unit = "mm" if unit == "m" else unit
+        colors = plt.cm.viridis(np.linspace(0, 0.9, len(np.unique(curves))))
+        for curve, color in zip(np.unique(curves), colors):
+            rows = np.flatnonzero(curves == curve)
+            if c.kind != "isotonic":  # an isotonic sweep is drawn in the order measured: up, then down
+                rows = rows[np.argsort(pressure[rows])]
+            axis.plot(pressure[rows], scale * c.columns[channel][rows], "o", color=color, ms=4, label=names[curve])
+            axis.plot(pressure[rows], scale * d.baseline.heldout[channel][rows], ":", color=color, lw=1)
+            if d.extended is not d.baseline:
+                axis.plot(pressure[rows], scale * d.extended.heldout[channel][rows], "-", color=color, lw=1.5)
+        axis.set_xlabel("supplied pressure [kPa]")
+        axis.set_ylabel(f"{channel.rsplit('_', 1)[0]} [{shown_unit}]")
+        axis.grid(alpha=0.3)
+        axis.legend(fontsize=7, loc="best")
+    extended = f"solid: with {d.cause}; " if d.extended is not d.baseline else ""
+    figure.suptitle(
+        f"{', '.join(Path(e.path).name for e in c.experiments)}: cause {d.cause}\n"
+        f"points: measured; dotted: calibrated baseline; {extended}\n"
+        f"each {c.group_name} predicted by the model fitted without it",
+        fontsize=8,
+    )
+    figure.tight_layout()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    return path
