@@ -160,8 +160,8 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
 /// The muscle's force at rest [N] at each (length, supplied gauge pressure) of a static table: an
 /// isometric map, a free-inflation or isotonic table of settled steps, rows in the order they
 /// were measured (the pressurise/vent branch follows it). Friction, which needs a velocity, is
-/// zero at rest. Only physical effects act (through the parameters): a table has no time axis
-/// for motion and instrument effects.
+/// zero at rest. Physical effects act through the parameters, the supplied pressure's
+/// transducer through the pressure; a table has no time axis for motion and other instruments.
 /// \param lengths_m            muscle length of each row [m]
 /// \param gauge_pressures_kPa  supplied gauge pressure of each row [kPa]
 /// \throws InvalidParameter for an effect that cannot act on a static table; InvalidInput naming
