@@ -205,7 +205,7 @@ def declared_value(name: str, build: MuscleBuild, bladder: BladderLaw, load_N: f
     return getattr(build, name)
 
 
-def _read_calibrate(path: Path, table: dict, build: MuscleBuild, bladder: BladderLaw) -> dict[str, tuple[float, float]]:
+def _read_calibrate(path: Path, table: dict, bladder: BladderLaw) -> dict[str, tuple[float, float]]:
     """[calibrate]: fields not known, each with [lower, upper] bounds within its allowed range."""
     flat: dict[str, object] = {}
     for key, value in table.items():
@@ -302,7 +302,7 @@ def load_experiment(path: str | Path) -> Experiment:
         initial_length = _number(path, "test", "initial_length_m", initial_length)
         if not 0 < initial_length <= 5:
             raise _fail(path, f"[test] initial_length_m = {initial_length} is outside (0, 5] m")
-    calibrate = _read_calibrate(path, document.get("calibrate", {}), build, bladder)
+    calibrate = _read_calibrate(path, document.get("calibrate", {}), bladder)
     load = test.get("load_N")
     if load is not None:
         load = _number(path, "test", "load_N", load)
