@@ -62,6 +62,14 @@ TABLE_DEFAULTS = {"inflation_pressure_kPa": 0.0, "ambient_temperature_C": 20.0}
 GAS_PROCESS_KEY = "process"
 # [muscle] key beyond MuscleBuild's fields: what a datasheet gives instead of fiber_revolutions.
 BRAID_ANGLE_KEY = "braid_angle_deg"
+# [muscle] dimensions that scale with the braid diameter when a file leaves them out.
+SCALED_WITH_DIAMETER = (
+    "bladder_diameter_m",
+    "bladder_thickness_m",
+    "fiber_thickness_m",
+    "end_diameter_m",
+    "cone_generator_m",
+)
 # [bladder] keys: the law by name, and the neo-Hookean modulus.
 BLADDER_LAWS = ("thesis", "neo_hookean", "none")
 
@@ -144,13 +152,27 @@ def _fill_struct(path: Path, section: str, table: dict, struct, extra_keys=()):
     return struct
 
 
+def _scaled_defaults(path: Path, table: dict) -> MuscleBuild:
+    """The defaults of the dimensions a file leaves out, scaled with its braid diameter: PAM 2's
+    (table C.4) are for a 20 mm braid, and a 10 mm muscle declared by its datasheet (length and
+    diameter) would otherwise get a bladder and end caps wider than its braid."""
+    build = MuscleBuild()
+    if "diameter_m" not in table:
+        return build
+    scale = _number(path, "muscle", "diameter_m", table["diameter_m"]) / build.diameter_m
+    for name in SCALED_WITH_DIAMETER:
+        if name not in table:
+            setattr(build, name, scale * getattr(build, name))
+    return build
+
+
 def _read_build(path: Path, table: dict) -> MuscleBuild:
     """[muscle]: MuscleBuild's fields, or braid_angle_deg instead of fiber_revolutions."""
     table = dict(table)
     angle = table.pop(BRAID_ANGLE_KEY, None)
     if angle is not None and "fiber_revolutions" in table:
         raise _fail(path, f"[muscle] gives both {BRAID_ANGLE_KEY} and fiber_revolutions: give one, they say the same")
-    build = MuscleBuild()
+    build = _scaled_defaults(path, table)
     if angle is None:
         return _fill_struct(path, "muscle", table, build)
     angle = _number(path, "muscle", BRAID_ANGLE_KEY, angle)

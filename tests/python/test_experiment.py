@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+import pamkit
 from pamkit.experiment import ExperimentError, ExperimentWarning, load_experiment, read_series
 
 
@@ -206,3 +207,21 @@ def test_what_is_not_a_readable_text_file_is_named(tmp_path, write_experiment):
         read_series(loop)
     with pytest.raises(ExperimentError, match="is a folder; give the experiment file itself"):
         load_experiment(tmp_path)
+
+
+def test_a_datasheet_build_gets_its_other_dimensions_scaled_with_its_diameter(tmp_path):
+    # A 10 mm muscle given by length, diameter and braid angle alone: PAM 2's defaults (table
+    # C.4, a 20 mm braid) halved, so that the bladder and end caps fit inside the braid.
+    (tmp_path / "map.csv").write_text("length_m,pressure_kPa,force_N\n0.25,100,50\n0.24,100,20\n")
+    path = tmp_path / "map.toml"
+    path.write_text(
+        "[muscle]\nlength_m = 0.25\ndiameter_m = 0.01\nbraid_angle_deg = 21.0\n"
+        '[test]\nkind = "isometric_map"\ndata = "map.csv"\n'
+    )
+    build = load_experiment(path).build
+    thesis = pamkit.MuscleBuild()
+    assert build.bladder_diameter_m == pytest.approx(thesis.bladder_diameter_m / 2)
+    assert build.end_diameter_m == pytest.approx(thesis.end_diameter_m / 2)
+    assert build.cone_generator_m == pytest.approx(thesis.cone_generator_m / 2)
+    assert build.bladder_thickness_m == pytest.approx(thesis.bladder_thickness_m / 2)
+    assert build.fiber_count == thesis.fiber_count  # a count, not a length
