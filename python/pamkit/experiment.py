@@ -56,6 +56,7 @@ TEST_KEYS = {
     "initial_length_m": (False, "muscle length at zero elongation [m]"),
     "load_N": (False, "isotonic: the constant load the muscle carries [N] (or unknown in [calibrate])"),
     "description": (False, "free text: where the test comes from"),
+    "zero": (False, "a run with no air (CSV, relative to the TOML): its means zero the load cell and transducer"),
 }
 TABLE_DEFAULTS = {"inflation_pressure_kPa": 0.0, "ambient_temperature_C": 20.0}
 # [gas] keys beyond GasParams' fields: the process by name.
@@ -102,6 +103,7 @@ class Experiment:
     kind: str = SERIES_KIND
     calibrate: dict[str, tuple[float, float]] = field(default_factory=dict)
     load_N: float | None = None
+    zeroed: dict[str, float] = field(default_factory=dict)  # offsets the zero run took off each channel
     columns: dict[str, np.ndarray] = field(default_factory=dict)
 
     @property
@@ -299,6 +301,10 @@ def load_experiment(path: str | Path) -> Experiment:
     kind = test.get("kind", SERIES_KIND)
     if kind not in KINDS:
         raise _fail(path, f"[test] kind = {kind!r} must be one of {', '.join(KINDS)}")
+    if kind in TABLE_COLUMNS and "zero" in test:
+        raise _fail(
+            path, f"[test] zero: a {kind} table is zeroed before it is tabulated; zero runs apply to time series"
+        )
     if kind in TABLE_COLUMNS:
         # A table of settled rows at supplied pressures: no inflation to seal, no gas to warm.
         for key, default in TABLE_DEFAULTS.items():
@@ -363,6 +369,8 @@ def load_experiment(path: str | Path) -> Experiment:
         experiment.columns = read_table(data_path, TABLE_COLUMNS[kind])
         return experiment
     experiment.columns = read_series(data_path)
+    if "zero" in test:
+        _zero(experiment, path, test["zero"])
     if gas == "supplied" and "pressure_kPa" not in experiment.columns:
         raise _fail(data_path, 'a "supplied" test drives the model with pressure_kPa: the column is missing')
     return experiment
@@ -376,6 +384,26 @@ def read_series(path: str | Path) -> dict[str, np.ndarray]:
         ExperimentError: naming the file, line and column of the first bad value.
     """
     return _read_csv(Path(path), REQUIRED_COLUMNS, OPTIONAL_COLUMNS, increasing="time_s")
+
+
+ZEROED_CHANNELS = ("force_N", "pressure_kPa")  # not temperature: with no air, the TMP36 reads the room
+
+
+def _zero(experiment: Experiment, path: Path, name) -> None:
+    """Takes the means of a run with no air (the rig's offset run) off the load cell's and the
+    transducer's channels, as a lab zeroes its sensors; records what it took."""
+    if not isinstance(name, str):
+        raise _fail(path, f"[test] zero = {name!r} must be a file name")
+    run = read_series((path.parent / name).resolve())
+    shared = [c for c in ZEROED_CHANNELS if c in run and c in experiment.columns]
+    if not shared:
+        raise _fail(
+            path, f"[test] zero = {name!r} has none of the channels it could zero ({', '.join(ZEROED_CHANNELS)})"
+        )
+    for channel in shared:
+        offset = float(np.mean(run[channel]))
+        experiment.columns[channel] = experiment.columns[channel] - offset
+        experiment.zeroed[channel] = offset
 
 
 def _read_isotonic(path: Path, build: MuscleBuild) -> dict[str, np.ndarray]:

@@ -225,3 +225,22 @@ def test_a_datasheet_build_gets_its_other_dimensions_scaled_with_its_diameter(tm
     assert build.cone_generator_m == pytest.approx(thesis.cone_generator_m / 2)
     assert build.bladder_thickness_m == pytest.approx(thesis.bladder_thickness_m / 2)
     assert build.fiber_count == thesis.fiber_count  # a count, not a length
+
+
+def test_an_offset_run_zeroes_the_load_cell_and_the_transducer(write_experiment, tmp_path):
+    # DESIGN.md: [test] zero = "offset.csv", a run with no air whose means zero the sensors.
+    path = write_experiment(
+        csv_text="time_s,elongation_m,force_N,pressure_kPa,temperature_C\n0,0,25,245,23\n1,0.001,30,250,23\n",
+        toml_test_extra='zero = "offset.csv"',
+    )
+    (tmp_path / "offset.csv").write_text(
+        "time_s,elongation_m,force_N,pressure_kPa,temperature_C\n0,0,19,8,22\n1,0,21,10,22\n"
+    )
+    experiment = load_experiment(path)
+    assert list(experiment.columns["force_N"]) == [5.0, 10.0]  # 20 N of preload and tare taken off
+    assert list(experiment.columns["pressure_kPa"]) == [236.0, 241.0]  # the transducer's 9 kPa at atmosphere
+    assert list(experiment.columns["temperature_C"]) == [23.0, 23.0]
+    assert experiment.zeroed == {"force_N": 20.0, "pressure_kPa": 9.0}
+    (tmp_path / "offset.csv").write_text("time_s,elongation_m\n0,0\n1,0\n")
+    with pytest.raises(ExperimentError, match="has none of the channels it could zero"):
+        load_experiment(path)
