@@ -15,7 +15,9 @@ def to_json(d: TableDiagnosis) -> dict:
     measured = {c: d.campaign.columns[c] for c in d.channels}
 
     def rmse(fit, heldout):
-        return {c: (heldout_rmse(fit, measured, c) if heldout else fit.rmse(c)) for c in d.channels}
+        if heldout:
+            return {c: heldout_rmse(fit, measured, c) for c in d.channels}
+        return {c: float(np.sqrt(np.mean((fit.predicted[c] - measured[c]) ** 2))) for c in d.channels}
 
     def per_group(fit):
         out = {}

@@ -18,7 +18,7 @@ import hashlib
 import math
 import os
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -32,7 +32,7 @@ from pamkit._core import (
     MuscleParams,
     fiber_revolutions_for_braid_angle,
 )
-from pamkit.diagnose.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
+from pamkit.diagnose.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE, findings
 from pamkit.diagnose.model import Coordinate, configure, effect_space
 from pamkit.diagnose.table_kinds import Campaign, campaign_of, noise_of
 from pamkit.effects import catalog as builtin_catalog
@@ -44,8 +44,6 @@ PREDICTED = {"isometric_map": ("force_N",), "free_inflation": ("length_m", "diam
 CHANNEL_UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
 # Fewer held-out groups than this cannot say whether a model carries beyond its fitted rows.
 MIN_GROUPS = 3
-# A fit coordinate within this fraction of its interval from an end is "at a bound".
-AT_BOUND = 1e-3
 # Local least squares from the declared values, then from these points of each unknown's
 # interval: the static force is not convex in a braid angle and a modulus together.
 STARTS = (0.25, 0.75)
@@ -67,12 +65,6 @@ class TableFit:
     heldout: dict[str, np.ndarray]
     intervals: dict[str, tuple[float, float]]  # jackknife 95 % over held-out groups
     error: str | None = None
-
-    def rmse(self, channel: str, rows: np.ndarray | None = None) -> float:
-        residual = self.predicted[channel] - self._measured[channel]
-        return float(np.sqrt(np.mean(residual[rows] ** 2 if rows is not None else residual**2)))
-
-    _measured: dict[str, np.ndarray] = field(default_factory=dict, repr=False)
 
 
 @dataclass
@@ -250,7 +242,6 @@ def _fit_table(name: str, model: TableModel, channels, scales, make_effect, grou
         spread = math.sqrt((count - 1) / count * float(np.sum((values - values.mean()) ** 2)))
         intervals[c.name] = (params[c.name] - 1.96 * spread, params[c.name] + 1.96 * spread)
     fit = TableFit(name, fitter.effects(x), params, coordinates, fitter.predict(x, every), heldout, intervals)
-    fit._measured = {c: model.columns[c] for c in channels}
     return fit
 
 
@@ -262,23 +253,8 @@ def heldout_rmse(fit: TableFit, measured, channel: str, rows=None) -> float:
 
 
 def _findings(fit: TableFit) -> list[dict]:
-    out = []
-    for key, (coordinate, x) in fit.coordinates.items():
-        value = float(coordinate.value(x))
-        margin = AT_BOUND * (coordinate.upper - coordinate.lower)
-        side = "lower" if x <= coordinate.lower + margin else "upper" if x >= coordinate.upper - margin else None
-        if side is None and coordinate.plausible[0] <= value <= coordinate.plausible[1]:
-            continue
-        out.append(
-            {
-                "parameter": key,
-                "value": value,
-                "bound": float(coordinate.bound_value(side)) if side else None,
-                "plausible": [float(coordinate.plausible[0]), float(coordinate.plausible[1])],
-                "source": coordinate.source,
-            }
-        )
-    return out
+    """decide.py's findings (parameters at a search bound or implausible), as report rows."""
+    return [asdict(f) for f in findings(fit)]
 
 
 def _seed(columns: dict[str, np.ndarray]) -> int:
