@@ -192,11 +192,12 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
            "whether it is an error of the transducer whose reading drives a supplied test")
       .def(
           "apply_to_supplied_pressure",
-          [](const Effect& e, std::vector<double> pressure_kPa) {
-            e.apply_to_supplied_pressure(pressure_kPa);
+          [](const Effect& e, const std::vector<double>& time_s, std::vector<double> pressure_kPa) {
+            e.apply_to_supplied_pressure(time_s, pressure_kPa);
             return pressure_kPa;
           },
-          py::arg("pressure_kPa"), "the true pressure [kPa] that drives a supplied test, from the reading")
+          py::arg("time_s"), py::arg("pressure_kPa"),
+          "the pressure [kPa] that drives a supplied test, from the reading (time_s empty: settled rows)")
       .def("apply_to_params",
            [](const Effect& e, MuscleParams params) {
              e.apply_to_params(params);

@@ -259,3 +259,37 @@ TEST_CASE("A transducer error in a supplied test acts on the pressure that drive
   const std::vector<double> table = static_forces(params, lengths, reading, {transducer});
   for (std::size_t k = 0; k < time.size(); ++k) CHECK_REL(table[k], exact.force_N[k], 1e-12);
 }
+
+TEST_CASE("A hose's lag in a supplied test drives the muscle with the ramp's closed-form response", "[supplied]") {
+  // The transducer reads a ramp a t at the regulator; through a hose of time constant tau the
+  // muscle's pressure is a (t - tau (1 - exp(-t / tau))), the exact response of tau dy/dt = x - y
+  // started settled. The force is the static force at that pressure (the muscle is held still),
+  // and the reported pressure is the reading. Settled rows of a table see no lag.
+  MuscleParams params;
+  params.build = commercial_build();
+  params.bladder = BladderLaw::neo_hookean(kShearModulus);
+  const double slope = 100.0;  // kPa/s
+  const double tau = 0.4;      // s
+  const EffectPtr hose = EffectCatalog::builtin().parse("sensor_lag:channel=pressure_kPa,time_constant_s=0.4");
+  REQUIRE(hose->reads_supplied_pressure());
+  std::vector<double> time, reading, lagged;
+  for (int k = 0; k <= 50; ++k) {
+    const double t = 0.1 * k;
+    time.push_back(t);
+    reading.push_back(slope * t);
+    lagged.push_back(slope * (t - tau * (1.0 - std::exp(-t / tau))));
+  }
+  const ElongationTrajectory held(time, std::vector<double>(time.size(), 0.0));
+  const Measurement m = simulate_supplied_measurement(params, 0.23, held, reading, 20.0, {hose});
+  const Measurement exact = simulate_supplied_measurement(params, 0.23, held, lagged, 20.0, {});
+  for (std::size_t k = 0; k < time.size(); ++k) {
+    CHECK(m.force_N[k] == Approx(exact.force_N[k]).epsilon(1e-9).margin(1e-9));
+    CHECK(m.pressure_kPa[k] == reading[k]);
+  }
+  const std::vector<double> lengths(time.size(), 0.23);
+  const std::vector<double> settled = static_forces(params, lengths, reading, {hose});
+  const std::vector<double> without = static_forces(params, lengths, reading, {});
+  for (std::size_t k = 0; k < time.size(); ++k) CHECK(settled[k] == without[k]);
+  // On another channel the lag is the instrument's, not the drive's.
+  CHECK_FALSE(EffectCatalog::builtin().parse("sensor_lag:channel=force_N")->reads_supplied_pressure());
+}

@@ -434,12 +434,31 @@ class FixtureSlackEffect : public detail::ParametricEffect<FixtureSlackParams> {
   }
 };
 
+namespace detail {
+/// The exact response of tau dy/dt = x - y to an `x` linear between samples, starting settled,
+/// written over `x`.
+inline void first_order_lag(const std::vector<double>& time_s, std::vector<double>& x, double tau) {
+  if (tau == 0.0 || x.empty()) return;
+  double y = x.front();
+  double previous = x.front();  // the input at the last sample (x is overwritten)
+  for (std::size_t k = 1; k < x.size(); ++k) {
+    const double decay = std::exp(-(time_s[k] - time_s[k - 1]) / tau);
+    const double slope = (x[k] - previous) / (time_s[k] - time_s[k - 1]);
+    y = x[k] - slope * tau + (y - previous + slope * tau) * decay;
+    previous = x[k];
+    x[k] = y;
+  }
+}
+}  // namespace detail
+
 /// sensor_lag: a first-order lag on one measured channel.
 struct SensorLagParams {
   static constexpr const char* kName = "sensor_lag";
   static constexpr const char* kDescription =
       "first-order lag of one channel (a TMP36 in still air is slow; a long hose slows a pressure transducer). "
-      "Gives it away: that channel lags its prediction and its swings are attenuated, more so at higher rates.";
+      "In a supplied test on pressure_kPa, the muscle's pressure lags the transducer's reading (a hose and the "
+      "muscle's volume between them). Gives it away: that channel lags its prediction and its swings are "
+      "attenuated, more so at higher rates; in a supplied test the force lags the pressure.";
   static constexpr const char* kSignature = "{channel} lags its prediction and swings less";
   static constexpr EffectStage kStage = EffectStage::measurement;
   static constexpr bool kHasChannel = true;
@@ -459,21 +478,16 @@ struct SensorLagParams {
 };
 class SensorLagEffect : public detail::ParametricEffect<SensorLagParams> {
  public:
-  /// Exact solution of tau dy/dt = x - y for x linear between samples, starting settled.
+  /// On the pressure of a supplied test the lag sits between the transducer and the muscle:
+  /// the reading is the regulator's, and the muscle's gas follows it through the hose.
+  bool reads_supplied_pressure() const override { return params_.channel == "pressure_kPa"; }
+  /// A static table's rows are settled (empty `time_s`): the lag has died out.
+  void apply_to_supplied_pressure(const std::vector<double>& time_s, std::vector<double>& pressure_kPa) const override {
+    if (reads_supplied_pressure() && !time_s.empty())
+      detail::first_order_lag(time_s, pressure_kPa, params_.time_constant_s);
+  }
   void apply_to_measurement(Measurement& m) const override {
-    const double tau = params_.time_constant_s;
-    if (tau == 0.0) return;
-    std::vector<double>& x = m.channel(params_.channel);
-    if (x.empty()) return;
-    double y = x.front();
-    double previous = x.front();  // the true value at the last sample (x is overwritten)
-    for (std::size_t k = 1; k < x.size(); ++k) {
-      const double decay = std::exp(-(m.time_s[k] - m.time_s[k - 1]) / tau);
-      const double slope = (x[k] - previous) / (m.time_s[k] - m.time_s[k - 1]);
-      y = x[k] - slope * tau + (y - previous + slope * tau) * decay;
-      previous = x[k];
-      x[k] = y;
-    }
+    detail::first_order_lag(m.time_s, m.channel(params_.channel), params_.time_constant_s);
   }
 };
 
@@ -557,7 +571,7 @@ class SensorOffsetEffect : public detail::ParametricEffect<SensorOffsetParams> {
   /// In a supplied test the transducer's reading is the model's input: the true pressure is
   /// the reading with the calibration error undone, and the reported channel is read again.
   bool reads_supplied_pressure() const override { return true; }
-  void apply_to_supplied_pressure(std::vector<double>& pressure_kPa) const override {
+  void apply_to_supplied_pressure(const std::vector<double>&, std::vector<double>& pressure_kPa) const override {
     for (double& p : pressure_kPa) p = (p - params_.offset_kPa) / params_.gain;
   }
   void apply_to_measurement(Measurement& m) const override {

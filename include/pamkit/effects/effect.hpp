@@ -160,9 +160,10 @@ class Effect {
   /// Whether the effect is an error of the instrument that reads a supplied pressure, so that
   /// in a supplied test (and a static table) it acts on the pressure that drives the model.
   virtual bool reads_supplied_pressure() const { return false; }
-  /// Stage 0, supplied tests only: the true pressure that drives the model from the
-  /// transducer's reading, sample by sample [kPa gauge].
-  virtual void apply_to_supplied_pressure(std::vector<double>& pressure_kPa) const;
+  /// Stage 0, supplied tests only: the pressure that drives the model from the transducer's
+  /// reading, sample by sample [kPa gauge]. `time_s` is empty for a static table of settled
+  /// rows; an effect that needs time then throws InvalidParameter.
+  virtual void apply_to_supplied_pressure(const std::vector<double>& time_s, std::vector<double>& pressure_kPa) const;
   /// Stage 1: changes the model's parameters.
   virtual void apply_to_params(MuscleParams& params) const;
   /// Stage 2: the muscle's elongation from the crosshead's, sample by sample.

@@ -52,7 +52,7 @@ inline EffectParameter EffectParameter::declared(std::string name, double value,
   p.resolution = info.resolution;
   return p;
 }
-inline void Effect::apply_to_supplied_pressure(std::vector<double>&) const {}
+inline void Effect::apply_to_supplied_pressure(const std::vector<double>&, std::vector<double>&) const {}
 inline void Effect::apply_to_params(MuscleParams&) const {}
 inline std::vector<double> Effect::apply_to_elongation(const std::vector<double>&,
                                                        const std::vector<double>& crosshead_m) const {

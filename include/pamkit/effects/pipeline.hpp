@@ -95,7 +95,7 @@ inline void apply_static_effects(const std::vector<EffectPtr>& effects, MusclePa
                                              " acts on the motion or the instruments over time; a static table of "
                                              "settled rows has no time axis for it"));
     }
-    effect->apply_to_supplied_pressure(driving_kPa);
+    effect->apply_to_supplied_pressure({}, driving_kPa);
     effect->apply_to_params(extended);
   }
   extended.validate();
@@ -126,7 +126,7 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
   for (const EffectPtr& effect : effects) {
     std::string why_not;
     if (!effect->acts_in(GasMode::supplied, &why_not)) throw InvalidParameter(why_not);
-    effect->apply_to_supplied_pressure(driving);
+    effect->apply_to_supplied_pressure(time, driving);
     effect->apply_to_params(extended);
     motion = effect->apply_to_elongation(time, motion);
   }
@@ -134,7 +134,7 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
   Measurement m;
   m.time_s = time;
   m.elongation_m = crosshead.elongation();
-  m.pressure_kPa = driving;  // the instruments' stage reads it back
+  m.pressure_kPa = pressure_kPa;  // what the transducer read: the effects that read it made `driving`
   m.temperature_C.assign(time.size(), ambient_temperature_C);
   m.force_N.resize(time.size());
   const std::vector<double> branch = pressure_branches(driving);
@@ -153,7 +153,9 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
     m.force_N[k] = detail::supplied_force(geometry, extended, shape, units::pascal_from_kilopascal(driving[k]),
                                           velocity, branch[k]);
   }
-  for (const EffectPtr& effect : effects) effect->apply_to_measurement(m);
+  for (const EffectPtr& effect : effects) {
+    if (!effect->reads_supplied_pressure()) effect->apply_to_measurement(m);
+  }
   return m;
 }
 

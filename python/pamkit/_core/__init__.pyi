@@ -1350,9 +1350,9 @@ class Effect:
         ...
     def apply_to_params(self, arg0: MuscleParams) -> MuscleParams:
         ...
-    def apply_to_supplied_pressure(self, pressure_kPa: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
+    def apply_to_supplied_pressure(self, time_s: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], pressure_kPa: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
         """
-        the true pressure [kPa] that drives a supplied test, from the reading
+        the pressure [kPa] that drives a supplied test, from the reading (time_s empty: settled rows)
         """
     def channels_changed(self) -> list[str]:
         """

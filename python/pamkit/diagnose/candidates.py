@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from pamkit._core import EffectCatalog, EffectStage, Measurement
+from pamkit._core import EffectCatalog, EffectStage, GasMode, Measurement
 from pamkit.diagnose.calibrate import (
     Fit,
     baseline_coordinates,
@@ -45,7 +45,13 @@ def candidates(effect_catalog: EffectCatalog, problem: Problem) -> list[tuple[st
         if not acts:
             continue
         if "channel" in probe.options():
-            for channel in problem.channels:
+            channels = list(problem.channels)
+            # A supplied test's pressure is an input, not a compared channel; an instrument
+            # error there acts on what drives the model (a hose's lag).
+            supplied = problem.predictor.mode == GasMode.supplied
+            if supplied and effect_catalog.parse(f"{name}:channel=pressure_kPa").reads_supplied_pressure():
+                channels.append("pressure_kPa")
+            for channel in channels:
                 out.append(
                     (f"{name}:channel={channel}", lambda n=name, c=channel: effect_catalog.parse(f"{n}:channel={c}"))
                 )
