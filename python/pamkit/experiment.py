@@ -57,7 +57,12 @@ TEST_KEYS = {
     "load_N": (False, "isotonic: the constant load the muscle carries [N] (or unknown in [calibrate])"),
     "description": (False, "free text: where the test comes from"),
     "zero": (False, "a run with no air (CSV, relative to the TOML): its means zero the load cell and transducer"),
+    "preload_N": (False, "supplied: the force the deflated muscle was mounted with; sets its length [N]"),
+    "force_range_N": (False, "[lowest, highest] force the load cell reads; it clips beyond [N]"),
+    "pressure_range_kPa": (False, "[lowest, highest] gauge pressure the transducer reads; it clips beyond [kPa]"),
 }
+# [test] ranges of the instruments, by the channel they read.
+RANGE_KEYS = {"force_N": "force_range_N", "pressure_kPa": "pressure_range_kPa"}
 TABLE_DEFAULTS = {"inflation_pressure_kPa": 0.0, "ambient_temperature_C": 20.0}
 # [gas] keys beyond GasParams' fields: the process by name.
 GAS_PROCESS_KEY = "process"
@@ -104,6 +109,8 @@ class Experiment:
     calibrate: dict[str, tuple[float, float]] = field(default_factory=dict)
     load_N: float | None = None
     zeroed: dict[str, float] = field(default_factory=dict)  # offsets the zero run took off each channel
+    preload_N: float | None = None
+    ranges: dict[str, tuple[float, float]] = field(default_factory=dict)  # what each instrument reads
     columns: dict[str, np.ndarray] = field(default_factory=dict)
 
     @property
@@ -122,6 +129,28 @@ class Experiment:
     def measured(self) -> list[str]:
         """The optional channels present in the data."""
         return [name for name in OPTIONAL_COLUMNS if name in self.columns]
+
+    def reading_range(self, channel: str) -> tuple[float, float]:
+        """The declared range of the channel's instrument, in the data's units: shifted by what the
+        zero run took off (the instrument clips its raw reading)."""
+        lowest, highest = self.ranges.get(channel, (-math.inf, math.inf))
+        offset = self.zeroed.get(channel, 0.0)
+        return lowest - offset, highest - offset
+
+    def read(self, channel: str, values: np.ndarray) -> np.ndarray:
+        """What the channel's instrument reads of true `values`: clipped into its range."""
+        return np.clip(values, *self.reading_range(channel)) if channel in self.ranges else values
+
+    @property
+    def censored(self) -> np.ndarray:
+        """Rows whose supplied pressure reads at an end of the transducer's range: the pressure
+        that drove the muscle there is unknown (a reading of 0 kPa may be any pressure below the
+        transducer's offset), so they are predicted but never fitted or scored."""
+        rows = len(next(iter(self.columns.values())))
+        if self.gas != "supplied" or "pressure_kPa" not in self.ranges:
+            return np.zeros(rows, dtype=bool)
+        lowest, highest = self.reading_range("pressure_kPa")
+        return (self.columns["pressure_kPa"] <= lowest) | (self.columns["pressure_kPa"] >= highest)
 
 
 def _fail(path: Path, message: str) -> ExperimentError:
@@ -262,6 +291,16 @@ def _read_calibrate(path: Path, table: dict, bladder: BladderLaw) -> dict[str, t
     return out
 
 
+def _range(path: Path, key: str, value) -> tuple[float, float]:
+    """An instrument's [lowest, highest] reading."""
+    if not isinstance(value, list) or len(value) != 2:
+        raise _fail(path, f"[test] {key} = {value!r} must be [lowest, highest]")
+    lowest, highest = (_number(path, "test", key, v) for v in value)
+    if not lowest < highest:
+        raise _fail(path, f"[test] {key} = [{lowest}, {highest}] needs lowest < highest")
+    return lowest, highest
+
+
 def load_experiment(path: str | Path) -> Experiment:
     """Reads an experiment TOML and its CSV.
 
@@ -342,6 +381,16 @@ def load_experiment(path: str | Path) -> Experiment:
         raise _fail(path, "[test] load_N is missing: an isotonic test needs its load, or load_N in [calibrate]")
     if "load_N" in calibrate and kind != "isotonic":
         raise _fail(path, f'[calibrate] load_N belongs to kind = "isotonic", not {kind!r}')
+    preload = test.get("preload_N")
+    if preload is not None:
+        preload = _number(path, "test", "preload_N", preload)
+        if gas != "supplied" or kind != SERIES_KIND:
+            raise _fail(path, "[test] preload_N belongs to a supplied time series: a rig that holds the mounted length")
+        if initial_length is not None:
+            raise _fail(path, "[test] gives both preload_N and initial_length_m: the preload sets the length")
+        if not 0 < preload <= 1e5:
+            raise _fail(path, f"[test] preload_N = {preload} is outside (0, 1e5] N")
+    ranges = {channel: _range(path, key, test[key]) for channel, key in RANGE_KEYS.items() if key in test}
     if not isinstance(test["data"], str):
         raise _fail(path, f"[test] data = {test['data']!r} must be a file name")
     data_path = (path.parent / test["data"]).resolve()
@@ -361,6 +410,8 @@ def load_experiment(path: str | Path) -> Experiment:
         kind=kind,
         calibrate=calibrate,
         load_N=load,
+        preload_N=preload,
+        ranges=ranges,
     )
     if kind == "isotonic":
         experiment.columns = _read_isotonic(data_path, build)
@@ -391,7 +442,9 @@ ZEROED_CHANNELS = ("force_N", "pressure_kPa")  # not temperature: with no air, t
 
 def _zero(experiment: Experiment, path: Path, name) -> None:
     """Takes the means of a run with no air (the rig's offset run) off the load cell's and the
-    transducer's channels, as a lab zeroes its sensors; records what it took."""
+    transducer's channels, as a lab zeroes its sensors; records what it took. The offset run of
+    a preloaded mount is recorded on the mounted muscle: its force holds the preload, which is
+    the muscle's, not the cell's, and stays in the data."""
     if not isinstance(name, str):
         raise _fail(path, f"[test] zero = {name!r} must be a file name")
     run = read_series((path.parent / name).resolve())
@@ -402,6 +455,8 @@ def _zero(experiment: Experiment, path: Path, name) -> None:
         )
     for channel in shared:
         offset = float(np.mean(run[channel]))
+        if channel == "force_N" and experiment.preload_N is not None:
+            offset -= experiment.preload_N
         experiment.columns[channel] = experiment.columns[channel] - offset
         experiment.zeroed[channel] = offset
 

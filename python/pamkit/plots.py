@@ -52,16 +52,69 @@ def plot_simulation(
     return path
 
 
+def plot_supplied(
+    path: str | Path, predicted: dict[str, np.ndarray], measured: dict[str, np.ndarray] | None = None, title: str = ""
+) -> Path:
+    """A supplied-pressure test: the force against time, the supplied pressure (the model's input)
+    against time, and the force against the pressure with its pressurise and vent branches apart
+    (the isometric user's curve); the force against elongation only when the length moved."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from pamkit._core import pressure_branches
+
+    measured = measured or {}
+    moved = np.ptp(predicted["elongation_m"]) > 0
+    figure, axes = plt.subplots(1, 4 if moved else 3, figsize=(17 if moved else 13.5, 4.6), constrained_layout=True)
+    time, pressure = predicted["time_s"], predicted["pressure_kPa"]
+    force_time, input_time, force_pressure = axes[:3]
+    if "force_N" in measured:
+        force_time.plot(measured["time_s"], measured["force_N"], color="0.6", lw=1.2, label="measured")
+    force_time.plot(time, predicted["force_N"], color="C0", lw=1.0, label="pamkit")
+    force_time.set(xlabel="time [s]", ylabel="force [N]")
+    input_time.plot(time, pressure, color="k", lw=1.0)
+    input_time.set(xlabel="time [s]", ylabel="supplied gauge pressure [kPa]", title="the model's input")
+    branch = np.asarray(pressure_branches(pressure))
+    for sign, name, color in ((1.0, "pressurising", "C3"), (-1.0, "venting", "C0")):
+        on = np.where(branch == sign, 1.0, np.nan)  # gaps where the other branch runs
+        if "force_N" in measured:
+            force_pressure.plot(pressure * on, measured["force_N"] * on, ".", color=color, ms=3, alpha=0.4)
+        force_pressure.plot(pressure * on, predicted["force_N"] * on, "-", color=color, lw=1.2, label=name)
+    force_pressure.set(
+        xlabel="supplied gauge pressure [kPa]", ylabel="force [N]", title="dots: measured; lines: pamkit"
+    )
+    if moved:
+        loop = axes[3]
+        if "force_N" in measured:
+            loop.plot(measured["elongation_m"] * 1e3, measured["force_N"], color="0.6", lw=1.2, label="measured")
+        loop.plot(predicted["elongation_m"] * 1e3, predicted["force_N"], color="C0", lw=1.0, label="pamkit")
+        loop.set(xlabel="elongation [mm]", ylabel="force [N]")
+    for axis in axes:
+        axis.grid(alpha=0.3)
+    force_time.legend(loc="best", fontsize="small")
+    force_pressure.legend(loc="best", fontsize="small")
+    if title:
+        figure.suptitle(title, fontsize=9)
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    return path
+
+
 def plot_table(path: str | Path, experiment, predicted: dict[str, np.ndarray], title: str = "") -> Path:
     """A static table against its supplied pressure: measured points and the prediction, one
-    curve per held length of an isometric map; free length and diameter of a free-inflation
+    curve per held length of an isometric map; the length of an isotonic test in the order
+    measured (its pressurise and vent branches); free length and diameter of a free-inflation
     table."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    channels = ["force_N"] if experiment.kind == "isometric_map" else ["length_m", "diameter_m"]
+    channels = {"isometric_map": ["force_N"], "isotonic": ["length_m"]}.get(experiment.kind, ["length_m", "diameter_m"])
     pressure = experiment.columns["pressure_kPa"]
     curves = (
         np.round(experiment.columns["length_m"], 9) if experiment.kind == "isometric_map" else np.zeros(len(pressure))
@@ -71,7 +124,8 @@ def plot_table(path: str | Path, experiment, predicted: dict[str, np.ndarray], t
         scale, unit = (1e3, "mm") if channel.endswith("_m") else (1.0, "N")
         for curve, color in zip(np.unique(curves), plt.cm.viridis(np.linspace(0, 0.9, len(np.unique(curves))))):
             rows = np.flatnonzero(curves == curve)
-            rows = rows[np.argsort(pressure[rows])]
+            if experiment.kind != "isotonic":
+                rows = rows[np.argsort(pressure[rows])]
             name = f"L = {curve * 1e3:.0f} mm" if experiment.kind == "isometric_map" else "measured"
             axis.plot(pressure[rows], scale * experiment.columns[channel][rows], "o", color=color, ms=4, label=name)
             axis.plot(pressure[rows], scale * predicted[channel][rows], "-", color=color, lw=1.2)

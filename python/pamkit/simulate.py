@@ -40,9 +40,22 @@ def muscle_params(experiment: Experiment, bladder: BladderLaw | None = None) -> 
 
 def initial_length(experiment: Experiment, params: MuscleParams) -> float:
     """Length at zero elongation: as given, else the free inflated length (sealed test) or the
-    deflated length (supplied test), as DESIGN.md specifies."""
+    deflated length (supplied test), as DESIGN.md specifies; a supplied test mounted with a
+    preload starts where the deflated muscle carries it.
+
+    Raises:
+        ExperimentError: when the build cannot carry the preload deflated (no membrane stiffness).
+    """
     if experiment.initial_length_m is not None:
         return experiment.initial_length_m
+    if experiment.preload_N is not None:
+        mounted = isotonic_lengths(params, np.zeros(1), experiment.preload_N, params.build.length_m)
+        if mounted.at_limit[0]:
+            raise ExperimentError(
+                f"{experiment.path}: [test] preload_N = {experiment.preload_N:g} N: the deflated muscle does not "
+                "carry it within the braid's range (a membrane law with stiffness, or initial_length_m, sets it)"
+            )
+        return mounted.length_m[0]
     if experiment.gas == "supplied":
         return experiment.build.length_m
     return inflated_and_sealed(params, experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL).length_m
@@ -93,7 +106,7 @@ def simulate_experiment(
     except ValueError as error:
         raise ExperimentError(f"{experiment.data_path}: {error}") from None
     return {
-        name: getattr(measurement, name)
+        name: experiment.read(name, np.asarray(getattr(measurement, name)))
         for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
     }
 
@@ -124,10 +137,15 @@ def simulate_table(
             return {
                 "length_m": length,
                 "pressure_kPa": pressure,
-                "force_N": static_forces(params, length, pressure, list(effects)),
+                "force_N": experiment.read("force_N", static_forces(params, length, pressure, list(effects))),
             }
         if experiment.kind == "isotonic":
             load = experiment.load_N if load_N is None else load_N
+            if load is None:
+                raise ExperimentError(
+                    f"{experiment.path}: [test] load_N is unknown (in [calibrate]); a prediction needs a load: "
+                    "give [test] load_N, or run `pamkit diagnose` to calibrate it"
+                )
             path = isotonic_lengths(
                 params, experiment.columns["pressure_kPa"], load, params.build.length_m, list(effects)
             )
@@ -137,6 +155,8 @@ def simulate_table(
         geometry = BraidGeometry(params.build)
         atmosphere = params.gas.atmospheric_pressure_Pa
         states = [free_inflation(geometry, params.bladder, atmosphere, p * PASCAL_PER_KILOPASCAL) for p in pressure]
+    except ExperimentError:
+        raise
     except ValueError as error:
         raise ExperimentError(f"{experiment.data_path}: {error}") from None
     return {

@@ -46,12 +46,13 @@ def run(arguments: argparse.Namespace) -> int:
         )
         print(f"wrote {arguments.plot}")
     elif arguments.plot:
-        from pamkit.plots import plot_simulation
+        from pamkit.plots import plot_simulation, plot_supplied
 
         measured = experiment.columns if experiment.measured() else None
         title = experiment.description or Path(arguments.experiment).stem
         if effects:
             title += "\nwith " + ", ".join(repr(effect) for effect in effects)
-        plot_simulation(arguments.plot, predicted, measured, title=title)
+        plotter = plot_supplied if experiment.gas == "supplied" else plot_simulation
+        plotter(arguments.plot, predicted, measured, title=title)
         print(f"wrote {arguments.plot}")
     return 0

@@ -234,7 +234,10 @@ class Predictor:
 
     def select(self, m: Measurement) -> dict[str, np.ndarray]:
         """The measured channels of a simulated measurement, at the data's samples."""
-        return {name: np.asarray(getattr(m, name))[self.motion.sample_rows] for name in self.channels}
+        return {
+            name: self.experiment.read(name, np.asarray(getattr(m, name))[self.motion.sample_rows])
+            for name in self.channels
+        }
 
     def predict(self, x: np.ndarray, effects: list[Effect]) -> dict[str, np.ndarray]:
         return self.select(self.measurement(x, effects))
