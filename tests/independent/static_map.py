@@ -121,11 +121,21 @@ def isotonic_length(gauge_Pa, load_N, branch, *, hysteresis, **truth):
 
 
 def write_isotonic(
-    folder: Path, *, sweeps, load_N: float, hysteresis: float, seed: int, noise_m: float = 0.1e-3, **truth
+    folder: Path,
+    *,
+    sweeps,
+    load_N: float,
+    hysteresis: float,
+    seed: int,
+    noise_m: float = 0.1e-3,
+    pressure_offset_kPa: float = 0.0,
+    **truth,
 ) -> Path:
     """Writes an isotonic test (TOML + CSV): `sweeps` lists of settled pressures [kPa] (each up,
-    then down), the length measured with `noise_m` of noise in 0.01 mm steps. The TOML leaves
-    the braid angle, the membrane and the load unknown."""
+    then down), the length measured with `noise_m` of noise in 0.01 mm steps. The transducer
+    reads the pressure plus `pressure_offset_kPa`, and nothing below 0 kPa (its display clips, as
+    the rig's in the issue "Isotonic tests" does); the TOML then declares that range. The TOML
+    leaves the braid angle, the membrane and the load unknown."""
     rng = np.random.default_rng(seed)
     folder.mkdir(parents=True, exist_ok=True)
     rows, previous = [], None
@@ -136,7 +146,8 @@ def write_isotonic(
                 branch = 1.0 if pressure > previous else -1.0
             previous = pressure
             length = isotonic_length(pressure * 1e3, load_N, branch, hysteresis=hysteresis, **truth)
-            rows.append((pressure, round((length + rng.normal(0, noise_m)) * 1e5) / 1e5))
+            reading = max(pressure + pressure_offset_kPa, 0.0)
+            rows.append((reading, round((length + rng.normal(0, noise_m)) * 1e5) / 1e5))
     with (folder / "isotonic.csv").open("w") as handle:
         handle.write("pressure_kPa,length_m\n")
         handle.writelines(f"{pressure:.1f},{length:.5f}\n" for pressure, length in rows)
@@ -166,6 +177,7 @@ load_N = [1.0, 500.0]
 [test]
 kind = "isotonic"
 data = "isotonic.csv"
+{"pressure_range_kPa = [0.0, 1000.0]" if pressure_offset_kPa else ""}
 """
     )
     return folder / "isotonic.toml"

@@ -27,10 +27,19 @@ class Campaign:
     groups: np.ndarray  # the held-out group of each row (an index into group_labels)
     group_labels: list[str]
     group_name: str
+    censored: np.ndarray  # rows whose supplied pressure reads at the transducer's range: never scored
 
     @property
     def name(self) -> str:
         return " + ".join(str(e.path) for e in self.experiments)
+
+
+def test_names(experiments: list[Experiment]) -> list[str]:
+    """A short name for each test of a campaign: its file's stem, with its folder where stems repeat."""
+    stems = [Path(e.path).stem for e in experiments]
+    if len(set(stems)) == len(stems):
+        return stems
+    return [f"{Path(e.path).parent.name}/{stem}" for e, stem in zip(experiments, stems)]
 
 
 def campaign_of(experiments: list[Experiment]) -> Campaign:
@@ -44,26 +53,28 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
     test = np.concatenate([np.full(len(e.columns["pressure_kPa"]), i) for i, e in enumerate(experiments)])
     labels: list[str] = []
     groups = np.empty(len(test), dtype=int)
-    prefix = (lambda e: f"{Path(e.path).stem} ") if len(experiments) > 1 else (lambda e: "")
+    names = test_names(experiments)
+    prefix = (lambda i: f"{names[i]} ") if len(experiments) > 1 else (lambda i: "")
     for i, e in enumerate(experiments):
         rows = np.flatnonzero(test == i)
         if kind == "isometric_map":
             for length in np.unique(np.round(e.columns["length_m"], 9)):
                 groups[rows[np.round(e.columns["length_m"], 9) == length]] = len(labels)
-                labels.append(f"{prefix(e)}L={length:g}")
+                labels.append(f"{prefix(i)}L={length:g}")
         elif kind == "isotonic":
             # A sweep: pressurised, then vented; the next starts where the pressure rises again.
             branch = pressure_branches(e.columns["pressure_kPa"])
             sweep = np.concatenate([[0], np.cumsum((branch[1:] > 0) & (branch[:-1] < 0))])
             for number in np.unique(sweep):
                 groups[rows[sweep == number]] = len(labels)
-                labels.append(f"{prefix(e)}sweep {number + 1}")
+                labels.append(f"{prefix(i)}sweep {number + 1}")
         else:
             for row, pressure in zip(rows, e.columns["pressure_kPa"]):
                 groups[row] = len(labels)
-                labels.append(f"{prefix(e)}p={pressure:g}")
+                labels.append(f"{prefix(i)}p={pressure:g}")
     name = {"isometric_map": "held length", "isotonic": "sweep"}.get(kind, "row")
-    return Campaign(experiments, kind, columns, test, groups, labels, name)
+    censored = np.concatenate([e.censored for e in experiments])
+    return Campaign(experiments, kind, columns, test, groups, labels, name, censored)
 
 
 def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
@@ -74,20 +85,22 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
     what the instruments add, not what the model misses."""
     pressure = campaign.columns["pressure_kPa"]
     branch = pressure_branches(pressure) if campaign.kind == "isotonic" else np.ones(len(pressure))
+    used = ~campaign.censored
     key = np.column_stack([campaign.test, branch, np.round(pressure, 6)])
     if campaign.kind == "isometric_map":
         key = np.column_stack([key, np.round(campaign.columns["length_m"], 9)])
+    pressure, key = pressure[used], key[used]
     _, repeat, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
     repeat = repeat.ravel()
     out = {}
     for channel in channels:
-        values = campaign.columns[channel]
+        values = campaign.columns[channel][used]
         if np.sum(counts - 1) >= 5:
             means = np.bincount(repeat, weights=values) / counts
             squares = float(np.sum((values - means[repeat]) ** 2))
             out[channel] = math.sqrt(squares / float(np.sum(counts - 1)))
             continue
-        units = campaign.groups if campaign.kind == "isometric_map" else campaign.test
+        units = (campaign.groups if campaign.kind == "isometric_map" else campaign.test)[used]
         squares, dof = 0.0, 0
         for unit in np.unique(units):
             rows = units == unit

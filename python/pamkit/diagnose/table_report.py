@@ -13,23 +13,26 @@ from pamkit.diagnose.tables import CHANNEL_UNITS, TableDiagnosis, TableFit, held
 
 def to_json(d: TableDiagnosis) -> dict:
     measured = {c: d.campaign.columns[c] for c in d.channels}
+    used = ~d.campaign.censored
 
     def rmse(fit, heldout):
         if heldout:
             return {c: heldout_rmse(fit, measured, c) for c in d.channels}
-        return {c: float(np.sqrt(np.mean((fit.predicted[c] - measured[c]) ** 2))) for c in d.channels}
+        return {c: float(np.sqrt(np.mean((fit.predicted[c] - measured[c])[used] ** 2))) for c in d.channels}
 
     def per_group(fit):
         out = {}
         for index, label in enumerate(d.campaign.group_labels):
-            rows = d.groups == index
-            out[label] = {c: heldout_rmse(fit, measured, c, rows) for c in d.channels}
+            rows = (d.groups == index) & used
+            if rows.any():
+                out[label] = {c: heldout_rmse(fit, measured, c, rows) for c in d.channels}
         return out
 
     report = {
         "kind": d.campaign.kind,
         "tests": [str(e.path) for e in d.campaign.experiments],
         "held_out": d.campaign.group_name,
+        "censored_rows": int((~used).sum()),
         "noise": d.noise,
         "baseline": {
             "params": d.baseline.params,
@@ -65,6 +68,7 @@ def to_json(d: TableDiagnosis) -> dict:
         },
         "gain": d.extended_candidate.gain if d.extended_candidate else {c: 0.0 for c in d.channels},
         "gain_ci95": ({c: list(v) for c, v in d.extended_candidate.gain_ci95.items()} if d.extended_candidate else {}),
+        "added": d.added,
         "decision": {"cause": d.cause, "reason": d.reason, "margins": d.margins},
         "warnings": d.warnings,
     }
@@ -83,7 +87,13 @@ def verdict(d: TableDiagnosis) -> str:
     measured = {c: d.campaign.columns[c] for c in d.channels}
     c = d.campaign
     lines = [f"{c.name}: {c.kind}, {len(c.groups)} rows, each {c.group_name} held out in turn"]
-    models = [("baseline", d.baseline)] + ([(f"with {d.cause}", d.extended)] if d.extended is not d.baseline else [])
+    if c.censored.any():
+        lines.append(
+            f"{int(c.censored.sum())} row(s) read the pressure transducer's range end: the pressure that drove them "
+            "is unknown; predicted, never fitted or scored"
+        )
+    named = " and ".join([d.cause] + [a["effect"] for a in d.added])
+    models = [("baseline", d.baseline)] + ([(f"with {named}", d.extended)] if d.extended is not d.baseline else [])
     for name, fit in models:
         error = ", ".join(
             f"{c} {heldout_rmse(fit, measured, c):.4g} {CHANNEL_UNITS[c]} (noise {d.noise[c]:.2g})" for c in d.channels
@@ -100,6 +110,12 @@ def verdict(d: TableDiagnosis) -> str:
             for c in d.channels
         )
         lines.append(f"cause: {d.cause} — held-out gain {gain}")
+        for added in d.added:
+            more = ", ".join(
+                f"{c} {added['gain'][c]:.2f} [{added['gain_ci95'][c][0]:.2f}, {added['gain_ci95'][c][1]:.2f}]"
+                for c in d.channels
+            )
+            lines.append(f"also: {added['effect']} — held-out gain over {d.cause} alone {more}")
     for w in d.warnings:
         where = f"at its bound {w['bound']:.4g}" if w["bound"] is not None else "outside its plausible range"
         lines.append(f"warning: {w['parameter']} = {w['value']:.4g} {where} ({w['source']})")
@@ -134,6 +150,14 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
             axis.plot(pressure[rows], scale * d.baseline.heldout[channel][rows], ":", color=color, lw=1)
             if d.extended is not d.baseline:
                 axis.plot(pressure[rows], scale * d.extended.heldout[channel][rows], "-", color=color, lw=1.5)
+        if c.censored.any():
+            axis.plot(
+                pressure[c.censored],
+                scale * c.columns[channel][c.censored],
+                "x",
+                color="0.5",
+                label="censored: the transducer's range end",
+            )
         axis.set_xlabel("supplied pressure [kPa]")
         axis.set_ylabel(f"{channel.rsplit('_', 1)[0]} [{shown_unit}]")
         axis.grid(alpha=0.3)

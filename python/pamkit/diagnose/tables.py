@@ -34,7 +34,7 @@ from pamkit._core import (
 )
 from pamkit.diagnose.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE, findings
 from pamkit.diagnose.model import Coordinate, configure, effect_space
-from pamkit.diagnose.table_kinds import Campaign, campaign_of, noise_of
+from pamkit.diagnose.table_kinds import Campaign, campaign_of, noise_of, test_names
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, declared_value
 from pamkit.simulate import muscle_params, simulate_table
@@ -42,6 +42,8 @@ from pamkit.simulate import muscle_params, simulate_table
 # The channels each kind predicts, and how its rows are grouped for holding out.
 PREDICTED = {"isometric_map": ("force_N",), "free_inflation": ("length_m", "diameter_m"), "isotonic": ("length_m",)}
 CHANNEL_UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
+# [calibrate] names each test of a campaign has its own value of (the rest are shared).
+PER_TEST = ("load_N",)
 # Fewer held-out groups than this cannot say whether a model carries beyond its fitted rows.
 MIN_GROUPS = 3
 # Local least squares from the declared values, then from these points of each unknown's
@@ -64,6 +66,7 @@ class TableFit:
     predicted: dict[str, np.ndarray]
     heldout: dict[str, np.ndarray]
     intervals: dict[str, tuple[float, float]]  # jackknife 95 % over held-out groups
+    x: np.ndarray | None = None  # the fitted coordinates, to start a larger model from
     error: str | None = None
 
 
@@ -95,6 +98,7 @@ class TableDiagnosis:
     extended_candidate: TableCandidate | None
     warnings: list[dict]
     margins: dict[str, float]
+    added: list[dict]  # effects beside the cause, each with its held-out gain over the cause alone
 
     @property
     def groups(self) -> np.ndarray:
@@ -108,9 +112,13 @@ class TableModel:
         self.campaign = campaign
         self.kind = campaign.kind
         self.columns = campaign.columns
+        self.test_names = test_names(campaign.experiments)
         declared: dict[str, tuple[tuple[float, float], Experiment]] = {}
         for e in campaign.experiments:
             for name, bounds in e.calibrate.items():
+                if name in PER_TEST:
+                    declared[self.unknown_of(name, e)] = (bounds, e)
+                    continue
                 if name in declared and declared[name][0] != bounds:
                     raise ExperimentError(
                         f"{e.path}: [calibrate] {name} = {list(bounds)} differs from {list(declared[name][0])} in "
@@ -119,9 +127,17 @@ class TableModel:
                 declared.setdefault(name, (bounds, e))
         self.unknowns = [self._coordinate(name, bounds, e) for name, (bounds, e) in declared.items()]
 
+    def unknown_of(self, name: str, experiment: Experiment) -> str:
+        """The unknown's name: a test's own unknown (its load) carries the test's name in a campaign."""
+        if name not in PER_TEST or len(self.campaign.experiments) == 1:
+            return name
+        index = next(i for i, e in enumerate(self.campaign.experiments) if e is experiment)
+        return f"{name}[{self.test_names[index]}]"
+
     def _coordinate(self, name: str, bounds: tuple[float, float], experiment: Experiment) -> Coordinate:
         lower, upper = bounds
-        declared = declared_value(name, experiment.build, experiment.bladder, experiment.load_N)
+        field = name.split("[", 1)[0]
+        declared = declared_value(field, experiment.build, experiment.bladder, experiment.load_N)
         start = declared if lower < declared < upper else 0.5 * (lower + upper)
         source = "the [calibrate] bounds the experiment file declares"
         if lower > 0 and upper / lower > LOG_SPAN:
@@ -151,7 +167,7 @@ class TableModel:
             if len(mine) == 0:
                 continue
             local = rows[mine] - int(np.flatnonzero(self.campaign.test == i)[0])
-            load = values.get("load_N")
+            load = values.get(self.unknown_of("load_N", experiment))
             predicted = simulate_table(experiment, self.params(experiment, values), effects, local, load)
             for channel in out:
                 out[channel][mine] = predicted[channel]
@@ -159,23 +175,35 @@ class TableModel:
 
 
 class _Fitter:
-    """Least squares of one model (unknowns plus an effect's parameters) on chosen rows."""
+    """Least squares of one model (unknowns plus its effects' parameters) on chosen rows."""
 
-    def __init__(self, model: TableModel, channels, scales: dict[str, float], make_effect=None):
+    def __init__(self, model: TableModel, channels, scales: dict[str, float], make_effects=()):
         self.model = model
         self.channels = channels
         self.scales = scales
-        self.make_effect = make_effect  # a fresh effect per evaluation: folds run in threads
-        self.effect_space = effect_space(make_effect()) if make_effect is not None else []
+        self.make_effects = list(make_effects)  # fresh effects per evaluation: folds run in threads
+        self.effect_spaces = [effect_space(make()) for make in self.make_effects]
+        self.effect_space = [c for space in self.effect_spaces for c in space]
         self.space = model.unknowns + self.effect_space
 
     def values(self, x: np.ndarray) -> dict[str, float]:
         return {c.name: float(c.value(v)) for c, v in zip(self.model.unknowns, x)}
 
     def effects(self, x: np.ndarray) -> list[Effect]:
-        if self.make_effect is None:
-            return []
-        return [configure(self.make_effect(), self.effect_space, x[len(self.model.unknowns) :])]
+        out, start = [], len(self.model.unknowns)
+        for make, space in zip(self.make_effects, self.effect_spaces):
+            out.append(configure(make(), space, x[start : start + len(space)]))
+            start += len(space)
+        return out
+
+    def names(self) -> list[str]:
+        """Each coordinate's name in a report: an effect's own when it is alone, else prefixed."""
+        if len(self.make_effects) < 2:
+            return [c.name for c in self.space]
+        prefixed = [
+            f"{make().name()}.{c.name}" for make, space in zip(self.make_effects, self.effect_spaces) for c in space
+        ]
+        return [c.name for c in self.model.unknowns] + prefixed
 
     def predict(self, x: np.ndarray, rows: np.ndarray) -> dict[str, np.ndarray]:
         return self.model.predict(self.values(x), self.effects(x), rows)
@@ -216,40 +244,54 @@ class _Fitter:
         return out
 
 
-def _fit_table(name: str, model: TableModel, channels, scales, make_effect, groups: np.ndarray, pool) -> TableFit:
-    fitter = _Fitter(model, channels, scales, make_effect)
-    every = np.arange(len(groups))
-    x = fitter.fit(every, fitter.starts())
-    labels = np.unique(groups)
+def _fit_table(
+    name: str,
+    model: TableModel,
+    channels,
+    scales,
+    make_effects,
+    groups: np.ndarray,
+    used: np.ndarray,
+    pool,
+    starts=None,
+) -> TableFit:
+    """Fits on the `used` rows (not censored), from `starts` (by default the declared values and
+    STARTS), and again without each group; censored rows are predicted, and held out as NaN."""
+    fitter = _Fitter(model, channels, scales, make_effects)
+    x = fitter.fit(np.flatnonzero(used), starts if starts is not None else fitter.starts())
+    labels = np.unique(groups[used])
 
     def leave_out(label):
-        kept = np.flatnonzero(groups != label)
-        held = np.flatnonzero(groups == label)
+        kept = np.flatnonzero((groups != label) & used)
+        held = np.flatnonzero((groups == label) & used)
         x_fold = fitter.fit(kept, [x])
         return held, x_fold, fitter.predict(x_fold, held)
 
     folds = list(pool.map(leave_out, labels))
-    heldout = {c: np.empty(len(groups)) for c in channels}
+    heldout = {c: np.full(len(groups), np.nan) for c in channels}
     for held, _, predicted in folds:
         for c in channels:
             heldout[c][held] = predicted[c]
-    coordinates = {c.name: (c, float(v)) for c, v in zip(fitter.space, x)}
-    params = {c.name: float(c.value(v)) for c, v in zip(fitter.space, x)}
+    names = fitter.names()
+    coordinates = {key: (c, float(v)) for key, c, v in zip(names, fitter.space, x)}
+    params = {key: float(c.value(v)) for key, c, v in zip(names, fitter.space, x)}
     intervals = {}
     count = len(folds)
-    for index, c in enumerate(fitter.space):
+    for index, (key, c) in enumerate(zip(names, fitter.space)):
         values = np.array([float(c.value(x_fold[index])) for _, x_fold, _ in folds])
         spread = math.sqrt((count - 1) / count * float(np.sum((values - values.mean()) ** 2)))
-        intervals[c.name] = (params[c.name] - 1.96 * spread, params[c.name] + 1.96 * spread)
-    fit = TableFit(name, fitter.effects(x), params, coordinates, fitter.predict(x, every), heldout, intervals)
-    return fit
+        intervals[key] = (params[key] - 1.96 * spread, params[key] + 1.96 * spread)
+    every = np.arange(len(groups))
+    return TableFit(name, fitter.effects(x), params, coordinates, fitter.predict(x, every), heldout, intervals, x=x)
 
 
 def heldout_rmse(fit: TableFit, measured, channel: str, rows=None) -> float:
+    """Over the rows held out (`rows` of them, if given); censored rows have none."""
     residual = fit.heldout[channel] - measured[channel]
     if rows is not None:
         residual = residual[rows]
-    return float(np.sqrt(np.mean(residual**2)))
+    residual = residual[np.isfinite(residual)]
+    return float(np.sqrt(np.mean(residual**2))) if residual.size else math.nan
 
 
 def _findings(fit: TableFit) -> list[dict]:
@@ -265,9 +307,11 @@ def _seed(columns: dict[str, np.ndarray]) -> int:
     return int.from_bytes(digest.digest()[:8], "little")
 
 
-def _judge(fit: TableFit, baseline: TableFit, measured, channels, groups: np.ndarray, seed: int) -> TableCandidate:
-    labels = np.unique(groups)
-    index = [np.flatnonzero(groups == label) for label in labels]
+def _judge(
+    fit: TableFit, baseline: TableFit, measured, channels, groups: np.ndarray, used: np.ndarray, seed: int
+) -> TableCandidate:
+    labels = np.unique(groups[used])
+    index = [np.flatnonzero((groups == label) & used) for label in labels]
     rng = np.random.default_rng(seed)
     draws = rng.integers(0, len(labels), size=(BOOTSTRAP_SAMPLES, len(labels)))
     gain, ci = {}, {}
@@ -314,7 +358,8 @@ def diagnose_table(
     campaign = campaign_of(experiments if isinstance(experiments, list) else [experiments])
     channels = PREDICTED[campaign.kind]
     groups, group_name = campaign.groups, campaign.group_name
-    labels = np.unique(groups)
+    used = ~campaign.censored
+    labels = np.unique(groups[used])
     if len(labels) < MIN_GROUPS:
         what = "measure the map at more held lengths" if campaign.kind == "isometric_map" else "add rows"
         raise ExperimentError(
@@ -324,25 +369,31 @@ def diagnose_table(
     measured = {c: campaign.columns[c] for c in channels}
     noise = noise_of(campaign, channels)
     # Residuals of channels with different units are compared in units of their spread.
-    scales = {c: float(np.std(measured[c])) or 1.0 for c in channels}
+    scales = {c: float(np.std(measured[c][used])) or 1.0 for c in channels}
     seed = _seed(campaign.columns)
     catalog = catalog or builtin_catalog()
     names, skipped = static_candidates(catalog)
     unknowns = ", ".join(c.name for c in model.unknowns) or "nothing"
     with ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1) as pool:
         progress(f"calibrating {unknowns} on {len(groups)} rows, holding out each of {len(labels)} {group_name}s")
-        baseline = _fit_table("baseline", model, channels, scales, None, groups, pool)
+        if not used.all():
+            progress(f"{int((~used).sum())} row(s) read the pressure transducer's range end: predicted, not scored")
+        baseline = _fit_table("baseline", model, channels, scales, (), groups, used, pool)
         candidates = []
         for name in names:
 
             def make_effect(name=name):
                 return catalog.make(name)
 
-            start = _Fitter(model, channels, scales, make_effect)
+            start = _Fitter(model, channels, scales, [make_effect])
             x0 = start.starts()[0]
+            # Probed away from its start, which may be the effect's neutral value (no offset).
+            probe = x0.copy()
+            for index, c in enumerate(start.effect_space, start=len(model.unknowns)):
+                probe[index] = c.lower + 0.75 * (c.upper - c.lower)
             rows = np.arange(len(groups))
             try:
-                with_effect = start.predict(x0, rows)
+                with_effect = start.predict(probe, rows)
                 without = _Fitter(model, channels, scales).predict(x0[: len(model.unknowns)], rows)
             except ValueError as error:
                 skipped[name] = f"cannot be evaluated on this table: {error}"
@@ -351,10 +402,21 @@ def diagnose_table(
                 skipped[name] = "does not change a static table's prediction"
                 continue
             progress(f"fitting {name}")
-            fit = _fit_table(name, model, channels, scales, make_effect, groups, pool)
-            candidates.append(_judge(fit, baseline, measured, channels, groups, seed))
-    candidates.sort(key=lambda j: -j.score)
-    cause, reason, chosen, margins = _decide(candidates, baseline, measured, channels, noise)
+            fit = _fit_table(name, model, channels, scales, [make_effect], groups, used, pool)
+            candidates.append(_judge(fit, baseline, measured, channels, groups, used, seed))
+        candidates.sort(key=lambda j: -j.score)
+        cause, reason, chosen, margins = _decide(candidates, baseline, measured, channels, noise)
+        added = []
+        significant = [j for j in candidates if j.significant]
+        if significant:  # named, or not credible alone: a second effect may be what it lacks
+            pair, added = _second_effect(significant[0], candidates, baseline, model, catalog, progress, pool, seed)
+            if added:
+                chosen, cause = pair, significant[0].fit.name
+                margins["over_none"] = float(min(pair.gain_ci95[c][0] for c in channels))
+                margins["added_over_cause"] = float(min(added[0]["gain_ci95"][c][0] for c in channels))
+                reason = (
+                    f"its held-out gain with {added[0]['effect']} beside it is significant, every parameter plausible"
+                )
     extended = chosen.fit if chosen else baseline
     warnings = _findings(baseline) + (chosen.findings if chosen else [])
     return TableDiagnosis(
@@ -370,7 +432,42 @@ def diagnose_table(
         chosen,
         warnings,
         margins,
+        added,
     )
+
+
+def _second_effect(first, candidates, baseline, model, catalog, progress, pool, seed):
+    """A second effect beside the best significant candidate `first`: each other candidate is
+    fitted jointly with it (from its fit), and the best pair is kept when it gains significantly
+    on held-out groups over `first` alone and over the baseline, with every parameter credible.
+    A real rig has more than one thing wrong (a hysteresis and a transducer's offset): one name
+    cannot hold both, and `first` alone may fit only with a parameter at a bound. Returns the
+    pair judged against the baseline and what was added, with its gain over `first` alone; or
+    `first` and nothing."""
+    campaign, channels = model.campaign, PREDICTED[model.kind]
+    measured = {c: campaign.columns[c] for c in channels}
+    used = ~campaign.censored
+    scales = {c: float(np.std(measured[c][used])) or 1.0 for c in channels}
+    best = None
+    for other in candidates:
+        if other is first:
+            continue
+        names = [first.fit.name, other.fit.name]
+        makes = [lambda n=n: catalog.make(n) for n in names]
+        fitter = _Fitter(model, channels, scales, makes)
+        start = np.concatenate([first.fit.x, [c.start for c in fitter.effect_spaces[1]]])
+        progress(f"fitting {names[1]} beside {names[0]}")
+        pair = _fit_table(" + ".join(names), model, channels, scales, makes, campaign.groups, used, pool, [start])
+        over_cause = _judge(pair, first.fit, measured, channels, campaign.groups, used, seed)
+        if over_cause.significant and over_cause.credible and (best is None or over_cause.score > best.score):
+            best = over_cause
+    if best is None:
+        return first, []
+    pair = _judge(best.fit, baseline, measured, channels, campaign.groups, used, seed)
+    if not (pair.significant and pair.credible):
+        return first, []
+    effect = best.fit.effects[1].name()
+    return pair, [{"effect": effect, "gain": best.gain, "gain_ci95": {c: list(v) for c, v in best.gain_ci95.items()}}]
 
 
 def _decide(candidates, baseline, measured, channels, noise):
