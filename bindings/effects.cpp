@@ -188,6 +188,8 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
             return py::make_tuple(ok, ok ? py::none() : py::cast(why));
           },
           py::arg("mode"), "(True, None) or (False, reason)")
+      .def("shows_between_branches", &Effect::shows_between_branches,
+           "whether it shows only between the pressurising and venting branches of a supplied pressure")
       .def("reads_supplied_pressure", &Effect::reads_supplied_pressure,
            "whether it is an error of the transducer whose reading drives a supplied test")
       .def(

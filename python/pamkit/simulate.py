@@ -133,12 +133,14 @@ def simulate_table(
     pressure = experiment.columns["pressure_kPa"][rows]
     try:
         if experiment.kind == "isometric_map":
+            # Each held length is its own record: its rows, in the order measured, give the
+            # pressurise/vent branch (a map laid out length by length starts each one low).
             length = experiment.columns["length_m"][rows]
-            return {
-                "length_m": length,
-                "pressure_kPa": pressure,
-                "force_N": experiment.read("force_N", static_forces(params, length, pressure, list(effects))),
-            }
+            force = np.empty(len(rows))
+            for held in np.unique(np.round(length, 9)):
+                at = np.flatnonzero(np.round(length, 9) == held)
+                force[at] = static_forces(params, length[at], pressure[at], list(effects))
+            return {"length_m": length, "pressure_kPa": pressure, "force_N": experiment.read("force_N", force)}
         if experiment.kind == "isotonic":
             load = experiment.load_N if load_N is None else load_N
             if load is None:

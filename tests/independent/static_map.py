@@ -52,17 +52,20 @@ def write_map(
     noise_N: float = 1.0,
     step_N: float = 0.1,
     calibrate: bool = True,
+    cell_quadratic_per_N: float = 0.0,
     **truth,
 ) -> Path:
     """Writes an isometric map (TOML + CSV) of a muscle with `truth` (gaylord_membrane_force's
     keywords) and returns the TOML's path. The TOML declares the build as a datasheet would and,
-    with `calibrate`, the braid angle, modulus and membrane diameter unknown."""
+    with `calibrate`, the braid angle, modulus and membrane diameter unknown. A nonlinear load
+    cell reads F + `cell_quadratic_per_N` F^2 (a cause no catalog effect has)."""
     rng = np.random.default_rng(seed)
     folder.mkdir(parents=True, exist_ok=True)
     rows = []
     for length in lengths_m:
         for pressure in pressures_kPa:
             force = float(gaylord_membrane_force(length, pressure * 1e3, **truth))
+            force += cell_quadratic_per_N * force**2
             if force > 0:
                 force += rng.normal(0, noise_N)
             rows.append((length, pressure, max(round(force / step_N) * step_N, 0.0)))

@@ -381,6 +381,7 @@ struct PressureHysteresisParams {
 };
 class PressureHysteresisEffect : public detail::ParametricEffect<PressureHysteresisParams> {
  public:
+  bool shows_between_branches() const override { return true; }
   /// In a sealed test the pressure follows the stretch, and the thesis's friction (eqs.
   /// 3.1.19-3.1.24) already acts on the braid's velocity.
   bool acts_in(GasMode mode, std::string* why_not) const override {

@@ -157,6 +157,10 @@ class Effect {
   /// Whether the effect can act in a test of this kind; `why_not` says why when it cannot.
   virtual bool acts_in(GasMode mode, std::string* why_not) const;
 
+  /// Whether the effect shows only as a difference between the pressurising and the venting
+  /// branch of a supplied pressure: on one branch alone it cannot be told from the muscle's
+  /// force scale, so a record with no venting rows cannot name it.
+  virtual bool shows_between_branches() const { return false; }
   /// Whether the effect is an error of the instrument that reads a supplied pressure, so that
   /// in a supplied test (and a static table) it acts on the pressure that drives the model.
   virtual bool reads_supplied_pressure() const { return false; }

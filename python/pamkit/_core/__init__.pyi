@@ -1380,6 +1380,10 @@ class Effect:
         """
         sets a parameter or option from text
         """
+    def shows_between_branches(self) -> bool:
+        """
+        whether it shows only between the pressurising and venting branches of a supplied pressure
+        """
     def signature(self) -> str:
         """
         a short phrase for a verdict (may name {channel})

@@ -28,6 +28,7 @@ class Campaign:
     group_labels: list[str]
     group_name: str
     censored: np.ndarray  # rows whose supplied pressure reads at the transducer's range: never scored
+    branch: np.ndarray  # +1 pressurising, -1 venting: per held length of a map, per test otherwise
 
     @property
     def name(self) -> str:
@@ -74,7 +75,12 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
                 labels.append(f"{prefix(i)}p={pressure:g}")
     name = {"isometric_map": "held length", "isotonic": "sweep"}.get(kind, "row")
     censored = np.concatenate([e.censored for e in experiments])
-    return Campaign(experiments, kind, columns, test, groups, labels, name, censored)
+    records = groups if kind == "isometric_map" else test
+    branch = np.empty(len(test))
+    for record in np.unique(records):
+        rows = np.flatnonzero(records == record)
+        branch[rows] = pressure_branches(columns["pressure_kPa"][rows])
+    return Campaign(experiments, kind, columns, test, groups, labels, name, censored, branch)
 
 
 def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
@@ -84,7 +90,7 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
     length's loaded rows (force > 0) of a map or to each free-inflation table. Either leaves
     what the instruments add, not what the model misses."""
     pressure = campaign.columns["pressure_kPa"]
-    branch = pressure_branches(pressure) if campaign.kind == "isotonic" else np.ones(len(pressure))
+    branch = campaign.branch if campaign.kind == "isotonic" else np.ones(len(pressure))
     used = ~campaign.censored
     key = np.column_stack([campaign.test, branch, np.round(pressure, 6)])
     if campaign.kind == "isometric_map":

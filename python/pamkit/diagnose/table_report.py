@@ -69,6 +69,8 @@ def to_json(d: TableDiagnosis) -> dict:
         "gain": d.extended_candidate.gain if d.extended_candidate else {c: 0.0 for c in d.channels},
         "gain_ci95": ({c: list(v) for c, v in d.extended_candidate.gain_ci95.items()} if d.extended_candidate else {}),
         "added": d.added,
+        "discovered": d.discovered,
+        "discovered_by_channel": d.discovered_by_channel,
         "decision": {"cause": d.cause, "reason": d.reason, "margins": d.margins},
         "warnings": d.warnings,
     }
@@ -103,6 +105,15 @@ def verdict(d: TableDiagnosis) -> str:
             lines.append(f"  calibrated (jackknife 95 %): {_calibrated(fit)}")
     if d.extended_candidate is None:
         lines.append(f"cause: {d.cause} — {d.reason}")
+        for channel, found in d.discovered_by_channel.items():
+            if found.get("terms"):
+                low, high = found["gain_ci95"][channel]
+                lines.append(
+                    f"discovered: {found['equation']} (held-out gain {found['gain'][channel]:.2f} "
+                    f"[{low:.2f}, {high:.2f}]); its largest term resembles {found['terms'][0]['resembles']}"
+                )
+            else:
+                lines.append(f"discovered in {channel}: no term beats zero on held-out groups {found.get('error', '')}")
     else:
         gain = ", ".join(
             f"{c} {d.extended_candidate.gain[c]:.2f} [{d.extended_candidate.gain_ci95[c][0]:.2f}, "

@@ -69,6 +69,29 @@ def test_a_map_of_taut_rows_only_is_explained_within_its_noise(tmp_path):
     assert d.cause == "none", verdict(d)
 
 
+def test_a_nonlinear_load_cell_is_no_catalog_effect_and_is_discovered(tmp_path):
+    # Issue "Diagnosis that holds outside its own world": a cause the catalog lacks (a load cell
+    # reading F + 2e-4 F^2, +12 % at 600 N) must come back unexplained, with a discovered term
+    # that gains on held-out lengths, never a wrong name. The map is laid out length by length,
+    # pressurising only: pressure_hysteresis, which shows only between branches, cannot act.
+    toml = write_map(
+        tmp_path,
+        lengths_m=[0.25, 0.245, 0.24, 0.235, 0.23],
+        pressures_kPa=np.arange(200, 651, 25),
+        seed=7,
+        cell_quadratic_per_N=2e-4,
+        **TRUTH,
+    )
+    d = diagnose(toml, threads=2)
+    report = to_json(d)
+    assert d.cause == "unexplained", verdict(d)
+    assert "pressure_hysteresis" in report["skipped"]
+    found = report["discovered"]
+    assert found["channel"] == "force_N" and found["terms"], verdict(d)
+    assert found["gain_ci95"]["force_N"][0] > 0.0
+    assert found["terms"][0]["name"] == "y"  # the largest term: the channel's own scale
+
+
 def test_a_map_at_two_lengths_cannot_hold_one_out(tmp_path):
     toml = write_map(tmp_path, lengths_m=[0.25, 0.24], pressures_kPa=np.arange(100, 651, 50), seed=3, **TRUTH)
     with pytest.raises(ExperimentError, match="2 held length.*at least 3"):
