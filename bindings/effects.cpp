@@ -8,7 +8,9 @@
 
 #include <optional>
 
+#include "bind_fields.hpp"
 #include "pamkit/effects/catalog.hpp"
+#include "pamkit/effects/isotonic_motion.hpp"
 #include "pamkit/effects/pipeline.hpp"
 
 namespace py = pybind11;
@@ -314,6 +316,42 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
       py::arg("effects") = std::vector<EffectPtr>{},
       "The length [m] at which the muscle carries load_N at each supplied gauge pressure [kPa], rows in the order "
       "measured, following the quasi-static path from start_length_m. Releases the GIL.");
+  py::class_<IsotonicMotionConfig> motion_config(m, "IsotonicMotionConfig", "CVODES settings of isotonic_motion.");
+  bind_fields(motion_config);
+  py::class_<IsotonicMotion> motion(m, "IsotonicMotion",
+                                    "A mass on the muscle over time, one entry per pressure sample.");
+#define PAMKIT_MOTION_COLUMN(name, doc)                                                     \
+  motion.def_property_readonly(                                                             \
+      #name,                                                                                \
+      [](const IsotonicMotion& r) {                                                         \
+        return py::array_t<double>(static_cast<py::ssize_t>(r.name.size()), r.name.data()); \
+      },                                                                                    \
+      doc)
+  PAMKIT_MOTION_COLUMN(time_s, "sample times [s]");
+  PAMKIT_MOTION_COLUMN(length_m, "muscle length [m]");
+  PAMKIT_MOTION_COLUMN(velocity_m_per_s, "lengthening rate [m/s], > 0 while the load wins");
+  PAMKIT_MOTION_COLUMN(force_N, "the muscle's tension, friction included [N]");
+  PAMKIT_MOTION_COLUMN(gauge_pressure_kPa, "gauge pressure that drove the model, effects applied [kPa]");
+#undef PAMKIT_MOTION_COLUMN
+  motion.def_readonly("statistics", &IsotonicMotion::statistics);
+  m.def(
+      "isotonic_motion",
+      [](const MuscleParams& params, const py::array_t<double, py::array::c_style | py::array::forcecast>& time_s,
+         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_kPa, double load_N,
+         double mass_kg, std::optional<double> start_length_m, const std::vector<EffectPtr>& effects,
+         const IsotonicMotionConfig& config) {
+        const std::vector<double> time = vector(time_s);
+        const std::vector<double> pressures = vector(gauge_pressures_kPa);
+        py::gil_scoped_release release;
+        return isotonic_motion(params, time, pressures, load_N, mass_kg, start_length_m, effects, config);
+      },
+      py::arg("params"), py::arg("time_s"), py::arg("gauge_pressures_kPa"), py::arg("load_N"), py::arg("mass_kg"),
+      py::arg("start_length_m") = py::none(), py::arg("effects") = std::vector<EffectPtr>{},
+      py::arg("config") = IsotonicMotionConfig{},
+      "Integrates a mass mass_kg [kg] under a constant load load_N [N] hanging on the muscle while the supplied "
+      "gauge pressure [kPa] moves through its samples at time_s [s] (linear between them): m dv/dt = load - "
+      "F(L, p, v), friction and effects included, starting at rest at start_length_m [m] (None: the quasi-static "
+      "equilibrium of the first sample). Length and velocity at each sample. Releases the GIL.");
   m.def(
       "pressure_branches",
       [](const py::array_t<double, py::array::c_style | py::array::forcecast>& pressure_kPa, double play_kPa) {

@@ -1,12 +1,9 @@
-// CVODES glue for pamkit::Simulator: RAII handles for the SUNDIALS objects, every return flag
-// checked by name, the trajectory integrated piece by piece between its corners.
+// CVODES glue for pamkit::Simulator: the trajectory integrated piece by piece between its
+// corners, with the handles and flag checks of cvodes_support.hpp.
 
 #include "pamkit/sim/simulator.hpp"
 
-#include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
-#include <sundials/sundials_config.h>
-#include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
@@ -15,57 +12,13 @@
 #include <exception>
 #include <memory>
 
+#include "cvodes_support.hpp"
+
 namespace pamkit {
 namespace {
 
-void check_flag(int flag, const char* call, double time) {
-  if (flag < 0) {
-    throw SolverError(detail::message(call, " failed with ", CVodeGetReturnFlagName(flag), " at t = ", time, " s"));
-  }
-}
-
-struct ContextDeleter {
-  void operator()(SUNContext* c) const {
-    SUNContext_Free(c);
-    delete c;
-  }
-};
-struct VectorDeleter {
-  void operator()(_generic_N_Vector* v) const { N_VDestroy(v); }
-};
-struct MatrixDeleter {
-  void operator()(_generic_SUNMatrix* m) const { SUNMatDestroy(m); }
-};
-struct LinearSolverDeleter {
-  void operator()(_generic_SUNLinearSolver* s) const { SUNLinSolFree(s); }
-};
-struct CvodeDeleter {
-  void operator()(void* mem) const { CVodeFree(&mem); }
-};
-using Vector = std::unique_ptr<_generic_N_Vector, VectorDeleter>;
-
-// pamkit reports every failed flag itself, as an exception with the flag's name; CVODES's own
-// printing to stderr would only repeat it (and cannot be caught). SUNDIALS 6 silences it per
-// solver (CVodeSetErrHandlerFn); SUNDIALS 7 removed that function and prints through handlers
-// held by the context, which make_context() clears.
-#if SUNDIALS_VERSION_MAJOR < 7
-void silent_error_handler(int, const char*, const char*, char*, void*) {}
-#endif
-
-std::unique_ptr<SUNContext, ContextDeleter> make_context() {
-  auto context = std::make_unique<SUNContext>();
-#if SUNDIALS_VERSION_MAJOR >= 7
-  // SUNDIALS 7 takes the MPI communicator as a SUNComm: SUN_COMM_NULL without MPI.
-  if (SUNContext_Create(SUN_COMM_NULL, context.get()) != 0) throw SolverError("SUNContext_Create failed");
-  std::unique_ptr<SUNContext, ContextDeleter> owned(context.release());
-  if (SUNContext_ClearErrHandlers(*owned) != 0) throw SolverError("SUNContext_ClearErrHandlers failed");
-  return owned;
-#else
-  // SUNDIALS 6 takes a pointer to the MPI communicator: null without MPI.
-  if (SUNContext_Create(nullptr, context.get()) != 0) throw SolverError("SUNContext_Create failed");
-  return std::unique_ptr<SUNContext, ContextDeleter>(context.release());
-#endif
-}
+using cvodes::add_statistics;
+using cvodes::check_flag;
 
 State to_state(N_Vector v) {
   State s;
@@ -138,27 +91,6 @@ void record(SimulationResult& r, const MuscleModel& model, double t, double elon
   r.friction_dissipated_J.push_back(y[State::friction_dissipated_J]);
 }
 
-void add_statistics(void* mem, SolverStatistics& s) {
-  long value = 0;
-  check_flag(CVodeGetNumSteps(mem, &value), "CVodeGetNumSteps", 0.0);
-  s.steps += value;
-  long rhs = 0;
-  check_flag(CVodeGetNumRhsEvals(mem, &rhs), "CVodeGetNumRhsEvals", 0.0);
-  long jacobian_rhs = 0;
-  check_flag(CVodeGetNumLinRhsEvals(mem, &jacobian_rhs), "CVodeGetNumLinRhsEvals", 0.0);
-  s.rhs_evaluations += rhs + jacobian_rhs;
-  check_flag(CVodeGetNumJacEvals(mem, &value), "CVodeGetNumJacEvals", 0.0);
-  s.jacobian_evaluations += value;
-  check_flag(CVodeGetNumLinSolvSetups(mem, &value), "CVodeGetNumLinSolvSetups", 0.0);
-  s.linear_solver_setups += value;
-  check_flag(CVodeGetNumErrTestFails(mem, &value), "CVodeGetNumErrTestFails", 0.0);
-  s.error_test_failures += value;
-  check_flag(CVodeGetNumNonlinSolvIters(mem, &value), "CVodeGetNumNonlinSolvIters", 0.0);
-  s.nonlinear_iterations += value;
-  check_flag(CVodeGetNumNonlinSolvConvFails(mem, &value), "CVodeGetNumNonlinSolvConvFails", 0.0);
-  s.nonlinear_convergence_failures += value;
-}
-
 }  // namespace
 
 Simulator::Simulator(SimulatorConfig config) : config_(config) { config_.validate(); }
@@ -178,10 +110,10 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
     }
   }
 
-  auto context = make_context();
+  auto context = cvodes::make_context();
   SUNContext ctx = *context;
-  Vector y(N_VNew_Serial(State::size, ctx));
-  Vector tolerances(N_VNew_Serial(State::size, ctx));
+  cvodes::Vector y(N_VNew_Serial(State::size, ctx));
+  cvodes::Vector tolerances(N_VNew_Serial(State::size, ctx));
   if (!y || !tolerances) throw SolverError("N_VNew_Serial failed");
   const State initial = model.initial();
   std::copy(initial.values.begin(), initial.values.end(), NV_DATA_S(y.get()));
@@ -196,21 +128,19 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
     NV_Ith_S(tolerances.get(), i) = config_.absolute_tolerance_J;
   }
 
-  std::unique_ptr<void, CvodeDeleter> mem(CVodeCreate(CV_BDF, ctx));
+  cvodes::Memory mem(CVodeCreate(CV_BDF, ctx));
   if (!mem) throw SolverError("CVodeCreate failed");
   void* cv = mem.get();
   RunWorkspace workspace{model, trajectory, 0, 1, nullptr};
   const double t0 = time.front();
   check_flag(CVodeInit(cv, muscle_rhs, t0, y.get()), "CVodeInit", t0);
   check_flag(CVodeSetUserData(cv, &workspace), "CVodeSetUserData", t0);
-#if SUNDIALS_VERSION_MAJOR < 7
-  check_flag(CVodeSetErrHandlerFn(cv, silent_error_handler, nullptr), "CVodeSetErrHandlerFn", t0);
-#endif
+  cvodes::silence_errors(cv, t0);
   check_flag(CVodeSVtolerances(cv, config_.relative_tolerance, tolerances.get()), "CVodeSVtolerances", t0);
   check_flag(CVodeSetMaxNumSteps(cv, static_cast<long>(config_.max_steps)), "CVodeSetMaxNumSteps", t0);
   if (config_.max_step_s > 0.0) check_flag(CVodeSetMaxStep(cv, config_.max_step_s), "CVodeSetMaxStep", t0);
-  std::unique_ptr<_generic_SUNMatrix, MatrixDeleter> jacobian(SUNDenseMatrix(State::size, State::size, ctx));
-  std::unique_ptr<_generic_SUNLinearSolver, LinearSolverDeleter> solver(SUNLinSol_Dense(y.get(), jacobian.get(), ctx));
+  cvodes::Matrix jacobian(SUNDenseMatrix(State::size, State::size, ctx));
+  cvodes::LinearSolver solver(SUNLinSol_Dense(y.get(), jacobian.get(), ctx));
   if (!jacobian || !solver) throw SolverError("SUNDenseMatrix or SUNLinSol_Dense failed");
   check_flag(CVodeSetLinearSolver(cv, solver.get(), jacobian.get()), "CVodeSetLinearSolver", t0);
 

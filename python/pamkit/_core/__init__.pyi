@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import logger
 from . import units
-__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range']
+__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range']
 class Error(RuntimeError):
     pass
 class SolverError(RuntimeError):
@@ -1429,6 +1429,99 @@ class IsotonicLengths:
         """
         length at each row [m]
         """
+class IsotonicMotionConfig:
+    """
+    CVODES settings of isotonic_motion.
+    """
+    @staticmethod
+    def fields() -> dict:
+        """
+        Field names mapped to their unit, allowed range and meaning.
+        """
+    def __init__(self, **kwargs) -> None:
+        """
+        Keyword construction; fields not given keep their documented defaults.
+        """
+    def __repr__(self) -> str:
+        ...
+    def to_dict(self) -> dict:
+        ...
+    def validate(self) -> None:
+        """
+        Raises ValueError naming the first field out of range.
+        """
+    @property
+    def absolute_tolerance_m(self) -> float:
+        """
+        absolute tolerance on the length [m], allowed [0.000000, 0.010000]
+        """
+    @absolute_tolerance_m.setter
+    def absolute_tolerance_m(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def absolute_tolerance_m_per_s(self) -> float:
+        """
+        absolute tolerance on the velocity [m/s], allowed [0.000000, 1.000000]
+        """
+    @absolute_tolerance_m_per_s.setter
+    def absolute_tolerance_m_per_s(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_step_s(self) -> float:
+        """
+        largest step (0: no limit) [s], allowed [0.000000, 1000000000.000000]
+        """
+    @max_step_s.setter
+    def max_step_s(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_steps(self) -> float:
+        """
+        most steps between samples [1], allowed [10.000000, 1000000000.000000]
+        """
+    @max_steps.setter
+    def max_steps(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def relative_tolerance(self) -> float:
+        """
+        relative tolerance [1], allowed [0.000000, 0.010000]
+        """
+    @relative_tolerance.setter
+    def relative_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class IsotonicMotion:
+    """
+    A mass on the muscle over time, one entry per pressure sample.
+    """
+    @property
+    def force_N(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        the muscle's tension, friction included [N]
+        """
+    @property
+    def gauge_pressure_kPa(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        gauge pressure that drove the model, effects applied [kPa]
+        """
+    @property
+    def length_m(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        muscle length [m]
+        """
+    @property
+    def statistics(self) -> SolverStatistics:
+        ...
+    @property
+    def time_s(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        sample times [s]
+        """
+    @property
+    def velocity_m_per_s(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        lengthening rate [m/s], > 0 while the load wins
+        """
 class GaitData:
     """
     Winter's gait data as printed in appendix G.3: one row per frame.
@@ -2110,6 +2203,10 @@ def inflated_and_sealed(params: MuscleParams, gauge_pressure_Pa: typing.Supports
 def isotonic_lengths(params: MuscleParams, gauge_pressures_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], load_N: typing.SupportsFloat | typing.SupportsIndex, start_length_m: typing.SupportsFloat | typing.SupportsIndex, effects: collections.abc.Sequence[Effect] = []) -> IsotonicLengths:
     """
     The length [m] at which the muscle carries load_N at each supplied gauge pressure [kPa], rows in the order measured, following the quasi-static path from start_length_m. Releases the GIL.
+    """
+def isotonic_motion(params: MuscleParams, time_s: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], gauge_pressures_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], load_N: typing.SupportsFloat | typing.SupportsIndex, mass_kg: typing.SupportsFloat | typing.SupportsIndex, start_length_m: typing.SupportsFloat | typing.SupportsIndex | None = None, effects: collections.abc.Sequence[Effect] = [], config: IsotonicMotionConfig = ...) -> IsotonicMotion:
+    """
+    Integrates a mass mass_kg [kg] under a constant load load_N [N] hanging on the muscle while the supplied gauge pressure [kPa] moves through its samples at time_s [s] (linear between them): m dv/dt = load - F(L, p, v), friction and effects included, starting at rest at start_length_m [m] (None: the quasi-static equilibrium of the first sample). Length and velocity at each sample. Releases the GIL.
     """
 def measured_channels() -> list[str]:
     """

@@ -1,0 +1,229 @@
+// CVODES glue for pamkit::isotonic_motion: a mass on the muscle, integrated sample by sample and
+// restarted where the pressurise/vent branch flips, with the handles and flag checks of
+// cvodes_support.hpp.
+
+#include "pamkit/effects/isotonic_motion.hpp"
+
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+
+#include "../sim/cvodes_support.hpp"
+
+namespace pamkit {
+namespace {
+
+using cvodes::check_flag;
+
+enum MotionState { length_index = 0, velocity_index = 1, motion_state_size = 2 };
+
+/// Per-run mutable workspace handed to CVODES as user data.
+struct MotionWorkspace {
+  const BraidGeometry& geometry;
+  const MuscleParams& extended;
+  const std::vector<double>& time;
+  const std::vector<double>& driving_kPa;
+  double load_N;
+  double mass_kg;
+  double branch;            // pressurise (+1) or vent (-1) along the piece being integrated
+  std::size_t piece_start;  // first sample of that piece
+  std::size_t piece_end;    // its last sample
+  double shortest;          // the range the motion may reach before it stops [m]
+  double longest;
+  std::exception_ptr error;  // an exception thrown inside a callback, rethrown after CVode returns
+
+  /// The segment [t_k, t_k+1] of the piece that holds time t (CVODES may step past samples).
+  std::size_t segment(double t) const {
+    const auto first = time.begin() + static_cast<std::ptrdiff_t>(piece_start);
+    const auto last = time.begin() + static_cast<std::ptrdiff_t>(piece_end);
+    const std::size_t k = static_cast<std::size_t>(std::upper_bound(first, last, t) - time.begin());
+    return std::clamp(k == 0 ? 0 : k - 1, piece_start, piece_end - 1);
+  }
+  /// The supplied gauge pressure at time t, linear between samples [Pa].
+  double gauge_Pa(double t) const {
+    const std::size_t k = segment(t);
+    const double share = (t - time[k]) / (time[k + 1] - time[k]);
+    return units::pascal_from_kilopascal(driving_kPa[k] + share * (driving_kPa[k + 1] - driving_kPa[k]));
+  }
+};
+
+int motion_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
+  auto& w = *static_cast<MotionWorkspace*>(user_data);
+  const double length = NV_Ith_S(y, length_index);
+  const double velocity = NV_Ith_S(y, velocity_index);
+  // A trial step beyond the braid's geometry: recoverable, CVODES retries a shorter step. The
+  // solution itself stops at the roots of motion_limits, inside that range.
+  if (!(length > w.geometry.min_length() && length < w.geometry.max_length())) return 1;
+  try {
+    const double tension =
+        detail::supplied_force(w.geometry, w.extended, w.geometry.shape(length), w.gauge_Pa(t), velocity, w.branch);
+    NV_Ith_S(ydot, length_index) = velocity;
+    NV_Ith_S(ydot, velocity_index) = (w.load_N - tension) / w.mass_kg;
+    return 0;
+  } catch (...) {
+    w.error = std::current_exception();
+    return -1;  // unrecoverable: CVode returns CV_RHSFUNC_FAIL and isotonic_motion rethrows
+  }
+}
+
+/// Zero where the length reaches the shortest or the longest length the motion may take.
+int motion_limits(sunrealtype, N_Vector y, sunrealtype* g, void* user_data) {
+  const auto& w = *static_cast<const MotionWorkspace*>(user_data);
+  g[0] = NV_Ith_S(y, length_index) - w.shortest;
+  g[1] = w.longest - NV_Ith_S(y, length_index);
+  return 0;
+}
+
+void check_inputs(const std::vector<double>& time_s, const std::vector<double>& gauge_pressures_kPa, double load_N,
+                  double mass_kg) {
+  if (!(mass_kg > 0.0 && std::isfinite(mass_kg))) {
+    throw InvalidParameter(detail::message("isotonic_motion: mass_kg = ", mass_kg,
+                                           " kg must be finite and > 0 (a massless load follows isotonic_lengths)"));
+  }
+  if (!std::isfinite(load_N)) throw InvalidInput(detail::message("isotonic_motion: load_N = ", load_N, " N"));
+  if (gauge_pressures_kPa.size() != time_s.size()) {
+    throw InvalidInput(
+        detail::message("isotonic_motion: ", gauge_pressures_kPa.size(), " pressures for ", time_s.size(), " times"));
+  }
+  if (time_s.size() < 2) {
+    throw InvalidInput(detail::message("isotonic_motion: ", time_s.size(), " samples; a motion needs two or more"));
+  }
+  for (std::size_t k = 0; k < time_s.size(); ++k) {
+    if (!std::isfinite(time_s[k]) || (k > 0 && !(time_s[k] > time_s[k - 1]))) {
+      throw InvalidInput(detail::message("isotonic_motion: sample ", k + 1, " has time ", time_s[k],
+                                         " s; times must be finite and strictly increasing"));
+    }
+    if (!std::isfinite(gauge_pressures_kPa[k])) {
+      throw InvalidInput(
+          detail::message("isotonic_motion: sample ", k + 1, " has pressure ", gauge_pressures_kPa[k], " kPa"));
+    }
+  }
+}
+
+void record(IsotonicMotion& r, const MotionWorkspace& w, std::size_t sample, double length, double velocity,
+            double branch) {
+  const double gauge = units::pascal_from_kilopascal(w.driving_kPa[sample]);
+  r.time_s.push_back(w.time[sample]);
+  r.length_m.push_back(length);
+  r.velocity_m_per_s.push_back(velocity);
+  r.force_N.push_back(
+      detail::supplied_force(w.geometry, w.extended, w.geometry.shape(length), gauge, velocity, branch));
+  r.gauge_pressure_kPa.push_back(w.driving_kPa[sample]);
+  ++r.statistics.output_evaluations;
+}
+
+}  // namespace
+
+IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<double>& time_s,
+                               const std::vector<double>& gauge_pressures_kPa, double load_N, double mass_kg,
+                               std::optional<double> start_length_m, const std::vector<EffectPtr>& effects,
+                               const IsotonicMotionConfig& config) {
+  config.validate();
+  check_inputs(time_s, gauge_pressures_kPa, load_N, mass_kg);
+  MuscleParams extended = params;
+  std::vector<double> driving = gauge_pressures_kPa;
+  detail::apply_static_effects(effects, extended, driving);
+  const BraidGeometry geometry(extended.build);
+  const std::vector<double> branch = pressure_branches(driving);
+  // The motion stops a millionth of the braid's range inside it, where the geometry still holds.
+  const double margin = 1e-6 * (geometry.max_length() - geometry.min_length());
+  MotionWorkspace workspace{geometry,
+                            extended,
+                            time_s,
+                            driving,
+                            load_N,
+                            mass_kg,
+                            branch[1],
+                            0,
+                            1,
+                            geometry.min_length() + margin,
+                            geometry.max_length() - margin,
+                            nullptr};
+  const double start =
+      start_length_m ? *start_length_m
+                     : isotonic_lengths(params, {gauge_pressures_kPa.front()}, load_N, params.build.length_m, effects)
+                           .length_m.front();
+  if (!(start > workspace.shortest && start < workspace.longest)) {
+    throw InvalidInput(detail::message("isotonic_motion: start_length_m = ", start, " m is outside the braid's range (",
+                                       geometry.min_length(), ", ", geometry.max_length(), ") m for this build"));
+  }
+
+  auto context = cvodes::make_context();
+  SUNContext ctx = *context;
+  cvodes::Vector y(N_VNew_Serial(motion_state_size, ctx));
+  cvodes::Vector tolerances(N_VNew_Serial(motion_state_size, ctx));
+  if (!y || !tolerances) throw SolverError("N_VNew_Serial failed");
+  NV_Ith_S(y.get(), length_index) = start;
+  NV_Ith_S(y.get(), velocity_index) = 0.0;
+  NV_Ith_S(tolerances.get(), length_index) = config.absolute_tolerance_m;
+  NV_Ith_S(tolerances.get(), velocity_index) = config.absolute_tolerance_m_per_s;
+
+  // BDF with Newton: the tanh friction of a sharp Kf is stiff; without friction the tight
+  // default tolerances keep BDF's numerical damping below them (the energy test measures it).
+  cvodes::Memory mem(CVodeCreate(CV_BDF, ctx));
+  if (!mem) throw SolverError("CVodeCreate failed");
+  void* cv = mem.get();
+  double t = time_s.front();
+  check_flag(CVodeInit(cv, motion_rhs, t, y.get()), "CVodeInit", t);
+  check_flag(CVodeSetUserData(cv, &workspace), "CVodeSetUserData", t);
+  cvodes::silence_errors(cv, t);
+  check_flag(CVodeSVtolerances(cv, config.relative_tolerance, tolerances.get()), "CVodeSVtolerances", t);
+  check_flag(CVodeSetMaxNumSteps(cv, static_cast<long>(config.max_steps)), "CVodeSetMaxNumSteps", t);
+  if (config.max_step_s > 0.0) check_flag(CVodeSetMaxStep(cv, config.max_step_s), "CVodeSetMaxStep", t);
+  cvodes::Matrix jacobian(SUNDenseMatrix(motion_state_size, motion_state_size, ctx));
+  cvodes::LinearSolver solver(SUNLinSol_Dense(y.get(), jacobian.get(), ctx));
+  if (!jacobian || !solver) throw SolverError("SUNDenseMatrix or SUNLinSol_Dense failed");
+  check_flag(CVodeSetLinearSolver(cv, solver.get(), jacobian.get()), "CVodeSetLinearSolver", t);
+  check_flag(CVodeRootInit(cv, 2, motion_limits), "CVodeRootInit", t);
+  int leaving[2] = {-1, -1};  // only a length going out of the range stops the motion
+  check_flag(CVodeSetRootDirection(cv, leaving), "CVodeSetRootDirection", t);
+
+  IsotonicMotion result;
+  result.time_s.reserve(time_s.size());
+  record(result, workspace, 0, start, 0.0, branch[0]);
+
+  // Segment k (from sample k to k+1) is on the branch of sample k+1. Where that flips, the
+  // hysteresis force jumps: CVODES restarts its BDF history at the sample. It stops at every
+  // sample too, where the pressure's rate jumps, rather than interpolating across the kink
+  // (on a slow ramp's turn that costs a quarter more steps and gains two digits).
+  std::size_t k = 0;
+  while (k + 1 < time_s.size()) {
+    std::size_t end = k + 1;
+    while (end + 1 < time_s.size() && branch[end + 1] == branch[k + 1]) ++end;
+    workspace.branch = branch[k + 1];
+    workspace.piece_start = k;
+    workspace.piece_end = end;
+    if (k > 0) {
+      cvodes::add_statistics(cv, result.statistics);
+      check_flag(CVodeReInit(cv, t, y.get()), "CVodeReInit", t);
+      ++result.statistics.restarts;
+    }
+    for (std::size_t sample = k + 1; sample <= end; ++sample) {
+      check_flag(CVodeSetStopTime(cv, time_s[sample]), "CVodeSetStopTime", t);
+      const int flag = CVode(cv, time_s[sample], y.get(), &t, CV_NORMAL);
+      if (workspace.error) std::rethrow_exception(workspace.error);
+      check_flag(flag, "CVode", t);
+      if (flag == CV_ROOT_RETURN) {
+        const double length = NV_Ith_S(y.get(), length_index);
+        const bool too_long = length > 0.5 * (workspace.shortest + workspace.longest);
+        throw InvalidInput(detail::message(
+            "isotonic_motion: at t = ", t, " s (between samples ", sample, " and ", sample + 1, ", gauge ",
+            units::kilopascal_from_pascal(workspace.gauge_Pa(t)), " kPa) the length reached ", length, " m, the ",
+            too_long ? "longest" : "shortest", " the braid allows (", geometry.min_length(), ", ",
+            geometry.max_length(), ") m: the load of ", load_N, " N ",
+            too_long ? "outruns what the muscle can carry there" : "is too light to hold the muscle back there"));
+      }
+      record(result, workspace, sample, NV_Ith_S(y.get(), length_index), NV_Ith_S(y.get(), velocity_index),
+             branch[sample]);
+    }
+    k = end;
+  }
+  cvodes::add_statistics(cv, result.statistics);
+  return result;
+}
+
+}  // namespace pamkit
