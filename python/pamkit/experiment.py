@@ -594,8 +594,10 @@ def _checked_columns(
 
 # What a file pamkit reads may hold (issue #14: data = "/dev/zero" once grew to 23 GB). A
 # measured row of five channels is about 45 bytes: 10^6 rows, a 17-minute test at 1 kHz, are
-# 45 MB, and 256 MiB holds about 6 M rows (1.6 h at 1 kHz) while its text and its columns stay
-# within about 1 GB. An experiment TOML is a few kilobytes. No line pamkit writes or reads
+# 45 MB, and 256 MiB holds about 6 M rows (1.6 h at 1 kHz). Reading peaks at about 4 bytes of
+# memory per byte of file (its bytes, its text, numpy's copy, the columns: 630 MB for 163 MB),
+# so the largest file allowed still reads within about 1 GB. An experiment TOML is a few
+# kilobytes. No line pamkit writes or reads
 # reaches 1 KiB (a header of every channel is 56 bytes); 64 KiB is far beyond any real one and
 # below the csv module's 128 KiB cell limit, so an over-long line is named, not a csv error.
 MAX_FILE_BYTES = {"experiment": 1 << 20, "data": 256 << 20}
