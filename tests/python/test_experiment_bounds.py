@@ -131,3 +131,20 @@ def test_rows_read_at_once_equal_rows_read_one_by_one(tmp_path, delimiter, decim
         # by rounding only (a few units in the last place of values up to ~200).
         np.testing.assert_allclose(fast[name], slow[name], rtol=1e-13, atol=0)
     assert fast["time_s"].size < table.shape[0]  # rows were merged
+
+
+def test_plain_rows_never_go_row_by_row(tmp_path, monkeypatch):
+    # The row-by-row parser is what made 10^6 rows take tens of seconds: a plain file, CRLF or
+    # not, must not use it, but for the last line when that has no line end (it may be cut).
+    import pamkit.experiment as experiment
+
+    parsed_alone = []
+    parse_row = experiment._parse_row
+    monkeypatch.setattr(experiment, "_parse_row", lambda *a: parsed_alone.append(a[1]) or parse_row(*a))
+    path = tmp_path / "run.csv"
+    rows = "".join(f"{i * 1e-3:.3f},{i * 1e-6:.6f}\n" for i in range(1000))
+    for text, alone in ((rows, []), (rows.replace("\n", "\r\n"), []), (rows.rstrip("\n"), [1001])):
+        parsed_alone.clear()
+        path.write_text("time_s,elongation_m\n" + text, newline="")
+        assert read_series(path)["time_s"].size == 1000
+        assert parsed_alone == alone  # line numbers parsed one by one
