@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
@@ -338,14 +338,21 @@ def hideable_effects(effect_catalog: EffectCatalog | None = None) -> list[str]:
 
 
 def synthesize(
-    effect_spec: str, seed: int, out_dir: str | Path, effect_catalog: EffectCatalog | None = None
+    effect_spec: str,
+    seed: int,
+    out_dir: str | Path,
+    effect_catalog: EffectCatalog | None = None,
+    change_protocol: Callable[[Protocol], Protocol] | None = None,
+    sample_rate_Hz: float | None = None,
 ) -> SynthFiles:
     """Writes a synthetic experiment with the effect `effect_spec` (``"none"``, ``"NAME"`` or
     ``"NAME:key=value,..."``) hidden in it: ``out_dir/experiment.toml``,
     ``out_dir/experiment.csv`` and the truth in ``out_dir/manifest.json``.
 
     The same seed gives byte-identical files; the protocol, build and instrument noise depend
-    on the seed only, not on the effect.
+    on the seed only, not on the effect. `change_protocol` makes the test's protocol from the
+    drawn one, `sample_rate_Hz` replaces both instruments' drawn rates: a long test at 1 kHz,
+    say; every draw is still made, so the others stay those of the seed.
 
     Raises:
         ValueError: for a bad effect spec (naming the effect, key or value), or an effect that
@@ -362,7 +369,12 @@ def synthesize(
 
     build = draw_build(build_rng)
     protocol = draw_protocol(protocol_rng, build)
+    if change_protocol is not None:
+        protocol = change_protocol(protocol)
     instruments = draw_instruments(instrument_rng, protocol)
+    if sample_rate_Hz is not None:
+        instruments["machine"] = replace(instruments["machine"], sample_rate_Hz=sample_rate_Hz)
+        instruments["logger"] = replace(instruments["logger"], sample_rate_Hz=sample_rate_Hz)
     protocol = protocol.on_samples(instruments["machine"].sample_rate_Hz)
     machine = TensileMachine(instruments["machine"])
     logger = ArduinoLogger(instruments["logger"])

@@ -35,6 +35,8 @@ def run(arguments: argparse.Namespace) -> int:
             print(f"  {message}", file=sys.stderr, flush=True)
 
     d = diagnose(arguments.experiment, progress=progress, threads=arguments.threads)
+    if arguments.json or arguments.plot:
+        progress(f"writing {' and '.join(p for p in (arguments.json, arguments.plot) if p)}")
     write(d, arguments.json, arguments.plot)
     print(verdict(d))
     for path in (arguments.json, arguments.plot):

@@ -6,8 +6,10 @@ catalog lacks in what remains (discover), and report (report)."""
 from __future__ import annotations
 
 import hashlib
+import math
 import os
 import time as clock
+import warnings as python_warnings
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -38,9 +40,39 @@ from pamkit.diagnose.tables import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.experiment import Experiment, ExperimentError, load_experiment
 
-__all__ = ["MIN_GAIN", "Diagnosis", "diagnose", "data_seed"]
+__all__ = ["MIN_GAIN", "MAX_DIAGNOSED_ROWS", "Diagnosis", "ThinningWarning", "diagnose", "data_seed"]
 
 REFIT_LEADERS = 3  # leading measurement candidates refitted with the baseline free
+# A time series longer than this is diagnosed on every k-th row (the fewest k that fits), as if
+# logged at 1/k of its rate: each model run costs about 1 us per row, and a diagnosis makes
+# several hundred, so 10^6 rows (a 17-minute test at 1 kHz) took 400 s; at 10^5 rows it is
+# about ten times less. The rows kept are samples as measured (not means), so the noise and
+# everything diagnosis knows of a channel is that of the slower test, the kind of test
+# (10-100 Hz) the synthetic benchmarks validate it on.
+MAX_DIAGNOSED_ROWS = 100_000
+
+
+class ThinningWarning(UserWarning):
+    """A long test is diagnosed on every k-th row; the message says how many were kept."""
+
+
+def thinned(experiment: Experiment, max_rows: int | None = None) -> tuple[Experiment, dict | None]:
+    """The experiment with every k-th row (the fewest k that leaves at most `max_rows`, by
+    default MAX_DIAGNOSED_ROWS), and a note of it for the report's warnings (None when every
+    row is kept)."""
+    max_rows = MAX_DIAGNOSED_ROWS if max_rows is None else max_rows
+    rows = experiment.time_s.size
+    if rows <= max_rows:
+        return experiment, None
+    step = math.ceil(rows / max_rows)
+    kept = replace(experiment, columns={name: values[::step].copy() for name, values in experiment.columns.items()})
+    interval = float(np.median(np.diff(experiment.time_s)))
+    message = (
+        f"{experiment.data_path}: {rows} rows, more than the {max_rows} a diagnosis runs on: diagnosed on one row "
+        f"in {step} ({kept.time_s.size} rows, one every {step * interval:.3g} s instead of {interval:.3g} s)"
+    )
+    note = {"thinned": message, "step": step, "rows_read": rows, "rows_diagnosed": int(kept.time_s.size)}
+    return kept, note
 
 
 @dataclass
@@ -57,6 +89,7 @@ class Diagnosis:
     warnings: list[Finding]  # baseline and extended parameters at a bound or implausible
     discovered: dict = field(default_factory=dict)
     seconds: dict[str, float] = field(default_factory=dict)
+    data_notes: list[dict] = field(default_factory=list)  # what was done to the data first (thinned)
 
     @property
     def cause(self) -> str:
@@ -193,7 +226,15 @@ def diagnose(
     started = clock.perf_counter()
     report = progress or (lambda message: None)
     tests = list(experiment) if isinstance(experiment, (list, tuple)) else [experiment]
-    tests = [e if isinstance(e, Experiment) else load_experiment(e) for e in tests]
+    loaded = []
+    for test in tests:
+        if not isinstance(test, Experiment):
+            report(f"reading {test}")
+            test = load_experiment(test)
+            rows = len(next(iter(test.columns.values())))
+            report(f"read {rows} rows of {test.data_path.name} ({clock.perf_counter() - started:.1f} s)")
+        loaded.append(test)
+    tests = loaded
     effect_catalog = effect_catalog if effect_catalog is not None else builtin_catalog()
     if all(e.is_table for e in tests):
         return diagnose_table(tests, effect_catalog, progress=progress, threads=threads)
@@ -202,17 +243,23 @@ def diagnose(
             f"{tests[0].path}: a campaign of several tests is diagnosed for static tables (isometric_map, "
             "free_inflation) only; diagnose each time series alone"
         )
-    experiment = tests[0]
+    experiment, note = thinned(tests[0])
+    notes = [note] if note else []
+    if note:  # on stderr even with no progress shown (the command line prints warnings as one line)
+        python_warnings.warn(note["thinned"], ThinningWarning, 2)
+    report("finding the test's cycles and noise")
     problem = build_problem(experiment)
     seed = data_seed(problem) if seed is None else seed
-    seconds = {}
+    seconds = {"data": clock.perf_counter() - started}  # reading, thinning, finding the units
 
     report(
         f"calibrating the baseline on {len(np.unique(problem.cycle[problem.fit_mask]))} {problem.unit_name}s "
         f"({', '.join(problem.channels)})"
     )
+    phase = clock.perf_counter()
     baseline = fit_baseline(problem)
-    seconds["baseline"] = clock.perf_counter() - started
+    seconds["baseline"] = clock.perf_counter() - phase
+    report(f"baseline calibrated in {baseline.evaluations} model runs ({seconds['baseline']:.1f} s)")
 
     skipped = {}
     for name in effect_catalog.names():
@@ -223,6 +270,7 @@ def diagnose(
     attainable = attainable_gain(problem, baseline)
     judged: list[Judgement] = []
     phase = clock.perf_counter()
+    report(f"fitting {len(todo)} candidate effects, {threads or os.cpu_count() or 1} at a time")
     with _pool(threads) as pool:
         futures = [(label, pool.submit(fit_candidate, problem, baseline, factory, label)) for label, factory in todo]
         for done, (label, future) in enumerate(futures, start=1):
@@ -261,6 +309,7 @@ def diagnose(
         judged.sort(key=lambda j: (-j.score.combined_gain, j.score.delta_bic, j.fit.name))
     seconds["candidates"] = clock.perf_counter() - phase
 
+    report("deciding on held-out units")
     decision = decide(problem, baseline, judged)
     extended, named = baseline, decision.named
     if named is not None:
@@ -286,4 +335,6 @@ def diagnose(
         + (f" with {extended.effects[1].name()}" if len(extended.effects) > 1 else "")
         + f" ({seconds['total']:.1f} s)"
     )
-    return Diagnosis(problem, baseline, judged, skipped, decision, extended, named, warnings, discovered, seconds)
+    return Diagnosis(
+        problem, baseline, judged, skipped, decision, extended, named, warnings, discovered, seconds, notes
+    )

@@ -5,7 +5,7 @@ velocity, |velocity|, time and cycle index)."""
 from __future__ import annotations
 
 import numpy as np
-from scipy.signal import savgol_coeffs, savgol_filter
+from scipy.signal import correlate, savgol_coeffs, savgol_filter
 from scipy.stats import chi2
 
 CHANNELS = ("force_N", "pressure_kPa", "temperature_C")
@@ -73,20 +73,45 @@ def correlations(residual: np.ndarray, regressors: dict[str, np.ndarray]) -> dic
     return out
 
 
+def lagged_correlations(residual: np.ndarray, signal: np.ndarray, max_lag: int) -> np.ndarray:
+    """Pearson correlation of the residual with the signal shifted by every lag in
+    [-max_lag, max_lag] samples (element max_lag + k pairs residual[k:] with signal[:n - k], a
+    negative k residual[:k] with signal[-k:]), each over the two series' overlap at that lag and
+    normalised by the overlap's own sums of squares (0 where one is zero); both series are
+    centred on their whole means first.
+
+    The products at every lag come from one FFT correlation (scipy.signal.correlate), the
+    overlap norms from cumulative sums: O(n log n) instead of O(lags x n).
+    """
+    r = np.asarray(residual, dtype=float)
+    x = np.asarray(signal, dtype=float)
+    r = r - r.mean()
+    x = x - x.mean()
+    n = r.size
+    lags = np.arange(-max_lag, max_lag + 1)
+    # correlate(r, x)[n - 1 + k] = sum_i r[i + k] x[i]: residual[k:] against signal[:n - k].
+    products = correlate(r, x, mode="full", method="fft")[n - 1 + lags]
+    # Sums of squares of a prefix (cumulative from the start) and a suffix (from the end).
+    r_prefix = np.concatenate([[0.0], np.cumsum(r * r)])
+    x_prefix = np.concatenate([[0.0], np.cumsum(x * x)])
+    overlap = n - np.abs(lags)
+    r_norm = np.where(lags >= 0, r_prefix[n] - r_prefix[np.clip(lags, 0, n)], r_prefix[overlap])
+    x_norm = np.where(lags >= 0, x_prefix[overlap], x_prefix[n] - x_prefix[np.clip(-lags, 0, n)])
+    denominator = np.sqrt(np.clip(r_norm, 0.0, None) * np.clip(x_norm, 0.0, None))
+    out = np.zeros(lags.size)
+    positive = denominator > 0
+    out[positive] = products[positive] / denominator[positive]
+    return out
+
+
 def lagged_correlation_peak(
     residual: np.ndarray, signal_rate: np.ndarray, time: np.ndarray, max_lag_s: float = 10.0
 ) -> float:
     """Lag [s] at which the residual correlates best (in magnitude) with the prediction's rate
-    of change: near zero for noise, at the offset for a skewed or lagging channel."""
+    of change: near zero for noise, at the offset for a skewed or lagging channel. Of equal
+    peaks, the most negative lag; 0 when nothing correlates at any lag."""
     dt = float(np.median(np.diff(time)))
     max_lag = max(1, min(int(max_lag_s / dt), residual.size // 4))
-    r = residual - residual.mean()
-    x = signal_rate - signal_rate.mean()
-    best_lag, best = 0, 0.0
-    for lag in range(-max_lag, max_lag + 1):
-        a, b = (r[lag:], x[: x.size - lag]) if lag >= 0 else (r[:lag], x[-lag:])
-        denominator = np.sqrt(np.dot(a, a) * np.dot(b, b))
-        value = abs(float(np.dot(a, b) / denominator)) if denominator > 0 else 0.0
-        if value > best:
-            best_lag, best = lag, value
-    return best_lag * dt
+    correlation = np.abs(lagged_correlations(residual, signal_rate, max_lag))
+    best = int(np.argmax(correlation))
+    return float((best - max_lag) * dt) if correlation[best] > 0 else 0.0

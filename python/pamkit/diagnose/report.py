@@ -110,7 +110,7 @@ def to_json(d: Diagnosis | TableDiagnosis) -> dict:
             ),
         },
         "discovered": d.discovered,
-        "warnings": [f.to_json() for f in d.warnings],
+        "warnings": [f.to_json() for f in d.warnings] + d.data_notes,
         "verdict": verdict(d),
         "timing_s": d.seconds,
     }
