@@ -1,7 +1,15 @@
-# Installs pamkit into <build>/consumer/prefix, then configures, builds and runs
-# examples/controller against that installation with find_package(pamkit); its warnings are errors
-# when the build has PAMKIT_WERROR (WERROR).
-set(work ${BUILD_DIR}/consumer)
+# Installs pamkit into <build>/consumer/<EXAMPLE>/prefix, then configures, builds and runs
+# examples/<EXAMPLE> (default: controller) against that installation with find_package(pamkit); its
+# warnings are errors when the build has PAMKIT_WERROR (WERROR). MUSCLE_ONLY=ON configures the
+# example as on a machine without SUNDIALS and libserialport: find_package of either fails there.
+if(NOT EXAMPLE)
+  set(EXAMPLE controller)
+endif()
+set(work ${BUILD_DIR}/consumer/${EXAMPLE})
+set(without)
+if(MUSCLE_ONLY)
+  set(without -DCMAKE_DISABLE_FIND_PACKAGE_SUNDIALS=ON -DCMAKE_DISABLE_FIND_PACKAGE_LibSerialPort=ON)
+endif()
 file(REMOVE_RECURSE ${work})
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE status)
@@ -10,7 +18,7 @@ function(run)
   endif()
 endfunction()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${work}/prefix --component development)
-run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/controller -B ${work}/build -G ${GENERATOR}
-    -DCMAKE_PREFIX_PATH=${work}/prefix -DCMAKE_COMPILE_WARNING_AS_ERROR=${WERROR})
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/${EXAMPLE} -B ${work}/build -G ${GENERATOR}
+    -DCMAKE_PREFIX_PATH=${work}/prefix -DCMAKE_COMPILE_WARNING_AS_ERROR=${WERROR} ${without})
 run(${CMAKE_COMMAND} --build ${work}/build)
-run(${work}/build/controller)
+run(${work}/build/${EXAMPLE})

@@ -25,9 +25,9 @@ namespace detail {
 /// Throws InvalidParameter if `value` is NaN or outside `info`'s range.
 inline void check_range(const char* struct_name, const char* name, double value, const FieldInfo& info) {
   if (std::isnan(value) || value < info.min || value > info.max) {
-    throw InvalidParameter(message(struct_name, ".", name, " = ", value, " ", info.unit,
-                                   " is outside the allowed range [", info.min, ", ", info.max, "] (", info.description,
-                                   ")"));
+    PAMKIT_THROW(InvalidParameter(message(struct_name, ".", name, " = ", value, " ", info.unit,
+                                          " is outside the allowed range [", info.min, ", ", info.max, "] (",
+                                          info.description, ")")));
   }
 }
 

@@ -68,21 +68,6 @@ inline std::vector<double> pressure_branches(const std::vector<double>& pressure
 }
 
 namespace detail {
-/// What the load cell reads of a muscle under a supplied pressure on one branch: gas, bladder
-/// and friction, less the rate-independent bladder-braid friction, through a braid that cannot
-/// push. The friction resists the motion the pressure drives: raising the pressure contracts the
-/// muscle, so the tension it shows is lower than the elastic force; lowering it, higher.
-inline double supplied_force(const BraidGeometry& geometry, const MuscleParams& extended, const MuscleShape& shape,
-                             double gauge_Pa, double velocity_m_per_s, double branch) {
-  const double atmosphere = extended.gas.atmospheric_pressure_Pa;
-  const double elastic = muscle_forces(geometry, shape, extended.bladder, extended.friction, atmosphere + gauge_Pa,
-                                       atmosphere, velocity_m_per_s)
-                             .total;
-  const double hysteresis = extended.extensions.pressure_hysteresis * std::max(gauge_Pa, 0.0) * 0.25 * detail::kPi *
-                            shape.diameter * shape.diameter;
-  return braid_tension(elastic - branch * hysteresis, extended.extensions.slack_band_N);
-}
-
 /// The effects a static table admits: physical ones that act at a supplied pressure, and
 /// errors of the transducer whose reading drives the model. \throws InvalidParameter otherwise.
 inline void apply_static_effects(const std::vector<EffectPtr>& effects, MuscleParams& extended,

@@ -54,8 +54,8 @@ struct BladderLaw {
   /// \throws InvalidParameter if the modulus is negative or not finite.
   static BladderLaw neo_hookean(double shear_modulus_Pa) {
     if (!(shear_modulus_Pa >= 0.0) || !std::isfinite(shear_modulus_Pa)) {
-      throw InvalidParameter(
-          detail::message("BladderLaw.shear_modulus_Pa = ", shear_modulus_Pa, " Pa must be finite and >= 0"));
+      PAMKIT_THROW(InvalidParameter(
+          detail::message("BladderLaw.shear_modulus_Pa = ", shear_modulus_Pa, " Pa must be finite and >= 0")));
     }
     BladderLaw law;
     law.form = Form::neo_hookean;
@@ -66,7 +66,7 @@ struct BladderLaw {
   static BladderLaw none() { return BladderLaw{}; }
 
   /// Engineering stresses [Pa] at longitudinal strain `eps_l` and hoop strain `eps_h`.
-  BiaxialStress stresses(double eps_l, double eps_h) const {
+  BiaxialStress stresses(double eps_l, double eps_h) const noexcept {
     if (form == Form::neo_hookean) {
       // dW/d lambda_i with lambda_3 = 1 / (lambda_l lambda_h) eliminated.
       const double ll = 1.0 + eps_l;
@@ -89,7 +89,7 @@ struct BladderLaw {
   }
 
  private:
-  static double evaluate(const std::array<double, 7>& c, double x) {
+  static double evaluate(const std::array<double, 7>& c, double x) noexcept {
     double value = 0.0;
     for (auto k = c.size(); k-- > 0;) value = value * x + c[k];
     return value;
@@ -113,7 +113,8 @@ struct BladderState {
 
 /// Strains follow the geometry: the bladder lies against the braid, so its hoop strain is the
 /// braid diameter over the deflated bladder diameter, and its length follows the cylinder.
-inline BladderState bladder_state(const BraidGeometry& geometry, const MuscleShape& shape, const BladderLaw& law) {
+inline BladderState bladder_state(const BraidGeometry& geometry, const MuscleShape& shape,
+                                  const BladderLaw& law) noexcept {
   const double lm0 = geometry.deflated_cylinder_length();
   const double db0 = geometry.build().bladder_diameter_m;
   BladderState b{};

@@ -5,30 +5,30 @@ namespace pamkit {
 inline void MuscleBuild::validate() const {
   validate_fields(*this);
   if (bladder_diameter_m > diameter_m) {
-    throw InvalidParameter(detail::message("MuscleBuild.bladder_diameter_m = ", bladder_diameter_m,
-                                           " m is larger than the braid diameter_m = ", diameter_m,
-                                           " m: the bladder must fit inside the braid"));
+    PAMKIT_THROW(InvalidParameter(detail::message("MuscleBuild.bladder_diameter_m = ", bladder_diameter_m,
+                                                  " m is larger than the braid diameter_m = ", diameter_m,
+                                                  " m: the bladder must fit inside the braid")));
   }
   if (2.0 * (bladder_thickness_m + fiber_thickness_m) >= bladder_diameter_m) {
-    throw InvalidParameter(detail::message(
+    PAMKIT_THROW(InvalidParameter(detail::message(
         "MuscleBuild.bladder_thickness_m = ", bladder_thickness_m, " m and fiber_thickness_m = ", fiber_thickness_m,
-        " m leave no gas space in a bladder of diameter ", bladder_diameter_m, " m"));
+        " m leave no gas space in a bladder of diameter ", bladder_diameter_m, " m")));
   }
   if (cone_generator_m > 0.0) {
     if (end_diameter_m >= diameter_m) {
-      throw InvalidParameter(detail::message("MuscleBuild.end_diameter_m = ", end_diameter_m,
-                                             " m must be smaller than diameter_m = ", diameter_m,
-                                             " m (the end cones narrow from the braid to the cap)"));
+      PAMKIT_THROW(InvalidParameter(detail::message("MuscleBuild.end_diameter_m = ", end_diameter_m,
+                                                    " m must be smaller than diameter_m = ", diameter_m,
+                                                    " m (the end cones narrow from the braid to the cap)")));
     }
     if (diameter_m - end_diameter_m >= 2.0 * cone_generator_m) {
-      throw InvalidParameter(detail::message("MuscleBuild.cone_generator_m = ", cone_generator_m,
-                                             " m is too short to join the braid diameter ", diameter_m,
-                                             " m to the end diameter ", end_diameter_m, " m (needs more than ",
-                                             0.5 * (diameter_m - end_diameter_m), " m)"));
+      PAMKIT_THROW(InvalidParameter(detail::message("MuscleBuild.cone_generator_m = ", cone_generator_m,
+                                                    " m is too short to join the braid diameter ", diameter_m,
+                                                    " m to the end diameter ", end_diameter_m, " m (needs more than ",
+                                                    0.5 * (diameter_m - end_diameter_m), " m)")));
     }
     if (2.0 * cone_generator_m >= length_m) {
-      throw InvalidParameter(detail::message("MuscleBuild.cone_generator_m = ", cone_generator_m,
-                                             " m: two cones do not fit in length_m = ", length_m, " m"));
+      PAMKIT_THROW(InvalidParameter(detail::message("MuscleBuild.cone_generator_m = ", cone_generator_m,
+                                                    " m: two cones do not fit in length_m = ", length_m, " m")));
     }
   }
 }

@@ -28,7 +28,7 @@ struct MuscleForces {
 
 /// Rubber volume of the bladder's cylindrical part in the deflated build [m^3]; the stress laws
 /// are engineering stresses, so they act on this reference volume.
-inline double bladder_reference_volume(const BraidGeometry& geometry) {
+inline double bladder_reference_volume(const BraidGeometry& geometry) noexcept {
   const MuscleBuild& b = geometry.build();
   return detail::kPi * b.bladder_diameter_m * b.bladder_thickness_m * geometry.deflated_cylinder_length();
 }
@@ -39,7 +39,7 @@ inline double bladder_reference_volume(const BraidGeometry& geometry) {
 /// \param velocity_m_per_s dL/dt, for friction
 inline MuscleForces muscle_forces(const BraidGeometry& geometry, const MuscleShape& shape, const BladderLaw& law,
                                   const FrictionParams& friction, double absolute_pressure_Pa,
-                                  double atmospheric_pressure_Pa, double velocity_m_per_s) {
+                                  double atmospheric_pressure_Pa, double velocity_m_per_s) noexcept {
   MuscleForces f{};
   // Virtual work: the gas does work p dV_gas, the atmosphere p_atm dV_total on the outside.
   f.pressure = -absolute_pressure_Pa * shape.d_gas_volume + atmospheric_pressure_Pa * shape.d_total_volume;
@@ -59,7 +59,7 @@ inline MuscleForces muscle_forces(const BraidGeometry& geometry, const MuscleSha
 /// blend, so the ODE solver and the fits see no kink); band_N = 0 keeps the thesis's braid,
 /// which pushes as readily as it pulls.
 /// The slack acts on the force only: the gas volume still follows the length the ends impose.
-inline double braid_tension(double force_N, double band_N) {
+inline double braid_tension(double force_N, double band_N) noexcept {
   if (band_N <= 0.0 || force_N >= band_N) return force_N;
   if (force_N <= -band_N) return 0.0;
   return (force_N + band_N) * (force_N + band_N) / (4.0 * band_N);

@@ -27,7 +27,8 @@ struct FreeInflation {
 inline FreeInflation free_inflation(const BraidGeometry& geometry, const BladderLaw& law,
                                     double atmospheric_pressure_Pa, double gauge_pressure_Pa) {
   if (!(gauge_pressure_Pa >= 0.0) || !std::isfinite(gauge_pressure_Pa)) {
-    throw InvalidInput(detail::message("free_inflation: gauge pressure ", gauge_pressure_Pa, " Pa must be >= 0"));
+    PAMKIT_THROW(
+        InvalidInput(detail::message("free_inflation: gauge pressure ", gauge_pressure_Pa, " Pa must be >= 0")));
   }
   const FrictionParams no_friction{0.0, 0.0, 0.0, 0.0, 0.0};
   auto force = [&](double length) {
@@ -54,9 +55,9 @@ inline FreeInflation free_inflation(const BraidGeometry& geometry, const Bladder
     }
     upper = lower;
   }
-  throw InvalidInput(detail::message(
+  PAMKIT_THROW(InvalidInput(detail::message(
       "free_inflation: at ", gauge_pressure_Pa,
-      " Pa gauge the force stays positive down to the shortest length the braid model allows (", shortest, " m)"));
+      " Pa gauge the force stays positive down to the shortest length the braid model allows (", shortest, " m)")));
 }
 
 }  // namespace pamkit

@@ -45,7 +45,7 @@ struct FrictionParams {
 /// 3.1.24), and fiber-bladder friction 2 P mu_fb w (Ly N - z q / 2) (eq. 3.1.23), times
 /// tanh(Kf v) (eq. 3.1.21).
 inline double friction_force(const FrictionParams& p, const BraidGeometry& geometry, double gauge_pressure_Pa,
-                             double velocity_m_per_s) {
+                             double velocity_m_per_s) noexcept {
   const MuscleBuild& b = geometry.build();
   const double fibers = b.fiber_count;
   const double crossings = 2.0 * b.fiber_revolutions * (0.5 * fibers) * (0.5 * fibers) - 0.5 * fibers;

@@ -61,8 +61,13 @@ class BraidGeometry {
 
   /// Shape of the muscle at length `length_m`. Solves the cone closure
   /// (pi n D)^2 + (L - 2 LL(D))^2 = Lym^2 for D by bracketed Newton iteration.
-  /// \throws InvalidInput if `length_m` is outside `[min_length(), max_length()]`.
+  /// \throws InvalidInput if `length_m` is outside `(min_length(), max_length())`.
   MuscleShape shape(double length_m) const;
+
+  /// `shape(length_m)` without the range check, for a caller that checked
+  /// `min_length() < length_m < max_length()` itself (RealtimeMuscle, muscle/realtime.hpp):
+  /// no error, no allocation. Outside that range the result means nothing.
+  MuscleShape shape_unchecked(double length_m) const noexcept;
 
   /// Shortest length the model allows [m]: the cones flatten (D = d + 2 Lz) there.
   double min_length() const { return min_length_; }

@@ -47,8 +47,8 @@ inline double deflated_braid_angle_deg(const MuscleBuild& build) {
 
 inline double fiber_revolutions_for_braid_angle(const MuscleBuild& build, double braid_angle_deg) {
   if (!(braid_angle_deg > 0.0 && braid_angle_deg < 90.0)) {
-    throw InvalidParameter(
-        detail::message("braid_angle_deg = ", braid_angle_deg, " must lie strictly between 0 and 90 degrees"));
+    PAMKIT_THROW(InvalidParameter(
+        detail::message("braid_angle_deg = ", braid_angle_deg, " must lie strictly between 0 and 90 degrees")));
   }
   return detail::deflated_cylinder_length(build) * std::tan(braid_angle_deg * detail::kPi / 180.0) /
          (detail::kPi * build.diameter_m);
@@ -81,9 +81,16 @@ inline BraidGeometry::BraidGeometry(const MuscleBuild& build) : build_(build) {
 
 inline MuscleShape BraidGeometry::shape(double length_m) const {
   if (!(length_m > min_length_ && length_m < max_length_)) {
-    throw InvalidInput(detail::message("muscle length ", length_m, " m is outside the range the braid model allows (",
-                                       min_length_, ", ", max_length_, ") m for this build"));
+    PAMKIT_THROW(
+        InvalidInput(detail::message("muscle length ", length_m, " m is outside the range the braid model allows (",
+                                     min_length_, ", ", max_length_, ") m for this build")));
   }
+  return shape_unchecked(length_m);
+}
+
+inline MuscleShape BraidGeometry::shape_unchecked(double length_m) const noexcept {
+  // Inside the range the closure below brackets its root (G(d) < 0 < G(d + 2 Lz)), so Boost's
+  // Newton iteration has no cause to raise its "no root" error.
   const double n = build_.fiber_revolutions;
   const double k2 = detail::kPi * detail::kPi * n * n;  // (pi n)^2
   const double d = build_.end_diameter_m;

@@ -3,6 +3,7 @@
 /// The muscle as a dynamic system: parameters, its state, and the right-hand side of its ODE.
 /// The model only computes derivatives and outputs; `Simulator` integrates it.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -64,6 +65,25 @@ struct MuscleParams {
     extensions.validate();
   }
 };
+
+namespace detail {
+/// What the load cell reads of a muscle under a supplied pressure on one branch: gas, bladder
+/// and friction, less the rate-independent bladder-braid friction, through a braid that cannot
+/// push. The friction resists the motion the pressure drives: raising the pressure contracts the
+/// muscle, so the tension it shows is lower than the elastic force; lowering it, higher.
+/// `branch` is +1 pressurising, -1 venting (pressure_branches, effects/pipeline.hpp); 0 leaves the
+/// hysteresis out, as RealtimeMuscle::force (muscle/realtime.hpp) does.
+inline double supplied_force(const BraidGeometry& geometry, const MuscleParams& extended, const MuscleShape& shape,
+                             double gauge_Pa, double velocity_m_per_s, double branch) noexcept {
+  const double atmosphere = extended.gas.atmospheric_pressure_Pa;
+  const double elastic = muscle_forces(geometry, shape, extended.bladder, extended.friction, atmosphere + gauge_Pa,
+                                       atmosphere, velocity_m_per_s)
+                             .total;
+  const double hysteresis = extended.extensions.pressure_hysteresis * std::max(gauge_Pa, 0.0) * 0.25 * detail::kPi *
+                            shape.diameter * shape.diameter;
+  return braid_tension(elastic - branch * hysteresis, extended.extensions.slack_band_N);
+}
+}  // namespace detail
 
 /// The state of the test when elongation is zero: the muscle inflated, sealed, at rest.
 struct InitialState {

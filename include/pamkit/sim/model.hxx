@@ -53,8 +53,8 @@ inline double MuscleModel::braid_length(double length_m, const State& y) const {
   const double lower = std::max(std::min(length_m, length_m - stretch), geometry_.min_length() * (1.0 + margin));
   const double upper = std::min(std::max(length_m, length_m - stretch), geometry_.max_length() * (1.0 - margin));
   if (mismatch(lower) > 0.0 || mismatch(upper) < 0.0) {
-    throw InvalidInput(detail::message("fiber compliance: no braid length between ", lower, " and ", upper,
-                                       " m spans the muscle length ", length_m, " m"));
+    PAMKIT_THROW(InvalidInput(detail::message("fiber compliance: no braid length between ", lower, " and ", upper,
+                                              " m spans the muscle length ", length_m, " m")));
   }
   std::uintmax_t iterations = 100;
   const auto root = boost::math::tools::toms748_solve(mismatch, lower, upper,
