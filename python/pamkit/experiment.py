@@ -55,6 +55,7 @@ TEST_KEYS = {
     "gas": (False, '"sealed" (default) or "supplied"'),
     "initial_length_m": (False, "muscle length at zero elongation [m]"),
     "load_N": (False, "isotonic: the constant load the muscle carries [N] (or unknown in [calibrate])"),
+    "load_mass_kg": (False, "isotonic time series: the hanging load's mass [kg]; the length follows its motion"),
     "description": (False, "free text: where the test comes from"),
     "zero": (False, "a run with no air (CSV, relative to the TOML): its means zero the load cell and transducer"),
     "preload_N": (False, "supplied: the force the deflated muscle was mounted with; sets its length [N]"),
@@ -108,6 +109,7 @@ class Experiment:
     kind: str = SERIES_KIND
     calibrate: dict[str, tuple[float, float]] = field(default_factory=dict)
     load_N: float | None = None
+    load_mass_kg: float | None = None
     zeroed: dict[str, float] = field(default_factory=dict)  # offsets the zero run took off each channel
     preload_N: float | None = None
     ranges: dict[str, tuple[float, float]] = field(default_factory=dict)  # what each instrument reads
@@ -379,6 +381,13 @@ def load_experiment(path: str | Path) -> Experiment:
             raise _fail(path, f"[test] load_N = {load} is outside [0, 1e5] N")
     elif kind == "isotonic" and "load_N" not in calibrate:
         raise _fail(path, "[test] load_N is missing: an isotonic test needs its load, or load_N in [calibrate]")
+    mass = test.get("load_mass_kg")
+    if mass is not None:
+        mass = _number(path, "test", "load_mass_kg", mass)
+        if kind != "isotonic":
+            raise _fail(path, f'[test] load_mass_kg belongs to kind = "isotonic", not {kind!r}')
+        if not 0 < mass <= 1e4:
+            raise _fail(path, f"[test] load_mass_kg = {mass} is outside (0, 1e4] kg")
     if "load_N" in calibrate and kind != "isotonic":
         raise _fail(path, f'[calibrate] load_N belongs to kind = "isotonic", not {kind!r}')
     preload = test.get("preload_N")
@@ -412,9 +421,10 @@ def load_experiment(path: str | Path) -> Experiment:
         load_N=load,
         preload_N=preload,
         ranges=ranges,
+        load_mass_kg=mass,
     )
     if kind == "isotonic":
-        experiment.columns = _read_isotonic(data_path, build)
+        experiment.columns = _read_isotonic(data_path, build, dynamic=mass is not None)
         return experiment
     if kind in TABLE_COLUMNS:
         experiment.columns = read_table(data_path, TABLE_COLUMNS[kind])
@@ -461,9 +471,10 @@ def _zero(experiment: Experiment, path: Path, name) -> None:
         experiment.zeroed[channel] = offset
 
 
-def _read_isotonic(path: Path, build: MuscleBuild) -> dict[str, np.ndarray]:
+def _read_isotonic(path: Path, build: MuscleBuild, dynamic: bool = False) -> dict[str, np.ndarray]:
     """An isotonic test's rows: pressure_kPa and the muscle's length_m, or its contraction_m
-    from the deflated length (converted to length_m); time_s when there is one."""
+    from the deflated length (converted to length_m); time_s when there is one, and always,
+    increasing, for a `dynamic` test (a load whose motion is integrated in time)."""
     header = _header(path)
     measures = [name for name in ("length_m", "contraction_m") if name in header]
     if len(measures) != 1:
@@ -471,8 +482,13 @@ def _read_isotonic(path: Path, build: MuscleBuild) -> dict[str, np.ndarray]:
             f"{path}:1: an isotonic test gives its length as one of length_m or contraction_m; found "
             f"{', '.join(measures) or 'neither'}"
         )
+    if dynamic and "time_s" not in header:
+        raise ExperimentError(f"{path}:1: [test] load_mass_kg integrates the load's motion in time: time_s is missing")
     columns = _read_csv(
-        path, ("pressure_kPa", measures[0]), tuple(c for c in ("time_s",) if c in header), increasing=None
+        path,
+        ("pressure_kPa", measures[0]),
+        tuple(c for c in ("time_s",) if c in header),
+        increasing="time_s" if dynamic else None,
     )
     if "contraction_m" in columns:
         columns["length_m"] = build.length_m - columns.pop("contraction_m")

@@ -20,6 +20,7 @@ from pamkit._core import (
     free_inflation,
     inflated_and_sealed,
     isotonic_lengths,
+    isotonic_motion,
     simulate_measurement,
     simulate_supplied_measurement,
     static_forces,
@@ -121,7 +122,8 @@ def simulate_table(
     """Predicts a static table row by row (all rows, or `rows`): an isometric map's force at its
     held length and supplied pressure, a free-inflation table's free length and diameter at its
     pressure, an isotonic test's length under its load (`load_N`, by default the file's) along
-    the quasi-static path of every row from the deflated length. Returns the table's columns
+    the quasi-static path of every row from the deflated length, or, with `[test] load_mass_kg`,
+    along the load's motion integrated in time (isotonic_motion). Returns the table's columns
     with the measured ones replaced by the prediction.
 
     Raises:
@@ -148,10 +150,21 @@ def simulate_table(
                     f"{experiment.path}: [test] load_N is unknown (in [calibrate]); a prediction needs a load: "
                     "give [test] load_N, or run `pamkit diagnose` to calibrate it"
                 )
-            path = isotonic_lengths(
-                params, experiment.columns["pressure_kPa"], load, params.build.length_m, list(effects)
-            )
-            return {"pressure_kPa": pressure, "length_m": path.length_m[rows]}
+            if experiment.load_mass_kg is not None:  # the load's motion, integrated in time
+                path = isotonic_motion(
+                    params,
+                    experiment.columns["time_s"],
+                    experiment.columns["pressure_kPa"],
+                    load,
+                    experiment.load_mass_kg,
+                    None,
+                    list(effects),
+                )
+            else:
+                path = isotonic_lengths(
+                    params, experiment.columns["pressure_kPa"], load, params.build.length_m, list(effects)
+                )
+            return {"pressure_kPa": pressure, "length_m": np.asarray(path.length_m)[rows]}
         if effects:
             raise ExperimentError(f"{experiment.path}: a free-inflation table is predicted without effects")
         geometry = BraidGeometry(params.build)

@@ -130,3 +130,44 @@ def test_a_lab_log_with_an_offset_run_a_repeated_stamp_and_a_preloaded_mount_loa
     np.testing.assert_allclose(experiment.columns["force_N"], [20.0, 46.0, 70.0])  # the 3 N tare taken off
     assert experiment.reading_range("force_N") == (-8.0, 1497.0)
     assert simulate_experiment(experiment)["force_N"][0] == pytest.approx(20.0, rel=1e-6)
+
+
+def _write_isotonic_series(tmp_path, times, pressures, extra="load_mass_kg = 10.0"):
+    rows = "".join(f"{t},{p},0.25\n" for t, p in zip(times, pressures))
+    (tmp_path / "iso.csv").write_text("time_s,pressure_kPa,length_m\n" + rows)
+    (tmp_path / "iso.toml").write_text(
+        f'{MUSCLE}\n[test]\nkind = "isotonic"\nload_N = 98.1\ndata = "iso.csv"\n{extra}\n'
+    )
+    return tmp_path / "iso.toml"
+
+
+def test_a_hanging_mass_lags_a_slow_sweep_in_proportion_to_its_rate_and_a_fast_step_with_inertia(tmp_path):
+    # Issue "Isotonic tests", item 2's dynamic option: [test] load_mass_kg integrates the load's
+    # motion (isotonic_motion). On a slow sweep the load follows the quasi-static path behind it
+    # by the friction's lag, friction / stiffness; the thesis's tanh(Kf v) with Kf = 1 s/m is
+    # linear at these speeds, so the lag halves when the sweep takes twice as long (the limit
+    # the quasi-static solve is). A step in 10 ms is not followed: the 10 kg load is still on its way.
+    def largest_lag(duration_s):
+        times = np.linspace(0.0, duration_s, 241)
+        sweep = np.interp(times, [0, duration_s / 2, duration_s], [100.0, 400.0, 100.0])
+        dynamic = simulate_experiment(load_experiment(_write_isotonic_series(tmp_path, times, sweep)))
+        static = simulate_experiment(load_experiment(_write_isotonic_series(tmp_path, times, sweep, extra="")))
+        return float(np.max(np.abs(dynamic["length_m"] - static["length_m"])))
+
+    slow, slower = largest_lag(120.0), largest_lag(240.0)
+    assert slow == pytest.approx(2.0 * slower, rel=0.1)
+    fast = np.array([0.0, 0.01, 0.02, 0.03])
+    step = np.array([100.0, 400.0, 400.0, 400.0])
+    dynamic = simulate_experiment(load_experiment(_write_isotonic_series(tmp_path, fast, step)))
+    static = simulate_experiment(load_experiment(_write_isotonic_series(tmp_path, fast, step, extra="")))
+    assert abs(dynamic["length_m"][1] - static["length_m"][1]) > 1e-3
+
+
+def test_a_hanging_mass_needs_a_time_axis(tmp_path):
+    path = _write_isotonic_series(tmp_path, [0, 1], [100, 200])
+    (tmp_path / "iso.csv").write_text("pressure_kPa,length_m\n100,0.25\n200,0.24\n")
+    with pytest.raises(ExperimentError, match="load_mass_kg integrates the load's motion in time: time_s is missing"):
+        load_experiment(path)
+    path.write_text(path.read_text().replace("load_mass_kg = 10.0", "load_mass_kg = 0.0"))
+    with pytest.raises(ExperimentError, match=r"load_mass_kg = 0.0 is outside \(0, 1e4\] kg"):
+        load_experiment(path)

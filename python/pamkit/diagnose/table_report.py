@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from pamkit.diagnose.table_kinds import test_names
 from pamkit.diagnose.tables import CHANNEL_UNITS, TableDiagnosis, TableFit, heldout_rmse
 
 
@@ -146,7 +147,7 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
     pressure = c.columns["pressure_kPa"]
     by_group = c.kind in ("isometric_map", "isotonic")
     curves = c.groups if by_group else c.test
-    names = c.group_labels if by_group else [Path(e.path).stem for e in c.experiments]
+    names = c.group_labels if by_group else test_names(c.experiments)
     figure, axes = plt.subplots(1, len(d.channels), figsize=(6.5 * len(d.channels), 4.8), squeeze=False)
     for axis, channel in zip(axes[0], d.channels):
         unit = CHANNEL_UNITS[channel]
@@ -175,7 +176,7 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
         axis.legend(fontsize=7, loc="best")
     extended = f"solid: with {d.cause}; " if d.extended is not d.baseline else ""
     figure.suptitle(
-        f"{', '.join(Path(e.path).name for e in c.experiments)}: cause {d.cause}\n"
+        f"{', '.join(test_names(c.experiments))}: cause {d.cause}\n"
         f"points: measured; dotted: calibrated baseline; {extended}\n"
         f"each {c.group_name} predicted by the model fitted without it",
         fontsize=8,
