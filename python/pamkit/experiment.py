@@ -77,6 +77,8 @@ SCALED_WITH_DIAMETER = (
     "end_diameter_m",
     "cone_generator_m",
 )
+# The sections a campaign file shares with its tests, besides [campaign] itself.
+CAMPAIGN_SECTIONS = ("campaign", "muscle", "bladder", "friction", "gas", "calibrate")
 # [bladder] keys: the law by name, and the neo-Hookean modulus.
 BLADDER_LAWS = ("thesis", "neo_hookean", "none")
 
@@ -303,17 +305,53 @@ def _range(path: Path, key: str, value) -> tuple[float, float]:
     return lowest, highest
 
 
-def load_experiment(path: str | Path) -> Experiment:
-    """Reads an experiment TOML and its CSV.
+def _document(path: Path) -> dict:
+    try:
+        return tomllib.loads(_text(path, "experiment"))
+    except tomllib.TOMLDecodeError as error:
+        raise _fail(path, f"not valid TOML: {error}") from None
+
+
+def load_tests(path: str | Path) -> list[Experiment]:
+    """The experiments a TOML names: itself, or a campaign's tests (`[campaign] tests = [...]`,
+    paths relative to it), each with the campaign's `[muscle]`, `[bladder]`, `[friction]`,
+    `[gas]` and `[calibrate]` sections (DESIGN.md, "Campaigns"); a test may not give a section
+    the campaign gives.
+
+    Raises:
+        ExperimentError: naming the campaign file, or the test's file, of the first problem.
+    """
+    path = Path(path)
+    document = _document(path)
+    if "campaign" not in document:
+        return [load_experiment(path)]
+    for section in document:
+        if section not in CAMPAIGN_SECTIONS:
+            raise _fail(path, f"unknown section [{section}] in a campaign (known: {', '.join(CAMPAIGN_SECTIONS)})")
+    campaign = document.pop("campaign")
+    for key in campaign:
+        if key != "tests":
+            raise _fail(path, f"unknown key [campaign] {key} (known: tests)")
+    tests = campaign.get("tests")
+    if not isinstance(tests, list) or not tests or not all(isinstance(t, str) for t in tests):
+        raise _fail(path, f"[campaign] tests = {tests!r} must be a list of experiment files")
+    return [load_experiment((path.parent / test).resolve(), shared=document) for test in tests]
+
+
+def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
+    """Reads an experiment TOML and its CSV; `shared` sections (a campaign's) are added to it.
 
     Raises:
         ExperimentError: naming the file (and line and column for CSV data) of the first problem.
     """
     path = Path(path)
-    try:
-        document = tomllib.loads(_text(path, "experiment"))
-    except tomllib.TOMLDecodeError as error:
-        raise _fail(path, f"not valid TOML: {error}") from None
+    document = _document(path)
+    if "campaign" in document:
+        raise _fail(path, "a campaign file, not one experiment: diagnose it, or load its tests with load_tests")
+    for section, table in (shared or {}).items():
+        if section in document:
+            raise _fail(path, f"gives [{section}], which its campaign shares: give it in one place")
+        document[section] = table
 
     known_sections = {"muscle", "test", "friction", "gas", "bladder", "calibrate"}
     for section in document:

@@ -16,8 +16,9 @@ def register(subparsers) -> None:
     parser.add_argument(
         "experiment",
         nargs="+",
-        help="experiment TOML file (with its CSV of measured channels); several static tables of one muscle "
-        "(isometric maps, free-inflation tables) form a campaign that shares its [calibrate] unknowns",
+        help="experiment TOML file (with its CSV of measured channels), or a campaign TOML ([campaign] tests = "
+        "[...]); several tests of one muscle form a campaign: static tables share their [calibrate] unknowns, "
+        "time series are each held out in turn and a cause must carry from the others to every one",
     )
     parser.add_argument("--json", help="write the report as JSON")
     parser.add_argument("--plot", help="write the report as a PNG figure")

@@ -38,7 +38,7 @@ from pamkit.diagnose.decide import (
 from pamkit.diagnose.kinds import Problem, build_problem
 from pamkit.diagnose.tables import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.experiment import Experiment, ExperimentError, load_experiment
+from pamkit.experiment import Experiment, ExperimentError, load_tests
 
 __all__ = ["MIN_GAIN", "MAX_DIAGNOSED_ROWS", "Diagnosis", "ThinningWarning", "diagnose", "data_seed"]
 
@@ -215,10 +215,11 @@ def diagnose(
     threads: int | None = None,
     seed: int | None = None,
 ) -> Diagnosis | TableDiagnosis:
-    """Diagnoses one experiment, or a campaign (a list) of static tables of one muscle.
-    `progress(message)` is called as work proceeds; `seed` (by default drawn from the data)
-    seeds the bootstrap. Static tables (isometric maps, free-inflation tables) are diagnosed by
-    tables.py, on held-out lengths or rows.
+    """Diagnoses one experiment, or a campaign (a list) of tests of one muscle, or a campaign
+    TOML (`[campaign] tests = [...]`). `progress(message)` is called as work proceeds; `seed`
+    (by default drawn from the data) seeds the bootstrap. Static tables (isometric maps,
+    isotonic and free-inflation tables) are diagnosed by tables.py, on held-out lengths, sweeps
+    or rows; a campaign of time series by campaign.py, each test held out in turn.
 
     Raises:
         ExperimentError: for data that cannot be diagnosed, naming file, row and column.
@@ -228,21 +229,20 @@ def diagnose(
     tests = list(experiment) if isinstance(experiment, (list, tuple)) else [experiment]
     loaded = []
     for test in tests:
-        if not isinstance(test, Experiment):
-            report(f"reading {test}")
-            test = load_experiment(test)
-            rows = len(next(iter(test.columns.values())))
-            report(f"read {rows} rows of {test.data_path.name} ({clock.perf_counter() - started:.1f} s)")
-        loaded.append(test)
+        if isinstance(test, Experiment):
+            loaded.append(test)
+            continue
+        report(f"reading {test}")
+        for one in load_tests(test):
+            rows = len(next(iter(one.columns.values())))
+            report(f"read {rows} rows of {one.data_path.name} ({clock.perf_counter() - started:.1f} s)")
+            loaded.append(one)
     tests = loaded
     effect_catalog = effect_catalog if effect_catalog is not None else builtin_catalog()
     if all(e.is_table for e in tests):
         return diagnose_table(tests, effect_catalog, progress=progress, threads=threads)
     if len(tests) > 1:
-        raise ExperimentError(
-            f"{tests[0].path}: a campaign of several tests is diagnosed for static tables (isometric_map, "
-            "free_inflation) only; diagnose each time series alone"
-        )
+        return _diagnose_series_campaign(tests, effect_catalog, progress, threads, seed)
     experiment, note = thinned(tests[0])
     notes = [note] if note else []
     if note:  # on stderr even with no progress shown (the command line prints warnings as one line)
@@ -338,3 +338,21 @@ def diagnose(
     return Diagnosis(
         problem, baseline, judged, skipped, decision, extended, named, warnings, discovered, seconds, notes
     )
+
+
+def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress, threads, seed):
+    """Each time series alone, then the causes carried from the others to each (campaign.py)."""
+    from pamkit.diagnose.campaign import MIN_TESTS, campaign_of_series
+
+    if any(e.is_table for e in tests):
+        raise ExperimentError(
+            f"{tests[0].path}: a campaign is of one kind: static tables together, or time series together"
+        )
+    report = progress or (lambda message: None)
+    diagnoses = []
+    for number, test in enumerate(tests, start=1):
+        report(f"test {number}/{len(tests)}: {test.path}")
+        diagnoses.append(diagnose(test, effect_catalog, progress, threads, seed))
+    if len(diagnoses) < MIN_TESTS:
+        raise ExperimentError(f"{tests[0].path}: a campaign needs at least {MIN_TESTS} tests")
+    return campaign_of_series(diagnoses, effect_catalog, report)

@@ -7,8 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.diagnose import evidence, table_report
+from pamkit.diagnose import campaign, evidence, table_report
 from pamkit.diagnose.calibrate import Fit
+from pamkit.diagnose.campaign import SeriesCampaign
 from pamkit.diagnose.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Judgement, credited_channels
 from pamkit.diagnose.engine import CHANNEL_UNITS as UNITS
 from pamkit.diagnose.engine import Diagnosis
@@ -43,10 +44,12 @@ def _residual_evidence(d: Diagnosis, fit: Fit) -> dict:
     return out
 
 
-def to_json(d: Diagnosis | TableDiagnosis) -> dict:
+def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
     """The report, with DESIGN.md's keys (and a few more: noise, evidence, verdict, timing)."""
     if isinstance(d, TableDiagnosis):
         return table_report.to_json(d)
+    if isinstance(d, SeriesCampaign):
+        return campaign.to_json(d, to_json)
     p = d.problem
     baseline_rmse = _heldout_rmse(d, d.baseline)
     named = d.extended_judgement
@@ -131,10 +134,12 @@ def _sizes(d: Diagnosis, fit: Fit) -> str:
     )
 
 
-def verdict(d: Diagnosis | TableDiagnosis) -> str:
+def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     """One sentence a person reads in ten seconds."""
     if isinstance(d, TableDiagnosis):
         return table_report.verdict(d)
+    if isinstance(d, SeriesCampaign):
+        return campaign.verdict(d)
     p = d.problem
     baseline_rmse = _heldout_rmse(d, d.baseline)
     decision = d.decision
@@ -193,10 +198,12 @@ def verdict(d: Diagnosis | TableDiagnosis) -> str:
     )
 
 
-def plot(d: Diagnosis | TableDiagnosis, path: str | Path) -> Path:
+def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Path:
     """Measured vs baseline vs extended per channel, residuals before and after, the ranking."""
     if isinstance(d, TableDiagnosis):
         return table_report.plot(d, path)
+    if isinstance(d, SeriesCampaign):
+        return campaign.plot(d, path)
     import matplotlib
 
     matplotlib.use("Agg")
@@ -264,7 +271,9 @@ def _shade(axis, time, mask):
 
 
 def write(
-    d: Diagnosis | TableDiagnosis, json_path: str | Path | None = None, plot_path: str | Path | None = None
+    d: Diagnosis | TableDiagnosis | SeriesCampaign,
+    json_path: str | Path | None = None,
+    plot_path: str | Path | None = None,
 ) -> None:
     if json_path:
         Path(json_path).parent.mkdir(parents=True, exist_ok=True)

@@ -1,0 +1,176 @@
+"""A campaign of time series: several bench tests of one muscle (DESIGN.md, "Campaigns").
+
+Each test is diagnosed alone first (its baseline calibrated on its own cycles: the inflation
+pressure, friction and bladder scales are per-test nuisances). A cause must then hold across the
+campaign, held out by whole test: for each test, the effect's parameters are the median of what
+the *other* tests fitted, the test's own calibrated baseline carries them, and the gain is
+scored on its held-out cycles exactly as a candidate's is (decide.score, credited channels).
+The campaign names the cause whose leave-one-test-out gain is significant in every test
+(at least MIN_GAIN, its 95 % interval above zero) and that at least one test named on its own;
+`none` when every test says `none`; otherwise `unexplained`, saying where the cause fails to
+carry or where the tests disagree.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from pamkit.diagnose.calibrate import Fit
+from pamkit.diagnose.decide import MIN_GAIN, score
+from pamkit.diagnose.engine import Diagnosis
+from pamkit.diagnose.table_kinds import test_names
+
+# Fewer tests than this cannot hold a test out and still fit the effect on the others.
+MIN_TESTS = 2
+
+
+@dataclass
+class Transfer:
+    """An effect carried to one test with the parameters the other tests fitted."""
+
+    test: str
+    params: dict[str, float]  # the median of the other tests' fits
+    gain: float  # credited held-out gain on this test's held-out cycles
+    gain_ci95: list[float]
+    carries: bool  # gain >= MIN_GAIN with its interval above zero
+
+
+@dataclass
+class SeriesCampaign:
+    paths: list[str]
+    tests: list[str]  # a short name for each (table_kinds.test_names)
+    diagnoses: list[Diagnosis]
+    transfers: dict[str, list[Transfer]]  # per effect named by some test: one per test
+    cause: str
+    reason: str
+
+
+def _single_effect_fits(d: Diagnosis) -> dict[str, Fit]:
+    """Each single-effect candidate a test fitted, by its label (`sensor_lag:channel=force_N`)."""
+    return {j.fit.name: j.fit for j in d.candidates if len(j.fit.effects) == 1 and j.fit.error is None}
+
+
+def _carry(catalog, label: str, held: Diagnosis, others: list[Fit], name: str, seed: int) -> Transfer:
+    effect = catalog.parse(label)
+    numeric = {p.name for p in effect.parameters()}.intersection(*(fit.params for fit in others))
+    params = {key: float(np.median([fit.params[key] for fit in others])) for key in sorted(numeric)}
+    for key, value in params.items():
+        effect.set(key, value)
+    problem, baseline = held.problem, held.baseline
+    predicted = problem.predictor.predict(baseline.baseline_x, [effect])
+    carried = Fit(
+        label,
+        [effect],
+        baseline.baseline_x,
+        params,
+        predicted,
+        problem.chi2_by_channel(predicted),
+        baseline.parameter_count,  # nothing fitted on this test beyond its own baseline
+    )
+    s = score(problem, baseline, carried, np.random.default_rng(seed))
+    carries = s.credited_gain >= MIN_GAIN and s.credited_ci95[0] > 0.0
+    return Transfer(name, params, float(s.credited_gain), [float(v) for v in s.credited_ci95], carries)
+
+
+def campaign_of_series(diagnoses: list[Diagnosis], catalog, progress=None) -> SeriesCampaign:
+    """Carries every effect some test named to each test from the others, and decides."""
+    progress = progress or (lambda message: None)
+    paths = [str(d.problem.experiment.path) for d in diagnoses]
+    names = test_names([d.problem.experiment for d in diagnoses])
+    fits = [_single_effect_fits(d) for d in diagnoses]
+    named = {d.extended.name for d in diagnoses if d.decision.named is not None and len(d.extended.effects) == 1}
+    transfers: dict[str, list[Transfer]] = {}
+    for label in sorted(named):
+        if not all(label in f for f in fits):
+            continue  # an effect one test could not fit cannot be carried to it
+        progress(f"carrying {label} to each test from the others")
+        transfers[label] = [
+            _carry(
+                catalog,
+                label,
+                d,
+                [fits[j][label] for j in range(len(diagnoses)) if j != k],
+                names[k],
+                seed=k,
+            )
+            for k, d in enumerate(diagnoses)
+        ]
+    holding = {label: t for label, t in transfers.items() if all(x.carries for x in t)}
+    if holding:
+        cause = max(holding, key=lambda label: float(np.mean([x.gain for x in holding[label]])))
+        worst = min(x.gain for x in holding[cause])
+        reason = f"its parameters from the other tests gain on every test's held-out cycles (the least {worst:.2f})"
+    elif all(d.cause == "none" for d in diagnoses):
+        cause, reason = "none", "every test's calibrated model explains it within its noise"
+    else:
+        cause = "unexplained"
+        said = ", ".join(f"{n}: {d.cause}" for n, d in zip(names, diagnoses))
+        failing = [
+            f"{label} does not carry to {', '.join(x.test for x in t if not x.carries)}"
+            for label, t in transfers.items()
+        ]
+        reason = f"no cause holds across the campaign ({said})" + (f"; {'; '.join(failing)}" if failing else "")
+    return SeriesCampaign(paths, names, diagnoses, transfers, cause, reason)
+
+
+def to_json(c: SeriesCampaign, test_report) -> dict:
+    """The campaign's report: its verdict, each effect carried test by test, and each test's own
+    report (`test_report`, report.py's to_json)."""
+    return {
+        "kind": "campaign",
+        "tests": c.paths,
+        "held_out": "test",
+        "cause": c.cause,
+        "reason": c.reason,
+        "carried": {
+            label: [
+                {"test": x.test, "params": x.params, "gain": x.gain, "gain_ci95": x.gain_ci95, "carries": x.carries}
+                for x in t
+            ]
+            for label, t in c.transfers.items()
+        },
+        "per_test": [test_report(d) for d in c.diagnoses],
+    }
+
+
+def verdict(c: SeriesCampaign) -> str:
+    lines = [f"campaign of {len(c.tests)} tests, each held out in turn: cause {c.cause} — {c.reason}"]
+    for name, d in zip(c.tests, c.diagnoses):
+        lines.append(f"  {name}: alone, {d.cause}")
+    for label, t in c.transfers.items():
+        gains = ", ".join(f"{x.test} {x.gain:.2f} [{x.gain_ci95[0]:.2f}, {x.gain_ci95[1]:.2f}]" for x in t)
+        lines.append(f"  {label} from the other tests: held-out gain {gains}")
+    return "\n".join(lines)
+
+
+def plot(c: SeriesCampaign, path: str | Path) -> Path:
+    """Each effect some test named, carried to each test from the others: its held-out gain with
+    the 95 % interval, against MIN_GAIN."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axis = plt.subplots(figsize=(7.5, 4.2))
+    labels = list(c.transfers)
+    width = 0.8 / max(len(labels), 1)
+    for i, label in enumerate(labels):
+        gains = np.array([x.gain for x in c.transfers[label]])
+        low = gains - np.array([x.gain_ci95[0] for x in c.transfers[label]])
+        high = np.array([x.gain_ci95[1] for x in c.transfers[label]]) - gains
+        axis.bar(np.arange(len(c.tests)) + i * width, gains, width, yerr=[low, high], capsize=3, label=label)
+    axis.axhline(MIN_GAIN, color="k", lw=0.8, ls=":", label=f"MIN_GAIN {MIN_GAIN}")
+    axis.set_xticks(np.arange(len(c.tests)) + 0.4 - width / 2, c.tests)
+    axis.set_ylabel("held-out gain, parameters from the other tests")
+    axis.set_title(f"campaign: cause {c.cause}", fontsize=9)
+    axis.grid(alpha=0.3, axis="y")
+    axis.legend(fontsize=7)
+    figure.tight_layout()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    return path
