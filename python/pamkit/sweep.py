@@ -1,0 +1,361 @@
+"""Design sweeps: one experiment simulated over a grid or a Latin hypercube of its build and test
+parameters, one row of summary metrics per run (`pamkit sweep SPEC.toml -o RESULTS.parquet`).
+
+A spec is a TOML file::
+
+    [sweep]
+    experiment = "my_test.toml"  # relative to the spec; default: the thesis's PAM 2 at 207 kPa, 80 %
+    cycles = 2                   # keep the test's first cycles only (default: all of them)
+    design = "grid"              # every combination of the values; or "latin_hypercube"
+    samples = 100                # latin_hypercube: how many runs
+    seed = 1                     # latin_hypercube: the draw's seed (the same seed, the same runs)
+
+    [parameters]
+    inflation_pressure_kPa = { values = [138, 207, 276] }  # grid: listed values
+    braid_angle_deg = { linspace = [18, 26, 5] }            # grid: lo, hi, count
+    bladder.shear_modulus_Pa = { range = [0.5e6, 2e6] }     # latin_hypercube: lo, hi
+
+A parameter is any name `[calibrate]` accepts (MuscleBuild's fields, braid_angle_deg,
+bladder.shear_modulus_Pa: a neo-Hookean bladder of that modulus), a `[test]` condition
+(inflation_pressure_kPa, ambient_temperature_C, initial_length_m) or a `friction.` or `gas.`
+field, each within the range experiment files allow. Every other setting is the base
+experiment's, as written.
+
+Each run gives the parameters and the metrics of METRICS; a run the model cannot follow (or a
+combination the muscle's own checks reject) gives its message in `error` and NaN metrics.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import itertools
+import math
+from pathlib import Path
+
+import numpy as np
+from scipy.integrate import trapezoid
+from scipy.stats import qmc
+
+from pamkit._core import (
+    BladderLaw,
+    Error,
+    FrictionParams,
+    GasParams,
+    MuscleBuild,
+    SolverError,
+    fiber_revolutions_for_braid_angle,
+)
+from pamkit.cluster import check_output, run_all, work_key
+from pamkit.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, calibratable_fields, load_experiment
+from pamkit.simulate import simulate_experiment
+from pamkit.thesis import cycle_starts, thesis_directory
+from pamkit.units import KELVIN_AT_ZERO_CELSIUS
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python < 3.11
+    import tomli as tomllib
+
+#: The base experiment when a spec names none: PAM 2 of the thesis at 207 kPa, stretched to 80 %.
+DEFAULT_EXPERIMENT = "pam2_207kPa_80pct.toml"
+DESIGNS = ("grid", "latin_hypercube")
+#: The summary of one run, with its meaning.
+METRICS = {
+    "peak_force_N": "largest force over the run [N]",
+    "force_range_N": "largest minus smallest force [N]",
+    "stored_energy_J": "work done on the muscle over the first stretch, the integral of F dx [J]",
+    "pressure_range_kPa": "highest minus lowest gauge pressure, sealed tests (NaN when supplied) [kPa]",
+    "temperature_swing_C": "highest minus lowest gas temperature, sealed tests (NaN when supplied) [°C]",
+}
+# [test] conditions a sweep may set, with the range experiment.py allows them.
+TEST_PARAMETERS = {
+    "inflation_pressure_kPa": (0.0, 2000.0, "kPa"),
+    "ambient_temperature_C": (-50.0, 150.0, "°C"),
+    "initial_length_m": (1e-9, 5.0, "m"),
+}
+# Set through ambient_temperature_C, as an experiment file sets it.
+GAS_FIELDS_SET_ELSEWHERE = ("ambient_temperature_K",)
+DISTRIBUTIONS = ("values", "linspace", "range")
+
+
+def sweepable_parameters() -> dict[str, tuple[float, float, str]]:
+    """Every name a spec's [parameters] may give, with its allowed range and unit."""
+    allowed = {name: bounds for name, bounds in calibratable_fields().items() if name != "load_N"}
+    allowed.update(TEST_PARAMETERS)
+    for prefix, struct in (("friction", FrictionParams), ("gas", GasParams)):
+        for name, info in struct.fields().items():
+            if name not in GAS_FIELDS_SET_ELSEWHERE:
+                allowed[f"{prefix}.{name}"] = (info["min"], info["max"], info["unit"])
+    return allowed
+
+
+@dataclasses.dataclass(frozen=True)
+class SweepSpec:
+    """What to run: the base experiment and each run's parameter values (plain data, so that
+    Dask sends it to the workers as it is)."""
+
+    path: Path  #: the spec file
+    experiment: Path  #: the base experiment TOML
+    cycles: int | None  #: keep the base test's first cycles only
+    design: str
+    names: tuple[str, ...]  #: the parameters, in the spec's order
+    runs: tuple[tuple[float, ...], ...]  #: each run's values, in `names` order
+    seed: int | None = None
+
+    def parameters(self, run: int) -> dict[str, float]:
+        return dict(zip(self.names, self.runs[run]))
+
+    def work_key(self) -> str:
+        """A digest of the runs (the journal of a resumed sweep must have it)."""
+        return work_key(
+            {"experiment": str(self.experiment), "cycles": self.cycles, "names": self.names, "runs": self.runs}
+        )
+
+
+def _fail(path: Path, message: str) -> ExperimentError:
+    return ExperimentError(f"{path}: {message}")
+
+
+def _number(path: Path, where: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise _fail(path, f"{where} = {value!r} must be a finite number")
+    return float(value)
+
+
+def _flatten(table: dict) -> dict[str, dict]:
+    """[parameters] with its dotted names joined (a `[parameters.bladder]` table, or `bladder.x = {...}`)."""
+    flat = {}
+    for key, value in table.items():
+        if isinstance(value, dict) and value and not set(value) & set(DISTRIBUTIONS):
+            flat.update({f"{key}.{inner}": v for inner, v in _flatten(value).items()})
+        else:
+            flat[key] = value
+    return flat
+
+
+def _grid_values(path: Path, name: str, table: dict, low: float, high: float, unit: str) -> list[float]:
+    where = f"[parameters] {name}"
+    if set(table) == {"values"}:
+        values = table["values"]
+        if not isinstance(values, list) or not values:
+            raise _fail(path, f"{where}.values = {values!r} must be a list of numbers")
+        values = [_number(path, f"{where}.values", v) for v in values]
+    elif set(table) == {"linspace"}:
+        spec = table["linspace"]
+        if not isinstance(spec, list) or len(spec) != 3 or isinstance(spec[2], bool) or not isinstance(spec[2], int):
+            raise _fail(path, f"{where}.linspace = {spec!r} must be [lo, hi, count]")
+        if spec[2] < 1:
+            raise _fail(path, f"{where}.linspace count {spec[2]} must be at least 1")
+        values = np.linspace(_number(path, where, spec[0]), _number(path, where, spec[1]), spec[2]).tolist()
+    else:
+        raise _fail(path, f"{where} = {table!r}: a grid takes {{ values = [...] }} or {{ linspace = [lo, hi, n] }}")
+    for value in values:
+        if not low <= value <= high:
+            raise _fail(path, f"{where}: {value:g} {unit} leaves the allowed [{low:g}, {high:g}]")
+    return values
+
+
+def _bounds(path: Path, name: str, table: dict, low: float, high: float, unit: str) -> tuple[float, float]:
+    where = f"[parameters] {name}"
+    if set(table) != {"range"} or not isinstance(table["range"], list) or len(table["range"]) != 2:
+        raise _fail(path, f"{where} = {table!r}: a latin_hypercube takes {{ range = [lo, hi] }}")
+    lower, upper = (_number(path, f"{where}.range", v) for v in table["range"])
+    if not lower < upper:
+        raise _fail(path, f"{where}.range = [{lower:g}, {upper:g}] needs lo < hi")
+    if lower < low or upper > high:
+        raise _fail(path, f"{where}.range = [{lower:g}, {upper:g}] {unit} leaves the allowed [{low:g}, {high:g}]")
+    return lower, upper
+
+
+def _positive_int(path: Path, key: str, value) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise _fail(path, f"[sweep] {key} = {value!r} must be a whole number >= 1")
+    return value
+
+
+def load_spec(path: str | Path) -> SweepSpec:
+    """Reads a sweep spec and lays out its runs (the hypercube drawn with its seed).
+
+    Raises:
+        ExperimentError: naming the spec file, section and key of the first problem.
+    """
+    path = Path(path)
+    try:
+        document = tomllib.loads(path.read_text())
+    except OSError as error:
+        raise _fail(path, f"cannot read the sweep spec: {error.strerror or error}") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
+        raise _fail(path, f"not valid TOML: {error}") from None
+    for section in document:
+        if section not in ("sweep", "parameters"):
+            raise _fail(path, f"unknown section [{section}] (known: parameters, sweep)")
+    sweep = document.get("sweep", {})
+    known = ("experiment", "cycles", "design", "samples", "seed")
+    for key in sweep:
+        if key not in known:
+            raise _fail(path, f"unknown key [sweep] {key} (known: {', '.join(known)})")
+    if "experiment" in sweep:
+        if not isinstance(sweep["experiment"], str):
+            raise _fail(path, f"[sweep] experiment = {sweep['experiment']!r} must be a file name")
+        experiment = (path.parent / sweep["experiment"]).resolve()
+    else:
+        experiment = thesis_directory() / DEFAULT_EXPERIMENT
+    cycles = _positive_int(path, "cycles", sweep["cycles"]) if "cycles" in sweep else None
+    design = sweep.get("design", "grid")
+    if design not in DESIGNS:
+        raise _fail(path, f"[sweep] design = {design!r} must be one of {', '.join(DESIGNS)}")
+    for key in ("samples", "seed"):
+        if (key in sweep) != (design == "latin_hypercube"):
+            raise _fail(path, f"[sweep] {key}: {'needed by' if key not in sweep else 'belongs to'} a latin_hypercube")
+    table = _flatten(document.get("parameters", {}))
+    if not table:
+        raise _fail(path, "[parameters] is empty: name at least one parameter to sweep")
+    allowed = sweepable_parameters()
+    for name, value in table.items():
+        if name not in allowed:
+            raise _fail(path, f"[parameters] {name}: not a parameter a sweep can set (known: {', '.join(allowed)})")
+        if not isinstance(value, dict):
+            raise _fail(path, f"[parameters] {name} = {value!r} must be a table such as {{ values = [...] }}")
+    if BRAID_ANGLE_KEY in table and "fiber_revolutions" in table:
+        raise _fail(path, f"[parameters] names both fiber_revolutions and {BRAID_ANGLE_KEY}: they say the same")
+    names = tuple(table)
+    if design == "grid":
+        axes = [_grid_values(path, name, table[name], *allowed[name]) for name in names]
+        runs = tuple(itertools.product(*axes))
+        seed = None
+    else:
+        samples = _positive_int(path, "samples", sweep["samples"])
+        seed = sweep["seed"]
+        if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+            raise _fail(path, f"[sweep] seed = {seed!r} must be a whole number >= 0")
+        bounds = np.array([_bounds(path, name, table[name], *allowed[name]) for name in names])
+        unit = qmc.LatinHypercube(d=len(names), rng=seed).random(samples)
+        runs = tuple(tuple(row) for row in qmc.scale(unit, bounds[:, 0], bounds[:, 1]).tolist())
+    return SweepSpec(path, experiment, cycles, design, names, runs, seed)
+
+
+@functools.lru_cache(maxsize=4)
+def base_experiment(path: Path, cycles: int | None) -> Experiment:
+    """The base experiment, read once per process (a Dask worker keeps it between chunks), cut
+    to its first `cycles` cycles when given."""
+    experiment = load_experiment(path)
+    if experiment.is_table:
+        raise _fail(path, f"a {experiment.kind} table: a sweep simulates a time series")
+    if cycles is not None:
+        try:
+            starts = cycle_starts(experiment.elongation_m)
+        except ValueError as error:
+            raise _fail(experiment.data_path, f"[sweep] cycles: {error}") from None
+        if len(starts) - 1 < cycles:
+            raise _fail(experiment.data_path, f"[sweep] cycles = {cycles}: the test has {len(starts) - 1} cycles")
+        end = starts[cycles] + 1
+        experiment.columns = {name: values[:end] for name, values in experiment.columns.items()}
+    return experiment
+
+
+def _copy_struct(struct):
+    """A bound parameter struct copied field by field (the bindings do not pickle or copy)."""
+    copy = type(struct)()
+    for name in type(struct).fields():
+        setattr(copy, name, getattr(struct, name))
+    return copy
+
+
+def with_parameters(base: Experiment, parameters: dict[str, float]) -> Experiment:
+    """The base experiment with `parameters` set; the base is left as it was.
+
+    Raises:
+        ValueError: for a combination the muscle's own checks reject (a bladder wider than its
+            braid, a braid angle the build cannot reach).
+    """
+    build: MuscleBuild = _copy_struct(base.build)
+    friction = _copy_struct(base.friction)
+    gas = _copy_struct(base.gas_params)
+    gas.process = base.gas_params.process
+    bladder, test = base.bladder, {}
+    for name, value in parameters.items():
+        if name in MuscleBuild.fields():
+            setattr(build, name, value)
+        elif name.startswith("friction."):
+            setattr(friction, name.removeprefix("friction."), value)
+        elif name.startswith("gas."):
+            setattr(gas, name.removeprefix("gas."), value)
+        elif name == "bladder.shear_modulus_Pa":
+            bladder = BladderLaw.neo_hookean(value)
+        elif name in TEST_PARAMETERS:
+            test[name] = value
+    if BRAID_ANGLE_KEY in parameters:  # converts through the other dimensions, set above
+        build.fiber_revolutions = fiber_revolutions_for_braid_angle(build, parameters[BRAID_ANGLE_KEY])
+    if "ambient_temperature_C" in test:
+        gas.ambient_temperature_K = test["ambient_temperature_C"] + KELVIN_AT_ZERO_CELSIUS
+    for struct in (build, friction, gas):
+        struct.validate()
+    return dataclasses.replace(base, build=build, friction=friction, gas_params=gas, bladder=bladder, **test)
+
+
+def first_stretch_end(elongation_m: np.ndarray) -> int:
+    """Index of the sample where the first stretch ends: the largest elongation within the first
+    cycle (from the last zero before the crosshead moves to its return to zero), or over the whole
+    run when the crosshead never returns to zero."""
+    try:
+        starts = cycle_starts(elongation_m)
+    except ValueError:
+        return int(np.argmax(elongation_m))
+    return int(starts[0] + np.argmax(elongation_m[starts[0] : starts[1] + 1]))
+
+
+def summarize(experiment: Experiment, predicted: dict[str, np.ndarray]) -> dict[str, float]:
+    """METRICS of one simulated run."""
+    force, elongation = predicted["force_N"], predicted["elongation_m"]
+    end = first_stretch_end(elongation) + 1
+    sealed = experiment.gas == "sealed"
+    return {
+        "peak_force_N": float(np.max(force)),
+        "force_range_N": float(np.ptp(force)),
+        "stored_energy_J": float(trapezoid(force[:end], elongation[:end])),
+        "pressure_range_kPa": float(np.ptp(predicted["pressure_kPa"])) if sealed else math.nan,
+        "temperature_swing_C": float(np.ptp(predicted["temperature_C"])) if sealed else math.nan,
+    }
+
+
+def run_one(spec: SweepSpec, run: int) -> dict:
+    """One run's row: its index, parameters, METRICS and error (None when it ran)."""
+    row = {"run": run, **spec.parameters(run)}
+    try:
+        experiment = with_parameters(base_experiment(spec.experiment, spec.cycles), spec.parameters(run))
+        row.update(summarize(experiment, simulate_experiment(experiment)))
+        row["error"] = None
+    except (ValueError, SolverError, Error) as error:  # the model or the muscle's checks: kept in the row
+        row.update(dict.fromkeys(METRICS, math.nan))
+        row["error"] = str(error)
+    return row
+
+
+def run_chunk(spec: SweepSpec, runs: list[int]) -> list[dict]:
+    """The rows of several runs (one Dask task)."""
+    return [run_one(spec, run) for run in runs]
+
+
+def run_in_process(spec: SweepSpec) -> list[dict]:
+    """Every run in this process, in order: what a sweep on Dask must reproduce."""
+    return run_chunk(spec, list(range(len(spec.runs))))
+
+
+def sweep(spec: SweepSpec, output: str | Path, client, progress=None) -> list[dict]:
+    """Runs the spec on the Dask `client` (see pamkit.cluster), writes the table to `output`
+    (.parquet or .csv) and returns its rows in run order. Rows are journaled as they complete:
+    after a crash the same call resumes."""
+    output = check_output(output)
+    base_experiment(spec.experiment, spec.cycles)  # a bad base file is one error here, not one per run
+    return run_all(
+        functools.partial(run_chunk, spec),
+        range(len(spec.runs)),
+        row_key="run",
+        item_key=lambda run: run,
+        output=output,
+        work=spec.work_key(),
+        connected=client,
+        label="sweep",
+        progress=progress,
+    )
