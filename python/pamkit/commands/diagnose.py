@@ -1,9 +1,12 @@
-"""pamkit diagnose EXPERIMENT.toml [MORE.toml ...] [--json REPORT.json] [--plot REPORT.png]"""
+"""pamkit diagnose EXPERIMENT.toml [MORE.toml ...] [--json REPORT.json] [--plot REPORT.png]
+pamkit diagnose --batch DIR -o RESULTS.parquet [--workers N | --scheduler ADDRESS]"""
 
 from __future__ import annotations
 
 import argparse
 import sys
+
+from pamkit.commands.sweep import add_cluster_options
 
 
 def register(subparsers) -> None:
@@ -15,7 +18,7 @@ def register(subparsers) -> None:
     )
     parser.add_argument(
         "experiment",
-        nargs="+",
+        nargs="*",
         help="experiment TOML file (with its CSV of measured channels), or a campaign TOML ([campaign] tests = "
         "[...]); several tests of one muscle form a campaign: static tables share their [calibrate] unknowns, "
         "time series are each held out in turn and a cause must carry from the others to every one",
@@ -23,6 +26,12 @@ def register(subparsers) -> None:
     parser.add_argument("--json", help="write the report as JSON")
     parser.add_argument("--plot", help="write the report as a PNG figure")
     parser.add_argument("--threads", type=int, default=None, help="fits in parallel (default: all cores)")
+    batch = parser.add_argument_group(
+        "batch", "diagnose every experiment TOML of a folder on its own, each a Dask task (pip install 'pamkit[scale]')"
+    )
+    batch.add_argument("--batch", metavar="DIR", help="the folder: one row per file (cause, gain, held-out RMSE, ...)")
+    batch.add_argument("-o", "--output", help="with --batch: the table to write, .parquet or .csv")
+    add_cluster_options(batch)
     parser.add_argument("--quiet", action="store_true", help="no progress on stderr")
     parser.set_defaults(run=run)
 
@@ -35,6 +44,14 @@ def run(arguments: argparse.Namespace) -> int:
         if not arguments.quiet:
             print(f"  {message}", file=sys.stderr, flush=True)
 
+    if arguments.batch is not None:
+        return run_batch(arguments, progress)
+    if not arguments.experiment:
+        raise ValueError("name the experiment TOML files to diagnose, or a folder of them with --batch DIR")
+    for option in ("output", "workers", "scheduler"):
+        if getattr(arguments, option) is not None:
+            raise ValueError(f"--{option} belongs to --batch")
+
     d = diagnose(arguments.experiment, progress=progress, threads=arguments.threads)
     if arguments.json or arguments.plot:
         progress(f"writing {' and '.join(p for p in (arguments.json, arguments.plot) if p)}")
@@ -43,4 +60,27 @@ def run(arguments: argparse.Namespace) -> int:
     for path in (arguments.json, arguments.plot):
         if path:
             print(f"wrote {path}")
+    return 0
+
+
+def run_batch(arguments: argparse.Namespace, progress) -> int:
+    from pamkit.cluster import check_output, client, require
+    from pamkit.diagnose.batch import batch_files, diagnose_batch
+
+    if arguments.experiment:
+        raise ValueError("--batch DIR diagnoses the folder's files: name no experiment besides it")
+    for option in ("json", "plot", "threads"):
+        if getattr(arguments, option) is not None:
+            raise ValueError(
+                f"--{option} does not apply to --batch (one row per test; each diagnosis runs on one thread)"
+            )
+    if arguments.output is None:
+        raise ValueError("--batch needs -o RESULTS.parquet (or .csv)")
+    require("distributed")
+    output = check_output(arguments.output)
+    progress(f"diagnose: {len(batch_files(arguments.batch))} experiments in {arguments.batch}")
+    with client(arguments.workers, arguments.scheduler) as connected:
+        rows = diagnose_batch(arguments.batch, output, connected, progress)
+    failed = sum(1 for row in rows if row["error"])
+    print(f"wrote {output} ({len(rows)} tests, {failed} failed)")
     return 0
