@@ -30,8 +30,8 @@ SCALE_EXTRA_HINT = "pip install 'pamkit[scale]'"
 OUTPUT_FORMATS = (".parquet", ".csv")
 # Chunks per worker: enough that the workers finish together and the progress moves, few enough
 # that Dask's per-task cost (about a millisecond) stays small against a chunk's runs.
-CHUNKS_PER_WORKER = 8
-MAX_CHUNK = 64
+CHUNKS_PER_WORKER = 4
+MAX_CHUNK = 256
 PROGRESS_INTERVAL_S = 1.0
 
 

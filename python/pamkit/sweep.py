@@ -254,6 +254,12 @@ def base_experiment(path: Path, cycles: int | None) -> Experiment:
     return experiment
 
 
+def prepare_base(spec: SweepSpec) -> int:
+    """Reads the spec's base experiment into this process's cache; returns its sample count.
+    Run on every worker before the runs, so that a base file a worker cannot read is one error."""
+    return len(base_experiment(spec.experiment, spec.cycles).time_s)
+
+
 def _copy_struct(struct):
     """A bound parameter struct copied field by field (the bindings do not pickle or copy)."""
     copy = type(struct)()
@@ -347,7 +353,8 @@ def sweep(spec: SweepSpec, output: str | Path, client, progress=None) -> list[di
     (.parquet or .csv) and returns its rows in run order. Rows are journaled as they complete:
     after a crash the same call resumes."""
     output = check_output(output)
-    base_experiment(spec.experiment, spec.cycles)  # a bad base file is one error here, not one per run
+    prepare_base(spec)  # a bad base file is one error here, not one per run
+    client.run(prepare_base, spec)  # on a cluster of many machines, each must see the file
     return run_all(
         functools.partial(run_chunk, spec),
         range(len(spec.runs)),

@@ -156,3 +156,10 @@ def test_without_dask_the_command_says_what_to_install(write_spec, tmp_path, cap
     spec = write_spec(GRID.format())
     assert cli.main(["sweep", str(spec), "-o", str(tmp_path / "r.parquet")]) == 2
     assert capsys.readouterr().err.strip().endswith("distributed is not installed: pip install 'pamkit[scale]'")
+
+
+def test_the_bundled_example_runs_without_a_failure(thesis_dir):
+    spec = load_spec(thesis_dir.parents[1] / "sweeps" / "pam2_pressure_angle.toml")
+    assert spec.experiment == thesis_dir / "pam2_207kPa_80pct.toml"  # the default base
+    rows = run_in_process(spec)
+    assert len(rows) == 12 and [row["error"] for row in rows] == [None] * 12
