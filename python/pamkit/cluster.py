@@ -162,6 +162,10 @@ def run_all(
             progress(f"{label}: resuming from {journal.path}: {len(done)} of {len(items)} done")
         chunks = chunked(todo, worker_count(connected), chunk_size)
         _run_chunks(function, chunks, journal, len(items), connected, label, progress)
+    except BaseException:  # interrupted, or a bug in a run: say what is kept, then let it go on
+        if progress:
+            progress(f"{label}: {len(journal.rows)} of {len(items)} kept in {journal.path}; the same command resumes")
+        raise
     finally:
         journal.close()
     rows = sorted(journal.rows, key=lambda row: row[row_key])
@@ -199,7 +203,13 @@ def write_rows(path: Path, rows: list[dict]) -> None:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    pq.write_table(pa.table({name: [row.get(name) for row in rows] for name in columns}), path)
+    def column(name: str):
+        values = [row.get(name) for row in rows]
+        # A column empty in every row is a text one (`error` when every run succeeded): typed
+        # so, tables of several sweeps concatenate.
+        return pa.array(values, type=pa.string()) if all(v is None for v in values) else pa.array(values)
+
+    pq.write_table(pa.table({name: column(name) for name in columns}), path)
 
 
 def read_rows(path: str | Path) -> list[dict]:

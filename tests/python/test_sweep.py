@@ -7,6 +7,7 @@ import math
 import sys
 
 import numpy as np
+import pyarrow.parquet as pq
 import pytest
 
 from pamkit import cli
@@ -48,6 +49,7 @@ def test_a_two_worker_cluster_gives_the_rows_of_a_plain_loop(cluster, write_spec
     rows = sweep(spec, output, cluster)
     assert rows == run_in_process(spec)  # the same numbers, bit for bit: Dask changes nothing
     assert read_rows(output) == rows
+    assert str(pq.read_schema(output).field("error").type) == "string"  # text even when no run failed
     assert not (tmp_path / "results.parquet.partial.jsonl").exists()
     assert all(row["error"] is None for row in rows)
     # Physics, not bookkeeping: at each braid angle a higher pressure pulls harder and stores
