@@ -23,6 +23,11 @@ experiment's, as written.
 
 Each run gives the parameters and the metrics of METRICS; a run the model cannot follow (or a
 combination the muscle's own checks reject) gives its message in `error` and NaN metrics.
+
+With ``device = "exoskeleton"`` in [sweep] (no experiment, no cycles) the runs are the ankle
+device of appendix G.3 on Winter's gait (pamkit.exo.exo_study, without the walking-cadence ODE
+run), its parameters the `exo.` names of EXO_PARAMETERS, and its metrics EXO_METRICS: the
+device's torque share and the clutch's timing.
 """
 
 from __future__ import annotations
@@ -74,6 +79,25 @@ TEST_PARAMETERS = {
     "ambient_temperature_C": (-50.0, 150.0, "°C"),
     "initial_length_m": (1e-9, 5.0, "m"),
 }
+DEVICES = ("muscle", "exoskeleton")
+#: The exoskeleton's parameters (exo_study's arguments), with the range a sweep allows; the
+#: device's own checks (LinkageParams, the gait) may reject more, as a failed run.
+EXO_PARAMETERS = {
+    "exo.mass_kg": (1.0, 300.0, "kg"),
+    "exo.pressure_kPa": (0.0, 2000.0, "kPa"),
+    "exo.play_deg": (0.0, 90.0, "deg"),
+    "exo.compliance_deg_per_Nm": (0.0, 10.0, "deg/(N m)"),
+    "exo.ankle_range_deg": (0.1, 90.0, "deg"),
+    "exo.block_angle_deg": (1.0, 179.0, "deg"),
+}
+EXO_METRICS = {
+    "torque_share": "peak device torque over peak biological ankle torque",
+    "peak_torque_Nm": "peak device torque at the ankle [N m]",
+    "elongation_max_m": "largest stretch of the muscle over the gait [m]",
+    "engage_pct": "where in the stride the clutch engages [% of the cycle] (NaN: it never does)",
+    "release_pct": "where in the stride the clutch releases [% of the cycle] (NaN: it never does)",
+    "engaged_share_of_stride": "share of the stride the clutch holds the spring",
+}
 # Set through ambient_temperature_C, as an experiment file sets it.
 GAS_FIELDS_SET_ELSEWHERE = ("ambient_temperature_K",)
 DISTRIBUTIONS = ("values", "linspace", "range")
@@ -96,12 +120,13 @@ class SweepSpec:
     Dask sends it to the workers as it is)."""
 
     path: Path  #: the spec file
-    experiment: Path  #: the base experiment TOML
+    experiment: Path | None  #: the base experiment TOML (None for the exoskeleton)
     cycles: int | None  #: keep the base test's first cycles only
     design: str
     names: tuple[str, ...]  #: the parameters, in the spec's order
     runs: tuple[tuple[float, ...], ...]  #: each run's values, in `names` order
     seed: int | None = None
+    device: str = "muscle"  #: or "exoskeleton": the runs are exo_study's
 
     def parameters(self, run: int) -> dict[str, float]:
         return dict(zip(self.names, self.runs[run]))
@@ -191,11 +216,20 @@ def load_spec(path: str | Path) -> SweepSpec:
         if section not in ("sweep", "parameters"):
             raise _fail(path, f"unknown section [{section}] (known: parameters, sweep)")
     sweep = document.get("sweep", {})
-    known = ("experiment", "cycles", "design", "samples", "seed")
+    known = ("experiment", "cycles", "design", "samples", "seed", "device")
     for key in sweep:
         if key not in known:
             raise _fail(path, f"unknown key [sweep] {key} (known: {', '.join(known)})")
-    if "experiment" in sweep:
+    device = sweep.get("device", "muscle")
+    if device not in DEVICES:
+        raise _fail(path, f"[sweep] device = {device!r} must be one of {', '.join(DEVICES)}")
+    if device == "exoskeleton":
+        for key in ("experiment", "cycles"):
+            if key in sweep:
+                raise _fail(path, f"[sweep] {key}: the exoskeleton runs on Winter's gait, not on an experiment")
+    if device == "exoskeleton":
+        experiment = None
+    elif "experiment" in sweep:
         if not isinstance(sweep["experiment"], str):
             raise _fail(path, f"[sweep] experiment = {sweep['experiment']!r} must be a file name")
         experiment = (path.parent / sweep["experiment"]).resolve()
@@ -211,7 +245,7 @@ def load_spec(path: str | Path) -> SweepSpec:
     table = _flatten(document.get("parameters", {}))
     if not table:
         raise _fail(path, "[parameters] is empty: name at least one parameter to sweep")
-    allowed = sweepable_parameters()
+    allowed = EXO_PARAMETERS if device == "exoskeleton" else sweepable_parameters()
     for name, value in table.items():
         if name not in allowed:
             raise _fail(path, f"[parameters] {name}: not a parameter a sweep can set (known: {', '.join(allowed)})")
@@ -232,7 +266,7 @@ def load_spec(path: str | Path) -> SweepSpec:
         bounds = np.array([_bounds(path, name, table[name], *allowed[name]) for name in names])
         unit = qmc.LatinHypercube(d=len(names), rng=seed).random(samples)
         runs = tuple(tuple(row) for row in qmc.scale(unit, bounds[:, 0], bounds[:, 1]).tolist())
-    return SweepSpec(path, experiment, cycles, design, names, runs, seed)
+    return SweepSpec(path, experiment, cycles, design, names, runs, seed, device)
 
 
 @functools.lru_cache(maxsize=4)
@@ -257,6 +291,8 @@ def base_experiment(path: Path, cycles: int | None) -> Experiment:
 def prepare_base(spec: SweepSpec) -> int:
     """Reads the spec's base experiment into this process's cache; returns its sample count.
     Run on every worker before the runs, so that a base file a worker cannot read is one error."""
+    if spec.device == "exoskeleton":
+        return 0
     return len(base_experiment(spec.experiment, spec.cycles).time_s)
 
 
@@ -325,15 +361,37 @@ def summarize(experiment: Experiment, predicted: dict[str, np.ndarray]) -> dict[
     }
 
 
+def exo_metrics(parameters: dict[str, float]) -> dict[str, float]:
+    """EXO_METRICS of the device with `parameters` (exo_study's, without the walking-cadence run)."""
+    from pamkit.exo import exo_study
+
+    arguments = {name.removeprefix("exo."): value for name, value in parameters.items()}
+    report = exo_study(**arguments, cadence_steps_per_min=None).report
+    clutch = report["clutch"]
+    return {
+        "torque_share": report["torque_share_of_biological"],
+        "peak_torque_Nm": report["peak_torque_Nm"],
+        "elongation_max_m": report["elongation_max_m"],
+        "engage_pct": math.nan if clutch["engage_pct"] is None else clutch["engage_pct"],
+        "release_pct": math.nan if clutch["release_pct"] is None else clutch["release_pct"],
+        "engaged_share_of_stride": clutch["engaged_share_of_stride"],
+    }
+
+
 def run_one(spec: SweepSpec, run: int) -> dict:
-    """One run's row: its index, parameters, METRICS and error (None when it ran)."""
-    row = {"run": run, **spec.parameters(run)}
+    """One run's row: its index, parameters, metrics (METRICS, or EXO_METRICS) and error (None
+    when it ran)."""
+    parameters = spec.parameters(run)
+    row = {"run": run, **parameters}
     try:
-        experiment = with_parameters(base_experiment(spec.experiment, spec.cycles), spec.parameters(run))
-        row.update(summarize(experiment, simulate_experiment(experiment)))
+        if spec.device == "exoskeleton":
+            row.update(exo_metrics(parameters))
+        else:
+            experiment = with_parameters(base_experiment(spec.experiment, spec.cycles), parameters)
+            row.update(summarize(experiment, simulate_experiment(experiment)))
         row["error"] = None
     except (ValueError, SolverError, Error) as error:  # the model or the muscle's checks: kept in the row
-        row.update(dict.fromkeys(METRICS, math.nan))
+        row.update(dict.fromkeys(EXO_METRICS if spec.device == "exoskeleton" else METRICS, math.nan))
         row["error"] = str(error)
     return row
 

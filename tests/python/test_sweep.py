@@ -160,8 +160,35 @@ def test_without_dask_the_command_says_what_to_install(write_spec, tmp_path, cap
     assert capsys.readouterr().err.strip().endswith("distributed is not installed: pip install 'pamkit[scale]'")
 
 
-def test_the_bundled_example_runs_without_a_failure(thesis_dir):
+@pytest.mark.parametrize(("example", "runs"), [("pam2_pressure_angle.toml", 12), ("exo_play.toml", 15)])
+def test_the_bundled_examples_run_without_a_failure(thesis_dir, example, runs):
+    rows = run_in_process(load_spec(thesis_dir.parents[1] / "sweeps" / example))
+    assert len(rows) == runs and [row["error"] for row in rows] == [None] * runs
+
+
+def test_a_spec_without_an_experiment_sweeps_the_thesis_test(thesis_dir):
     spec = load_spec(thesis_dir.parents[1] / "sweeps" / "pam2_pressure_angle.toml")
-    assert spec.experiment == thesis_dir / "pam2_207kPa_80pct.toml"  # the default base
-    rows = run_in_process(spec)
-    assert len(rows) == 12 and [row["error"] for row in rows] == [None] * 12
+    assert spec.experiment == thesis_dir / "pam2_207kPa_80pct.toml"
+
+
+def test_an_exoskeleton_sweep_gives_the_clutch_timing_on_dask(cluster, tmp_path):
+    spec_path = tmp_path / "exo.toml"
+    spec_path.write_text(
+        '[sweep]\ndevice = "exoskeleton"\n[parameters]\nexo.play_deg = { values = [0, 8] }\n'
+        "exo.block_angle_deg = { values = [100, 500] }\n"
+    )
+    with pytest.raises(ExperimentError, match=r"exo.block_angle_deg: 500 deg leaves the allowed \[1, 179\]"):
+        load_spec(spec_path)
+    spec_path.write_text(spec_path.read_text().replace("[100, 500]", "[100]"))
+    spec = load_spec(spec_path)
+    rows = sweep(spec, tmp_path / "exo.parquet", cluster)
+    assert json.dumps(rows) == json.dumps(run_in_process(spec))  # NaN-safe: a clutch that never releases
+    fitted, with_play = rows
+    # The clutch's screws fitted to the normal gait release it at 64.8 % of the stride, after
+    # toe-off (59.4 %); with 8 deg of play between leg and device it never releases (chapter 5,
+    # README "Exoskeleton").
+    assert fitted["release_pct"] == pytest.approx(64.8, abs=0.05) and fitted["error"] is None
+    assert (
+        math.isnan(with_play["release_pct"])
+        and with_play["engaged_share_of_stride"] > fitted["engaged_share_of_stride"]
+    )

@@ -25,7 +25,8 @@ def register(subparsers) -> None:
         description="Reads SPEC.toml ([sweep] base experiment, design; [parameters] each swept with values, "
         "linspace or range), simulates every run on a Dask cluster and writes one row per run: the parameters, "
         "peak force, force range, energy stored over the first stretch, pressure range and gas temperature "
-        "swing, and the error of a run that failed. Rows are kept as runs complete (OUTPUT.partial.jsonl): "
+        'swing, and the error of a run that failed ([sweep] device = "exoskeleton": the ankle device\'s torque '
+        "share and clutch timing over Winter's gait instead). Rows are kept as runs complete (OUTPUT.partial.jsonl): "
         "after an interruption, the same command resumes. Needs pip install 'pamkit[scale]'.",
     )
     parser.add_argument("spec", help="sweep spec TOML file")
@@ -44,7 +45,8 @@ def run(arguments: argparse.Namespace) -> int:
     spec = load_spec(arguments.spec)
     progress = None if arguments.quiet else stderr_progress
     if progress:
-        progress(f"sweep: {len(spec.runs)} runs of {spec.experiment.name} ({spec.design}: {', '.join(spec.names)})")
+        what = spec.experiment.name if spec.experiment else "the exoskeleton"
+        progress(f"sweep: {len(spec.runs)} runs of {what} ({spec.design}: {', '.join(spec.names)})")
     with client(arguments.workers, arguments.scheduler) as connected:
         rows = sweep(spec, output, connected, progress)
     failed = sum(1 for row in rows if row["error"])
