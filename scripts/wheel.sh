@@ -18,8 +18,8 @@
 # Why bundle rather than link SUNDIALS statically: Debian ships both (libsundials-dev's .a files are
 # position-independent), but libserialport's static library is not (it cannot go into a shared
 # object), so a repair step is needed for libserialport anyway; one mechanism for both keeps the
-# wheel's _core linked exactly as the tested build's, and SUNDIALS's BSD-3 licence file travels
-# with its library's name visible in pamkit.libs/.
+# wheel's _core linked exactly as the tested build's. Their copyright notices and licences
+# (BSD-3-Clause, LGPL-3.0-or-later) go into the wheel's pamkit/licenses/ (bindings/CMakeLists.txt).
 #
 # The tag is manylinux_2_35 (Debian 12's glibc and libm symbols): the wheel runs on glibc >= 2.35
 # (Debian 12, Ubuntu 22.04, Fedora 36 and later). An older tag needs the same script run in an older
@@ -52,7 +52,10 @@ fi
 wheel=$(ls "$out_dir"/pamkit-*manylinux*.whl)
 auditwheel show "$wheel"
 echo "wheel: $wheel ($(stat -c %s "$wheel") bytes)"
-unzip -l "$wheel" | awk '$4 ~ /\.so/ {print "  " $1 " bytes  " $4}'
+unzip -l "$wheel" | awk '$4 ~ /\.so|licenses\/./ {print "  " $1 " bytes  " $4}'
+for notice in SUNDIALS libserialport LGPL-3; do
+  unzip -l "$wheel" "pamkit/licenses/$notice" >/dev/null || { echo "wheel: pamkit/licenses/$notice is missing" >&2; exit 1; }
+done
 
 echo "== what the bundled objects need (ldd), outside pamkit.libs only the manylinux set"
 unzip -q "$wheel" -d "$work/unpacked"
