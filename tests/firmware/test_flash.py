@@ -67,7 +67,9 @@ def test_another_board_is_refused_and_nothing_is_written(capfd):
 
 def test_missing_port(capfd):
     assert main(["flash", "--port", NO_PORT, "--hex", str(HEX)]) == EXIT_BAD_INPUT
-    assert f"no serial port {NO_PORT}" in single_error_line(capfd.readouterr().err)
+    assert f"no serial port '{NO_PORT}'" in single_error_line(capfd.readouterr().err)
+    assert main(["flash", "--port", "", "--hex", str(HEX)]) == EXIT_BAD_INPUT  # "" would be the current folder
+    assert "no serial port ''" in single_error_line(capfd.readouterr().err)
 
 
 def test_missing_avrdude(tmp_path, capfd, monkeypatch):

@@ -39,8 +39,8 @@ def register(subparsers) -> None:
 
 
 def run(arguments: argparse.Namespace) -> int:
-    if not arguments.dry_run and not Path(arguments.port).exists():
-        raise FlashError(f"no serial port {arguments.port}: plug the board in; `pamkit log --list` lists the ports")
+    if not arguments.dry_run and not (arguments.port and Path(arguments.port).exists()):
+        raise FlashError(f"no serial port {arguments.port!r}: plug the board in; `pamkit log --list` lists the ports")
     avrdude = shutil.which("avrdude")
     if avrdude is None:
         raise FlashError("avrdude is not on PATH (Debian: apt install avrdude)")
