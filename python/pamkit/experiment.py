@@ -10,6 +10,8 @@ from __future__ import annotations
 import csv
 import io
 import math
+import os
+import re
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -303,8 +305,36 @@ def _range(path: Path, key: str, value) -> tuple[float, float]:
     return lowest, highest
 
 
+def _named_file(path: Path, key: str, name) -> Path:
+    """The absolute path of a file the experiment names in [test] `key`, relative to its TOML.
+
+    Raises:
+        ExperimentError: for a name that is not a string or holds a control character: a NUL no
+            file system takes (os calls raise a bare ValueError), a line end that would split
+            every message naming the file.
+    """
+    if not isinstance(name, str):
+        raise _fail(path, f"[test] {key} = {name!r} must be a file name")
+    if any(ord(character) < 0x20 or ord(character) == 0x7F for character in name):
+        raise _fail(path, f"[test] {key} = {name!r} holds a control character: not a file name")
+    try:
+        return (path.parent / name).resolve()
+    except (RuntimeError, OSError):
+        # A symbolic link loop (RuntimeError before Python 3.13, OSError since): keep the path
+        # as written, and let reading it say what it is.
+        return Path(os.path.abspath(path.parent / name))
+
+
 def load_experiment(path: str | Path) -> Experiment:
-    """Reads an experiment TOML and its CSV.
+    """Reads an experiment TOML and its CSV (pamkit's own, a spreadsheet's with ";" and decimal
+    commas, or a tensile machine's export: Instron Bluehill, ZwickRoell testXpert).
+
+    Returns:
+        An :class:`Experiment`: the muscle (``build``, SI units), the test conditions
+        (``inflation_pressure_kPa`` gauge, ``ambient_temperature_C``, ``gas``) and ``columns``,
+        a dict of 1-D float arrays of one length N (rows of the CSV), units in their names:
+        time_s [s], elongation_m [m], and as measured force_N [N], pressure_kPa [kPa, gauge],
+        temperature_C [°C]; a static table has its own (length_m [m], diameter_m [m], ...).
 
     Raises:
         ExperimentError: naming the file (and line and column for CSV data) of the first problem.
@@ -400,9 +430,7 @@ def load_experiment(path: str | Path) -> Experiment:
         if not 0 < preload <= 1e5:
             raise _fail(path, f"[test] preload_N = {preload} is outside (0, 1e5] N")
     ranges = {channel: _range(path, key, test[key]) for channel, key in RANGE_KEYS.items() if key in test}
-    if not isinstance(test["data"], str):
-        raise _fail(path, f"[test] data = {test['data']!r} must be a file name")
-    data_path = (path.parent / test["data"]).resolve()
+    data_path = _named_file(path, "data", test["data"])
 
     experiment = Experiment(
         path=path,
@@ -441,10 +469,39 @@ def read_series(path: str | Path) -> dict[str, np.ndarray]:
     """Reads a measured-data CSV: a header row, then numbers. Requires time_s and elongation_m,
     accepts force_N, pressure_kPa, temperature_C; time must increase.
 
+    A tensile machine's export (Instron Bluehill, ZwickRoell testXpert: pamkit.machine) is
+    recognised by its header and read as time_s, elongation_m (the crosshead's extension, which
+    the machine zeroes at the start of the test) and force_N, converted from its units row.
+
     Raises:
         ExperimentError: naming the file, line and column of the first bad value.
     """
-    return _read_csv(Path(path), REQUIRED_COLUMNS, OPTIONAL_COLUMNS, increasing="time_s")
+    path = Path(path)
+    if _is_machine_export(path):
+        from pamkit.machine import read_machine_export  # it builds on this module
+
+        columns = read_machine_export(path).columns
+        return {"time_s": columns["time_s"], "elongation_m": columns["extension_m"], "force_N": columns["force_N"]}
+    return _read_csv(path, REQUIRED_COLUMNS, OPTIONAL_COLUMNS, increasing="time_s")
+
+
+def _is_machine_export(path: Path) -> bool:
+    """Whether a data file is a tensile machine's export rather than pamkit's CSV: its first line
+    is not a row of pamkit's channel names, and a machine's names row follows. A file that
+    cannot be opened is left to _read_csv, which says why."""
+    from pamkit.machine import looks_like_export
+
+    try:
+        if not path.is_file():
+            return False
+        with path.open("rb") as handle:
+            first_line = _first_line(handle.readline(MAX_LINE_BYTES).decode("utf-8-sig", errors="replace"))
+        names = [name.strip() for name in next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])]
+        if names and all(name in REQUIRED_COLUMNS + OPTIONAL_COLUMNS for name in names):
+            return False
+        return looks_like_export(path)
+    except OSError:
+        return False
 
 
 ZEROED_CHANNELS = ("force_N", "pressure_kPa")  # not temperature: with no air, the TMP36 reads the room
@@ -455,9 +512,7 @@ def _zero(experiment: Experiment, path: Path, name) -> None:
     transducer's channels, as a lab zeroes its sensors; records what it took. The offset run of
     a preloaded mount is recorded on the mounted muscle: its force holds the preload, which is
     the muscle's, not the cell's, and stays in the data."""
-    if not isinstance(name, str):
-        raise _fail(path, f"[test] zero = {name!r} must be a file name")
-    run = read_series((path.parent / name).resolve())
+    run = read_series(_named_file(path, "zero", name))
     shared = [c for c in ZEROED_CHANNELS if c in run and c in experiment.columns]
     if not shared:
         raise _fail(
@@ -496,8 +551,14 @@ def _read_isotonic(path: Path, build: MuscleBuild, dynamic: bool = False) -> dic
 
 
 def _header(path: Path) -> list[str]:
-    first_line = _text(path, "data").split("\n", 1)[0]
+    first_line = _first_line(_text(path, "data"))
     return [name.strip() for name in next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])]
+
+
+def _first_line(text: str) -> str:
+    """The text up to its first line end: LF, CR LF or a bare CR (an old Mac's or a logger's line
+    end, which the csv module refuses inside a line)."""
+    return re.split(r"[\r\n]", text, maxsplit=1)[0]
 
 
 def _delimiter(first_line: str) -> str:
@@ -675,11 +736,11 @@ MAX_FILE_BYTES = {"experiment": 1 << 20, "data": 256 << 20}
 MAX_LINE_BYTES = 64 << 10
 
 
-def _text(path: Path, what: str) -> str:
-    """A file's text (UTF-8, a spreadsheet's byte-order mark dropped), or an ExperimentError that
-    says why it cannot be read: missing, a folder, not a regular file, larger than
-    MAX_FILE_BYTES[what] (its size named), a line over MAX_LINE_BYTES (its number named), not
-    UTF-8 (with the line)."""
+def _text(path: Path, what: str, decode=None) -> str:
+    """A file's text (UTF-8, a spreadsheet's byte-order mark dropped, or as `decode(raw)` says),
+    or an ExperimentError that says why it cannot be read: missing, a folder, not a regular
+    file, larger than MAX_FILE_BYTES[what] (its size named), a line over MAX_LINE_BYTES (its
+    number named), not UTF-8 (with the line)."""
     if path.is_symlink() and not path.exists():
         raise ExperimentError(f"{path}: a symbolic link to nothing (or to itself): give the {what} file itself")
     if not path.exists():
@@ -700,6 +761,8 @@ def _text(path: Path, what: str) -> str:
     if len(raw) > limit:
         raise ExperimentError(f"{path}: more than the {_size(limit)} a {what} file may be")
     _check_line_lengths(path, raw)
+    if decode is not None:
+        return decode(raw)
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as error:
