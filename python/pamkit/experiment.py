@@ -487,8 +487,9 @@ def read_series(path: str | Path) -> dict[str, np.ndarray]:
 
 def _is_machine_export(path: Path) -> bool:
     """Whether a data file is a tensile machine's export rather than pamkit's CSV: its first line
-    is not a row of pamkit's channel names, and a machine's names row follows. A file that
-    cannot be opened is left to _read_csv, which says why."""
+    names none of pamkit's channels, and a machine's names row follows. ("time_s,elongation_m,
+    force_kN" is pamkit's CSV with a wrong name, not an export with units in its names.) A file
+    that cannot be opened is left to _read_csv, which says why."""
     from pamkit.machine import looks_like_export
 
     try:
@@ -497,8 +498,8 @@ def _is_machine_export(path: Path) -> bool:
         with path.open("rb") as handle:
             first_line = _first_line(handle.readline(MAX_LINE_BYTES).decode("utf-8-sig", errors="replace"))
         names = [name.strip() for name in next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])]
-        if names and all(name in REQUIRED_COLUMNS + OPTIONAL_COLUMNS for name in names):
-            return False
+        if any(name in REQUIRED_COLUMNS + OPTIONAL_COLUMNS for name in names):
+            return False  # pamkit's CSV, right or wrong: its errors name what to fix, no column is dropped
         return looks_like_export(path)
     except OSError:
         return False

@@ -122,3 +122,26 @@ def test_help_says_units_and_shapes(name, says):
     text = pydoc.render_doc(getattr(pamkit, name), renderer=pydoc.plaintext)
     for phrase in says:
         assert phrase in text, f"help(pamkit.{name}) does not say {phrase!r}"
+
+
+def test_the_notebook_script_runs_from_import_pamkit_alone(tmp_path, machines_dir):
+    # The README-style first hour, verbatim: load, simulate to a DataFrame, diagnose, plot.
+    script = f"""
+import pamkit
+experiment = pamkit.load_experiment({str(machines_dir / "zwick_testxpert.toml")!r})
+df = pamkit.simulate(experiment, effects=["heat_transfer:time_constant_s=2"])
+ax = df.plot(x="time_s", y="force_N", label="predicted")
+ax.plot(experiment.time_s, experiment.columns["force_N"], ".", label="ZwickRoell export")
+ax.figure.savefig({str(tmp_path / "force.png")!r})
+report = pamkit.diagnose({str(machines_dir.parent / "festo" / "DMSP-10-250.toml")!r}, threads=2)
+print(report.verdict())
+report.plot({str(tmp_path / "report.png")!r})
+"""
+    import matplotlib
+    import matplotlib.pyplot
+
+    matplotlib.use("Agg")
+    exec(compile(script, "notebook", "exec"), {})
+    matplotlib.pyplot.close("all")
+    assert (tmp_path / "force.png").read_bytes()[:4] == b"\x89PNG"
+    assert (tmp_path / "report.png").read_bytes()[:4] == b"\x89PNG"
