@@ -352,6 +352,9 @@ def load_experiment(path: str | Path) -> Experiment:
     for section in ("muscle", "test"):
         if section not in document:
             raise _fail(path, f"missing section [{section}]")
+    for section, table in document.items():
+        if not isinstance(table, dict):
+            raise _fail(path, f"{section} = {table!r}: [{section}] is a section (a [{section}] line, then its keys)")
 
     build = _read_build(path, document["muscle"])
     bladder = _read_bladder(path, document.get("bladder", {}))
@@ -360,7 +363,7 @@ def load_experiment(path: str | Path) -> Experiment:
     gas_params = GasParams()
     if GAS_PROCESS_KEY in gas_table:
         name = gas_table[GAS_PROCESS_KEY]
-        if name not in GasProcess.__members__:
+        if not isinstance(name, str) or name not in GasProcess.__members__:  # a list is no dict key
             raise _fail(path, f"[gas] process = {name!r} must be one of {', '.join(GasProcess.__members__)}")
         gas_params.process = GasProcess.__members__[name]
     _fill_struct(path, "gas", gas_table, gas_params, extra_keys=(GAS_PROCESS_KEY,))
@@ -644,15 +647,23 @@ def _read_csv(
     return {name: table[:, index].copy() for index, name in enumerate(header)}
 
 
+def _shown(cell: str, limit: int = 40) -> str:
+    """A cell as a message quotes it: on one line (a quoted cell may hold line ends), escaped
+    where not printable (a stray byte-order mark), shortened past `limit` characters."""
+    return repr(cell if len(cell) <= limit else cell[:limit] + "...")
+
+
 def _checked_header(path: Path, cells: list[str], required: tuple[str, ...], optional: tuple[str, ...]) -> list[str]:
     """The header's channel names, each known and given once, the required ones all there."""
     header = [name.strip() for name in cells]
     known = required + optional
     for number, name in enumerate(header, start=1):
         if name not in known:
-            raise ExperimentError(f"{path}:1: column {number} '{name}' is not a known channel ({', '.join(known)})")
+            raise ExperimentError(
+                f"{path}:1: column {number} {_shown(name)} is not a known channel ({', '.join(known)})"
+            )
         if header.count(name) > 1:
-            raise ExperimentError(f"{path}:1: column '{name}' appears twice")
+            raise ExperimentError(f"{path}:1: column {_shown(name)} appears twice")
     for name in required:
         if name not in header:
             raise ExperimentError(f"{path}:1: required column '{name}' is missing")
