@@ -100,7 +100,9 @@ void bind_effects(py::module_& m) {
       .PAMKIT_CHANNEL(elongation_m, "the crosshead's elongation [m]")
       .PAMKIT_CHANNEL(force_N, "load cell [N]")
       .PAMKIT_CHANNEL(pressure_kPa, "pressure transducer, gauge [kPa]")
-      .PAMKIT_CHANNEL(temperature_C, "gas temperature sensor [degC]");
+      .PAMKIT_CHANNEL(temperature_C, "gas temperature sensor [degC]")
+      .def_readonly("statistics", &Measurement::statistics,
+                    "CVODES counters of the run behind a sealed test; all zero for a supplied test (no ODE)");
 #undef PAMKIT_CHANNEL
   m.def("measured_channels", &measured_channels, "names of the channels effects may act on");
 

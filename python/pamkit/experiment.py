@@ -10,6 +10,8 @@ from __future__ import annotations
 import csv
 import io
 import math
+import os
+import re
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -305,6 +307,26 @@ def _range(path: Path, key: str, value) -> tuple[float, float]:
     return lowest, highest
 
 
+def _named_file(path: Path, key: str, name) -> Path:
+    """The absolute path of a file the experiment names in [test] `key`, relative to its TOML.
+
+    Raises:
+        ExperimentError: for a name that is not a string or holds a control character: a NUL no
+            file system takes (os calls raise a bare ValueError), a line end that would split
+            every message naming the file.
+    """
+    if not isinstance(name, str):
+        raise _fail(path, f"[test] {key} = {name!r} must be a file name")
+    if any(ord(character) < 0x20 or ord(character) == 0x7F for character in name):
+        raise _fail(path, f"[test] {key} = {name!r} holds a control character: not a file name")
+    try:
+        return (path.parent / name).resolve()
+    except (RuntimeError, OSError):
+        # A symbolic link loop (RuntimeError before Python 3.13, OSError since): keep the path
+        # as written, and let reading it say what it is.
+        return Path(os.path.abspath(path.parent / name))
+
+
 def _document(path: Path) -> dict:
     try:
         return tomllib.loads(_text(path, "experiment"))
@@ -335,11 +357,20 @@ def load_tests(path: str | Path) -> list[Experiment]:
     tests = campaign.get("tests")
     if not isinstance(tests, list) or not tests or not all(isinstance(t, str) for t in tests):
         raise _fail(path, f"[campaign] tests = {tests!r} must be a list of experiment files")
-    return [load_experiment((path.parent / test).resolve(), shared=document) for test in tests]
+    return [load_experiment(path.parent / test, shared=document) for test in tests]
 
 
 def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
-    """Reads an experiment TOML and its CSV; `shared` sections (a campaign's) are added to it.
+    """Reads an experiment TOML and its CSV (pamkit's own, a spreadsheet's with ";" and decimal
+    commas, or a tensile machine's export: Instron Bluehill, ZwickRoell testXpert); `shared`
+    sections (a campaign's) are added to it.
+
+    Returns:
+        An :class:`Experiment`: the muscle (``build``, SI units), the test conditions
+        (``inflation_pressure_kPa`` gauge, ``ambient_temperature_C``, ``gas``) and ``columns``,
+        a dict of 1-D float arrays of one length N (rows of the CSV), units in their names:
+        time_s [s], elongation_m [m], and as measured force_N [N], pressure_kPa [kPa, gauge],
+        temperature_C [°C]; a static table has its own (length_m [m], diameter_m [m], ...).
 
     Raises:
         ExperimentError: naming the file (and line and column for CSV data) of the first problem.
@@ -360,6 +391,9 @@ def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
     for section in ("muscle", "test"):
         if section not in document:
             raise _fail(path, f"missing section [{section}]")
+    for section, table in document.items():
+        if not isinstance(table, dict):
+            raise _fail(path, f"{section} = {table!r}: [{section}] is a section (a [{section}] line, then its keys)")
 
     build = _read_build(path, document["muscle"])
     bladder = _read_bladder(path, document.get("bladder", {}))
@@ -368,7 +402,7 @@ def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
     gas_params = GasParams()
     if GAS_PROCESS_KEY in gas_table:
         name = gas_table[GAS_PROCESS_KEY]
-        if name not in GasProcess.__members__:
+        if not isinstance(name, str) or name not in GasProcess.__members__:  # a list is no dict key
             raise _fail(path, f"[gas] process = {name!r} must be one of {', '.join(GasProcess.__members__)}")
         gas_params.process = GasProcess.__members__[name]
     _fill_struct(path, "gas", gas_table, gas_params, extra_keys=(GAS_PROCESS_KEY,))
@@ -438,9 +472,7 @@ def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
         if not 0 < preload <= 1e5:
             raise _fail(path, f"[test] preload_N = {preload} is outside (0, 1e5] N")
     ranges = {channel: _range(path, key, test[key]) for channel, key in RANGE_KEYS.items() if key in test}
-    if not isinstance(test["data"], str):
-        raise _fail(path, f"[test] data = {test['data']!r} must be a file name")
-    data_path = (path.parent / test["data"]).resolve()
+    data_path = _named_file(path, "data", test["data"])
 
     experiment = Experiment(
         path=path,
@@ -479,10 +511,40 @@ def read_series(path: str | Path) -> dict[str, np.ndarray]:
     """Reads a measured-data CSV: a header row, then numbers. Requires time_s and elongation_m,
     accepts force_N, pressure_kPa, temperature_C; time must increase.
 
+    A tensile machine's export (Instron Bluehill, ZwickRoell testXpert: pamkit.machine) is
+    recognised by its header and read as time_s, elongation_m (the crosshead's extension, which
+    the machine zeroes at the start of the test) and force_N, converted from its units row.
+
     Raises:
         ExperimentError: naming the file, line and column of the first bad value.
     """
-    return _read_csv(Path(path), REQUIRED_COLUMNS, OPTIONAL_COLUMNS, increasing="time_s")
+    path = Path(path)
+    if _is_machine_export(path):
+        from pamkit.machine import read_machine_export  # it builds on this module
+
+        columns = read_machine_export(path).columns
+        return {"time_s": columns["time_s"], "elongation_m": columns["extension_m"], "force_N": columns["force_N"]}
+    return _read_csv(path, REQUIRED_COLUMNS, OPTIONAL_COLUMNS, increasing="time_s")
+
+
+def _is_machine_export(path: Path) -> bool:
+    """Whether a data file is a tensile machine's export rather than pamkit's CSV: its first line
+    names none of pamkit's channels, and a machine's names row follows. ("time_s,elongation_m,
+    force_kN" is pamkit's CSV with a wrong name, not an export with units in its names.) A file
+    that cannot be opened is left to _read_csv, which says why."""
+    from pamkit.machine import looks_like_export
+
+    try:
+        if not path.is_file():
+            return False
+        with path.open("rb") as handle:
+            first_line = _first_line(handle.readline(MAX_LINE_BYTES).decode("utf-8-sig", errors="replace"))
+        names = [name.strip() for name in next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])]
+        if any(name in REQUIRED_COLUMNS + OPTIONAL_COLUMNS for name in names):
+            return False  # pamkit's CSV, right or wrong: its errors name what to fix, no column is dropped
+        return looks_like_export(path)
+    except OSError:
+        return False
 
 
 ZEROED_CHANNELS = ("force_N", "pressure_kPa")  # not temperature: with no air, the TMP36 reads the room
@@ -493,9 +555,7 @@ def _zero(experiment: Experiment, path: Path, name) -> None:
     transducer's channels, as a lab zeroes its sensors; records what it took. The offset run of
     a preloaded mount is recorded on the mounted muscle: its force holds the preload, which is
     the muscle's, not the cell's, and stays in the data."""
-    if not isinstance(name, str):
-        raise _fail(path, f"[test] zero = {name!r} must be a file name")
-    run = read_series((path.parent / name).resolve())
+    run = read_series(_named_file(path, "zero", name))
     shared = [c for c in ZEROED_CHANNELS if c in run and c in experiment.columns]
     if not shared:
         raise _fail(
@@ -534,8 +594,14 @@ def _read_isotonic(path: Path, build: MuscleBuild, dynamic: bool = False) -> dic
 
 
 def _header(path: Path) -> list[str]:
-    first_line = _text(path, "data").split("\n", 1)[0]
+    first_line = _first_line(_text(path, "data"))
     return [name.strip() for name in next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])]
+
+
+def _first_line(text: str) -> str:
+    """The text up to its first line end: LF, CR LF or a bare CR (an old Mac's or a logger's line
+    end, which the csv module refuses inside a line)."""
+    return re.split(r"[\r\n]", text, maxsplit=1)[0]
 
 
 def _delimiter(first_line: str) -> str:
@@ -620,15 +686,23 @@ def _read_csv(
     return {name: table[:, index].copy() for index, name in enumerate(header)}
 
 
+def _shown(cell: str, limit: int = 40) -> str:
+    """A cell as a message quotes it: on one line (a quoted cell may hold line ends), escaped
+    where not printable (a stray byte-order mark), shortened past `limit` characters."""
+    return repr(cell if len(cell) <= limit else cell[:limit] + "...")
+
+
 def _checked_header(path: Path, cells: list[str], required: tuple[str, ...], optional: tuple[str, ...]) -> list[str]:
     """The header's channel names, each known and given once, the required ones all there."""
     header = [name.strip() for name in cells]
     known = required + optional
     for number, name in enumerate(header, start=1):
         if name not in known:
-            raise ExperimentError(f"{path}:1: column {number} '{name}' is not a known channel ({', '.join(known)})")
+            raise ExperimentError(
+                f"{path}:1: column {number} {_shown(name)} is not a known channel ({', '.join(known)})"
+            )
         if header.count(name) > 1:
-            raise ExperimentError(f"{path}:1: column '{name}' appears twice")
+            raise ExperimentError(f"{path}:1: column {_shown(name)} appears twice")
     for name in required:
         if name not in header:
             raise ExperimentError(f"{path}:1: required column '{name}' is missing")
@@ -713,11 +787,11 @@ MAX_FILE_BYTES = {"experiment": 1 << 20, "data": 256 << 20}
 MAX_LINE_BYTES = 64 << 10
 
 
-def _text(path: Path, what: str) -> str:
-    """A file's text (UTF-8, a spreadsheet's byte-order mark dropped), or an ExperimentError that
-    says why it cannot be read: missing, a folder, not a regular file, larger than
-    MAX_FILE_BYTES[what] (its size named), a line over MAX_LINE_BYTES (its number named), not
-    UTF-8 (with the line)."""
+def _text(path: Path, what: str, decode=None) -> str:
+    """A file's text (UTF-8, a spreadsheet's byte-order mark dropped, or as `decode(raw)` says),
+    or an ExperimentError that says why it cannot be read: missing, a folder, not a regular
+    file, larger than MAX_FILE_BYTES[what] (its size named), a line over MAX_LINE_BYTES (its
+    number named), not UTF-8 (with the line)."""
     if path.is_symlink() and not path.exists():
         raise ExperimentError(f"{path}: a symbolic link to nothing (or to itself): give the {what} file itself")
     if not path.exists():
@@ -738,6 +812,8 @@ def _text(path: Path, what: str) -> str:
     if len(raw) > limit:
         raise ExperimentError(f"{path}: more than the {_size(limit)} a {what} file may be")
     _check_line_lengths(path, raw)
+    if decode is not None:
+        return decode(raw)
     try:
         return raw.decode("utf-8-sig")
     except UnicodeDecodeError as error:

@@ -14,7 +14,6 @@ import csv
 import io
 import json
 import math
-import re
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -134,99 +133,21 @@ def load_calibration(path: str | Path) -> Calibration:
 
 # --- reading the two logs ---------------------------------------------------------------------
 
-_UNITS = {
-    "time": {"s": 1.0, "sec": 1.0, "ms": 1e-3, "min": 60.0},
-    "extension": {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": 0.0254},
-    "load": {"n": 1.0, "kn": 1e3, "lbf": 4.4482216152605, "kgf": 9.80665},
-}
-_ALIASES = {
-    "time": ("time",),
-    "extension": ("extension", "displacement", "position", "elongation"),
-    "load": ("load", "force"),
-}
-_UNIT_PATTERN = re.compile(r"^\s*([A-Za-z ]+?)\s*(?:[(\[]\s*([A-Za-z]+)\s*[)\]]|_([A-Za-z]+))?\s*$")
-
-
-def _split_header(cell: str) -> tuple[str, str | None]:
-    match = _UNIT_PATTERN.match(cell)
-    if not match:
-        return cell.strip().lower(), None
-    return match.group(1).strip().lower(), (match.group(2) or match.group(3))
-
 
 def read_machine_csv(path: str | Path) -> dict[str, np.ndarray]:
-    """Reads a tensile machine's export: a header row naming time, extension (or displacement)
-    and load (or force) with their units - in the name ("Time (s)", "Extension [mm]",
-    "load_kN") or in a units row below it ("(s)", "(mm)", "(N)"). Lines before the header
-    (the machine's preamble) are skipped. Returns time_s, extension_m and force_N.
+    """Reads a tensile machine's export (Instron Bluehill, ZwickRoell testXpert, or a CSV whose
+    column names carry their units: pamkit.machine): time_s, extension_m and force_N.
 
     Raises:
         LoggerError: naming the file, line and column of the first problem.
     """
-    path = Path(path)
+    from pamkit.experiment import ExperimentError
+    from pamkit.machine import read_machine_export
+
     try:
-        with path.open(newline="") as handle:
-            rows = list(csv.reader(handle))
-    except FileNotFoundError:
-        raise LoggerError(f"{path}: no such machine export") from None
-    header_line = None
-    for index, row in enumerate(rows):
-        names = [_split_header(cell)[0] for cell in row]
-        if all(any(alias in names for alias in aliases) for aliases in _ALIASES.values()):
-            header_line = index
-            break
-    if header_line is None:
-        raise LoggerError(f"{path}: no header row naming time, extension (or displacement) and load (or force)")
-    header = rows[header_line]
-    units_row = None
-    if (
-        header_line + 1 < len(rows)
-        and rows[header_line + 1]
-        and all(re.fullmatch(r"\s*[(\[]?\s*[A-Za-z]*\s*[)\]]?\s*", cell) for cell in rows[header_line + 1])
-    ):
-        units_row = [cell.strip().strip("()[] ") for cell in rows[header_line + 1]]
-    columns: dict[str, tuple[int, float]] = {}
-    for number, cell in enumerate(header):
-        name, unit = _split_header(cell)
-        for quantity, aliases in _ALIASES.items():
-            if name in aliases and quantity not in columns:
-                if units_row is not None and number < len(units_row) and units_row[number]:
-                    unit = units_row[number]
-                if unit is None:
-                    raise LoggerError(
-                        f"{path}:{header_line + 1}: column {number + 1} '{cell}' has no unit "
-                        "(write it as 'Name (unit)' or in a units row below the header)"
-                    )
-                factor = _UNITS[quantity].get(unit.lower())
-                if factor is None:
-                    raise LoggerError(
-                        f"{path}:{header_line + 1}: column {number + 1} '{cell}': unknown unit '{unit}' "
-                        f"for {quantity} (known: {', '.join(_UNITS[quantity])})"
-                    )
-                columns[quantity] = (number, factor)
-    first = header_line + (2 if units_row is not None else 1)
-    values = {quantity: [] for quantity in columns}
-    for line, row in enumerate(rows[first:], start=first + 1):
-        if not row or all(not cell.strip() for cell in row):
-            continue
-        for quantity, (number, factor) in columns.items():
-            try:
-                value = float(row[number]) * factor
-            except (ValueError, IndexError):
-                cell = row[number] if number < len(row) else ""
-                raise LoggerError(
-                    f"{path}:{line}: column {number + 1} ({quantity}) = {cell.strip()!r} is not a number"
-                ) from None
-            if not math.isfinite(value):
-                raise LoggerError(f"{path}:{line}: column {number + 1} ({quantity}) is not finite")
-            values[quantity].append(value)
-    out = {
-        "time_s": np.asarray(values["time"]),
-        "extension_m": np.asarray(values["extension"]),
-        "force_N": np.asarray(values["load"]),
-    }
-    _check_time(path, out["time_s"])
-    return out
+        return read_machine_export(path).columns
+    except ExperimentError as error:
+        raise LoggerError(str(error)) from None
 
 
 def read_logger_csv(path: str | Path) -> dict[str, np.ndarray]:

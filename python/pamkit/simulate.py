@@ -1,12 +1,32 @@
 """Simulate an experiment: drive the model with the experiment's time and elongation and
-predict force, pressure and temperature."""
+predict force, pressure and temperature.
+
+Called as a function, ``pamkit.simulate(experiment_or_path, effects=(), params=None,
+config=None)`` returns a pandas DataFrame (:func:`simulate_frame`), one row per sample (or per
+table row), units in the column names:
+
+    time_s [s], elongation_m [m], force_N [N], pressure_kPa [kPa, gauge], temperature_C [°C]
+    (a static table: its own columns, e.g. length_m, pressure_kPa, force_N)
+
+with ``df.attrs``: "experiment" (the TOML's path), "data" (its CSV's path), "kind", "gas",
+"effects" (each effect's repr), "solver_statistics" (CVODES counters of a sealed time series as a
+dict, None where no ODE is integrated) and "units" (column -> unit).
+
+    import pamkit
+    df = pamkit.simulate("experiment.toml", effects=["heat_transfer:time_constant_s=2"])
+    df.plot(x="time_s", y="force_N")
+
+The functions below (simulate_experiment: numpy columns in a dict) are the implementation.
+"""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from pathlib import Path
 
 import numpy as np
 
+from pamkit._callable import make_callable
 from pamkit._core import (
     BladderLaw,
     BraidGeometry,
@@ -14,6 +34,7 @@ from pamkit._core import (
     ElongationTrajectory,
     GasMode,
     InitialState,
+    Measurement,
     MuscleParams,
     Simulator,
     SimulatorConfig,
@@ -25,7 +46,7 @@ from pamkit._core import (
     simulate_supplied_measurement,
     static_forces,
 )
-from pamkit.experiment import Experiment, ExperimentError
+from pamkit.experiment import Experiment, ExperimentError, load_experiment
 from pamkit.units import PASCAL_PER_KILOPASCAL
 
 
@@ -81,6 +102,21 @@ def simulate_experiment(
     params = params if params is not None else muscle_params(experiment)
     if experiment.is_table:
         return simulate_table(experiment, params, effects)
+    return _channels(experiment, _measurement(experiment, params, config, effects))
+
+
+def _channels(experiment: Experiment, measurement: Measurement) -> dict[str, np.ndarray]:
+    """The channels as the experiment's instruments read them (clipped to their ranges)."""
+    return {
+        name: experiment.read(name, np.asarray(getattr(measurement, name)))
+        for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
+    }
+
+
+def _measurement(
+    experiment: Experiment, params: MuscleParams, config: SimulatorConfig | None, effects: Sequence[Effect]
+) -> Measurement:
+    """The simulated time series of an experiment (with the solver's statistics)."""
     mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
     for effect in effects:
         acts, why_not = effect.acts_in(mode)
@@ -106,10 +142,7 @@ def simulate_experiment(
             measurement = simulate_measurement(params, initial, crosshead, list(effects), simulator)
     except ValueError as error:
         raise ExperimentError(f"{experiment.data_path}: {error}") from None
-    return {
-        name: experiment.read(name, np.asarray(getattr(measurement, name)))
-        for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
-    }
+    return measurement
 
 
 def simulate_table(
@@ -179,3 +212,95 @@ def simulate_table(
         "length_m": np.array([s.length_m for s in states]),
         "diameter_m": np.array([s.diameter_m for s in states]),
     }
+
+
+# The unit of each column simulate_frame may return, from its name's suffix.
+COLUMN_UNITS = {
+    "time_s": "s",
+    "elongation_m": "m",
+    "length_m": "m",
+    "diameter_m": "m",
+    "force_N": "N",
+    "pressure_kPa": "kPa (gauge)",
+    "temperature_C": "°C",
+}
+STATISTICS_FIELDS = (
+    "steps",
+    "rhs_evaluations",
+    "output_evaluations",
+    "jacobian_evaluations",
+    "linear_solver_setups",
+    "error_test_failures",
+    "nonlinear_iterations",
+    "nonlinear_convergence_failures",
+    "restarts",
+)
+
+
+def simulate_frame(
+    experiment_or_path: Experiment | str | Path,
+    effects: Sequence[Effect | str] = (),
+    params: MuscleParams | None = None,
+    config: SimulatorConfig | None = None,
+):
+    """Predicts an experiment (an :class:`~pamkit.experiment.Experiment`, or the path of its
+    TOML file) as a pandas DataFrame; this is what ``pamkit.simulate(...)`` calls.
+
+    Args:
+        experiment_or_path: the experiment, or its TOML file's path.
+        effects: catalog effects to extend the model with, as :class:`pamkit.Effect` objects
+            or specs like ``"heat_transfer:time_constant_s=2"`` (``pamkit effects`` lists them).
+        params: the model's parameters (default: the experiment file's).
+        config: CVODES settings for a sealed time series (default: SimulatorConfig()).
+
+    Returns:
+        A DataFrame of N rows (N samples of the experiment's data, or N table rows). A time
+        series has columns time_s [s], elongation_m [m], force_N [N], pressure_kPa [kPa,
+        gauge], temperature_C [°C]; a static table its own (length_m [m], pressure_kPa,
+        force_N, diameter_m). ``df.attrs`` holds "experiment", "data" (paths, str), "kind",
+        "gas", "effects" (list of str), "units" (column -> unit) and "solver_statistics" (a
+        dict of CVODES counters for a sealed time series, None where no ODE is integrated).
+
+    Raises:
+        ExperimentError: (a ValueError) for a file that cannot be read, an effect that cannot
+            act in this test, or data the model cannot follow, naming the file.
+    """
+    import pandas as pd  # imported when used: it takes a second, and `import pamkit` should not
+
+    experiment = (
+        experiment_or_path if isinstance(experiment_or_path, Experiment) else load_experiment(experiment_or_path)
+    )
+    if isinstance(effects, (str, Effect)):
+        effects = [effects]
+    specs = [effect for effect in effects if isinstance(effect, str)]
+    if specs:
+        from pamkit.effects import parse_effects
+
+        try:
+            parsed = iter(parse_effects(specs))
+        except ValueError as error:
+            raise ExperimentError(f"{experiment.path}: {error}") from None
+        effects = [next(parsed) if isinstance(effect, str) else effect for effect in effects]
+    params = params if params is not None else muscle_params(experiment)
+    statistics = None
+    if experiment.is_table:
+        columns = simulate_table(experiment, params, effects)
+    else:
+        measurement = _measurement(experiment, params, config, effects)
+        columns = _channels(experiment, measurement)
+        if experiment.gas == "sealed":
+            statistics = {name: int(getattr(measurement.statistics, name)) for name in STATISTICS_FIELDS}
+    frame = pd.DataFrame(columns)
+    frame.attrs.update(
+        experiment=str(experiment.path),
+        data=str(experiment.data_path),
+        kind=experiment.kind,
+        gas=experiment.gas,
+        effects=[repr(effect) for effect in effects],
+        units={name: COLUMN_UNITS[name] for name in frame.columns},
+        solver_statistics=statistics,
+    )
+    return frame
+
+
+make_callable(__name__, simulate_frame)

@@ -322,6 +322,28 @@ def test_align_recovers_a_known_offset_within_one_sample(tmp_path, capsys, offse
     assert "before the first stretch" in output.read_text()
 
 
+def test_align_reads_a_zwick_testxpert_export(tmp_path, capsys):
+    # The same machine record as testXpert writes it on a German Windows: a metadata block,
+    # ';', decimal commas, the load in kN, Windows-1252; the offset found is the same.
+    logger, machine, true_offset = synthetic_logs(tmp_path, 4.71, 2)
+    rows = list(csv.reader(machine.read_text().splitlines()[3:]))
+    zwick = tmp_path / "zwick.csv"
+    lines = ["Prüfer;M. Muster", "Probe;PAM1", "", "Prüfzeit;Standardweg;Standardkraft", "s;mm;kN"]
+    lines += [f"{t};{e};{float(f) / 1e3:.6f}".replace(".", ",") for t, e, f in rows]
+    zwick.write_bytes(("\r\n".join(lines) + "\r\n").encode("cp1252"))
+    output = tmp_path / "aligned.toml"
+    assert main(["align", str(logger), str(zwick), "-o", str(output), "--muscle", str(THESIS)]) == 0
+    printed = capsys.readouterr().out
+    found = float(printed.split("logger time = machine time ")[1].split(" s")[0].replace(" ", ""))
+    assert abs(found - true_offset) <= 0.01, printed  # one logger sample (100 Hz)
+    from pamkit.logger import read_machine_csv
+
+    # kN converted: the two records agree to the 1e-6 kN (1e-3 N) testXpert's copy was printed to.
+    both = read_machine_csv(zwick), read_machine_csv(machine)
+    np.testing.assert_allclose(both[0]["force_N"], both[1]["force_N"], rtol=0, atol=0.5e-3 + 1e-12)
+    np.testing.assert_array_equal(both[0]["extension_m"], both[1]["extension_m"])
+
+
 def test_a_cut_last_line_is_dropped_with_a_warning_not_read_as_a_row(tmp_path, capsys):
     from pamkit.logger import LoggerWarning, read_logger_csv
 

@@ -18,6 +18,7 @@
 
 #include "pamkit/fields.hpp"
 #include "pamkit/sim/model.hpp"
+#include "pamkit/sim/statistics.hpp"
 
 namespace pamkit {
 
@@ -28,6 +29,9 @@ struct Measurement {
   std::vector<double> force_N;        ///< load cell [N]
   std::vector<double> pressure_kPa;   ///< pressure transducer, gauge [kPa]
   std::vector<double> temperature_C;  ///< gas temperature sensor [degC]
+  /// CVODES counters of the run behind a sealed test; all zero where no ODE is integrated (a
+  /// supplied test is static at each sample).
+  SolverStatistics statistics;
 
   /// The channel called `name` (force_N, pressure_kPa or temperature_C).
   /// \throws InvalidInput for any other name.

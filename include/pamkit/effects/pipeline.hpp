@@ -43,6 +43,7 @@ inline Measurement simulate_measurement(const MuscleParams& params, const Initia
     m.temperature_C.push_back(units::celsius_from_kelvin(r.temperature_K[k]));
   }
   for (const EffectPtr& effect : effects) effect->apply_to_measurement(m);
+  m.statistics = r.statistics;  // after the effects: a user effect may return a new Measurement
   return m;
 }
 

@@ -8,6 +8,7 @@
 
 #include "pamkit/fields.hpp"
 #include "pamkit/sim/model.hpp"
+#include "pamkit/sim/statistics.hpp"
 #include "pamkit/sim/trajectory.hpp"
 
 namespace pamkit {
@@ -44,20 +45,6 @@ struct SimulatorConfig {
           FieldInfo{"1", 0.0, 2.0, "rate jump that restarts, share of the largest rate"});
   }
   void validate() const { validate_fields(*this); }
-};
-
-/// Counters CVODES kept over one run (CVodeGet* summed over the restarts at each corner of
-/// the trajectory, where the elongation rate jumps).
-struct SolverStatistics {
-  long steps = 0;                           ///< internal time steps
-  long rhs_evaluations = 0;                 ///< right-hand-side evaluations, Jacobian ones included
-  long output_evaluations = 0;              ///< model evaluations to report the samples
-  long jacobian_evaluations = 0;            ///< dense Jacobian evaluations
-  long linear_solver_setups = 0;            ///< Newton matrix factorisations
-  long error_test_failures = 0;             ///< steps rejected by the local error test
-  long nonlinear_iterations = 0;            ///< Newton iterations
-  long nonlinear_convergence_failures = 0;  ///< Newton failures
-  long restarts = 0;                        ///< CVodeReInit calls at trajectory corners
 };
 
 /// Time series of one run; every vector has one entry per trajectory sample.

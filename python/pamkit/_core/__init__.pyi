@@ -1071,6 +1071,11 @@ class Measurement:
     def pressure_kPa(self, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
         ...
     @property
+    def statistics(self) -> SolverStatistics:
+        """
+        CVODES counters of the run behind a sealed test; all zero for a supplied test (no ODE)
+        """
+    @property
     def temperature_C(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         gas temperature sensor [degC]

@@ -19,7 +19,11 @@ def register(subparsers) -> None:
         "force_N, pressure_kPa gauge, temperature_C) in the format `pamkit simulate` reads.",
     )
     parser.add_argument("logger", help="CSV written by `pamkit log`")
-    parser.add_argument("machine", help="tensile machine export (CSV)")
+    parser.add_argument(
+        "machine",
+        help="tensile machine export: Instron Bluehill's or ZwickRoell testXpert's CSV (metadata block, names "
+        "row, units row; ';' and decimal commas too), or a CSV whose column names carry their units",
+    )
     parser.add_argument("-o", "--output", required=True, help="experiment TOML to write (its CSV gets the same stem)")
     parser.add_argument(
         "--muscle",

@@ -280,3 +280,71 @@ def write(
         Path(json_path).write_text(json.dumps(to_json(d), indent=2, default=float) + "\n")
     if plot_path:
         plot(d, plot_path)
+
+
+class Report:
+    """A diagnosis, as ``pamkit.diagnose(...)`` returns it: what the model got wrong in the
+    measured data, the cause named (or none within the noise), and the held-out gain.
+
+    ``report.diagnosis`` is the full result (:class:`~pamkit.diagnose.Diagnosis` for a time
+    series, ``TableDiagnosis`` for static tables); the methods render it.
+    """
+
+    def __init__(self, diagnosis: Diagnosis | TableDiagnosis):
+        self.diagnosis = diagnosis
+
+    def to_dict(self) -> dict:
+        """The report with DESIGN.md's keys (baseline and extended RMSEs per channel in the
+        channel's unit, the effect named, its parameters, held-out gain, evidence, timing)."""
+        return to_json(self.diagnosis)
+
+    def to_json(self, path: str | Path | None = None) -> str:
+        """The report as JSON text (``to_dict()``, indented); also written to `path` if given."""
+        text = json.dumps(to_json(self.diagnosis), indent=2, default=float) + "\n"
+        if path is not None:
+            Path(path).parent.mkdir(parents=True, exist_ok=True)
+            Path(path).write_text(text)
+        return text
+
+    def verdict(self) -> str:
+        """One sentence: the cause named and its held-out gain, or why none is named."""
+        return verdict(self.diagnosis)
+
+    def plot(self, path: str | Path) -> Path:
+        """Writes the figure (PNG, or any format matplotlib infers from the suffix): measured
+        vs baseline vs extended per channel (time series) or per held length/row (tables),
+        residuals before and after, the ranking. Returns the path written."""
+        return plot(self.diagnosis, path)
+
+    def __repr__(self) -> str:
+        return f"<pamkit diagnosis report: {self.verdict()}>"
+
+
+def diagnose_report(
+    path_or_experiments,
+    effect_catalog=None,
+    progress=None,
+    threads: int | None = None,
+    seed: int | None = None,
+) -> Report:
+    """Diagnoses an experiment (its TOML path or a loaded Experiment), or a campaign (a list of
+    them: static tables of one muscle); this is what ``pamkit.diagnose(...)`` calls.
+
+    Args:
+        path_or_experiments: an experiment TOML path, an Experiment, or a list of either.
+        effect_catalog: the effects to try (default: the built-in catalog).
+        progress: called with a message (str) as work proceeds (default: silent).
+        threads: fits run in parallel (default: all cores).
+        seed: seeds the bootstrap (default: drawn from the data, so a rerun gives the same answer).
+
+    Returns:
+        A :class:`Report`: ``.verdict()`` (str), ``.to_json(path=None)`` (str), ``.to_dict()``,
+        ``.plot(path)`` (writes a figure), ``.diagnosis`` (the full result).
+
+    Raises:
+        ExperimentError: (a ValueError) for a file that cannot be read or data that cannot be
+            diagnosed, naming the file (and row and column).
+    """
+    from pamkit.diagnose.engine import diagnose
+
+    return Report(diagnose(path_or_experiments, effect_catalog, progress=progress, threads=threads, seed=seed))
