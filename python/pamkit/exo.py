@@ -58,6 +58,7 @@ from pamkit._core import (
     winter_appendix_g3,
     with_ankle_range,
 )
+from pamkit.plots import save_figure
 from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
 
 GAIT_COLUMNS = ("frame", "hip_deg", "leg_deg", "foot_deg", "ankle_moment_Nm")
@@ -420,11 +421,7 @@ def plot_exo(path: str | Path, study: ExoStudy, title: str = "") -> Path:
         axes[1, 0].legend(loc="upper left", fontsize="small")
     if title:
         figure.suptitle(title)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=100)
-    plt.close(figure)
-    return path
+    return save_figure(figure, path, dpi=100)
 
 
 __all__ = [

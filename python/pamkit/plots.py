@@ -6,6 +6,18 @@ from pathlib import Path
 
 import numpy as np
 
+
+def save_figure(figure, path: str | Path, dpi: int = 110) -> Path:
+    """Writes `figure` to `path` (its folder made if missing), closes it and returns the path."""
+    import matplotlib.pyplot as plt
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(path, dpi=dpi)
+    plt.close(figure)
+    return path
+
+
 CHANNELS = (
     ("force_N", "force [N]"),
     ("pressure_kPa", "gauge pressure [kPa]"),
@@ -45,11 +57,7 @@ def plot_simulation(
     loop.grid(alpha=0.3)
     if title:
         figure.suptitle(title)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return path
+    return save_figure(figure, path)
 
 
 def plot_supplied(
@@ -97,11 +105,7 @@ def plot_supplied(
     force_pressure.legend(loc="best", fontsize="small")
     if title:
         figure.suptitle(title, fontsize=9)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return path
+    return save_figure(figure, path)
 
 
 def plot_table(path: str | Path, experiment, predicted: dict[str, np.ndarray], title: str = "") -> Path:
@@ -135,8 +139,4 @@ def plot_table(path: str | Path, experiment, predicted: dict[str, np.ndarray], t
         axis.legend(fontsize=7, loc="best")
     figure.suptitle(f"{title}\npoints: measured; lines: pamkit", fontsize=9)
     figure.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return path
+    return save_figure(figure, path)

@@ -22,6 +22,7 @@ from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.decide import MIN_GAIN, score
 from pamkit.diagnose.engine import Diagnosis
 from pamkit.diagnose.table_kinds import test_names
+from pamkit.plots import save_figure
 
 # Fewer tests than this cannot hold a test out and still fit the effect on the others.
 MIN_TESTS = 2
@@ -169,8 +170,4 @@ def plot(c: SeriesCampaign, path: str | Path) -> Path:
     axis.grid(alpha=0.3, axis="y")
     axis.legend(fontsize=7)
     figure.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return path
+    return save_figure(figure, path)

@@ -14,6 +14,7 @@ from pamkit.diagnose.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Ju
 from pamkit.diagnose.engine import CHANNEL_UNITS as UNITS
 from pamkit.diagnose.engine import Diagnosis
 from pamkit.diagnose.tables import TableDiagnosis
+from pamkit.plots import save_figure
 
 
 def _heldout_rmse(d: Diagnosis, fit: Fit) -> dict[str, float]:
@@ -257,11 +258,7 @@ def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Pa
     ranking.legend(loc="upper right", fontsize="small")
     ranking.grid(alpha=0.3, axis="y")
     figure.suptitle(verdict(d), fontsize="medium", wrap=True)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=100)
-    plt.close(figure)
-    return path
+    return save_figure(figure, path, dpi=100)
 
 
 def _shade(axis, time, mask):

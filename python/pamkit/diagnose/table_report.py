@@ -10,6 +10,7 @@ import numpy as np
 
 from pamkit.diagnose.table_kinds import test_names
 from pamkit.diagnose.tables import CHANNEL_UNITS, TableDiagnosis, TableFit, heldout_rmse
+from pamkit.plots import save_figure
 
 
 def to_json(d: TableDiagnosis) -> dict:
@@ -182,8 +183,4 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
         fontsize=8,
     )
     figure.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return path
+    return save_figure(figure, path)
