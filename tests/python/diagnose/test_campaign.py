@@ -2,6 +2,7 @@
 bench tests of one muscle from the independent model (tests/independent, never importing
 pamkit), each held out in turn; and the campaign TOML that names them."""
 
+import json
 import os
 import sys
 from pathlib import Path
@@ -14,8 +15,9 @@ sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, no
 from independent.families import independent_leak, sealed_test  # noqa: E402 (needs the path above)
 from independent.physics import Physics  # noqa: E402
 
-from pamkit.diagnose import diagnose, to_json, verdict  # noqa: E402
+from pamkit.diagnose import diagnose, verdict  # noqa: E402
 from pamkit.diagnose.campaign import campaign_of_series  # noqa: E402
+from pamkit.diagnose.report import write  # noqa: E402
 from pamkit.effects import catalog  # noqa: E402
 from pamkit.experiment import ExperimentError, load_tests  # noqa: E402
 
@@ -33,10 +35,13 @@ def diagnosed(tmp_path_factory):
     return {path: diagnose(path, threads=2) for path in [*heat, leak]}, heat, leak
 
 
-def test_an_effect_every_test_shares_carries_from_the_others_to_each(diagnosed):
+def test_an_effect_every_test_shares_carries_from_the_others_to_each(diagnosed, tmp_path):
     single, heat, _ = diagnosed
     c = campaign_of_series([single[path] for path in heat], catalog())
-    report = to_json(c)
+    write(c, tmp_path / "campaign.json", tmp_path / "campaign.png")
+    report = json.loads((tmp_path / "campaign.json").read_text())
+    assert report["held_out"] == "test" and len(report["per_test"]) == 3
+    assert (tmp_path / "campaign.png").stat().st_size > 0
     assert c.cause == "heat_transfer", verdict(c)
     carried = report["carried"]["heat_transfer"]
     assert [x["test"] for x in carried] == c.tests and all(x["carries"] for x in carried)
