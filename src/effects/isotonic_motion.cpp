@@ -5,8 +5,6 @@
 #include "pamkit/effects/isotonic_motion.hpp"
 
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
 #include <cmath>
@@ -164,20 +162,10 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
 
   // BDF with Newton: the tanh friction of a sharp Kf is stiff; without friction the tight
   // default tolerances keep BDF's numerical damping below them (the energy test measures it).
-  cvodes::Memory mem(CVodeCreate(CV_BDF, ctx));
-  if (!mem) throw SolverError("CVodeCreate failed");
-  void* cv = mem.get();
   double t = time_s.front();
-  check_flag(CVodeInit(cv, motion_rhs, t, y.get()), "CVodeInit", t);
-  check_flag(CVodeSetUserData(cv, &workspace), "CVodeSetUserData", t);
-  cvodes::silence_errors(cv, t);
-  check_flag(CVodeSVtolerances(cv, config.relative_tolerance, tolerances.get()), "CVodeSVtolerances", t);
-  check_flag(CVodeSetMaxNumSteps(cv, static_cast<long>(config.max_steps)), "CVodeSetMaxNumSteps", t);
-  if (config.max_step_s > 0.0) check_flag(CVodeSetMaxStep(cv, config.max_step_s), "CVodeSetMaxStep", t);
-  cvodes::Matrix jacobian(SUNDenseMatrix(motion_state_size, motion_state_size, ctx));
-  cvodes::LinearSolver solver(SUNLinSol_Dense(y.get(), jacobian.get(), ctx));
-  if (!jacobian || !solver) throw SolverError("SUNDenseMatrix or SUNLinSol_Dense failed");
-  check_flag(CVodeSetLinearSolver(cv, solver.get(), jacobian.get()), "CVodeSetLinearSolver", t);
+  const cvodes::BdfSolver solver = cvodes::make_bdf(ctx, motion_rhs, t, y.get(), &workspace, config.relative_tolerance,
+                                                    tolerances.get(), config.max_steps, config.max_step_s);
+  void* cv = solver.get();
   check_flag(CVodeRootInit(cv, 2, motion_limits), "CVodeRootInit", t);
   int leaving[2] = {-1, -1};  // only a length going out of the range stops the motion
   check_flag(CVodeSetRootDirection(cv, leaving), "CVodeSetRootDirection", t);

@@ -9,6 +9,8 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 #include <sundials/sundials_nvector.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
 
 #include <memory>
 
@@ -76,6 +78,39 @@ inline void silence_errors([[maybe_unused]] void* mem, [[maybe_unused]] double t
 #if SUNDIALS_VERSION_MAJOR < 7
   check_flag(CVodeSetErrHandlerFn(mem, silent_error_handler, nullptr), "CVodeSetErrHandlerFn", t0);
 #endif
+}
+
+/// A BDF solver with a dense Newton system, owning what CVODES borrows: its memory, the
+/// Jacobian matrix and the linear solver (destroyed together, in reverse order of creation).
+struct BdfSolver {
+  Memory memory;
+  Matrix jacobian;
+  LinearSolver linear_solver;
+  void* get() const { return memory.get(); }
+};
+
+/// Creates and configures a BDF solver for `rhs` from `y0` at `t0`, every flag checked by name:
+/// `user_data` for the right-hand side, per-component absolute `tolerances`, at most
+/// `max_steps` between outputs and steps of at most `max_step_s` (0: no limit). Stiff friction
+/// (a sharp tanh) is why the simulations use BDF with Newton.
+inline BdfSolver make_bdf(SUNContext ctx, CVRhsFn rhs, double t0, N_Vector y0, void* user_data,
+                          double relative_tolerance, N_Vector tolerances, double max_steps, double max_step_s) {
+  BdfSolver solver{Memory(CVodeCreate(CV_BDF, ctx)), nullptr, nullptr};
+  if (!solver.memory) throw SolverError("CVodeCreate failed");
+  void* cv = solver.get();
+  check_flag(CVodeInit(cv, rhs, t0, y0), "CVodeInit", t0);
+  check_flag(CVodeSetUserData(cv, user_data), "CVodeSetUserData", t0);
+  silence_errors(cv, t0);
+  check_flag(CVodeSVtolerances(cv, relative_tolerance, tolerances), "CVodeSVtolerances", t0);
+  check_flag(CVodeSetMaxNumSteps(cv, static_cast<long>(max_steps)), "CVodeSetMaxNumSteps", t0);
+  if (max_step_s > 0.0) check_flag(CVodeSetMaxStep(cv, max_step_s), "CVodeSetMaxStep", t0);
+  const auto size = static_cast<sunindextype>(N_VGetLength(y0));
+  solver.jacobian.reset(SUNDenseMatrix(size, size, ctx));
+  if (!solver.jacobian) throw SolverError("SUNDenseMatrix failed");
+  solver.linear_solver.reset(SUNLinSol_Dense(y0, solver.jacobian.get(), ctx));
+  if (!solver.linear_solver) throw SolverError("SUNLinSol_Dense failed");
+  check_flag(CVodeSetLinearSolver(cv, solver.linear_solver.get(), solver.jacobian.get()), "CVodeSetLinearSolver", t0);
+  return solver;
 }
 
 /// Adds the counters of the CVODES memory `mem` since its last (re)initialisation to `s`.

@@ -4,8 +4,6 @@
 #include "pamkit/sim/simulator.hpp"
 
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
 #include <cmath>
@@ -128,21 +126,12 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
     NV_Ith_S(tolerances.get(), i) = config_.absolute_tolerance_J;
   }
 
-  cvodes::Memory mem(CVodeCreate(CV_BDF, ctx));
-  if (!mem) throw SolverError("CVodeCreate failed");
-  void* cv = mem.get();
   RunWorkspace workspace{model, trajectory, 0, 1, nullptr};
   const double t0 = time.front();
-  check_flag(CVodeInit(cv, muscle_rhs, t0, y.get()), "CVodeInit", t0);
-  check_flag(CVodeSetUserData(cv, &workspace), "CVodeSetUserData", t0);
-  cvodes::silence_errors(cv, t0);
-  check_flag(CVodeSVtolerances(cv, config_.relative_tolerance, tolerances.get()), "CVodeSVtolerances", t0);
-  check_flag(CVodeSetMaxNumSteps(cv, static_cast<long>(config_.max_steps)), "CVodeSetMaxNumSteps", t0);
-  if (config_.max_step_s > 0.0) check_flag(CVodeSetMaxStep(cv, config_.max_step_s), "CVodeSetMaxStep", t0);
-  cvodes::Matrix jacobian(SUNDenseMatrix(State::size, State::size, ctx));
-  cvodes::LinearSolver solver(SUNLinSol_Dense(y.get(), jacobian.get(), ctx));
-  if (!jacobian || !solver) throw SolverError("SUNDenseMatrix or SUNLinSol_Dense failed");
-  check_flag(CVodeSetLinearSolver(cv, solver.get(), jacobian.get()), "CVodeSetLinearSolver", t0);
+  const cvodes::BdfSolver solver =
+      cvodes::make_bdf(ctx, muscle_rhs, t0, y.get(), &workspace, config_.relative_tolerance, tolerances.get(),
+                       config_.max_steps, config_.max_step_s);
+  void* cv = solver.get();
 
   SimulationResult result;
   result.time_s.reserve(trajectory.size());
