@@ -1,7 +1,10 @@
 // Bindings of include/pamkit/logger: the logger's calibration, the serial ports and the Reader
 // that `pamkit log` drives. Reader.poll() releases the GIL while it waits for the port, so Ctrl-C
 // reaches Python between polls (rows already written are on disk: the reader flushes each read).
+// The calibration's conversions are vectorised (a float gives a float, an array an array): the
+// synthetic logger (pamkit.instruments) turns its counts into kPa and degC through them too.
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -59,12 +62,12 @@ void bind_logger(py::module_& m) {
       lm, "LoggerCalibration", "Counts to volts (ADC reference), volts to gauge kPa (61CP fit) and to degC (TMP36).");
   bind_fields(calibration);
   calibration
-      .def("volts", &logger::LoggerCalibration::volts, py::arg("mean_counts"),
-           "V at the pin for a mean conversion [counts]")
-      .def("pressure_kPa", &logger::LoggerCalibration::pressure_kPa, py::arg("volts"),
-           "gauge pressure [kPa] for the transducer's V")
-      .def("temperature_C", &logger::LoggerCalibration::temperature_C, py::arg("volts"),
-           "TMP36 temperature [degC] for its V");
+      .def("volts", py::vectorize(&logger::LoggerCalibration::volts), py::arg("mean_counts"),
+           "V at the pin for a mean conversion [counts] (a frame's sum of conversions / oversample); float or array")
+      .def("pressure_kPa", py::vectorize(&logger::LoggerCalibration::pressure_kPa), py::arg("volts"),
+           "gauge pressure [kPa] for the transducer's V; float or array")
+      .def("temperature_C", py::vectorize(&logger::LoggerCalibration::temperature_C), py::arg("volts"),
+           "TMP36 temperature [degC] for its V; float or array");
 
   lm.def(
       "fit_pressure",
@@ -90,6 +93,7 @@ void bind_logger(py::module_& m) {
       },
       "Serial ports (libserialport) with their /dev/serial/by-id names, which survive re-plugging.");
 
+  lm.attr("ADC_FULL_SCALE") = PAMKIT_ADC_FULL_SCALE;  // counts of one conversion: ADC = Vin 1024 / Vref
   lm.attr("FRAME_SIZE") = PAMKIT_FRAME_SIZE;
   lm.attr("FRAME_VERSION") = PAMKIT_FRAME_VERSION;
   lm.attr("FIRMWARE_VERSION") = PAMKIT_FIRMWARE_VERSION;

@@ -3,8 +3,10 @@ The Arduino Mega logger's host side (firmware/pamkit_logger).
 """
 from __future__ import annotations
 import collections.abc
+import numpy
+import numpy.typing
 import typing
-__all__: list[str] = ['FIRMWARE_VERSION', 'FRAME_SIZE', 'FRAME_VERSION', 'LoggerCalibration', 'READ_BYTES', 'Reader', 'fit_pressure', 'list_ports']
+__all__: list[str] = ['ADC_FULL_SCALE', 'FIRMWARE_VERSION', 'FRAME_SIZE', 'FRAME_VERSION', 'LoggerCalibration', 'READ_BYTES', 'Reader', 'fit_pressure', 'list_ports']
 class LoggerCalibration:
     """
     Counts to volts (ADC reference), volts to gauge kPa (61CP fit) and to degC (TMP36).
@@ -20,13 +22,13 @@ class LoggerCalibration:
         """
     def __repr__(self) -> str:
         ...
-    def pressure_kPa(self, volts: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    def pressure_kPa(self, volts: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
         """
-        gauge pressure [kPa] for the transducer's V
+        gauge pressure [kPa] for the transducer's V; float or array
         """
-    def temperature_C(self, volts: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    def temperature_C(self, volts: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
         """
-        TMP36 temperature [degC] for its V
+        TMP36 temperature [degC] for its V; float or array
         """
     def to_dict(self) -> dict:
         ...
@@ -34,9 +36,9 @@ class LoggerCalibration:
         """
         Raises ValueError naming the first field out of range.
         """
-    def volts(self, mean_counts: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    def volts(self, mean_counts: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
         """
-        V at the pin for a mean conversion [counts]
+        V at the pin for a mean conversion [counts] (a frame's sum of conversions / oversample); float or array
         """
     @property
     def adc_reference_V(self) -> float:
@@ -122,6 +124,7 @@ def list_ports() -> list:
     """
     Serial ports (libserialport) with their /dev/serial/by-id names, which survive re-plugging.
     """
+ADC_FULL_SCALE: int = 1024
 FIRMWARE_VERSION: str = '1.0.0'
 FRAME_SIZE: int = 16
 FRAME_VERSION: int = 1
