@@ -9,10 +9,13 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 import math
+import numbers
 import os
 import re
 import warnings
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -31,11 +34,19 @@ from pamkit._core import (
     MuscleBuild,
     deflated_braid_angle_deg,
     fiber_revolutions_for_braid_angle,
+    measured_channels,
 )
 from pamkit.units import KELVIN_AT_ZERO_CELSIUS
 
+# The columns of a measured time series (DESIGN.md): the time base and the crosshead's motion are
+# required; the channels the instruments read (declared once, in C++: effect.hpp's
+# measured_channels) are optional. Every module that lists them imports them from here.
 REQUIRED_COLUMNS = ("time_s", "elongation_m")
-OPTIONAL_COLUMNS = ("force_N", "pressure_kPa", "temperature_C")
+OPTIONAL_COLUMNS = tuple(measured_channels())
+SERIES_COLUMNS = REQUIRED_COLUMNS + OPTIONAL_COLUMNS
+# The channels the Arduino logger records (the 61CP transducer on A0, the TMP36 on A1); the
+# tensile machine records the others.
+LOGGER_CHANNELS = ("pressure_kPa", "temperature_C")
 GAS_MODES = ("sealed", "supplied")
 
 # Experiment kinds (DESIGN.md, "Experiment kinds"): a time series, or a static table of settled
@@ -79,6 +90,8 @@ SCALED_WITH_DIAMETER = (
     "end_diameter_m",
     "cone_generator_m",
 )
+# The sections of an experiment file.
+EXPERIMENT_SECTIONS = ("muscle", "bladder", "friction", "gas", "calibrate", "test")
 # The sections a campaign file shares with its tests, besides [campaign] itself.
 CAMPAIGN_SECTIONS = ("campaign", "muscle", "bladder", "friction", "gas", "calibrate")
 # [bladder] keys: the law by name, and the neo-Hookean modulus.
@@ -384,10 +397,9 @@ def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
             raise _fail(path, f"gives [{section}], which its campaign shares: give it in one place")
         document[section] = table
 
-    known_sections = {"muscle", "test", "friction", "gas", "bladder", "calibrate"}
     for section in document:
-        if section not in known_sections:
-            raise _fail(path, f"unknown section [{section}] (known: {', '.join(sorted(known_sections))})")
+        if section not in EXPERIMENT_SECTIONS:
+            raise _fail(path, f"unknown section [{section}] (known: {', '.join(sorted(EXPERIMENT_SECTIONS))})")
     for section in ("muscle", "test"):
         if section not in document:
             raise _fail(path, f"missing section [{section}]")
@@ -886,3 +898,88 @@ def write_series(path: str | Path, columns: dict[str, np.ndarray], digits: int =
         writer = csv.writer(handle)
         writer.writerow(names)
         writer.writerows([[f"{value:.{digits}g}" for value in row] for row in table])
+
+
+def write_experiment(
+    path: str | Path,
+    sections: Mapping[str, Mapping[str, object]],
+    columns: Mapping[str, np.ndarray] | None = None,
+    comments: Sequence[str] = (),
+) -> Path:
+    """Writes an experiment in DESIGN.md's format: the TOML at `path` and, given `columns`, its CSV
+    beside it with the same stem (:func:`write_series`), which ``[test] data`` then names. The one
+    writer of experiment files: ``pamkit align``, ``pamkit synth`` and the thesis's data use it.
+
+    Args:
+        sections: section name -> {key: value}, written in the order given; each section one of
+            :data:`EXPERIMENT_SECTIONS`, and ``[test]``'s keys those :data:`TEST_KEYS` names.
+            Values: bool, int, float (finite), str, or a list of those.
+        columns: the measured series; without them ``[test] data`` must be given.
+        comments: lines written as ``# ...`` at the top.
+
+    Returns:
+        The CSV's path (the one ``[test] data`` names).
+
+    Raises:
+        ValueError: naming the section and key of a value TOML cannot hold or the reader would refuse.
+    """
+    path = Path(path)
+    sections = {name: dict(table) for name, table in sections.items()}
+    for name in sections:
+        if name not in EXPERIMENT_SECTIONS:
+            known = ", ".join(EXPERIMENT_SECTIONS)
+            raise ValueError(f"{path}: cannot write section [{name}] (an experiment has {known})")
+    test = sections.setdefault("test", {})
+    if columns is not None:
+        data = path.with_suffix(".csv")
+        test.pop("data", None)
+        test["data"] = data.name  # last, as DESIGN.md shows it
+    elif "data" in test:
+        data = path.parent / test["data"]
+    else:
+        raise ValueError(f"{path}: an experiment names its data: give the columns or [test] data")
+    for key in test:
+        if key not in TEST_KEYS:
+            raise ValueError(f"{path}: cannot write [test] {key} (known: {', '.join(TEST_KEYS)})")
+    lines = [f"# {line}" if line else "#" for comment in comments for line in comment.split("\n")]
+    for name, table in sections.items():
+        lines += ["", f"[{name}]"] if lines else [f"[{name}]"]
+        lines += [f"{_toml_key(key)} = {_toml_value(value, f'[{name}] {key}')}" for key, value in table.items()]
+    if columns is not None:
+        write_series(data, columns)
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return data
+
+
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+# Integers beyond 2^53 are not all floats; written as floats they read back as they were.
+_LARGEST_EXACT_INTEGER = 2**53
+
+
+def _toml_key(key: str) -> str:
+    return key if _BARE_KEY.fullmatch(key) else _toml_string(key)
+
+
+def _toml_string(text: str) -> str:
+    # JSON's escapes are TOML's (\", \\, \n, \uXXXX for the other controls) except that TOML
+    # also forbids a raw DEL.
+    return json.dumps(text, ensure_ascii=False).replace("\x7f", "\\u007f")
+
+
+def _toml_value(value: object, where: str) -> str:
+    """One value as TOML; a number whose value is whole is written as an integer (`216`, not
+    `216.0`: the reader takes both as floats, and lab files write counts that way)."""
+    if isinstance(value, (bool, np.bool_)):
+        return "true" if value else "false"
+    if isinstance(value, numbers.Real):
+        number = float(value)
+        if not math.isfinite(number):
+            raise ValueError(f"cannot write {where} = {value!r}: an experiment's numbers are finite")
+        if number.is_integer() and abs(number) < _LARGEST_EXACT_INTEGER:
+            return str(int(number))
+        return repr(number)
+    if isinstance(value, str):
+        return _toml_string(value)
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return "[" + ", ".join(_toml_value(item, where) for item in value) + "]"
+    raise ValueError(f"cannot write {where} = {value!r} to TOML (a number, text, true/false or a list of them)")

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -27,7 +26,9 @@ except ModuleNotFoundError:  # Python < 3.11
 
 from pamkit._core.logger import LoggerCalibration, fit_pressure
 
-CALIBRATION_TEMPLATE = """\
+_DEFAULTS = LoggerCalibration()  # the host's defaults: a 5 V reference, the TMP36's datasheet line
+
+CALIBRATION_TEMPLATE = f"""\
 # pamkit logger calibration (thesis appendix B).
 #
 # Pressure: apply known gauge pressures to the 61CP transducer with a reference gauge, from
@@ -38,15 +39,15 @@ CALIBRATION_TEMPLATE = """\
 # Temperature: the TMP36 needs no calibration: T = (V - offset_V) / V_per_C.
 
 [adc]
-reference_V = 5.0           # the Mega's 5 V pin (AVCC) as measured with a multimeter [V]
+reference_V = {_DEFAULTS.adc_reference_V:<13} # the Mega's 5 V pin (AVCC) as measured with a multimeter [V]
 
 [pressure]
 applied_psi = [0, 10, 20, 30, 40, 50, 60, 70, 80]
 measured_V = []             # fill in: one voltage per applied pressure [V]
 
 [temperature]
-offset_V = 0.5              # TMP36 output at 0 degC [V]
-V_per_C = 0.010             # TMP36 scale factor [V/degC]
+offset_V = {_DEFAULTS.tmp36_offset_V:<16} # TMP36 output at 0 degC [V]
+V_per_C = {_DEFAULTS.tmp36_V_per_C:<17} # TMP36 scale factor [V/degC]
 """
 
 _CALIBRATION_KEYS = {
@@ -106,9 +107,9 @@ def load_calibration(path: str | Path) -> Calibration:
         return float(value)
 
     calibration = LoggerCalibration()
-    calibration.adc_reference_V = number("adc", "reference_V", 5.0)
-    calibration.tmp36_offset_V = number("temperature", "offset_V", 0.5)
-    calibration.tmp36_V_per_C = number("temperature", "V_per_C", 0.010)
+    calibration.adc_reference_V = number("adc", "reference_V", calibration.adc_reference_V)
+    calibration.tmp36_offset_V = number("temperature", "offset_V", calibration.tmp36_offset_V)
+    calibration.tmp36_V_per_C = number("temperature", "V_per_C", calibration.tmp36_V_per_C)
     pressure = document.get("pressure", {})
     psi, volts = pressure.get("applied_psi", []), pressure.get("measured_V", [])
     for key, values in (("applied_psi", psi), ("measured_V", volts)):
@@ -334,17 +335,7 @@ def align(
     return Alignment(offset, r, next_ratio, next_offset, step, logger_signal, machine_signal)
 
 
-# --- writing the experiment ---------------------------------------------------------------------
-
-
-def _toml_value(value) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, (int, float)):
-        return repr(value)
-    if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=False)
-    raise LoggerError(f"cannot write {value!r} to TOML")
+# --- the muscle tested --------------------------------------------------------------------------
 
 
 def read_muscle_source(path: str | Path) -> dict[str, dict]:
@@ -363,24 +354,3 @@ def read_muscle_source(path: str | Path) -> dict[str, dict]:
     if all(not isinstance(value, dict) for value in document.values()) and document:
         return {"muscle": document}
     raise LoggerError(f"{path}: no [muscle] section and no muscle keys at the top level")
-
-
-def write_experiment(
-    path: str | Path, columns: dict[str, np.ndarray], sections: dict[str, dict], test: dict, comments: list[str]
-) -> Path:
-    """Writes EXPERIMENT.toml and EXPERIMENT.csv (same stem) in the DESIGN.md format."""
-    from pamkit.experiment import write_series
-
-    path = Path(path)
-    data = path.with_suffix(".csv")
-    write_series(data, columns)
-    lines = [f"# {comment}" for comment in comments] + [""]
-    for section in ("muscle", "friction", "gas"):
-        if section in sections:
-            lines.append(f"[{section}]")
-            lines += [f"{key} = {_toml_value(value)}" for key, value in sections[section].items()]
-            lines.append("")
-    lines.append("[test]")
-    lines += [f"{key} = {_toml_value(value)}" for key, value in {**test, "data": data.name}.items()]
-    path.write_text("\n".join(lines) + "\n")
-    return data

@@ -46,7 +46,7 @@ from pamkit._core import (
     simulate_supplied_measurement,
     static_forces,
 )
-from pamkit.experiment import Experiment, ExperimentError, load_experiment
+from pamkit.experiment import SERIES_COLUMNS, Experiment, ExperimentError, load_experiment
 from pamkit.units import PASCAL_PER_KILOPASCAL
 
 
@@ -107,10 +107,7 @@ def simulate_experiment(
 
 def _channels(experiment: Experiment, measurement: Measurement) -> dict[str, np.ndarray]:
     """The channels as the experiment's instruments read them (clipped to their ranges)."""
-    return {
-        name: experiment.read(name, np.asarray(getattr(measurement, name)))
-        for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
-    }
+    return {name: experiment.read(name, np.asarray(getattr(measurement, name))) for name in SERIES_COLUMNS}
 
 
 def _measurement(

@@ -1,10 +1,16 @@
-"""Experiment files: what is read, and that every bad input names the file, line and column."""
+"""Experiment files: what is read, that every bad input names the file, line and column, and
+that what the one writer writes reads back as written."""
 
 import numpy as np
 import pytest
 
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python < 3.11
+    import tomli as tomllib
+
 import pamkit
-from pamkit.experiment import ExperimentError, ExperimentWarning, load_experiment, read_series
+from pamkit.experiment import ExperimentError, ExperimentWarning, load_experiment, read_series, write_experiment
 
 
 def test_reads_build_test_and_series(write_experiment):
@@ -244,3 +250,52 @@ def test_an_offset_run_zeroes_the_load_cell_and_the_transducer(write_experiment,
     (tmp_path / "offset.csv").write_text("time_s,elongation_m\n0,0\n1,0\n")
     with pytest.raises(ExperimentError, match="has none of the channels it could zero"):
         load_experiment(path)
+
+
+# --- the one writer -------------------------------------------------------------------------------
+
+
+def test_a_written_experiment_reads_back_as_written(tmp_path):
+    build = pamkit.MuscleBuild(length_m=0.2256, diameter_m=0.01991)
+    columns = {"time_s": np.array([0.0, 0.1, 0.2]), "elongation_m": np.array([0.0, 1e-4, 2e-4])}
+    test = {"description": "a test", "inflation_pressure_kPa": 150.82, "ambient_temperature_C": 20.3}
+    data = write_experiment(tmp_path / "run.toml", {"muscle": build.to_dict(), "test": test}, columns, ["made here"])
+    assert data == tmp_path / "run.csv"
+    experiment = load_experiment(tmp_path / "run.toml")
+    assert experiment.build.to_dict() == build.to_dict()  # every field, bit for bit (repr round-trips)
+    assert (experiment.inflation_pressure_kPa, experiment.ambient_temperature_C) == (150.82, 20.3)
+    np.testing.assert_array_equal(experiment.elongation_m, columns["elongation_m"])
+    text = (tmp_path / "run.toml").read_text()
+    # DESIGN.md's layout: comments, [muscle], [test] ending with the data line; whole numbers as integers.
+    assert text.startswith("# made here\n\n[muscle]\nlength_m = 0.2256\n")
+    assert "fiber_count = 216\n" in text
+    assert text.endswith('ambient_temperature_C = 20.3\ndata = "run.csv"\n')
+
+
+def test_the_writer_escapes_what_toml_must_and_keeps_types(tmp_path):
+    odd = 'quote " backslash \\ newline \n tab \t bell \x07 delete \x7f µ°'
+    sections = {
+        "muscle": {"length_m": 0.225, "fiber_count": 216, "a key with spaces": 1e-300},
+        "gas": {"process": odd},
+        "test": {"force_range_N": [-5, 1500.5], "description": odd, "data": "run.csv"},
+    }
+    write_experiment(tmp_path / "run.toml", sections)
+    document = tomllib.loads((tmp_path / "run.toml").read_text(encoding="utf-8"))  # a strict reader accepts it
+    assert document == sections
+    assert isinstance(document["muscle"]["fiber_count"], int)
+
+
+@pytest.mark.parametrize(
+    ("sections", "message"),
+    [
+        ({"musle": {}, "test": {"data": "x.csv"}}, r"section \[musle\]"),
+        ({"test": {"inflation_pressure": 1.0, "data": "x.csv"}}, r"\[test\] inflation_pressure"),
+        ({"test": {"inflation_pressure_kPa": float("nan"), "data": "x.csv"}}, r"\[test\] inflation_pressure_kPa = nan"),
+        ({"gas": {"process": {"nested": 1}}, "test": {"data": "x.csv"}}, r"\[gas\] process"),
+        ({"test": {"inflation_pressure_kPa": 1.0}}, "names its data"),
+    ],
+)
+def test_the_writer_refuses_what_the_reader_would_and_names_it(tmp_path, sections, message):
+    with pytest.raises(ValueError, match=message):
+        write_experiment(tmp_path / "run.toml", sections)
+    assert not (tmp_path / "run.toml").exists()

@@ -7,6 +7,8 @@ import warnings
 
 import numpy as np
 
+from pamkit.experiment import LOGGER_CHANNELS
+
 
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
@@ -35,7 +37,7 @@ def register(subparsers) -> None:
     parser.add_argument(
         "--logger-signal",
         default="pressure_kPa",
-        choices=("pressure_kPa", "temperature_C"),
+        choices=LOGGER_CHANNELS,
         help="logger channel to align on (default: pressure_kPa)",
     )
     parser.add_argument(
@@ -65,6 +67,7 @@ def register(subparsers) -> None:
 
 
 def run(arguments: argparse.Namespace) -> int:
+    from pamkit.experiment import write_experiment
     from pamkit.logger import (
         LoggerError,
         LoggerWarning,
@@ -72,7 +75,6 @@ def run(arguments: argparse.Namespace) -> int:
         read_logger_csv,
         read_machine_csv,
         read_muscle_source,
-        write_experiment,
     )
 
     with warnings.catch_warnings(record=True) as dropped:
@@ -82,7 +84,7 @@ def run(arguments: argparse.Namespace) -> int:
         print(f"warning: {warning.message}")
     machine = read_machine_csv(arguments.machine)
     sections = read_muscle_source(arguments.muscle)
-    for name in ("pressure_kPa", "temperature_C"):
+    for name in LOGGER_CHANNELS:
         if name not in logger:
             raise LoggerError(f"{arguments.logger}: no {name} column (was the log written with a calibration?)")
     found = align(logger, machine, arguments.logger_signal, arguments.machine_signal, arguments.max_offset)
@@ -145,7 +147,7 @@ def run(arguments: argparse.Namespace) -> int:
         f"at {found.next_best_offset_s:.3f} s",
         f"inflation_pressure_kPa and ambient_temperature_C: {basis}",
     ]
-    data = write_experiment(arguments.output, columns, sections, test, comments)
+    data = write_experiment(arguments.output, {**sections, "test": test}, columns, comments)
 
     print(
         f"offset: logger time = machine time {'+' if offset >= 0 else '-'} {abs(offset):.4f} s "

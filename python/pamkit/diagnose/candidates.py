@@ -29,10 +29,10 @@ from pamkit.diagnose.calibrate import (
 )
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import configure, effect_space
+from pamkit.experiment import SERIES_COLUMNS
 
 SCAN_POINTS = 5  # simulations per physical effect's first parameter
 SCAN_POINTS_MEASUREMENT = 41  # no simulation needed: scan finely (a skew has one minimum per cycle)
-CHANNEL_FIELDS = ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
 
 
 def candidates(effect_catalog: EffectCatalog, problem: Problem) -> list[tuple[str, object]]:
@@ -84,7 +84,7 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
         configure(effect, space, effect_x)
         if measurement_only and not drives_model:
             m = Measurement()
-            for name in CHANNEL_FIELDS:
+            for name in SERIES_COLUMNS:
                 setattr(m, name, getattr(base_measurement, name))
             return problem.predictor.select(effect.apply_to_measurement(m))
         return problem.predictor.predict(base_x, [effect])

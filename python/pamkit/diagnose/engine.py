@@ -38,7 +38,7 @@ from pamkit.diagnose.decide import (
 from pamkit.diagnose.kinds import Problem, build_problem
 from pamkit.diagnose.tables import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.experiment import Experiment, ExperimentError, load_tests
+from pamkit.experiment import OPTIONAL_COLUMNS, Experiment, ExperimentError, load_tests
 
 __all__ = ["MIN_GAIN", "MAX_DIAGNOSED_ROWS", "Diagnosis", "ThinningWarning", "diagnose", "data_seed"]
 
@@ -174,7 +174,7 @@ def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
     # The model's own channels where the data has none (a sealed test logged without pressure).
     simulated = (
         problem.predictor.select(problem.predictor.measurement(fit.baseline_x, fit.effects))
-        if set(problem.channels) != {"force_N", "pressure_kPa", "temperature_C"}
+        if set(problem.channels) != set(OPTIONAL_COLUMNS)
         else {}
     )
     simulated = {**simulated, **fit.predicted}

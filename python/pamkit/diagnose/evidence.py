@@ -8,9 +8,6 @@ import numpy as np
 from scipy.signal import correlate, savgol_coeffs, savgol_filter
 from scipy.stats import chi2
 
-CHANNELS = ("force_N", "pressure_kPa", "temperature_C")
-
-
 NOISE_WINDOW = 9  # samples in the local cubic that stands for the signal
 NOISE_POLYORDER = 3
 
