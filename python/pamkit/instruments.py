@@ -6,8 +6,11 @@ own sample rate, with its own noise and resolution (thesis section 3.2 and appen
 - :class:`ArduinoLogger`: the Arduino Mega 2560 reading the 61CP pressure transducer (A0) and
   the TMP36 inside the muscle (A1) through its 10-bit ADC with a 5 V reference, on its own
   clock (an offset and a drift in ppm against the machine's), at its own rate. Its host
-  software turns counts into volts and volts into kPa (gauge) and °C with appendix B's
-  calibrations.
+  software is the real logger's: ``pamkit._core.logger.LoggerCalibration`` (C++) turns counts
+  into volts and volts into kPa (gauge) and °C, and ``fit_pressure`` fits appendix B's
+  calibration, as ``pamkit log`` does with a real board. What stays here is the synthetic
+  instrument's physics: what the transducer and the TMP36 put out, the ADC's noise and rounding,
+  the clocks.
 - :func:`merge_logs`: the hand synchronisation of the two logs after the test (thesis appendix
   G.2 aligns them by hand) and the merge onto the machine's time base by linear
   interpolation, into the columns of DESIGN.md's measured dataset.
@@ -24,7 +27,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from pamkit._core.logger import ADC_FULL_SCALE, LoggerCalibration, fit_pressure
 from pamkit.units import KILOPASCAL_PER_PSI
+
+# The host's defaults, declared in C++ (include/pamkit/logger/calibration.hpp): the nominal 5 V
+# reference and the TMP36's datasheet line. The synthetic sensors and ADC start from them.
+_HOST = LoggerCalibration()
+# Appendix G.2's conversion of the 61CP's volts, psi = 25 V - 14 (the thesis's calibration at
+# 30-40 psi): the host's line before appendix B's calibration, and the nominal unit's inverse.
+G2_PSI_PER_V = 25.0
+G2_OFFSET_PSI = -14.0
 
 # ----------------------------------------------------------------------------------------------
 # Tensile machine
@@ -135,10 +147,10 @@ class PressureTransducer:
     from them a little, which is why appendix B calibrates it.
     """
 
-    offset_V: float = 0.56
-    """output at zero gauge pressure [V]"""
-    sensitivity_V_per_psi: float = 0.04
-    """output per psi of gauge pressure [V/psi]"""
+    offset_V: float = -G2_OFFSET_PSI / G2_PSI_PER_V
+    """output at zero gauge pressure [V] (0.56)"""
+    sensitivity_V_per_psi: float = 1.0 / G2_PSI_PER_V
+    """output per psi of gauge pressure [V/psi] (0.04)"""
     noise_rms_V: float = 2e-3
     """electrical noise at the ADC input [V], RMS (supply ripple, USB ground): about 0.4 of a count"""
 
@@ -153,11 +165,12 @@ class PressureTransducer:
 
 @dataclass(frozen=True)
 class TMP36:
-    """The TMP36 inside the muscle (appendix B): 10 mV/°C with 500 mV at 0 °C (datasheet)."""
+    """The TMP36 inside the muscle (appendix B): by default the datasheet's line, 10 mV/°C with
+    500 mV at 0 °C, as the host's LoggerCalibration declares it."""
 
-    offset_V: float = 0.5
+    offset_V: float = _HOST.tmp36_offset_V
     """output at 0 °C [V] (datasheet: 500 mV)"""
-    sensitivity_V_per_C: float = 0.01
+    sensitivity_V_per_C: float = _HOST.tmp36_V_per_C
     """output per °C [V/°C] (datasheet: 10 mV/°C)"""
     noise_rms_V: float = 2e-3
     """electrical noise at the ADC input [V], RMS: about 0.4 of a count, 0.2 °C"""
@@ -171,19 +184,12 @@ class TMP36:
         return self.offset_V + self.sensitivity_V_per_C * np.asarray(temperature_C, dtype=float)
 
 
-@dataclass(frozen=True)
-class PressureCalibration:
-    """Appendix B's linear calibration, ``psi = slope * V + intercept``, as the host applies it
-    to the volts it computes from counts."""
-
-    slope_psi_per_V: float = 25.0
-    """[psi/V] (appendix G.2: 25)"""
-    intercept_psi: float = -14.0
-    """[psi] (appendix G.2: -14)"""
-
-    def gauge_kPa(self, volts: np.ndarray) -> np.ndarray:
-        """Gauge pressure for transducer volts [kPa]."""
-        return (self.slope_psi_per_V * np.asarray(volts, dtype=float) + self.intercept_psi) * KILOPASCAL_PER_PSI
+def appendix_g2_calibration() -> LoggerCalibration:
+    """The host's calibration by appendix G.2's line, psi = 25 V - 14: the exact inverse of the
+    nominal transducer, before appendix B's calibration of a unit."""
+    return LoggerCalibration(
+        pressure_kPa_per_V=G2_PSI_PER_V * KILOPASCAL_PER_PSI, pressure_offset_kPa=G2_OFFSET_PSI * KILOPASCAL_PER_PSI
+    )
 
 
 @dataclass(frozen=True)
@@ -198,15 +204,11 @@ class ArduinoLoggerSettings:
     """how much faster the logger clock runs than the machine's [ppm] (positive: fast)"""
     timestamp_resolution_s: float = 1e-3
     """step of the logged time stamps [s]: millis() (appendix G.2 divides them by 1000)"""
-    adc_reference_V: float = 5.0
-    """the ADC's actual reference, AVCC [V]"""
-    adc_bits: int = 10
-    """ATmega2560 ADC: 10 bits, counts = V * 2^bits / Vref rounded (datasheet)"""
+    adc_reference_V: float = _HOST.adc_reference_V
+    """the ADC's actual reference, AVCC [V] (the host assumes its calibration's adc_reference_V)"""
     oversample: int = 1
     """conversions summed per channel and sample (1: one analogRead, as the thesis's
     CoolTerm logging; the pamkit firmware sums 16)"""
-    host_reference_V: float = 5.0
-    """the reference the host software assumes when it turns counts into volts [V]"""
     pressure: PressureTransducer = field(default_factory=PressureTransducer)
     temperature: TMP36 = field(default_factory=TMP36)
 
@@ -214,25 +216,12 @@ class ArduinoLoggerSettings:
         _check_positive("ArduinoLoggerSettings.sample_rate_Hz", self.sample_rate_Hz)
         _check_nonnegative("ArduinoLoggerSettings.timestamp_resolution_s", self.timestamp_resolution_s)
         _check_positive("ArduinoLoggerSettings.adc_reference_V", self.adc_reference_V)
-        _check_positive("ArduinoLoggerSettings.host_reference_V", self.host_reference_V)
-        if not 1 <= self.adc_bits <= 24:
-            raise ValueError(f"ArduinoLoggerSettings.adc_bits = {self.adc_bits} is outside [1, 24]")
         if not 1 <= self.oversample <= 64:
             raise ValueError(f"ArduinoLoggerSettings.oversample = {self.oversample} is outside [1, 64]")
         if not abs(self.clock_drift_ppm) < 1e5:
             raise ValueError(f"ArduinoLoggerSettings.clock_drift_ppm = {self.clock_drift_ppm} is outside (-1e5, 1e5)")
         self.pressure.validate()
         self.temperature.validate()
-
-    @property
-    def full_scale_counts(self) -> int:
-        """Counts of one conversion: 2^bits (1024)."""
-        return 2**self.adc_bits
-
-    @property
-    def volts_per_count(self) -> float:
-        """What the host takes one count of a sample's sum to be [V]: Vref / 2^bits / oversample."""
-        return self.host_reference_V / self.full_scale_counts / self.oversample
 
 
 @dataclass
@@ -253,12 +242,14 @@ class LoggerLog:
 
 class ArduinoLogger:
     """The Arduino Mega logging the transducer and the TMP36, with its host software's
-    calibrations (appendix B)."""
+    calibration (appendix B): `calibration`, the C++ LoggerCalibration ``pamkit log`` uses,
+    appendix G.2's line until :meth:`calibrate` fits this unit's."""
 
-    def __init__(self, settings: ArduinoLoggerSettings | None = None, calibration: PressureCalibration | None = None):
+    def __init__(self, settings: ArduinoLoggerSettings | None = None, calibration: LoggerCalibration | None = None):
         self.settings = settings if settings is not None else ArduinoLoggerSettings()
         self.settings.validate()
-        self.calibration = calibration if calibration is not None else PressureCalibration()
+        self.calibration = calibration if calibration is not None else appendix_g2_calibration()
+        self.calibration.validate()
 
     # clocks ---------------------------------------------------------------------------------
 
@@ -287,56 +278,71 @@ class ArduinoLogger:
 
     def counts(self, volts: np.ndarray, noise_rms_V: float, rng: np.random.Generator) -> np.ndarray:
         """Sums of `oversample` conversions of `volts`, each with its own noise: per conversion,
-        counts = round((V + noise) * 2^bits / Vref), clipped to [0, 2^bits - 1]. ATmega2560
-        datasheet, "ADC Conversion Result" (ADC = Vin 1024 / Vref) and "ADC Accuracy
-        Definitions" (the ideal first transition is at 0.5 LSB, hence rounding, not flooring)."""
+        counts = round((V + noise) * 1024 / Vref), clipped to [0, 1023] (1024: the frame header's
+        PAMKIT_ADC_FULL_SCALE). ATmega2560 datasheet, "ADC Conversion Result" (ADC = Vin 1024 /
+        Vref) and "ADC Accuracy Definitions" (the ideal first transition is at 0.5 LSB, hence
+        rounding, not flooring)."""
         s = self.settings
         volts = np.asarray(volts, dtype=float)
         total = np.zeros(volts.shape, dtype=np.int64)
         for _ in range(s.oversample):
             noisy = volts + rng.normal(0.0, noise_rms_V, volts.shape) if noise_rms_V > 0 else volts
-            total += np.clip(
-                np.floor(noisy * s.full_scale_counts / s.adc_reference_V + 0.5), 0, s.full_scale_counts - 1
-            ).astype(np.int64)
+            conversion = np.floor(noisy * ADC_FULL_SCALE / s.adc_reference_V + 0.5)
+            total += np.clip(conversion, 0, ADC_FULL_SCALE - 1).astype(np.int64)
         return total
 
     def volts(self, counts: np.ndarray) -> np.ndarray:
-        """What the host software takes counts to mean [V]: counts x Vref / 2^bits / oversample."""
-        return np.asarray(counts, dtype=float) * self.settings.volts_per_count
+        """What the host takes sums of `oversample` conversions to mean [V]: their mean through
+        LoggerCalibration.volts, as the reader does with a frame's counts (decoder.hpp,
+        ``Sample::mean_counts``)."""
+        return self.calibration.volts(np.asarray(counts, dtype=float) / self.settings.oversample)
 
     def pressure_kPa(self, counts: np.ndarray) -> np.ndarray:
         """Host: gauge pressure from A0 counts, with the calibration [kPa]."""
-        return self.calibration.gauge_kPa(self.volts(counts))
+        return self.calibration.pressure_kPa(self.volts(counts))
 
     def temperature_C(self, counts: np.ndarray) -> np.ndarray:
-        """Host: temperature from A1 counts with the TMP36's datasheet line: (V - 0.5 V) / 10 mV/°C."""
-        sensor = TMP36()  # the host uses the datasheet's values, not the unit's
-        return (self.volts(counts) - sensor.offset_V) / sensor.sensitivity_V_per_C
+        """Host: temperature from A1 counts with the calibration's TMP36 line (the datasheet's,
+        not the unit's) [°C]."""
+        return self.calibration.temperature_C(self.volts(counts))
+
+    def volts_per_count(self) -> float:
+        """What the host takes one count of a sample's sum to be [V]: Vref / 1024 / oversample."""
+        return float(self.volts(1.0))
 
     def pressure_step_kPa(self) -> float:
         """The calibrated pressure's quantum: one count of a sample's sum [kPa]."""
-        return self.calibration.slope_psi_per_V * self.settings.volts_per_count * KILOPASCAL_PER_PSI
+        return self.calibration.pressure_kPa_per_V * self.volts_per_count()
 
     def temperature_step_C(self) -> float:
         """The TMP36 reading's quantum: one count of a sample's sum [°C]."""
-        return self.settings.volts_per_count / TMP36().sensitivity_V_per_C
+        return self.volts_per_count() / self.calibration.tmp36_V_per_C
 
     # calibration and recording --------------------------------------------------------------
 
     def calibrate(
         self, rng: np.random.Generator, points_psi=tuple(range(0, 90, 10)), readings_per_point: int = 20
-    ) -> PressureCalibration:
+    ) -> LoggerCalibration:
         """Appendix B's calibration: known gauge pressures from 0 to 80 psi every 10 psi, the
-        logger's mean reading at each in the host's volts, a least-squares line psi(V). The
+        logger's mean reading at each in the host's volts, the least-squares line of
+        ``fit_pressure`` (what ``pamkit log`` fits to a real unit's calibration file). The
         reference pressures are taken as exact here (a reference gauge's error is what the
-        catalog's sensor_offset models). Sets and returns the calibration."""
+        catalog's sensor_offset models). Sets and returns the calibration, whose reference and
+        TMP36 line stay as they were."""
         s = self.settings
         volts = []
         for psi in points_psi:
             true = np.full(readings_per_point, s.pressure.voltage(psi * KILOPASCAL_PER_PSI))
-            volts.append(self.volts(self.counts(true, s.pressure.noise_rms_V, rng)).mean())
-        slope, intercept = np.polyfit(np.asarray(volts), np.asarray(points_psi, dtype=float), 1)
-        self.calibration = PressureCalibration(slope_psi_per_V=float(slope), intercept_psi=float(intercept))
+            volts.append(float(self.volts(self.counts(true, s.pressure.noise_rms_V, rng)).mean()))
+        fit = fit_pressure([float(psi) for psi in points_psi], volts)
+        self.calibration = LoggerCalibration(
+            **{
+                **self.calibration.to_dict(),
+                "pressure_kPa_per_V": fit["kPa_per_V"],
+                "pressure_offset_kPa": fit["offset_kPa"],
+            }
+        )
+        self.calibration.validate()
         return self.calibration
 
     def record(self, truth, rng: np.random.Generator, start_s: float, stop_s: float) -> LoggerLog:
@@ -345,7 +351,7 @@ class ArduinoLogger:
         and stop_s, on the logger's clock and at its rate.
 
         Per sample: the true values at the sample's instant -> sensor volts -> noisy, quantised
-        counts -> the host's volts -> kPa (calibration) and °C (datasheet); the time stamp is
+        counts -> the host's volts -> kPa and °C (LoggerCalibration); the time stamp is
         the logger clock, rounded down to timestamp_resolution_s (millis()).
         """
         s = self.settings

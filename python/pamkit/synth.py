@@ -56,7 +56,7 @@ from pamkit._core import (
     simulate_measurement,
 )
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.experiment import write_series
+from pamkit.experiment import LOGGER_CHANNELS, OPTIONAL_COLUMNS, write_experiment
 from pamkit.instruments import (
     ArduinoLogger,
     ArduinoLoggerSettings,
@@ -84,8 +84,6 @@ HOLD_PROBABILITY = 1.0 / 3.0
 HOLD_S = (5.0, 20.0)
 LENGTH_VARIATION_M = 1e-3
 DIAMETER_VARIATION_M = 0.1e-3
-# Channels a sensor_lag or time_skew is put on when not given (DESIGN.md: the Arduino's channels).
-LOGGED_CHANNELS = ("pressure_kPa", "temperature_C")
 # Instrument choices (see draw_instruments).
 MACHINE_RATES_HZ = (10.0, 20.0, 25.0, 50.0)
 LOGGER_RATES_HZ = (20.0, 50.0, 100.0)
@@ -246,9 +244,10 @@ def draw_instruments(rng: np.random.Generator, protocol: Protocol) -> dict:
         sample_rate_Hz=machine_rate,
         load_cell=LoadCell(noise_rms_N=round(rng.uniform(*FORCE_NOISE_RMS_N), 3)),
     )
+    nominal = PressureTransducer()
     transducer = PressureTransducer(
-        offset_V=round(0.56 + rng.uniform(-0.02, 0.02), 5),
-        sensitivity_V_per_psi=round(0.04 * (1.0 + rng.uniform(-0.02, 0.02)), 7),
+        offset_V=round(nominal.offset_V + rng.uniform(-0.02, 0.02), 5),
+        sensitivity_V_per_psi=round(nominal.sensitivity_V_per_psi * (1.0 + rng.uniform(-0.02, 0.02)), 7),
     )
     logger = ArduinoLoggerSettings(
         sample_rate_Hz=logger_rate,
@@ -286,7 +285,7 @@ def configure_effect(
     spec: str,
     rng: np.random.Generator,
     effect_catalog: EffectCatalog | None = None,
-    channels: Sequence[str] = LOGGED_CHANNELS,
+    channels: Sequence[str] = LOGGER_CHANNELS,
 ):
     """The effect of `spec` with every parameter not given drawn (module docstring); a channel
     not given is drawn among `channels`.
@@ -401,13 +400,13 @@ def synthesize(
     # isothermal baseline, polytropic n = 1): the channel is drawn among those that move by
     # more than one ADC count over the test.
     step = {"pressure_kPa": logger.pressure_step_kPa(), "temperature_C": logger.temperature_step_C()}
-    moving = [name for name in LOGGED_CHANNELS if np.ptp(getattr(baseline, name)) > step[name]]
-    effect, effect_info = configure_effect(effect_spec, effect_rng, effect_catalog, moving or LOGGED_CHANNELS)
+    moving = [name for name in LOGGER_CHANNELS if np.ptp(getattr(baseline, name)) > step[name]]
+    effect, effect_info = configure_effect(effect_spec, effect_rng, effect_catalog, moving or LOGGER_CHANNELS)
     effects = [effect] if effect is not None else []
     truth = simulate_measurement(params, initial, crosshead, effects, Simulator()) if effects else baseline
     effect_info["largest_change"] = {
         name: float(np.max(np.abs(np.asarray(getattr(truth, name)) - np.asarray(getattr(baseline, name)))))
-        for name in ("force_N", "pressure_kPa", "temperature_C")
+        for name in OPTIONAL_COLUMNS
     }
 
     machine_log = machine.record(truth, instrument_rng, duration)
@@ -418,8 +417,22 @@ def synthesize(
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     files = SynthFiles(out_dir / "experiment.toml", out_dir / "experiment.csv", out_dir / "manifest.json")
-    write_series(files.data, columns)
-    files.experiment.write_text(_experiment_toml(build, protocol, files.data.name))
+    write_experiment(
+        files.experiment,
+        {
+            "muscle": build.to_dict(),
+            "test": {
+                "description": "synthetic bench test (pamkit synth)",
+                "inflation_pressure_kPa": protocol.inflation_pressure_kPa,
+                "ambient_temperature_C": protocol.ambient_temperature_C,
+            },
+        },
+        columns,
+        comments=[
+            "A synthetic bench test (pamkit synth): PAM 2 on a tensile machine, pressure and temperature",
+            "logged by an Arduino Mega, the two logs merged on the machine's time base.",
+        ],
+    )
     manifest = {
         "about": "the truth hidden in experiment.toml/.csv; written by pamkit synth; not for diagnosis",
         "pamkit_version": pamkit.__version__,
@@ -430,7 +443,7 @@ def synthesize(
         "instruments": {
             "tensile_machine": asdict(instruments["machine"]),
             "arduino_logger": asdict(instruments["logger"]),
-            "pressure_calibration": asdict(calibration),
+            "pressure_calibration": calibration.to_dict(),
             "pressure_step_kPa": logger.pressure_step_kPa(),
             "temperature_step_C": logger.temperature_step_C(),
             "logger_clock_at_machine_zero_s": {"true": instruments["logger"].clock_offset_s, "used_to_merge": sync},
@@ -444,21 +457,3 @@ def synthesize(
     }
     files.manifest.write_text(json.dumps(manifest, indent=2, sort_keys=True) + "\n")
     return files
-
-
-def _experiment_toml(build: MuscleBuild, protocol: Protocol, data_name: str) -> str:
-    muscle = "\n".join(f"{key} = {_toml_number(value)}" for key, value in build.to_dict().items())
-    return (
-        "# A synthetic bench test (pamkit synth): PAM 2 on a tensile machine, pressure and temperature\n"
-        "# logged by an Arduino Mega, the two logs merged on the machine's time base.\n\n"
-        f"[muscle]\n{muscle}\n\n"
-        "[test]\n"
-        'description = "synthetic bench test (pamkit synth)"\n'
-        f"inflation_pressure_kPa = {_toml_number(protocol.inflation_pressure_kPa)}\n"
-        f"ambient_temperature_C = {_toml_number(protocol.ambient_temperature_C)}\n"
-        f'data = "{data_name}"\n'
-    )
-
-
-def _toml_number(value: float) -> str:
-    return str(int(value)) if float(value).is_integer() else repr(float(value))

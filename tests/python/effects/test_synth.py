@@ -20,9 +20,10 @@ import pytest
 from scipy import stats
 
 import pamkit
+from pamkit._core.logger import ADC_FULL_SCALE, LoggerCalibration
 from pamkit.cli import main as pamkit_main
 from pamkit.effects import catalog
-from pamkit.experiment import load_experiment, read_series
+from pamkit.experiment import LOGGER_CHANNELS, load_experiment, read_series
 from pamkit.instruments import (
     TMP36,
     ArduinoLogger,
@@ -34,7 +35,7 @@ from pamkit.instruments import (
     merge_logs,
 )
 from pamkit.simulate import simulate_experiment
-from pamkit.synth import LOGGED_CHANNELS, configure_effect, hideable_effects, synthesize
+from pamkit.synth import configure_effect, hideable_effects, synthesize
 
 KPA_PER_PSI = 6.894757293168  # 1 psi in kPa (NIST SP 811: 6894.757293168 Pa)
 VOLTS_PER_COUNT = 5.0 / 1024  # 10-bit ADC, 5 V reference
@@ -60,9 +61,9 @@ def on_grid(values: np.ndarray, tolerance: float = 1e-5) -> np.ndarray:
 
 
 def pressure_counts(pressure_kPa: np.ndarray, calibration: dict) -> np.ndarray:
-    """Invert the host's conversion kPa = 6.894757 (slope x counts x 5 V / 1024 + intercept)."""
-    psi = np.asarray(pressure_kPa) / KPA_PER_PSI
-    return (psi - calibration["intercept_psi"]) / calibration["slope_psi_per_V"] / VOLTS_PER_COUNT
+    """Invert the host's conversion kPa = offset + slope x counts x 5 V / 1024 (LoggerCalibration's fields)."""
+    volts = (np.asarray(pressure_kPa) - calibration["pressure_offset_kPa"]) / calibration["pressure_kPa_per_V"]
+    return volts / VOLTS_PER_COUNT
 
 
 def temperature_counts(temperature_C: np.ndarray) -> np.ndarray:
@@ -174,7 +175,7 @@ def test_drawn_strengths_follow_the_realistic_ranges():
     assert stats.kstest(fractions, "uniform", args=(0.03, 0.27)).pvalue > 1e-3
     # Channel and sign at random unless given.
     skews = [configure_effect("time_skew", rng)[1] for _ in range(200)]
-    assert {s["options"]["channel"] for s in skews} == set(LOGGED_CHANNELS)
+    assert {s["options"]["channel"] for s in skews} == set(LOGGER_CHANNELS)
     signs = {math.copysign(1.0, s["parameters"]["offset_s"]) for s in skews}
     assert signs == {-1.0, 1.0}
     given = configure_effect("time_skew:channel=force_N,offset_s=2", rng)[1]
@@ -214,7 +215,7 @@ def test_pressure_and_temperature_in_the_file_lie_on_the_adc_grid(tmp_path):
     assert on_grid(pressure_counts(predicted["pressure_kPa"], calibration)).mean() < 0.01
     # The grid's step: one count, 5 V / 1024 x about 25 psi/V x 6.894757 kPa/psi = 0.84 kPa.
     step = manifest(files)["instruments"]["pressure_step_kPa"]
-    assert step == pytest.approx(calibration["slope_psi_per_V"] * VOLTS_PER_COUNT * KPA_PER_PSI)
+    assert step == pytest.approx(calibration["pressure_kPa_per_V"] * VOLTS_PER_COUNT)
     assert step == pytest.approx(25 * VOLTS_PER_COUNT * KPA_PER_PSI, rel=0.05)
 
 
@@ -258,17 +259,12 @@ def test_logger_reads_the_adc_grid_and_the_appendix_b_calibration():
     calibration = logger.calibrate(np.random.default_rng(1))
     # A nominal 61CP calibrates to appendix G.2's line, psi = 25 V - 14, to within the ADC's
     # resolution (one count is 0.12 psi).
-    assert calibration.slope_psi_per_V == pytest.approx(25.0, rel=0.005)
-    assert calibration.intercept_psi == pytest.approx(-14.0, abs=0.15)
+    assert calibration.pressure_kPa_per_V == pytest.approx(25.0 * KPA_PER_PSI, rel=0.005)
+    assert calibration.pressure_offset_kPa == pytest.approx(-14.0 * KPA_PER_PSI, abs=0.15 * KPA_PER_PSI)
     t = np.linspace(0.0, 20.0, 201)
     truth = Truth(t, pressure_kPa=100.0 + 10.0 * t, temperature_C=23.0 + 0.1 * t)
     log = logger.record(truth, np.random.default_rng(2), 0.0, 20.0)
-    assert on_grid(
-        pressure_counts(
-            log.pressure_kPa,
-            {"slope_psi_per_V": calibration.slope_psi_per_V, "intercept_psi": calibration.intercept_psi},
-        )
-    ).all()
+    assert on_grid(pressure_counts(log.pressure_kPa, calibration.to_dict())).all()
     assert on_grid(temperature_counts(log.temperature_C)).all()
     np.testing.assert_array_equal(temperature_counts(log.temperature_C).round(), log.temperature_counts)
     # Readings follow the truth to within half a count plus the 2 mV noise (4 sigma).
@@ -280,14 +276,52 @@ def test_logger_reads_the_adc_grid_and_the_appendix_b_calibration():
     assert np.abs(log.temperature_C - (23.0 + 0.1 * when)).max() < 0.5 * VOLTS_PER_COUNT / 0.01 + 4 * 0.2
 
 
+def test_the_host_side_is_the_logger_readers_calibration():
+    # ATmega2560 datasheet: ADC = Vin 1024 / Vref, so 512 counts at 5 V are 2.5 V; the TMP36 reads
+    # 0.75 V, 153.6 counts, as 25 °C (datasheet: 0.5 V + 10 mV/°C x T).
+    logger = ArduinoLogger()
+    assert ADC_FULL_SCALE == 1024
+    np.testing.assert_array_equal(logger.volts(np.array([0, 512, 1023])), [0.0, 2.5, 1023 * VOLTS_PER_COUNT])
+    assert logger.temperature_C(np.array([153.6]))[0] == pytest.approx(25.0, abs=1e-12)
+    # Before appendix B's calibration the host reads appendix G.2's psi = 25 V - 14, the nominal
+    # transducer's exact inverse.
+    nominal = PressureTransducer()
+    gauge_kPa = np.linspace(0.0, 600.0, 13)
+    host = logger.calibration
+    np.testing.assert_allclose(host.pressure_kPa(nominal.voltage(gauge_kPa)), gauge_kPa, rtol=0, atol=1e-12)
+    # The C++ conversions take arrays and floats alike, and agree with themselves.
+    assert isinstance(host.volts(512.0), float)
+    volts = np.linspace(0.0, 5.0, 11)
+    np.testing.assert_array_equal(host.pressure_kPa(volts), [host.pressure_kPa(float(v)) for v in volts])
+    # The calibration is the one `pamkit log` loads from a real unit's calibration file.
+    assert isinstance(host, LoggerCalibration)
+
+
+def test_oversampled_sums_read_as_their_mean():
+    # The pamkit firmware sums 16 conversions per sample and the host divides by 16 before turning
+    # counts into volts (decoder.hpp's mean_counts): noise-free, a sum of 16 conversions of one
+    # voltage is 16 single conversions, and reads as one.
+    voltage = np.linspace(0.3, 4.5, 50)
+    one = ArduinoLogger(ArduinoLoggerSettings(oversample=1))
+    sixteen = ArduinoLogger(ArduinoLoggerSettings(oversample=16))
+    single = one.counts(voltage, 0.0, np.random.default_rng(0))
+    summed = sixteen.counts(voltage, 0.0, np.random.default_rng(0))
+    np.testing.assert_array_equal(summed, 16 * single)
+    np.testing.assert_array_equal(sixteen.pressure_kPa(summed), one.pressure_kPa(single))
+    np.testing.assert_array_equal(sixteen.temperature_C(summed), one.temperature_C(single))
+    # One count of the sum is a sixteenth of one conversion's count: 5 V / 1024 / 16.
+    assert sixteen.pressure_step_kPa() == pytest.approx(one.pressure_step_kPa() / 16, rel=1e-15)
+    assert one.temperature_step_C() == pytest.approx(VOLTS_PER_COUNT / 0.01, rel=1e-15)
+
+
 def test_calibration_absorbs_the_units_own_offset_and_sensitivity():
     unit = PressureTransducer(offset_V=0.58, sensitivity_V_per_psi=0.0392, noise_rms_V=0.0)
     logger = ArduinoLogger(ArduinoLoggerSettings(pressure=unit))
     calibration = logger.calibrate(np.random.default_rng(0))
     # psi = (V - 0.58) / 0.0392: slope 25.51 psi/V, intercept -14.80 psi; 9 points 10 psi apart
     # read to a count (0.12 psi) fit it to better than 0.5 % and 0.2 psi.
-    assert calibration.slope_psi_per_V == pytest.approx(1 / 0.0392, rel=0.005)
-    assert calibration.intercept_psi == pytest.approx(-0.58 / 0.0392, abs=0.2)
+    assert calibration.pressure_kPa_per_V == pytest.approx(KPA_PER_PSI / 0.0392, rel=0.005)
+    assert calibration.pressure_offset_kPa == pytest.approx(-0.58 / 0.0392 * KPA_PER_PSI, abs=0.2 * KPA_PER_PSI)
 
 
 def test_logger_clock_drift_shows_as_a_growing_skew_after_the_merge():
