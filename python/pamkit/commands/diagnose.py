@@ -1,4 +1,4 @@
-"""pamkit diagnose EXPERIMENT.toml [MORE.toml ...] [--json REPORT.json] [--plot REPORT.png]
+"""pamkit diagnose EXPERIMENT.toml [MORE.toml ...] [--json REPORT.json] [--plot REPORT.png] [--params-out PARAMS.toml]
 pamkit diagnose --batch DIR -o RESULTS.parquet [--workers N | --scheduler ADDRESS]"""
 
 from __future__ import annotations
@@ -25,6 +25,12 @@ def register(subparsers) -> None:
     )
     parser.add_argument("--json", help="write the report as JSON")
     parser.add_argument("--plot", help="write the report as a PNG figure")
+    parser.add_argument(
+        "--params-out",
+        metavar="PARAMS.toml",
+        help="write the calibrated baseline as a muscle-parameters file under the C++ field names (one time "
+        "series): what `pamkit simulate --params` and the C++ pamkit::read_muscle_params load",
+    )
     parser.add_argument("--threads", type=int, default=None, help="fits in parallel (default: all cores)")
     batch = parser.add_argument_group(
         "batch", "diagnose every experiment TOML of a folder on its own, each a Dask task (pip install 'pamkit[scale]')"
@@ -38,7 +44,7 @@ def register(subparsers) -> None:
 
 def run(arguments: argparse.Namespace) -> int:
     from pamkit.diagnose import diagnose, verdict
-    from pamkit.diagnose.report import write
+    from pamkit.diagnose.report import write, write_params
 
     def progress(message: str) -> None:
         if not arguments.quiet:
@@ -52,12 +58,20 @@ def run(arguments: argparse.Namespace) -> int:
         if getattr(arguments, option) is not None:
             raise ValueError(f"--{option} belongs to --batch")
 
+    if arguments.params_out and len(arguments.experiment) > 1:
+        raise ValueError(
+            "--params-out writes the calibrated baseline of one time series; a campaign calibrates each test on its "
+            "own: diagnose the test whose parameters you want"
+        )
     d = diagnose(arguments.experiment, progress=progress, threads=arguments.threads)
-    if arguments.json or arguments.plot:
-        progress(f"writing {' and '.join(p for p in (arguments.json, arguments.plot) if p)}")
+    outputs = [p for p in (arguments.json, arguments.plot, arguments.params_out) if p]
+    if outputs:
+        progress(f"writing {' and '.join(outputs)}")
     write(d, arguments.json, arguments.plot)
+    if arguments.params_out:
+        write_params(d, arguments.params_out)
     print(verdict(d))
-    for path in (arguments.json, arguments.plot):
+    for path in outputs:
         if path:
             print(f"wrote {path}")
     return 0
@@ -69,7 +83,7 @@ def run_batch(arguments: argparse.Namespace, progress) -> int:
 
     if arguments.experiment:
         raise ValueError("--batch DIR diagnoses the folder's files: name no experiment besides it")
-    for option in ("json", "plot", "threads"):
+    for option in ("json", "plot", "threads", "params_out"):
         if getattr(arguments, option) is not None:
             raise ValueError(
                 f"--{option} does not apply to --batch (one row per test; each diagnosis runs on one thread)"

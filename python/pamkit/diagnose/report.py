@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from pamkit._core import GasMode, InitialState, MuscleParams, write_muscle_params
 from pamkit.diagnose import campaign, evidence, table_report
 from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.campaign import SeriesCampaign
@@ -277,6 +278,44 @@ def write(
         Path(json_path).write_text(json.dumps(to_json(d), indent=2, default=float) + "\n")
     if plot_path:
         plot(d, plot_path)
+
+
+def calibrated_params(d: Diagnosis) -> tuple[MuscleParams, InitialState | None]:
+    """The calibrated baseline as the C++ model's parameters (Baseline.model_params at the fitted
+    coordinates) and, for a sealed test, its state at zero elongation at the calibrated inflation
+    pressure: what the baseline prediction was simulated from."""
+    predictor = d.problem.predictor
+    params, pressure_kPa = predictor.baseline.model_params(d.baseline.baseline_x)
+    initial = predictor.initial_state(params, pressure_kPa) if predictor.mode == GasMode.sealed else None
+    return params, initial
+
+
+def write_params(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> None:
+    """Writes the calibrated baseline as a muscle-parameters TOML file (the C++ reader's,
+    include/pamkit/io/params_file.hpp), with an [initial] section for a sealed test.
+
+    Raises:
+        ValueError: for a campaign or static tables, whose calibration is not one muscle in one test.
+    """
+    if isinstance(d, TableDiagnosis):
+        raise ValueError(
+            "--params-out writes the calibrated baseline of one time series; static tables are not written yet"
+        )
+    if isinstance(d, SeriesCampaign):
+        raise ValueError(
+            "--params-out writes the calibrated baseline of one time series; a campaign calibrates each test on its "
+            "own: diagnose the test whose parameters you want"
+        )
+    params, initial = calibrated_params(d)
+    baseline = ", ".join(f"{name} = {value:.6g}" for name, value in d.baseline.params.items())
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    write_muscle_params(
+        path,
+        params,
+        initial,
+        f"The calibrated baseline of `pamkit diagnose {d.problem.experiment.path}`: {baseline}.\n"
+        "[initial] is that test's state at zero elongation; a test at another inflation pressure needs it removed.",
+    )
 
 
 class Report:
