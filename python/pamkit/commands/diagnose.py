@@ -58,11 +58,13 @@ def run(arguments: argparse.Namespace) -> int:
         if getattr(arguments, option) is not None:
             raise ValueError(f"--{option} belongs to --batch")
 
-    if arguments.params_out and len(arguments.experiment) > 1:
-        raise ValueError(
-            "--params-out writes the calibrated baseline of one time series; a campaign calibrates each test on its "
-            "own: diagnose the test whose parameters you want"
-        )
+    if arguments.params_out:  # refused before the work, not after it
+        from pamkit.diagnose.report import SERIES_CAMPAIGN_HAS_NO_PARAMS
+        from pamkit.experiment import load_tests
+
+        tests = [test for path in arguments.experiment for test in load_tests(path)]
+        if len(tests) > 1 and not all(test.is_table for test in tests):
+            raise ValueError(SERIES_CAMPAIGN_HAS_NO_PARAMS)
     d = diagnose(arguments.experiment, progress=progress, threads=arguments.threads)
     outputs = [p for p in (arguments.json, arguments.plot, arguments.params_out) if p]
     if outputs:

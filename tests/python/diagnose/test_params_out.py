@@ -109,3 +109,46 @@ def test_params_out_refuses_a_campaign_before_diagnosing(diagnosed, capsys):
     experiment_path = diagnosed[0]
     assert main(["diagnose", str(experiment_path), str(experiment_path), "--params-out", "x.toml"]) == 2
     assert "diagnose the test whose parameters you want" in capsys.readouterr().err
+
+
+def test_a_tables_calibrated_muscle_is_written_and_simulates_as_the_diagnosis_fitted_it(tmp_path, capsys):
+    """An isometric map whose build is partly unknown ([calibrate]: braid angle, bladder
+    diameter, membrane modulus): the file carries the calibrated values in [build] and [bladder],
+    and `simulate --params` predicts the map the diagnosis's calibrated baseline predicted."""
+    import sys
+
+    from conftest import SOURCE_DIR
+
+    sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
+    from independent.static_map import write_map
+
+    experiment_path = write_map(
+        tmp_path,
+        lengths_m=[0.25, 0.245, 0.24, 0.235],
+        pressures_kPa=np.arange(400, 651, 25),
+        seed=2,
+        rest_length_m=0.25,
+        diameter_m=0.01,
+        braid_angle_deg=24.0,
+        shear_modulus_Pa=1.5e6,
+        thickness_m=0.5e-3,
+        prestretch=1.06,
+    )
+    computed = []
+    real_diagnose = pamkit.diagnose.diagnose
+    params_path = tmp_path / "calibrated.toml"
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(
+            pamkit.diagnose, "diagnose", lambda *a, **k: computed.append(real_diagnose(*a, **k)) or computed[-1]
+        )
+        assert main(["diagnose", str(experiment_path), "--params-out", str(params_path), "--quiet"]) == 0
+    d = computed[0]
+    written = read_muscle_params_file(params_path)
+    assert written.initial is None  # a map is measured at supplied pressures
+    assert written.params.build.bladder_diameter_m == d.baseline.params["bladder_diameter_m"]
+    assert written.params.bladder.shear_modulus_Pa == d.baseline.params["bladder.shear_modulus_Pa"]
+    output = tmp_path / "simulated.csv"
+    assert main(["simulate", str(experiment_path), "--params", str(params_path), "-o", str(output)]) == 0
+    simulated = np.genfromtxt(output, delimiter=",", names=True)["force_N"]
+    # Static forces, no integration: equal to the CSV's ten significant digits.
+    np.testing.assert_allclose(simulated, d.baseline.predicted["force_N"], rtol=1e-9, atol=1e-9)
