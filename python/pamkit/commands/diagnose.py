@@ -29,7 +29,8 @@ def register(subparsers) -> None:
         "--params-out",
         metavar="PARAMS.toml",
         help="write the calibrated baseline as a muscle-parameters file under the C++ field names (one time "
-        "series): what `pamkit simulate --params` and the C++ pamkit::read_muscle_params load",
+        "series, or static tables of one muscle): what `pamkit simulate --params` and the C++ "
+        "pamkit::read_muscle_params load",
     )
     parser.add_argument("--threads", type=int, default=None, help="fits in parallel (default: all cores)")
     batch = parser.add_argument_group(
@@ -74,8 +75,7 @@ def run(arguments: argparse.Namespace) -> int:
         write_params(d, arguments.params_out)
     print(verdict(d))
     for path in outputs:
-        if path:
-            print(f"wrote {path}")
+        print(f"wrote {path}")
     return 0
 
 
