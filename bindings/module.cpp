@@ -15,6 +15,7 @@ void bind_sim(py::module_& m);
 void bind_effects(py::module_& m);
 void bind_exo(py::module_& m);
 void bind_logger(py::module_& m);
+void bind_io(py::module_& m);
 }  // namespace pamkit::python
 
 PYBIND11_MODULE(_core, m) {
@@ -31,6 +32,7 @@ PYBIND11_MODULE(_core, m) {
   pamkit::python::bind_effects(m);
   pamkit::python::bind_exo(m);
   pamkit::python::bind_logger(m);
+  pamkit::python::bind_io(m);
 
   py::module_ units =
       m.def_submodule("units", "Conversions for quantities that cross a boundary in other units (units.hpp).");

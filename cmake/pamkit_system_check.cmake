@@ -46,6 +46,12 @@ if(NOT pamkit_check_sundials_major OR pamkit_check_sundials_major LESS 6 OR pamk
     "SUNDIALS 6 or 7 (CVODES)  Debian: libsundials-dev   Homebrew: sundials                 conda: sundials")
 endif()
 
+find_path(PAMKIT_CHECK_TOMLPLUSPLUS_INCLUDE_DIR toml++/toml.h HINTS ${pamkit_check_hints} PATH_SUFFIXES include)
+if(NOT PAMKIT_CHECK_TOMLPLUSPLUS_INCLUDE_DIR)
+  list(APPEND pamkit_missing
+    "toml++ 3 (headers)        Debian: libtomlplusplus-dev Homebrew: tomlplusplus           conda: tomlplusplus")
+endif()
+
 find_path(PAMKIT_CHECK_SERIALPORT_INCLUDE_DIR libserialport.h HINTS ${pamkit_check_hints} PATH_SUFFIXES include)
 if(NOT PAMKIT_CHECK_SERIALPORT_INCLUDE_DIR)
   list(APPEND pamkit_missing
@@ -69,7 +75,8 @@ if(PAMKIT_BUILD_PYTHON)
       "Python 3 headers          Debian: python3-dev       (Homebrew's and conda's Python include them)")
   endif()
 endif()
-mark_as_advanced(PAMKIT_CHECK_BOOST_INCLUDE_DIR PAMKIT_CHECK_SUNDIALS_INCLUDE_DIR PAMKIT_CHECK_SERIALPORT_INCLUDE_DIR)
+mark_as_advanced(PAMKIT_CHECK_BOOST_INCLUDE_DIR PAMKIT_CHECK_SUNDIALS_INCLUDE_DIR PAMKIT_CHECK_SERIALPORT_INCLUDE_DIR
+                 PAMKIT_CHECK_TOMLPLUSPLUS_INCLUDE_DIR)
 
 if(pamkit_missing)
   list(JOIN pamkit_missing "\n  - " pamkit_check_missing_lines)
@@ -77,6 +84,6 @@ if(pamkit_missing)
     "pamkit cannot be built: the system lacks what pip cannot install.\n"
     "Missing:\n  - ${pamkit_check_missing_lines}\n"
     "On Debian 12, scripts/install-deps.sh installs all of them (apt-get install build-essential "
-    "libboost-dev libsundials-dev libserialport-dev python3-dev). If they are installed in an unusual "
+    "libboost-dev libsundials-dev libserialport-dev libtomlplusplus-dev python3-dev). If they are installed in an unusual "
     "place, give it with -DCMAKE_PREFIX_PATH=... (pip: --config-settings=cmake.define.CMAKE_PREFIX_PATH=...).")
 endif()

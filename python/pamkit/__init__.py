@@ -46,6 +46,7 @@ from pamkit._core import (
     MuscleModel,
     MuscleOutputs,
     MuscleParams,
+    MuscleParamsFile,
     MuscleShape,
     Resolution,
     SimulationResult,
@@ -70,10 +71,13 @@ from pamkit._core import (
     polytropic_pressure,
     polytropic_temperature,
     pressure_branches,
+    read_muscle_params,
+    read_muscle_params_file,
     simulate_measurement,
     simulate_supplied_measurement,
     static_forces,
     thesis_protocol,
+    write_muscle_params,
 )
 from pamkit.experiment import Experiment, ExperimentError, load_experiment
 

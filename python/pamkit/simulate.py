@@ -88,12 +88,14 @@ def simulate_experiment(
     params: MuscleParams | None = None,
     config: SimulatorConfig | None = None,
     effects: Sequence[Effect] = (),
+    initial: InitialState | None = None,
 ) -> dict[str, np.ndarray]:
     """Predicts the experiment's channels at its sample times, with `effects` applied.
 
     Returns the columns time_s, elongation_m, force_N, pressure_kPa (gauge), temperature_C. In
-    a sealed test the gas is a closed mass integrated by CVODES; in a supplied test the
-    measured pressure drives the model and the gas stays at ambient temperature.
+    a sealed test the gas is a closed mass integrated by CVODES, from `initial` if given (a
+    calibrated state: read_muscle_params_file's [initial]), else from the file's inflation; in a
+    supplied test the measured pressure drives the model and the gas stays at ambient temperature.
 
     Raises:
         ExperimentError: for an effect that cannot act in this kind of test, or data the model
@@ -102,7 +104,7 @@ def simulate_experiment(
     params = params if params is not None else muscle_params(experiment)
     if experiment.is_table:
         return simulate_table(experiment, params, effects)
-    return _channels(experiment, _measurement(experiment, params, config, effects))
+    return _channels(experiment, _measurement(experiment, params, config, effects, initial))
 
 
 def _channels(experiment: Experiment, measurement: Measurement) -> dict[str, np.ndarray]:
@@ -111,15 +113,26 @@ def _channels(experiment: Experiment, measurement: Measurement) -> dict[str, np.
 
 
 def _measurement(
-    experiment: Experiment, params: MuscleParams, config: SimulatorConfig | None, effects: Sequence[Effect]
+    experiment: Experiment,
+    params: MuscleParams,
+    config: SimulatorConfig | None,
+    effects: Sequence[Effect],
+    initial: InitialState | None = None,
 ) -> Measurement:
-    """The simulated time series of an experiment (with the solver's statistics)."""
+    """The simulated time series of an experiment (with the solver's statistics); a sealed test
+    starts from `initial` when given."""
     mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
     for effect in effects:
         acts, why_not = effect.acts_in(mode)
         if not acts:
             raise ExperimentError(f"{experiment.path}: effect {effect.name()} cannot act here: {why_not}")
-    length0 = initial_length(experiment, params)
+    if mode == GasMode.supplied:
+        length0 = initial_length(experiment, params)
+    elif initial is None:
+        initial = InitialState(
+            length_m=initial_length(experiment, params),
+            gauge_pressure_Pa=experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL,
+        )
     crosshead = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
     try:
         if mode == GasMode.supplied:
@@ -132,9 +145,6 @@ def _measurement(
                 list(effects),
             )
         else:
-            initial = InitialState(
-                length_m=length0, gauge_pressure_Pa=experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL
-            )
             simulator = Simulator(config if config is not None else SimulatorConfig())
             measurement = simulate_measurement(params, initial, crosshead, list(effects), simulator)
     except ValueError as error:

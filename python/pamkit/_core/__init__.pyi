@@ -5,10 +5,11 @@ from __future__ import annotations
 import collections.abc
 import numpy
 import numpy.typing
+import os
 import typing
 from . import logger
 from . import units
-__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range']
+__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
 class Error(RuntimeError):
     pass
 class SolverError(RuntimeError):
@@ -2163,6 +2164,20 @@ class Table42Row:
     @property
     def vertical_displacement_m(self) -> float:
         ...
+class MuscleParamsFile:
+    """
+    What a muscle-parameters file holds.
+    """
+    @property
+    def initial(self) -> InitialState | None:
+        """
+        [initial]: the state at zero elongation of the sealed test the parameters were calibrated on, or None
+        """
+    @property
+    def params(self) -> MuscleParams:
+        """
+        the muscle: [build], [bladder], [friction], [gas], [extensions]
+        """
 def braid_cylinder_length(fiber_length_m: typing.SupportsFloat | typing.SupportsIndex, braid_angle_rad: typing.SupportsFloat | typing.SupportsIndex) -> float:
     """
     Eq. 3.1.10: Lm = Lym cos(theta) [m].
@@ -2237,6 +2252,14 @@ def pressure_branches(pressure_kPa: typing.Annotated[numpy.typing.ArrayLike, num
     """
     +1 where a supplied pressure is being raised, -1 where lowered (a play operator of half-width play_kPa).
     """
+def read_muscle_params(path: os.PathLike | str | bytes) -> MuscleParams:
+    """
+    The MuscleParams of a muscle-parameters TOML file (read_muscle_params_file(path).params).
+    """
+def read_muscle_params_file(path: os.PathLike | str | bytes) -> MuscleParamsFile:
+    """
+    Reads and validates a muscle-parameters TOML file: its MuscleParams and its optional [initial] state. Raises ValueError naming the file, line, column and key (unknown or missing section or key, wrong type, a value outside its field's range).
+    """
 def reproduce_g3_script(data: GaitData, linkage: Linkage, body_mass_kg: typing.SupportsFloat | typing.SupportsIndex, begin_row: typing.SupportsInt | typing.SupportsIndex = 12, end_row: typing.SupportsInt | typing.SupportsIndex = 43, ideal_rows: typing.SupportsInt | typing.SupportsIndex = 45) -> ScriptKinematics:
     ...
 def resample_cycle(data: GaitData, events: GaitEvents, points: typing.SupportsInt | typing.SupportsIndex, body_mass_kg: typing.SupportsFloat | typing.SupportsIndex) -> GaitCycle:
@@ -2294,5 +2317,9 @@ def winter_appendix_g3() -> GaitData:
 def with_ankle_range(cycle: GaitCycle, range_deg: typing.SupportsFloat | typing.SupportsIndex) -> GaitCycle:
     """
     The cycle with its ankle angle's excursion scaled to range_deg about the middle of its range.
+    """
+def write_muscle_params(path: os.PathLike | str | bytes, params: MuscleParams, initial: InitialState | None = None, comment: str = '') -> None:
+    """
+    Writes params (validated first) and, if given, the initial state as a muscle-parameters TOML file under the C++ field names, each key with its unit and meaning; `comment` goes at the top as TOML comments. read_muscle_params gives back the same doubles.
     """
 WINTER_SUBJECT_MASS_KG: float = 56.7

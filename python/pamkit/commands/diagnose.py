@@ -1,4 +1,4 @@
-"""pamkit diagnose EXPERIMENT.toml [MORE.toml ...] [--json REPORT.json] [--plot REPORT.png]
+"""pamkit diagnose EXPERIMENT.toml [MORE.toml ...] [--json REPORT.json] [--plot REPORT.png] [--params-out PARAMS.toml]
 pamkit diagnose --batch DIR -o RESULTS.parquet [--workers N | --scheduler ADDRESS]"""
 
 from __future__ import annotations
@@ -25,6 +25,13 @@ def register(subparsers) -> None:
     )
     parser.add_argument("--json", help="write the report as JSON")
     parser.add_argument("--plot", help="write the report as a PNG figure")
+    parser.add_argument(
+        "--params-out",
+        metavar="PARAMS.toml",
+        help="write the calibrated baseline as a muscle-parameters file under the C++ field names (one time "
+        "series, or static tables of one muscle): what `pamkit simulate --params` and the C++ "
+        "pamkit::read_muscle_params load",
+    )
     parser.add_argument("--threads", type=int, default=None, help="fits in parallel (default: all cores)")
     batch = parser.add_argument_group(
         "batch", "diagnose every experiment TOML of a folder on its own, each a Dask task (pip install 'pamkit[scale]')"
@@ -38,7 +45,7 @@ def register(subparsers) -> None:
 
 def run(arguments: argparse.Namespace) -> int:
     from pamkit.diagnose import diagnose, verdict
-    from pamkit.diagnose.report import write
+    from pamkit.diagnose.report import write, write_params
 
     def progress(message: str) -> None:
         if not arguments.quiet:
@@ -52,14 +59,23 @@ def run(arguments: argparse.Namespace) -> int:
         if getattr(arguments, option) is not None:
             raise ValueError(f"--{option} belongs to --batch")
 
+    if arguments.params_out:  # refused before the work, not after it
+        from pamkit.diagnose.report import SERIES_CAMPAIGN_HAS_NO_PARAMS
+        from pamkit.experiment import load_tests
+
+        tests = [test for path in arguments.experiment for test in load_tests(path)]
+        if len(tests) > 1 and not all(test.is_table for test in tests):
+            raise ValueError(SERIES_CAMPAIGN_HAS_NO_PARAMS)
     d = diagnose(arguments.experiment, progress=progress, threads=arguments.threads)
-    if arguments.json or arguments.plot:
-        progress(f"writing {' and '.join(p for p in (arguments.json, arguments.plot) if p)}")
+    outputs = [p for p in (arguments.json, arguments.plot, arguments.params_out) if p]
+    if outputs:
+        progress(f"writing {' and '.join(outputs)}")
     write(d, arguments.json, arguments.plot)
+    if arguments.params_out:
+        write_params(d, arguments.params_out)
     print(verdict(d))
-    for path in (arguments.json, arguments.plot):
-        if path:
-            print(f"wrote {path}")
+    for path in outputs:
+        print(f"wrote {path}")
     return 0
 
 
@@ -69,7 +85,7 @@ def run_batch(arguments: argparse.Namespace, progress) -> int:
 
     if arguments.experiment:
         raise ValueError("--batch DIR diagnoses the folder's files: name no experiment besides it")
-    for option in ("json", "plot", "threads"):
+    for option in ("json", "plot", "threads", "params_out"):
         if getattr(arguments, option) is not None:
             raise ValueError(
                 f"--{option} does not apply to --batch (one row per test; each diagnosis runs on one thread)"

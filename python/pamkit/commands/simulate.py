@@ -1,4 +1,5 @@
-"""pamkit simulate EXPERIMENT.toml [--effect NAME[:key=value,...]]... -o OUT.csv [--plot OUT.png]"""
+"""pamkit simulate EXPERIMENT.toml [--effect NAME[:key=value,...]]... [--params PARAMS.toml] -o OUT.csv
+[--plot OUT.png]"""
 
 from __future__ import annotations
 
@@ -6,6 +7,7 @@ import argparse
 from pathlib import Path
 
 from pamkit.experiment import load_experiment, write_series
+from pamkit.units import PASCAL_PER_KILOPASCAL
 
 
 def register(subparsers) -> None:
@@ -23,6 +25,13 @@ def register(subparsers) -> None:
         metavar="NAME[:key=value,...]",
         help="extend the model with a catalog effect (repeatable); see `pamkit effects`",
     )
+    parser.add_argument(
+        "--params",
+        metavar="PARAMS.toml",
+        help="simulate the muscle of a muscle-parameters file (C++ field names, e.g. from `pamkit diagnose "
+        "--params-out`) instead of the experiment's [muscle], [bladder], [friction] and [gas]; a sealed time series "
+        "starts from the file's [initial] state when it has one",
+    )
     parser.add_argument("-o", "--output", required=True, help="CSV file to write")
     parser.add_argument("--plot", help="also write a PNG figure of the prediction (and of the data, if measured)")
     parser.set_defaults(run=run)
@@ -34,7 +43,20 @@ def run(arguments: argparse.Namespace) -> int:
 
     effects = parse_effects(arguments.effect)
     experiment = load_experiment(arguments.experiment)
-    predicted = simulate_experiment(experiment, effects=effects)
+    params = initial = None
+    if arguments.params is not None:
+        from pamkit._core import read_muscle_params_file
+
+        calibrated = read_muscle_params_file(arguments.params)
+        params = calibrated.params
+        if calibrated.initial is not None and experiment.gas == "sealed" and not experiment.is_table:
+            initial = calibrated.initial
+            print(
+                f"starting from {arguments.params} [initial]: {initial.length_m:.6g} m at "
+                f"{initial.gauge_pressure_Pa / PASCAL_PER_KILOPASCAL:.6g} kPa (the experiment declares "
+                f"{experiment.inflation_pressure_kPa:.6g} kPa)"
+            )
+    predicted = simulate_experiment(experiment, params=params, effects=effects, initial=initial)
     write_series(arguments.output, predicted)
     rows = len(next(iter(predicted.values())))
     print(f"wrote {arguments.output} ({rows} {'rows' if experiment.is_table else 'samples'}: {', '.join(predicted)})")

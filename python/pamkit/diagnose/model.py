@@ -224,13 +224,18 @@ class Predictor:
                 self.experiment.ambient_temperature_C,
                 effects,
             )
+        return simulate_measurement(
+            params, self.initial_state(params, pressure_kPa), self.trajectory, effects, self.simulator
+        )
+
+    def initial_state(self, params: MuscleParams, pressure_kPa: float) -> InitialState:
+        """A sealed test's state at zero elongation at inflation pressure `pressure_kPa`: at the
+        file's initial length, or inflated freely and sealed."""
         if self.experiment.initial_length_m is not None:
-            initial = InitialState(
+            return InitialState(
                 length_m=self.experiment.initial_length_m, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL
             )
-        else:
-            initial = inflated_and_sealed(params, pressure_kPa * PASCAL_PER_KILOPASCAL)
-        return simulate_measurement(params, initial, self.trajectory, effects, self.simulator)
+        return inflated_and_sealed(params, pressure_kPa * PASCAL_PER_KILOPASCAL)
 
     def select(self, m: Measurement) -> dict[str, np.ndarray]:
         """The measured channels of a simulated measurement, at the data's samples."""

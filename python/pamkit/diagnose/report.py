@@ -7,12 +7,14 @@ from pathlib import Path
 
 import numpy as np
 
+from pamkit._core import GasMode, InitialState, MuscleParams, write_muscle_params
 from pamkit.diagnose import campaign, evidence, table_report
 from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.campaign import SeriesCampaign
 from pamkit.diagnose.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Judgement, credited_channels
 from pamkit.diagnose.engine import CHANNEL_UNITS as UNITS
 from pamkit.diagnose.engine import Diagnosis
+from pamkit.diagnose.table_fit import TableModel
 from pamkit.diagnose.tables import TableDiagnosis
 from pamkit.plots import save_figure
 
@@ -277,6 +279,73 @@ def write(
         Path(json_path).write_text(json.dumps(to_json(d), indent=2, default=float) + "\n")
     if plot_path:
         plot(d, plot_path)
+
+
+SERIES_CAMPAIGN_HAS_NO_PARAMS = (
+    "--params-out writes one calibrated muscle; a campaign of time series calibrates each test on its own: "
+    "diagnose the test whose parameters you want"
+)
+
+
+def _muscle_of(params: MuscleParams) -> tuple:
+    """Every number of a MuscleParams, to tell two muscles apart."""
+    law = params.bladder
+    parts = (params.build, params.friction, params.gas, params.extensions)
+    return (
+        *(part.to_dict() for part in parts),
+        params.gas.process,
+        law.form,
+        *law.longitudinal_Pa,
+        *law.hoop_Pa,
+        law.shear_modulus_Pa,
+    )
+
+
+def calibrated_params(d: Diagnosis | TableDiagnosis) -> tuple[MuscleParams, InitialState | None]:
+    """The calibrated baseline as the C++ model's parameters and, for a sealed test, its state at
+    zero elongation at the calibrated inflation pressure: what the baseline prediction was
+    simulated from (a time series: Baseline.model_params at the fitted coordinates; static tables:
+    TableModel.params with the calibrated unknowns, the same muscle for every table).
+
+    Raises:
+        ValueError: for tables whose files declare different muscles.
+    """
+    if isinstance(d, TableDiagnosis):
+        muscles = [TableModel.params(e, d.baseline.params) for e in d.campaign.experiments]
+        for experiment, muscle in zip(d.campaign.experiments[1:], muscles[1:]):
+            if _muscle_of(muscle) != _muscle_of(muscles[0]):
+                raise ValueError(
+                    f"--params-out: {experiment.path} declares another muscle than {d.campaign.experiments[0].path} "
+                    "(its [muscle], [bladder], [friction] or [gas] differ): diagnose the table whose muscle you want"
+                )
+        return muscles[0], None
+    predictor = d.problem.predictor
+    params, pressure_kPa = predictor.baseline.model_params(d.baseline.baseline_x)
+    initial = predictor.initial_state(params, pressure_kPa) if predictor.mode == GasMode.sealed else None
+    return params, initial
+
+
+def write_params(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> None:
+    """Writes the calibrated baseline as a muscle-parameters TOML file (the C++ reader's,
+    include/pamkit/io/params_file.hpp), with an [initial] section for a sealed test.
+
+    Raises:
+        ValueError: for a campaign of time series, which calibrates each test on its own, or
+            tables that declare different muscles.
+    """
+    if isinstance(d, SeriesCampaign):
+        raise ValueError(SERIES_CAMPAIGN_HAS_NO_PARAMS)
+    params, initial = calibrated_params(d)
+    baseline = ", ".join(f"{name} = {value:.6g}" for name, value in d.baseline.params.items())
+    tests = d.campaign.experiments if isinstance(d, TableDiagnosis) else [d.problem.experiment]
+    comment = f"The calibrated baseline of `pamkit diagnose {' '.join(str(e.path) for e in tests)}`: {baseline}."
+    if initial is not None:
+        comment += (
+            "\n[initial] is that test's state at zero elongation; a test at another inflation pressure needs it "
+            "removed."
+        )
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    write_muscle_params(path, params, initial, comment)
 
 
 class Report:

@@ -1,0 +1,56 @@
+#pragma once
+/// \file
+/// A muscle's parameters as a TOML file, under the C++ field names: what `pamkit diagnose
+/// --params-out` writes after calibrating the model, and what a controller or `pamkit simulate
+/// --params` reads back. Part of pamkit::pamkit (compiled in src/io/params_file.cpp; the TOML
+/// library, toml++, stays out of this header).
+///
+/// The file has one section per part of MuscleParams, each key a field of that part's
+/// `for_each_field` list, in SI units:
+///
+///     [build]        MuscleBuild's fields (length_m, diameter_m, ...)
+///     [bladder]      form = "polynomial" with longitudinal_Pa = [c0, ..., c6] and
+///                    hoop_Pa = [c0, ..., c6] (BladderLaw's coefficients; fewer than seven leave the
+///                    higher ones 0), or form = "neo_hookean" with shear_modulus_Pa
+///     [friction]     FrictionParams' fields
+///     [gas]          GasParams' fields, and process = "polytropic" or "heat_transfer"
+///     [extensions]   ModelExtensions' fields
+///     [initial]      optional: InitialState's fields (length_m, gauge_pressure_Pa), the state at
+///                    zero elongation of the sealed test the parameters were calibrated on
+///
+/// Every section but [initial] and every key of a section are required: a file states the whole
+/// muscle, so nothing is silently taken from a default. Unknown sections and keys are errors.
+
+#include <optional>
+#include <string>
+
+#include "pamkit/sim/model.hpp"
+
+namespace pamkit {
+
+/// What a muscle-parameters file holds.
+struct MuscleParamsFile {
+  MuscleParams params;                  ///< the muscle: [build], [bladder], [friction], [gas], [extensions]
+  std::optional<InitialState> initial;  ///< [initial], if the file has it
+};
+
+/// Reads and validates a muscle-parameters file.
+/// \param path the TOML file.
+/// \throws InvalidInput naming the file, line, column and key for a file that cannot be parsed, a
+///         missing or unknown section or key, or a value of the wrong type;
+///         InvalidParameter (with the same location) for a value outside its field's range, or
+///         naming the file for fields that do not fit together (MuscleParams::validate).
+MuscleParamsFile read_muscle_params_file(const std::string& path);
+
+/// The muscle of a muscle-parameters file (read_muscle_params_file(path).params).
+MuscleParams read_muscle_params(const std::string& path);
+
+/// Writes `params` (validated first) and, if given, `initial` to `path`, every key with its unit
+/// and meaning as a comment, numbers to the digits that read back to the same doubles.
+/// \param comment written at the top, each line as a TOML comment (where the parameters come from).
+/// \throws InvalidParameter for parameters out of range (nothing is written);
+///         InvalidInput if the file cannot be written.
+void write_muscle_params(const std::string& path, const MuscleParams& params,
+                         const std::optional<InitialState>& initial = std::nullopt, const std::string& comment = "");
+
+}  // namespace pamkit
