@@ -1,6 +1,8 @@
 """Writes the effect gallery of docs/effects.md: one PNG per catalog effect in docs/effects/,
 the baseline model against the model with the effect at a clearly visible strength from its
 realistic range, drawn to show what gives the effect away (DESIGN.md, "The effect catalog").
+The effects are the catalog's; one without a figure of its own (`FIGURES`) is drawn by
+`generic`, at its defaults, on the channels it declares.
 
 The curves are the model's clean predictions (no instrument noise), for PAM 2 of the thesis
 (pamkit.MuscleBuild's defaults) starting at its free inflated length, ambient 23 °C.
@@ -64,12 +66,14 @@ def corners(max_elongation_m: float, speed_m_per_s: float, cycles: int, hold_s: 
 
 
 def simulate(pressure_kPa: float, path, specs=(), rate_Hz: float = SAMPLE_RATE_HZ) -> dict[str, np.ndarray]:
-    """The model's channels along the crosshead path `path` (corners), with effects `specs`."""
+    """The model's channels along the crosshead path `path` (corners), with effects `specs`
+    (`--effect` texts or configured effects)."""
     t_corner, e_corner = path
     time = np.unique(np.concatenate([np.arange(0.0, t_corner[-1], 1.0 / rate_Hz), t_corner]))
     crosshead = pamkit.ElongationTrajectory(time, np.interp(time, t_corner, e_corner))
     initial = pamkit.InitialState(length_m=free_length(pressure_kPa), gauge_pressure_Pa=pressure_kPa * 1e3)
-    m = pamkit.simulate_measurement(params(), initial, crosshead, parse_effects(list(specs)), pamkit.Simulator())
+    effects = [spec if isinstance(spec, pamkit.Effect) else parse_effects([spec])[0] for spec in specs]
+    m = pamkit.simulate_measurement(params(), initial, crosshead, effects, pamkit.Simulator())
     return {
         name: np.asarray(getattr(m, name))
         for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
@@ -100,15 +104,49 @@ def label(axis, x: str, y: str, legend: bool = True) -> None:
         axis.legend(fontsize=7, loc="best")
 
 
-def save(fig, name: str) -> Path:
-    path = HERE / f"{name}.png"
+def save(fig, name: str, out_dir: Path = HERE) -> Path:
+    path = out_dir / f"{name}.png"
     fig.savefig(path, dpi=80)
     plt.close(fig)
     return path
 
 
 # ----------------------------------------------------------------------------------------------
-# one function per effect
+# The figure of an effect that has none of its own
+
+
+def generic(name: str, effect_catalog: pamkit.EffectCatalog | None = None, out_dir: Path = HERE) -> Path:
+    """The effect `name` at its defaults against the baseline, over time, on the channels it
+    declares it changes (force and pressure for one that acts on the muscle): a sealed stretch test
+    where it acts in one, else a supplied pressure swept up and down at a held length."""
+    effect = (effect_catalog if effect_catalog is not None else catalog()).make(name)
+    settings = ", ".join(
+        [f"{key}={value}" for key, value in effect.options().items()]
+        + [f"{p.name}={p.value:g}" for p in effect.parameters()]
+    )
+    if effect.acts_in(pamkit.GasMode.sealed)[0]:
+        channels = list(effect.channels_changed()) or ["force_N", "pressure_kPa"]
+        p, e = 207.0, stretch(207.0, 0.9)
+        path = corners(e, 10e-3, 2)
+        base, run = simulate(p, path), simulate(p, path, [effect])
+        fig, axes = figure(f"{name}: {settings} (PAM 2, 207 kPa, 90 %, 10 mm/s)", panels=len(channels))
+        for axis, channel in zip(axes, channels):
+            axis.plot(base["time_s"], base[channel], **BASE, label="baseline")
+            axis.plot(run["time_s"], run[channel], color=COLORS[0], label=name)
+            label(axis, "time [s]", channel)
+    else:
+        up = np.linspace(20.0, 300.0, 60)
+        pressures = np.concatenate([up, up[::-1]])
+        lengths = np.full_like(pressures, 0.19)
+        fig, (axis,) = figure(f"{name}: {settings} (PAM 2 held at 190 mm, supplied pressure)", panels=1)
+        axis.plot(pressures, pamkit.static_forces(params(), lengths, pressures), **BASE, label="baseline")
+        axis.plot(pressures, pamkit.static_forces(params(), lengths, pressures, [effect]), color=COLORS[0], label=name)
+        label(axis, "supplied pressure [kPa]", "force [N]")
+    return save(fig, name, out_dir)
+
+
+# ----------------------------------------------------------------------------------------------
+# Figures drawn for what gives each effect away, where the generic one would not show it
 
 
 def heat_transfer() -> Path:
@@ -333,7 +371,8 @@ def pressure_hysteresis() -> Path:
     return save(fig, "pressure_hysteresis")
 
 
-GALLERY = {
+# The catalog's effects with a figure of their own; any other is drawn by `generic`.
+FIGURES = {
     f.__name__: f
     for f in (
         heat_transfer,
@@ -351,13 +390,18 @@ GALLERY = {
 }
 
 
+def draw(name: str) -> Path:
+    """Writes docs/effects/NAME.png for the catalog effect `name`."""
+    return FIGURES[name]() if name in FIGURES else generic(name)
+
+
 def main() -> int:
-    missing = sorted(set(catalog().names()) - set(GALLERY))
-    if missing:
-        print(f"no gallery plot for: {', '.join(missing)}", file=sys.stderr)
+    stale = sorted(set(FIGURES) - set(catalog().names()))
+    if stale:
+        print(f"figures for effects not in the catalog: {', '.join(stale)}", file=sys.stderr)
         return 1
-    for make in GALLERY.values():
-        path = make()
+    for name in catalog().names():
+        path = draw(name)
         print(f"wrote {path} ({path.stat().st_size / 1e3:.0f} kB)")
     return 0
 

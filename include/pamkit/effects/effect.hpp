@@ -95,6 +95,10 @@ struct EffectFieldInfo {
   PlausibleRange plausible;  ///< a fitted value outside it is reported, never named as a cause
   FitSpace fit;              ///< the diagnosis's search
   Resolution resolution = Resolution::any;
+  /// The value at which the parameter adds nothing to the default model (a zero strength, an
+  /// infinite time constant, a unit gain); NaN where no value does. The effect is off when every
+  /// parameter that has one takes it; an effect none of whose parameters has one cannot be off.
+  double neutral = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// One parameter of an effect: its value, unit, allowed range, and what `EffectFieldInfo`
@@ -117,6 +121,8 @@ struct EffectParameter {
   double fit_max = 0.0;
   double fit_start = 0.0;                   ///< where the search starts
   Resolution resolution = Resolution::any;  ///< what one sample must resolve
+  /// The value at which the parameter adds nothing (EffectFieldInfo::neutral); NaN: none.
+  double neutral = std::numeric_limits<double>::quiet_NaN();
 
   /// A parameter with only an allowed and a realistic range (a user effect that declares no
   /// more): plausible is the allowed range, the search is linear over the realistic range

@@ -50,6 +50,7 @@ inline EffectParameter EffectParameter::declared(std::string name, double value,
   p.fit_max = info.fit.max;
   p.fit_start = info.fit.start;
   p.resolution = info.resolution;
+  p.neutral = info.neutral;
   return p;
 }
 inline void Effect::apply_to_supplied_pressure(const std::vector<double>&, std::vector<double>&) const {}

@@ -21,6 +21,9 @@ using namespace pamkit;
 /// elongation. With the default MuscleParams (PAM 2's build, table C.4; isothermal gas, n = 1).
 inline InitialState table_c2_90() { return {0.167, 236.63e3}; }
 
+/// The atmosphere of the default GasParams (table C.4) [kPa].
+constexpr double kAtmosphere_kPa = 101.0;
+
 /// The built-in catalog, parsing `spec` as `--effect` does.
 inline EffectPtr effect(const std::string& spec) { return EffectCatalog::builtin().parse(spec); }
 
@@ -50,6 +53,25 @@ inline std::size_t sample_at(const std::vector<double>& time, double t) {
     if (std::abs(time[k] - t) < std::abs(time[best] - t)) best = k;
   }
   return best;
+}
+
+/// The largest element of a non-empty vector.
+inline double max_of(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+
+/// A measurement with `n` samples `dt` apart and temperature_C = f(t); the other channels filled
+/// with recognisable values so that any change to them shows.
+template <class F>
+Measurement synthetic(std::size_t n, double dt, F f) {
+  Measurement m;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = static_cast<double>(k) * dt;
+    m.time_s.push_back(t);
+    m.elongation_m.push_back(1e-3 * t);
+    m.force_N.push_back(100.0 + t);
+    m.pressure_kPa.push_back(200.0 - t);
+    m.temperature_C.push_back(f(t));
+  }
+  return m;
 }
 
 /// Bit-for-bit equality (not ==, which takes -0.0 for 0.0).

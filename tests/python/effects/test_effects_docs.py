@@ -1,5 +1,7 @@
-"""docs/effects.md against the code: the catalog table says what catalog.hpp says, every effect
-has its gallery plot, and the user-effect example runs (through simulate and synth)."""
+"""docs/effects.md against the code: the catalog table says what the effects' C++ headers say,
+every effect has its gallery plot, and the user-effect example runs (through simulate and synth).
+Adding a catalog effect is its header, its test and its doc line: each is checked for every
+effect of the catalog."""
 
 from __future__ import annotations
 
@@ -51,17 +53,37 @@ def test_the_table_lists_every_effect_with_the_catalogs_units_ranges_and_default
         assert options == effect.options(), name
 
 
-def test_every_effect_has_a_small_gallery_plot_shown_in_the_doc():
-    text = DOC.read_text()
+def gallery_module():
     spec = importlib.util.spec_from_file_location("make_gallery", GALLERY_DIR / "make_gallery.py")
     gallery = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(gallery)
-    assert sorted(gallery.GALLERY) == sorted(catalog().names())
+    return gallery
+
+
+def test_every_effect_has_its_header_and_its_physics_test():
+    for name in catalog().names():
+        assert (SOURCE_DIR / "include" / "pamkit" / "effects" / "builtin" / f"{name}.hpp").is_file(), name
+        test = SOURCE_DIR / "tests" / "cpp" / "effects" / f"{name}.test.cpp"
+        assert re.search(rf'TEST_CASE\(\s*"{name}: ', test.read_text()), name
+
+
+def test_every_effect_has_a_small_gallery_plot_shown_in_the_doc():
+    text = DOC.read_text()
+    assert set(gallery_module().FIGURES) <= set(catalog().names())  # no figure for an effect that is gone
     for name in catalog().names():
         png = GALLERY_DIR / f"{name}.png"
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", name
         assert png.stat().st_size < 150_000, name  # the README gallery's budget per plot
         assert f"(effects/{name}.png)" in text, name
+
+
+def test_an_effect_without_a_figure_of_its_own_gets_the_generic_one(tmp_path):
+    # The doc's user effect stands for a new catalog effect: a measurement effect on force_N.
+    effects = user_effect_example()["effects"]
+    png = gallery_module().generic("load_cell_drift", effects, tmp_path)
+    assert png == tmp_path / "load_cell_drift.png"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert png.stat().st_size < 150_000
 
 
 def user_effect_example() -> dict:

@@ -1,0 +1,44 @@
+#pragma once
+/// \file
+/// The catalog effect `fiber_compliance` (DESIGN.md, "The effect catalog").
+
+#include "pamkit/effects/parametric.hpp"
+
+namespace pamkit {
+
+/// fiber_compliance: the braid's fibers stretch under tension, a spring in series.
+struct FiberComplianceParams {
+  static constexpr const char* kName = "fiber_compliance";
+  static constexpr const char* kDescription =
+      "braid fibers that stretch under tension (axial stiffness EA of one fiber): a spring in series with the "
+      "braid. Gives it away: the force-elongation curve softens at high force; the pressure peaks less than the "
+      "crosshead's travel implies.";
+  static constexpr const char* kSignature = "force softens at high stretch";
+  static constexpr EffectStage kStage = EffectStage::physics;
+  static constexpr bool kHasChannel = false;
+  double stiffness_N = 300.0;  ///< axial stiffness EA of one fiber [N]; inf: inextensible
+  template <class V>
+  static void for_each_field(V&& visit) {
+    visit("stiffness_N", &FiberComplianceParams::stiffness_N,
+          FieldInfo{"N", 1.0, detail::kInfinity, "fiber axial stiffness EA (inf: rigid)"},
+          EffectFieldInfo{{100.0, 600.0},
+                          false,
+                          {50.0, detail::kInfinity,
+                           "a braid strand of 0.1-0.5 mm^2 polyester or nylon (E = 2-5 GPa) has EA = 200-2500 N; "
+                           "below 50 N the braid would stretch by several per cent at bench tensions"},
+                          {FitScale::reciprocal, 10.0, detail::kInfinity, 300.0},
+                          Resolution::any,
+                          detail::kInfinity});  // inextensible
+  }
+};
+class FiberComplianceEffect : public detail::ParametricEffect<FiberComplianceParams> {
+ public:
+  bool acts_in(GasMode mode, std::string* why_not) const override {
+    return detail::dynamic_only(FiberComplianceParams::kName, mode, why_not);
+  }
+  void apply_to_params(MuscleParams& p) const override {
+    p.extensions.fiber_compliance_per_N = 1.0 / params_.stiffness_N;
+  }
+};
+
+}  // namespace pamkit

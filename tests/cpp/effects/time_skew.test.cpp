@@ -1,0 +1,49 @@
+// time_skew: the channel is the truth shifted in time, interpolated between samples.
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "approx.hpp"
+#include "effect_test_support.hpp"
+
+using namespace pamkit_test;
+
+TEST_CASE("time_skew: the channel is the truth shifted by the offset", "[effects][time_skew]") {
+  SECTION("an offset between samples: the truth interpolated at t - offset, within the interpolation error") {
+    const double dt = 0.1;
+    const Measurement truth = synthetic(201, dt, [](double t) { return std::sin(t); });
+    Measurement m = truth;
+    effect("time_skew:channel=temperature_C,offset_s=0.35")->apply_to_measurement(m);
+    for (std::size_t k = 0; k < m.time_s.size(); ++k) {
+      const double t = m.time_s[k];
+      INFO("t = " << t << " s");
+      if (t < 0.35) {
+        CHECK(m.temperature_C[k] == truth.temperature_C.front());  // before the record: held at its start
+      } else {
+        // Linear interpolation of sin errs by at most dt^2/8 max|sin''| = 1.25e-3.
+        CHECK(std::abs(m.temperature_C[k] - std::sin(t - 0.35)) <= dt * dt / 8.0);
+      }
+    }
+    CHECK(identical(m.pressure_kPa, truth.pressure_kPa));
+    CHECK(identical(m.force_N, truth.force_N));
+  }
+
+  SECTION("a whole number of samples, either way, on a simulated pressure") {
+    const ElongationTrajectory crosshead = thesis_protocol(0.05, 2.5e-3, 1, 0.1);
+    const Measurement truth = measure(MuscleParams(), table_c2_90(), crosshead, {});
+    const Measurement behind = measure(MuscleParams(), table_c2_90(), crosshead, {"time_skew:offset_s=1"});
+    const Measurement ahead = measure(MuscleParams(), table_c2_90(), crosshead, {"time_skew:offset_s=-1"});
+    const std::size_t n = truth.time_s.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      INFO("t = " << truth.time_s[k] << " s");
+      // 1 s is 10 samples; the times are multiples of 0.1 s only to rounding, hence CHECK_REL.
+      CHECK_REL(behind.pressure_kPa[k], truth.pressure_kPa[k >= 10 ? k - 10 : 0], 1e-12);
+      CHECK_REL(ahead.pressure_kPa[k], truth.pressure_kPa[k + 10 < n ? k + 10 : n - 1], 1e-12);
+    }
+    CHECK(identical(behind.force_N, truth.force_N));
+    CHECK(identical(behind.temperature_C, truth.temperature_C));
+  }
+}
