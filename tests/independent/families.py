@@ -207,7 +207,11 @@ def independent_leak(seed, folder):
 def load_cell_tare(seed, folder):
     tare = _signed(np.random.default_rng([seed, 4]), 2.0, 6.0)
     return sealed_test(
-        seed, folder, record=lambda *a: record_sealed(*a, force=lambda f: f + tare), truth={"tare_N": tare}
+        seed,
+        folder,
+        record=lambda *a: record_sealed(*a, force=lambda f: f + tare),
+        expected="load_cell",
+        truth={"tare_N": tare},
     )
 
 
@@ -215,7 +219,11 @@ def load_cell_nonlinear(seed, folder):
     """Reads F + k F², k set so that the error at 300 N is 2-5 % of the reading."""
     k = _signed(np.random.default_rng([seed, 5]), 0.02, 0.05) / 300.0
     return sealed_test(
-        seed, folder, record=lambda *a: record_sealed(*a, force=lambda f: f + k * f * f), truth={"k_per_N": k}
+        seed,
+        folder,
+        record=lambda *a: record_sealed(*a, force=lambda f: f + k * f * f),
+        expected="load_cell",
+        truth={"k_per_N": k},
     )
 
 

@@ -1,9 +1,9 @@
 #pragma once
 /// \file
-/// The effect catalog of DESIGN.md: its nine named model extensions and the two real muscles
-/// add, one header each in `builtin/`, each with physical parameters, their realistic and
-/// plausible ranges, and what gives it away in the data. `EffectCatalog::builtin()` below is the
-/// one place that names them: a new effect is its header, an include and a line here.
+/// The effect catalog of DESIGN.md: its nine named model extensions, the two real muscles add
+/// and the load cell's and thermometer's errors (issues #9 and #17), one header each in `builtin/`, each with physical
+/// parameters, their realistic and plausible ranges, and what gives it away in the data. `EffectCatalog::builtin()`
+/// below is the one place that names them: a new effect is its header, an include and a line here.
 
 #include "pamkit/effects/builtin/bladder_viscoelasticity.hpp"
 #include "pamkit/effects/builtin/braid_slack.hpp"
@@ -12,9 +12,11 @@
 #include "pamkit/effects/builtin/fixture_slack.hpp"
 #include "pamkit/effects/builtin/heat_transfer.hpp"
 #include "pamkit/effects/builtin/leak.hpp"
+#include "pamkit/effects/builtin/load_cell.hpp"
 #include "pamkit/effects/builtin/pressure_hysteresis.hpp"
 #include "pamkit/effects/builtin/sensor_lag.hpp"
 #include "pamkit/effects/builtin/sensor_offset.hpp"
+#include "pamkit/effects/builtin/thermometer.hpp"
 #include "pamkit/effects/builtin/time_skew.hpp"
 #include "pamkit/effects/effect.hpp"
 
@@ -41,6 +43,8 @@ inline EffectCatalog EffectCatalog::builtin() {
   detail::add_builtin<SensorLagEffect>(catalog);
   detail::add_builtin<TimeSkewEffect>(catalog);
   detail::add_builtin<SensorOffsetEffect>(catalog);
+  detail::add_builtin<LoadCellEffect>(catalog);
+  detail::add_builtin<ThermometerEffect>(catalog);
   return catalog;
 }
 
