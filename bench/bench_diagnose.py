@@ -23,9 +23,9 @@ import numpy as np
 
 from pamkit.diagnose import diagnose
 from pamkit.diagnose.report import to_json
-from pamkit.experiment import load_experiment
+from pamkit.io.experiment import load_experiment
 from pamkit.simulate import simulate_experiment
-from pamkit.synth import hideable_effects, synthesize
+from pamkit.synth.dataset import hideable_effects, synthesize
 
 
 def main() -> int:

@@ -32,8 +32,8 @@ from pathlib import Path
 
 from pamkit.diagnose import diagnose, verdict
 from pamkit.diagnose.report import to_json
-from pamkit.experiment import load_experiment
-from pamkit.synth import Protocol, synthesize
+from pamkit.io.experiment import load_experiment
+from pamkit.synth.dataset import Protocol, synthesize
 
 TARGET_S = 60.0
 TARGET_MB = 1024.0

@@ -79,7 +79,7 @@ from pamkit._core import (
     thesis_protocol,
     write_muscle_params,
 )
-from pamkit.experiment import Experiment, ExperimentError, load_experiment
+from pamkit.io.experiment import Experiment, ExperimentError, load_experiment
 
 __version__ = "0.1.0"
 

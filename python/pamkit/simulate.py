@@ -46,7 +46,7 @@ from pamkit._core import (
     simulate_supplied_measurement,
     static_forces,
 )
-from pamkit.experiment import SERIES_COLUMNS, Experiment, ExperimentError, load_experiment
+from pamkit.io.experiment import SERIES_COLUMNS, Experiment, ExperimentError, load_experiment
 from pamkit.units import PASCAL_PER_KILOPASCAL
 
 
@@ -250,7 +250,7 @@ def simulate_frame(
     params: MuscleParams | None = None,
     config: SimulatorConfig | None = None,
 ):
-    """Predicts an experiment (an :class:`~pamkit.experiment.Experiment`, or the path of its
+    """Predicts an experiment (an :class:`~pamkit.io.experiment.Experiment`, or the path of its
     TOML file) as a pandas DataFrame; this is what ``pamkit.simulate(...)`` calls.
 
     Args:

@@ -36,6 +36,7 @@ import dataclasses
 import functools
 import itertools
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -52,9 +53,9 @@ from pamkit._core import (
     fiber_revolutions_for_braid_angle,
 )
 from pamkit.cluster import check_output, run_all, work_key
-from pamkit.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, calibratable_fields, load_experiment
+from pamkit.diagnose.cycles import cycle_starts
+from pamkit.io.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, calibratable_fields, load_experiment
 from pamkit.simulate import simulate_experiment
-from pamkit.thesis import cycle_starts, thesis_directory
 from pamkit.units import KELVIN_AT_ZERO_CELSIUS
 
 try:
@@ -64,6 +65,28 @@ except ModuleNotFoundError:  # Python < 3.11
 
 #: The base experiment when a spec names none: PAM 2 of the thesis at 207 kPa, stretched to 80 %.
 DEFAULT_EXPERIMENT = "pam2_207kPa_80pct.toml"
+
+
+def thesis_directory(directory: str | Path | None = None) -> Path:
+    """data/experiments/thesis: `directory` if given, else under $PAMKIT_SOURCE_DIR, else the
+    nearest parent of this file that holds it (the source tree, or a build tree inside it).
+
+    Raises:
+        FileNotFoundError: if none is found.
+    """
+    if directory is not None:
+        return Path(directory)
+    candidates = []
+    if os.environ.get("PAMKIT_SOURCE_DIR"):
+        candidates.append(Path(os.environ["PAMKIT_SOURCE_DIR"]))
+    candidates.extend(Path(__file__).resolve().parents)
+    for root in candidates:
+        found = root / "data" / "experiments" / "thesis"
+        if found.is_dir():
+            return found
+    raise FileNotFoundError("data/experiments/thesis not found: set PAMKIT_SOURCE_DIR or pass the directory")
+
+
 DESIGNS = ("grid", "latin_hypercube")
 #: The summary of one run, with its meaning.
 METRICS = {

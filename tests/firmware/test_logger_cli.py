@@ -17,7 +17,7 @@ import pytest
 from fake_board import Board, banner, frames
 
 from pamkit.cli import main
-from pamkit.experiment import load_experiment
+from pamkit.io.experiment import load_experiment
 
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 THESIS = SOURCE_DIR / "data" / "experiments" / "thesis" / "pam1_035kPa_95pct.toml"
@@ -30,7 +30,7 @@ needs_simavr = pytest.mark.skipif(not (HARNESS and FIRMWARE), reason="built with
 
 def write_calibration(path: Path) -> Path:
     # 0.5 V at 0 psi to 4.5 V at 80 psi, as a user would fill in the template
-    from pamkit.logger import CALIBRATION_TEMPLATE
+    from pamkit.io.logger import CALIBRATION_TEMPLATE
 
     assert "measured_V = []" in CALIBRATION_TEMPLATE
     path.write_text(
@@ -336,7 +336,7 @@ def test_align_reads_a_zwick_testxpert_export(tmp_path, capsys):
     printed = capsys.readouterr().out
     found = float(printed.split("logger time = machine time ")[1].split(" s")[0].replace(" ", ""))
     assert abs(found - true_offset) <= 0.01, printed  # one logger sample (100 Hz)
-    from pamkit.logger import read_machine_csv
+    from pamkit.io.logger import read_machine_csv
 
     # kN converted: the two records agree to the 1e-6 kN (1e-3 N) testXpert's copy was printed to.
     both = read_machine_csv(zwick), read_machine_csv(machine)
@@ -345,7 +345,7 @@ def test_align_reads_a_zwick_testxpert_export(tmp_path, capsys):
 
 
 def test_a_cut_last_line_is_dropped_with_a_warning_not_read_as_a_row(tmp_path, capsys):
-    from pamkit.logger import LoggerWarning, read_logger_csv
+    from pamkit.io.logger import LoggerWarning, read_logger_csv
 
     logger, machine, _ = synthetic_logs(tmp_path, 4.71, 2)
     whole = read_logger_csv(logger)
@@ -393,7 +393,7 @@ def test_aligned_experiment_is_accepted_by_simulate(tmp_path):
 
 
 def test_align_and_calibration_errors_name_the_problem(tmp_path, capsys):
-    from pamkit.logger import CALIBRATION_TEMPLATE, LoggerError, load_calibration, read_machine_csv
+    from pamkit.io.logger import CALIBRATION_TEMPLATE, LoggerError, load_calibration, read_machine_csv
 
     template = tmp_path / "cal.toml"
     template.write_text(CALIBRATION_TEMPLATE)

@@ -10,7 +10,7 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 import pamkit
-from pamkit.experiment import ExperimentError, ExperimentWarning, load_experiment, read_series, write_experiment
+from pamkit.io.experiment import ExperimentError, ExperimentWarning, load_experiment, read_series, write_experiment
 
 
 def test_reads_build_test_and_series(write_experiment):

@@ -11,7 +11,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from pamkit.experiment import (
+from pamkit.io.experiment import (
     MAX_FILE_BYTES,
     MAX_LINE_BYTES,
     ExperimentError,
@@ -37,7 +37,7 @@ def load_in_child(path):
     code = textwrap.dedent(
         f"""
         import sys
-        from pamkit.experiment import ExperimentError, load_experiment
+        from pamkit.io.experiment import ExperimentError, load_experiment
         try:
             load_experiment({str(path)!r})
         except ExperimentError as error:
@@ -136,7 +136,7 @@ def test_rows_read_at_once_equal_rows_read_one_by_one(tmp_path, delimiter, decim
 def test_plain_rows_never_go_row_by_row(tmp_path, monkeypatch):
     # The row-by-row parser is what made 10^6 rows take tens of seconds: a plain file, CRLF or
     # not, must not use it, but for the last line when that has no line end (it may be cut).
-    import pamkit.experiment as experiment
+    import pamkit.io.experiment as experiment
 
     parsed_alone = []
     parse_row = experiment._parse_row

@@ -4,9 +4,9 @@ by `pamkit align`: units converted, every bad header or unit named by file, line
 import numpy as np
 import pytest
 
-from pamkit.experiment import ExperimentError, load_experiment
-from pamkit.logger import LoggerError, read_machine_csv
-from pamkit.machine import read_machine_export
+from pamkit.io.experiment import ExperimentError, load_experiment
+from pamkit.io.logger import LoggerError, read_machine_csv
+from pamkit.io.machine import read_machine_export
 
 
 @pytest.fixture

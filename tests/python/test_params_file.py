@@ -6,7 +6,7 @@ import pytest
 
 import pamkit
 from pamkit.cli import main
-from pamkit.experiment import load_experiment
+from pamkit.io.experiment import load_experiment
 from pamkit.simulate import muscle_params
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from pamkit import static_forces
-from pamkit.experiment import ExperimentError, ExperimentWarning, load_experiment
+from pamkit.io.experiment import ExperimentError, ExperimentWarning, load_experiment
 from pamkit.simulate import initial_length, muscle_params, simulate_experiment
 
 MUSCLE = """[muscle]

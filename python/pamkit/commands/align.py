@@ -7,7 +7,7 @@ import warnings
 
 import numpy as np
 
-from pamkit.experiment import LOGGER_CHANNELS
+from pamkit.io.experiment import LOGGER_CHANNELS
 
 
 def register(subparsers) -> None:
@@ -67,8 +67,8 @@ def register(subparsers) -> None:
 
 
 def run(arguments: argparse.Namespace) -> int:
-    from pamkit.experiment import write_experiment
-    from pamkit.logger import (
+    from pamkit.io.experiment import write_experiment
+    from pamkit.io.logger import (
         LoggerError,
         LoggerWarning,
         align,

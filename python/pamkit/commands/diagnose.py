@@ -61,7 +61,7 @@ def run(arguments: argparse.Namespace) -> int:
 
     if arguments.params_out:  # refused before the work, not after it
         from pamkit.diagnose.report import SERIES_CAMPAIGN_HAS_NO_PARAMS
-        from pamkit.experiment import load_tests
+        from pamkit.io.experiment import load_tests
 
         tests = [test for path in arguments.experiment for test in load_tests(path)]
         if len(tests) > 1 and not all(test.is_table for test in tests):

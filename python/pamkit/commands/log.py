@@ -80,7 +80,7 @@ def _status(stats: dict, last: dict | None, rate: float, reader) -> str:
 def run(arguments: argparse.Namespace) -> int:
     from pamkit._core import Error
     from pamkit._core.logger import LoggerCalibration, Reader, list_ports
-    from pamkit.logger import CALIBRATION_TEMPLATE, LoggerError, load_calibration
+    from pamkit.io.logger import CALIBRATION_TEMPLATE, LoggerError, load_calibration
 
     if arguments.write_calibration_template:
         path = Path(arguments.write_calibration_template)

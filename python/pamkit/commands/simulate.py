@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from pamkit.experiment import load_experiment, write_series
+from pamkit.io.experiment import load_experiment, write_series
 from pamkit.units import PASCAL_PER_KILOPASCAL
 
 

@@ -26,7 +26,7 @@ def register(subparsers) -> None:
 
 
 def run(arguments: argparse.Namespace) -> int:
-    from pamkit.synth import synthesize
+    from pamkit.synth.dataset import synthesize
 
     files = synthesize(arguments.effect, arguments.seed, arguments.output)
     print(f"wrote {files.experiment}, {files.data} (the experiment) and {files.manifest} (the hidden truth)")

@@ -86,3 +86,14 @@ def split_cycles(cycles: Cycles, min_fit: int = 2, min_held_out: int = 2) -> tup
     fit = np.arange(0, n, 2)
     held_out = np.arange(1, n, 2)
     return fit, held_out
+
+
+def cycle_starts(elongation_m: np.ndarray) -> np.ndarray:
+    """Indices of the samples where a cycle starts or ends: the crosshead back at zero
+    elongation (the protocol's samples hit 0 exactly) after having moved away."""
+    at_zero = np.flatnonzero(elongation_m <= 0.0)
+    if at_zero.size < 2:
+        raise ValueError("no complete cycle: the elongation returns to zero fewer than twice")
+    # A hold at zero leaves runs of zeros: keep the last sample of each run.
+    last_of_run = np.append(np.diff(at_zero) > 1, True)
+    return at_zero[last_of_run]

@@ -19,7 +19,7 @@ from pamkit._core import deflated_braid_angle_deg
 from pamkit.diagnose import evidence
 from pamkit.diagnose.cycles import Cycles, find_cycles, split_cycles
 from pamkit.diagnose.model import Predictor
-from pamkit.experiment import Experiment, ExperimentError
+from pamkit.io.experiment import Experiment, ExperimentError
 
 # A plateau of a stepped sweep starts where the pressure leaves the last one's level by more
 # than this many noise sigmas, or this share of the sweep's span, whichever is larger; pieces

@@ -33,7 +33,7 @@ from pamkit._core import (
     simulate_supplied_measurement,
 )
 from pamkit.diagnose.motion import measured_motion, programmed_motion
-from pamkit.experiment import Experiment
+from pamkit.io.experiment import Experiment
 from pamkit.simulate import initial_length, muscle_params
 from pamkit.units import PASCAL_PER_KILOPASCAL
 

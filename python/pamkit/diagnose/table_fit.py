@@ -13,7 +13,7 @@ from scipy.optimize import least_squares
 from pamkit._core import BladderLaw, Effect, MuscleParams, fiber_revolutions_for_braid_angle
 from pamkit.diagnose.model import Coordinate, configure, effect_space
 from pamkit.diagnose.table_kinds import Campaign, test_names
-from pamkit.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, declared_value
+from pamkit.io.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, declared_value
 from pamkit.simulate import muscle_params, simulate_table
 
 # The channels each kind predicts.

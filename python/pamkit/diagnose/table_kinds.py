@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from pamkit._core import pressure_branches
-from pamkit.experiment import Experiment, ExperimentError
+from pamkit.io.experiment import Experiment, ExperimentError
 
 
 @dataclass

@@ -9,7 +9,7 @@ import pytest
 from pamkit import cli
 from pamkit.cluster import read_rows
 from pamkit.diagnose.batch import batch_files, diagnose_file
-from pamkit.synth import synthesize
+from pamkit.synth.dataset import synthesize
 
 
 @pytest.fixture(scope="module")

@@ -11,8 +11,8 @@ import pytest
 
 import pamkit.diagnose.engine as engine
 from pamkit.cli import main
-from pamkit.experiment import load_experiment
-from pamkit.synth import synthesize
+from pamkit.io.experiment import load_experiment
+from pamkit.synth.dataset import synthesize
 
 
 @pytest.fixture(scope="module")

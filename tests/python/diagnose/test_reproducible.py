@@ -12,8 +12,8 @@ import pytest
 
 from pamkit.diagnose.engine import data_seed
 from pamkit.diagnose.kinds import build_problem
-from pamkit.experiment import load_experiment
-from pamkit.synth import synthesize
+from pamkit.io.experiment import load_experiment
+from pamkit.synth.dataset import synthesize
 
 # The bundled example (three channels, a cause named, pairs tried) and a synthetic dataset with no
 # effect (the hidden-effect tests' first null seed: nothing named). The thesis tests in

@@ -11,7 +11,7 @@ import pytest
 from conftest import SOURCE_DIR
 
 from pamkit.diagnose import diagnose, to_json, verdict
-from pamkit.experiment import ExperimentError
+from pamkit.io.experiment import ExperimentError
 
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
 from independent.static_map import write_isotonic, write_map  # noqa: E402 (needs the path above)
@@ -218,7 +218,7 @@ def test_an_isotonic_campaign_under_a_clipped_offset_transducer_recovers_its_loa
 
 def test_an_isotonic_table_reads_contraction_and_needs_its_load(tmp_path):
     toml = write_isotonic(tmp_path, sweeps=[[100.0, 300.0, 100.0]], load_N=50.0, hysteresis=0.0, seed=5, **TRUTH)
-    from pamkit.experiment import load_experiment
+    from pamkit.io.experiment import load_experiment
 
     data = np.genfromtxt(tmp_path / "isotonic.csv", delimiter=",", names=True)
     (tmp_path / "isotonic.csv").write_text(

@@ -17,9 +17,9 @@ import pytest
 
 import pamkit
 from pamkit.effects import catalog, describe, parse_effects
-from pamkit.experiment import load_experiment
+from pamkit.io.experiment import load_experiment
 from pamkit.simulate import simulate_experiment
-from pamkit.synth import synthesize
+from pamkit.synth.dataset import synthesize
 
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[3]))
 DOC = SOURCE_DIR / "docs" / "effects.md"
@@ -54,7 +54,7 @@ def test_the_table_lists_every_effect_with_the_catalogs_units_ranges_and_default
 
 
 def gallery_module():
-    spec = importlib.util.spec_from_file_location("make_gallery", GALLERY_DIR / "make_gallery.py")
+    spec = importlib.util.spec_from_file_location("effects_gallery", SOURCE_DIR / "validation" / "effects_gallery.py")
     gallery = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(gallery)
     return gallery

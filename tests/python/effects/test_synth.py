@@ -1,4 +1,4 @@
-"""Synthetic bench tests (pamkit.synth) and the instruments that read them (pamkit.instruments).
+"""Synthetic bench tests (pamkit.synth.dataset) and the instruments that read them (pamkit.synth.instruments).
 
 Where the numbers come from:
 - the ADC: ATmega2560, 10 bits, 5 V reference -> 1024 counts over 5 V (thesis appendix B; datasheet);
@@ -23,8 +23,10 @@ import pamkit
 from pamkit._core.logger import ADC_FULL_SCALE, LoggerCalibration
 from pamkit.cli import main as pamkit_main
 from pamkit.effects import catalog
-from pamkit.experiment import LOGGER_CHANNELS, load_experiment, read_series
-from pamkit.instruments import (
+from pamkit.io.experiment import LOGGER_CHANNELS, load_experiment, read_series
+from pamkit.simulate import simulate_experiment
+from pamkit.synth.dataset import configure_effect, hideable_effects, synthesize
+from pamkit.synth.instruments import (
     TMP36,
     ArduinoLogger,
     ArduinoLoggerSettings,
@@ -34,8 +36,6 @@ from pamkit.instruments import (
     TensileMachineSettings,
     merge_logs,
 )
-from pamkit.simulate import simulate_experiment
-from pamkit.synth import configure_effect, hideable_effects, synthesize
 
 KPA_PER_PSI = 6.894757293168  # 1 psi in kPa (NIST SP 811: 6894.757293168 Pa)
 VOLTS_PER_COUNT = 5.0 / 1024  # 10-bit ADC, 5 V reference

@@ -10,7 +10,7 @@ import sys
 
 import pytest
 
-from pamkit.synth import hideable_effects
+from pamkit.synth.dataset import hideable_effects
 
 SEEDS = (11, 12)
 NULL_SEEDS = (21, 22, 23)

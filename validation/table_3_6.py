@@ -27,23 +27,24 @@ gas's to one row; :func:`report` repeats the fit at both ends of the sensor's pl
 show what that choice does (it moves the fitted TAU_GAS almost in proportion and the predicted
 swings by hundredths of a degree).
 
-Run ``python -m pamkit.thesis [-o docs/table_3_6.md]`` to print the comparison.
+Run ``python validation/table_3_6.py [-o docs/table_3_6.md]`` (pamkit importable) to print the comparison.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from pamkit._core import BraidGeometry, GasProcess
+from pamkit.diagnose.cycles import cycle_starts
 from pamkit.effects import catalog
-from pamkit.experiment import Experiment, load_experiment
+from pamkit.io.experiment import Experiment, load_experiment
 from pamkit.simulate import initial_length, muscle_params, simulate_experiment
+from pamkit.sweep import thesis_directory
 
 TABLE_3_6_SOURCE = (
     "thesis table 3.6 'Temperature fluctuation of gas inside PAM' (section 3.2, Temperature validation, "
@@ -116,40 +117,9 @@ NATURAL_CONVECTION_W_PER_M2K = (5.0, 25.0)
 STEADY_CYCLES = 3
 
 
-def thesis_directory(directory: str | Path | None = None) -> Path:
-    """data/experiments/thesis: `directory` if given, else under $PAMKIT_SOURCE_DIR, else the
-    nearest parent of this file that holds it (the source tree, or a build tree inside it).
-
-    Raises:
-        FileNotFoundError: if none is found.
-    """
-    if directory is not None:
-        return Path(directory)
-    candidates = []
-    if os.environ.get("PAMKIT_SOURCE_DIR"):
-        candidates.append(Path(os.environ["PAMKIT_SOURCE_DIR"]))
-    candidates.extend(Path(__file__).resolve().parents)
-    for root in candidates:
-        found = root / "data" / "experiments" / "thesis"
-        if found.is_dir():
-            return found
-    raise FileNotFoundError("data/experiments/thesis not found: set PAMKIT_SOURCE_DIR or pass the directory")
-
-
 def load_row(row: Table36Row, directory: str | Path | None = None) -> Experiment:
     """The experiment of a table-3.6 row."""
     return load_experiment(thesis_directory(directory) / f"{row.experiment}.toml")
-
-
-def cycle_starts(elongation_m: np.ndarray) -> np.ndarray:
-    """Indices of the samples where a cycle starts or ends: the crosshead back at zero
-    elongation (the protocol's samples hit 0 exactly) after having moved away."""
-    at_zero = np.flatnonzero(elongation_m <= 0.0)
-    if at_zero.size < 2:
-        raise ValueError("no complete cycle: the elongation returns to zero fewer than twice")
-    # A hold at zero leaves runs of zeros: keep the last sample of each run.
-    last_of_run = np.append(np.diff(at_zero) > 1, True)
-    return at_zero[last_of_run]
 
 
 def cycle_swings(elongation_m: np.ndarray, temperature_C: np.ndarray) -> np.ndarray:
@@ -359,7 +329,9 @@ def format_markdown(result: Table36Report) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m pamkit.thesis", description="Thesis table 3.6 against the model.")
+    parser = argparse.ArgumentParser(
+        prog="python validation/table_3_6.py", description="Thesis table 3.6 against the model."
+    )
     parser.add_argument("-o", "--output", help="also write the markdown to this file")
     parser.add_argument("--data", help="data/experiments/thesis directory (default: found from the source tree)")
     arguments = parser.parse_args(argv)

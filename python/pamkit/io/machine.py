@@ -17,7 +17,7 @@ A plain CSV whose column names carry their units ("Time (s)", "Extension [mm]", 
 read the same way, with no units row. The header row is found by its names (English or
 German, :data:`ALIASES`), so neither format has to be declared.
 
-Every problem is an :class:`~pamkit.experiment.ExperimentError` (a ``ValueError``) naming the
+Every problem is an :class:`~pamkit.io.experiment.ExperimentError` (a ``ValueError``) naming the
 file, and the line and column.
 """
 
@@ -31,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.experiment import ExperimentError, _text
+from pamkit.io.experiment import ExperimentError, _text
 
 # Column names, lowercased, units removed. testXpert's "Standardweg" / "Standard travel" is the
 # crosshead travel since the test started; its absolute position ("Traversenweg absolut") is

@@ -1,6 +1,6 @@
 """Synthetic measured datasets with one effect hidden in them (DESIGN.md, "Tests that hide an
 effect"): a random bench protocol, the model extended by the effect at a random realistic
-strength, read by the bench's instruments (:mod:`pamkit.instruments`) and written as an
+strength, read by the bench's instruments (:mod:`pamkit.synth.instruments`) and written as an
 experiment (TOML + CSV, DESIGN.md "A measured dataset"). What was hidden goes to a separate
 ``manifest.json`` that nothing in diagnosis may read.
 
@@ -56,8 +56,8 @@ from pamkit._core import (
     simulate_measurement,
 )
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.experiment import LOGGER_CHANNELS, OPTIONAL_COLUMNS, write_experiment
-from pamkit.instruments import (
+from pamkit.io.experiment import LOGGER_CHANNELS, OPTIONAL_COLUMNS, write_experiment
+from pamkit.synth.instruments import (
     ArduinoLogger,
     ArduinoLoggerSettings,
     LoadCell,

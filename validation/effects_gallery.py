@@ -7,7 +7,7 @@ The effects are the catalog's; one without a figure of its own (`FIGURES`) is dr
 The curves are the model's clean predictions (no instrument noise), for PAM 2 of the thesis
 (pamkit.MuscleBuild's defaults) starting at its free inflated length, ambient 23 °C.
 
-Run with pamkit importable (e.g. PYTHONPATH=build/python):  python docs/effects/make_gallery.py
+Run with pamkit importable (e.g. PYTHONPATH=build/python):  python validation/effects_gallery.py
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ import numpy as np
 import pamkit
 from pamkit.effects import catalog, parse_effects
 
-HERE = Path(__file__).resolve().parent
+HERE = Path(__file__).resolve().parents[1] / "docs" / "effects"  # where docs/effects.md shows them
 AMBIENT_C = 23.0
 SAMPLE_RATE_HZ = 20.0
 BASE = {"color": "0.2", "ls": "--", "lw": 1.2}

@@ -523,7 +523,7 @@ def read_series(path: str | Path) -> dict[str, np.ndarray]:
     """Reads a measured-data CSV: a header row, then numbers. Requires time_s and elongation_m,
     accepts force_N, pressure_kPa, temperature_C; time must increase.
 
-    A tensile machine's export (Instron Bluehill, ZwickRoell testXpert: pamkit.machine) is
+    A tensile machine's export (Instron Bluehill, ZwickRoell testXpert: pamkit.io.machine) is
     recognised by its header and read as time_s, elongation_m (the crosshead's extension, which
     the machine zeroes at the start of the test) and force_N, converted from its units row.
 
@@ -532,7 +532,7 @@ def read_series(path: str | Path) -> dict[str, np.ndarray]:
     """
     path = Path(path)
     if _is_machine_export(path):
-        from pamkit.machine import read_machine_export  # it builds on this module
+        from pamkit.io.machine import read_machine_export  # it builds on this module
 
         columns = read_machine_export(path).columns
         return {"time_s": columns["time_s"], "elongation_m": columns["extension_m"], "force_N": columns["force_N"]}
@@ -544,7 +544,7 @@ def _is_machine_export(path: Path) -> bool:
     names none of pamkit's channels, and a machine's names row follows. ("time_s,elongation_m,
     force_kN" is pamkit's CSV with a wrong name, not an export with units in its names.) A file
     that cannot be opened is left to _read_csv, which says why."""
-    from pamkit.machine import looks_like_export
+    from pamkit.io.machine import looks_like_export
 
     try:
         if not path.is_file():

@@ -137,13 +137,13 @@ def load_calibration(path: str | Path) -> Calibration:
 
 def read_machine_csv(path: str | Path) -> dict[str, np.ndarray]:
     """Reads a tensile machine's export (Instron Bluehill, ZwickRoell testXpert, or a CSV whose
-    column names carry their units: pamkit.machine): time_s, extension_m and force_N.
+    column names carry their units: pamkit.io.machine): time_s, extension_m and force_N.
 
     Raises:
         LoggerError: naming the file, line and column of the first problem.
     """
-    from pamkit.experiment import ExperimentError
-    from pamkit.machine import read_machine_export
+    from pamkit.io.experiment import ExperimentError
+    from pamkit.io.machine import read_machine_export
 
     try:
         return read_machine_export(path).columns
