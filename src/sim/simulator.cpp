@@ -31,6 +31,8 @@ struct RunWorkspace {
   std::size_t piece_start;   // first sample of the piece being integrated
   std::size_t piece_end;     // its last sample
   std::exception_ptr error;  // an exception thrown inside the callback, rethrown after CVode returns
+  MuscleWorkspace rhs;       // the right-hand side's warm start: CVODES calls it at nearby lengths
+  MuscleWorkspace output;    // the samples' own, which run behind CVODES's steps
 
   /// The segment [t_k, t_k+1] of the piece that holds time t (CVODES may step past samples).
   std::size_t segment(double t) const {
@@ -51,7 +53,8 @@ int muscle_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto& w = *static_cast<RunWorkspace*>(user_data);
   try {
     const std::size_t k = w.segment(t);
-    const MuscleOutputs out = w.model.evaluate(w.length(t, k), w.trajectory.segment_velocity(k), to_state(y));
+    const MuscleOutputs out = w.model.evaluate_with(w.rhs, w.length(t, k), w.trajectory.segment_velocity(k),
+                                                    to_state(y), ShapeParts::kinematics);
     std::copy(out.rate.values.begin(), out.rate.values.end(), NV_DATA_S(ydot));
     return 0;
   } catch (...) {
@@ -68,10 +71,10 @@ bool is_corner(double previous_velocity, double velocity, double threshold) {
   return std::abs(velocity - previous_velocity) > threshold;
 }
 
-void record(SimulationResult& r, const MuscleModel& model, double t, double elongation, double velocity,
-            const State& y) {
+void record(SimulationResult& r, const MuscleModel& model, MuscleWorkspace& workspace, double t, double elongation,
+            double velocity, const State& y) {
   const double length = model.initial_state().length_m + elongation;
-  const MuscleOutputs out = model.evaluate(length, velocity, y);
+  const MuscleOutputs out = model.evaluate_with(workspace, length, velocity, y, ShapeParts::all);
   ++r.statistics.output_evaluations;
   r.time_s.push_back(t);
   r.elongation_m.push_back(elongation);
@@ -126,7 +129,7 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
     NV_Ith_S(tolerances.get(), i) = config_.absolute_tolerance_J;
   }
 
-  RunWorkspace workspace{model, trajectory, 0, 1, nullptr};
+  RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}};
   const double t0 = time.front();
   const cvodes::BdfSolver solver =
       cvodes::make_bdf(ctx, muscle_rhs, t0, y.get(), &workspace, config_.relative_tolerance, tolerances.get(),
@@ -135,7 +138,7 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
 
   SimulationResult result;
   result.time_s.reserve(trajectory.size());
-  record(result, model, t0, elongation.front(), trajectory.segment_velocity(0), initial);
+  record(result, model, workspace.output, t0, elongation.front(), trajectory.segment_velocity(0), initial);
 
   // Integrate piece by piece between corners, where the elongation rate jumps: CVODES stops
   // exactly there and restarts its BDF history. Inside a piece the samples are interpolated
@@ -165,7 +168,7 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
       const int flag = CVode(cv, time[sample], y.get(), &t, CV_NORMAL);
       if (workspace.error) std::rethrow_exception(workspace.error);
       check_flag(flag, "CVode", t);
-      record(result, model, time[sample], elongation[sample], trajectory.segment_velocity(sample - 1),
+      record(result, model, workspace.output, time[sample], elongation[sample], trajectory.segment_velocity(sample - 1),
              to_state(y.get()));
     }
     k = end;

@@ -1,11 +1,14 @@
-// The simulator as a piece of software: re-entrant across threads, and its solver statistics.
+// The simulator as a piece of software: re-entrant across threads, its solver statistics, the
+// model's warm-started evaluation and the output path.
 
+#include <cmath>
 #include <cstddef>
 #include <thread>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
+#include "approx.hpp"
 #include "pamkit/sim/simulator.hpp"
 
 namespace {
@@ -100,4 +103,37 @@ TEST_CASE("Simulator: solver statistics are filled", "[sim][statistics]") {
   // With holds each cycle has four corners: up, hold, down, hold; the last hold ends the run.
   const SimulationResult held = simulator.run(model, thesis_protocol(0.05, 2.5e-3, 2, 0.1, 2.0));
   CHECK(held.statistics.restarts == 4 * 2 - 1);
+}
+
+TEST_CASE("MuscleModel: a warm-started evaluation gives the cold one's outputs", "[sim][warm]") {
+  // evaluate_with starts the braid's closure from the workspace's last solve; the Newton solve
+  // stops on the same test either way (2^-46 relative), so every output agrees to ~1e-13
+  // (the rates' subtractions, gauge pressure and force, lose two digits of the diameter's 1e-15).
+  MuscleParams plain;
+  plain.gas.process = GasProcess::heat_transfer;
+  MuscleParams extended = plain;
+  extended.extensions.fiber_compliance_per_N = 1e-4;  // the braid length solve calls the geometry too
+  extended.extensions.viscoelastic_strength = 0.3;
+  for (const MuscleParams& params : {plain, extended}) {
+    const MuscleModel model(params, InitialState{0.167, 236.63e3});
+    MuscleWorkspace workspace;
+    State y = model.initial();
+    y[State::temperature_K] = 300.0;
+    y[State::viscous_stress_l_Pa] = 1e3;
+    for (double elongation = 0.0; elongation <= 0.0523; elongation += 2.5e-4) {
+      const double length = 0.167 + elongation;
+      INFO("fiber compliance " << params.extensions.fiber_compliance_per_N << ", L = " << length);
+      const MuscleOutputs cold = model.evaluate(length, 2.5e-3, y);
+      const MuscleOutputs warm = model.evaluate_with(workspace, length, 2.5e-3, y, ShapeParts::kinematics);
+      CHECK_REL(warm.forces.total, cold.forces.total, 1e-12);
+      CHECK_REL(warm.gauge_pressure_Pa, cold.gauge_pressure_Pa, 1e-13);
+      CHECK_REL(warm.braid_length_m, cold.braid_length_m, 1e-14);
+      for (int i = 0; i < State::size; ++i) {
+        INFO("rate " << i);
+        CHECK(std::abs(warm.rate[i] - cold.rate[i]) <= 1e-12 * std::abs(cold.rate[i]) + 1e-300);
+      }
+      CHECK(std::isnan(warm.shape.braid_angle));
+      CHECK(!std::isnan(cold.shape.braid_angle));
+    }
+  }
 }
