@@ -52,10 +52,11 @@ struct MuscleShape {
 
 /// Which parts of a MuscleShape to compute. The ODE's right-hand side needs the lengths, the
 /// volumes and their derivatives; the four angles (an output column, the Newtonian tensions)
-/// cost an atan2 and two asin it never uses.
+/// cost an atan2, two asin and a sin it never uses. Angles left out are NaN, so a misuse shows.
 enum class ShapeParts {
-  all,        ///< every field
-  kinematics  ///< every field but the four angles, which are left NaN (so a misuse shows)
+  all,                         ///< every field
+  kinematics_and_braid_angle,  ///< all but the end, cone and mean angles: what a simulation reports
+  kinematics                   ///< all but the four angles: what the ODE's rates need
 };
 
 /// Where the last solve of the closure ended, for the next one to start from. Newton's method

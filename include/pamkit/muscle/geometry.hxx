@@ -145,19 +145,18 @@ inline MuscleShape BraidGeometry::solve(ShapeHint& hint, double length_m, ShapeP
   const double lm = length_m - 2.0 * ll;
   const double c = 0.5 * (D - d);
   s.cylinder_length = lm;
-  if (parts == ShapeParts::all) {
-    s.braid_angle = std::atan2(detail::kPi * n * D, lm);
-    if (lz > 0.0) {
-      s.end_braid_angle = std::asin(std::min(1.0, d / D * std::sin(s.braid_angle)));
-      s.cone_angle = std::asin(std::min(1.0, c / lz));
-    } else {
-      s.end_braid_angle = s.braid_angle;
-      s.cone_angle = 0.0;
-    }
-    s.mean_braid_angle = 0.5 * (s.braid_angle + s.end_braid_angle);
+  constexpr double left_out = std::numeric_limits<double>::quiet_NaN();
+  s.braid_angle = parts == ShapeParts::kinematics ? left_out : std::atan2(detail::kPi * n * D, lm);
+  if (parts != ShapeParts::all) {
+    s.end_braid_angle = s.cone_angle = s.mean_braid_angle = left_out;
+  } else if (lz > 0.0) {
+    s.end_braid_angle = std::asin(std::min(1.0, d / D * std::sin(s.braid_angle)));
+    s.cone_angle = std::asin(std::min(1.0, c / lz));
   } else {
-    s.braid_angle = s.end_braid_angle = s.cone_angle = s.mean_braid_angle = std::numeric_limits<double>::quiet_NaN();
+    s.end_braid_angle = s.braid_angle;
+    s.cone_angle = 0.0;
   }
+  if (parts == ShapeParts::all) s.mean_braid_angle = 0.5 * (s.braid_angle + s.end_braid_angle);
 
   // Derivatives from the implicit closure: dD/dL = -G_L / G_D.
   const double cone_term = (lz > 0.0) ? lm * c / ll : 0.0;
