@@ -1,5 +1,6 @@
 // CVODES glue for pamkit::Simulator: the trajectory integrated piece by piece between its
-// corners, with the handles and flag checks of cvodes_support.hpp.
+// corners, one CVODES step per call, the samples interpolated; with the handles and flag checks
+// of cvodes_support.hpp.
 
 #include "pamkit/sim/simulator.hpp"
 
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <vector>
 
 #include "cvodes_support.hpp"
 
@@ -31,6 +33,8 @@ struct RunWorkspace {
   std::size_t piece_start;   // first sample of the piece being integrated
   std::size_t piece_end;     // its last sample
   std::exception_ptr error;  // an exception thrown inside the callback, rethrown after CVode returns
+  MuscleWorkspace rhs;       // the right-hand side's warm start: CVODES calls it at nearby lengths
+  MuscleWorkspace output;    // the samples' own, which run behind CVODES's steps
 
   /// The segment [t_k, t_k+1] of the piece that holds time t (CVODES may step past samples).
   std::size_t segment(double t) const {
@@ -51,7 +55,8 @@ int muscle_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto& w = *static_cast<RunWorkspace*>(user_data);
   try {
     const std::size_t k = w.segment(t);
-    const MuscleOutputs out = w.model.evaluate(w.length(t, k), w.trajectory.segment_velocity(k), to_state(y));
+    const MuscleOutputs out = w.model.evaluate_with(w.rhs, w.length(t, k), w.trajectory.segment_velocity(k),
+                                                    to_state(y), ShapeParts::kinematics);
     std::copy(out.rate.values.begin(), out.rate.values.end(), NV_DATA_S(ydot));
     return 0;
   } catch (...) {
@@ -68,25 +73,38 @@ bool is_corner(double previous_velocity, double velocity, double threshold) {
   return std::abs(velocity - previous_velocity) > threshold;
 }
 
-void record(SimulationResult& r, const MuscleModel& model, double t, double elongation, double velocity,
+/// A result with every column sized for the trajectory's samples, the prescribed ones filled.
+SimulationResult allocate(const ElongationTrajectory& trajectory) {
+  const std::size_t n = trajectory.size();
+  SimulationResult r;
+  r.time_s = trajectory.time();
+  r.elongation_m = trajectory.elongation();
+  for (std::vector<double>* column :
+       {&r.length_m, &r.force_N, &r.friction_force_N, &r.pressure_gauge_Pa, &r.temperature_K, &r.gas_volume_m3,
+        &r.gas_mass_kg, &r.braid_angle_rad, &r.diameter_m, &r.work_J, &r.heat_lost_J, &r.friction_dissipated_J}) {
+    column->resize(n);
+  }
+  return r;
+}
+
+/// Fills sample `k` of `r`: one model evaluation at the state CVODES reports for its time.
+void record(SimulationResult& r, std::size_t k, const MuscleModel& model, MuscleWorkspace& workspace, double velocity,
             const State& y) {
-  const double length = model.initial_state().length_m + elongation;
-  const MuscleOutputs out = model.evaluate(length, velocity, y);
+  const double length = model.initial_state().length_m + r.elongation_m[k];
+  const MuscleOutputs out = model.evaluate_with(workspace, length, velocity, y, ShapeParts::kinematics_and_braid_angle);
   ++r.statistics.output_evaluations;
-  r.time_s.push_back(t);
-  r.elongation_m.push_back(elongation);
-  r.length_m.push_back(length);
-  r.force_N.push_back(out.forces.total);
-  r.friction_force_N.push_back(out.forces.friction);
-  r.pressure_gauge_Pa.push_back(out.gauge_pressure_Pa);
-  r.temperature_K.push_back(y[State::temperature_K]);
-  r.gas_volume_m3.push_back(out.gas_volume_m3);
-  r.gas_mass_kg.push_back(y[State::gas_mass_kg]);
-  r.braid_angle_rad.push_back(out.shape.braid_angle);
-  r.diameter_m.push_back(out.shape.diameter);
-  r.work_J.push_back(y[State::work_J]);
-  r.heat_lost_J.push_back(y[State::heat_lost_J]);
-  r.friction_dissipated_J.push_back(y[State::friction_dissipated_J]);
+  r.length_m[k] = length;
+  r.force_N[k] = out.forces.total;
+  r.friction_force_N[k] = out.forces.friction;
+  r.pressure_gauge_Pa[k] = out.gauge_pressure_Pa;
+  r.temperature_K[k] = y[State::temperature_K];
+  r.gas_volume_m3[k] = out.gas_volume_m3;
+  r.gas_mass_kg[k] = y[State::gas_mass_kg];
+  r.braid_angle_rad[k] = out.shape.braid_angle;
+  r.diameter_m[k] = out.shape.diameter;
+  r.work_J[k] = y[State::work_J];
+  r.heat_lost_J[k] = y[State::heat_lost_J];
+  r.friction_dissipated_J[k] = y[State::friction_dissipated_J];
 }
 
 }  // namespace
@@ -112,7 +130,8 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
   SUNContext ctx = *context;
   cvodes::Vector y(N_VNew_Serial(State::size, ctx));
   cvodes::Vector tolerances(N_VNew_Serial(State::size, ctx));
-  if (!y || !tolerances) throw SolverError("N_VNew_Serial failed");
+  cvodes::Vector sample_state(N_VNew_Serial(State::size, ctx));  // CVODES's interpolant at a sample
+  if (!y || !tolerances || !sample_state) throw SolverError("N_VNew_Serial failed");
   const State initial = model.initial();
   std::copy(initial.values.begin(), initial.values.end(), NV_DATA_S(y.get()));
   // Absolute tolerances by each state's scale: the temperature's, relative to the ambient
@@ -126,20 +145,21 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
     NV_Ith_S(tolerances.get(), i) = config_.absolute_tolerance_J;
   }
 
-  RunWorkspace workspace{model, trajectory, 0, 1, nullptr};
+  RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}};
   const double t0 = time.front();
   const cvodes::BdfSolver solver =
       cvodes::make_bdf(ctx, muscle_rhs, t0, y.get(), &workspace, config_.relative_tolerance, tolerances.get(),
                        config_.max_steps, config_.max_step_s);
   void* cv = solver.get();
 
-  SimulationResult result;
-  result.time_s.reserve(trajectory.size());
-  record(result, model, t0, elongation.front(), trajectory.segment_velocity(0), initial);
+  SimulationResult result = allocate(trajectory);
+  record(result, 0, model, workspace.output, trajectory.segment_velocity(0), initial);
 
   // Integrate piece by piece between corners, where the elongation rate jumps: CVODES stops
-  // exactly there and restarts its BDF history. Inside a piece the samples are interpolated
-  // from CVODES's steps.
+  // exactly there (its stop time) and restarts its BDF history. Inside a piece it takes one
+  // step per call, and every sample the step passed is read off its interpolating polynomial
+  // (CVodeGetDky, which CV_NORMAL mode uses too): one call per step, not per sample, and the
+  // samples do not steer the steps.
   double largest_rate = 0.0;
   for (std::size_t k = 0; k + 1 < trajectory.size(); ++k) {
     largest_rate = std::max(largest_rate, std::abs(trajectory.segment_velocity(k)));
@@ -161,12 +181,28 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
       ++result.statistics.restarts;
     }
     check_flag(CVodeSetStopTime(cv, time[end]), "CVodeSetStopTime", t);
-    for (std::size_t sample = k + 1; sample <= end; ++sample) {
-      const int flag = CVode(cv, time[sample], y.get(), &t, CV_NORMAL);
-      if (workspace.error) std::rethrow_exception(workspace.error);
-      check_flag(flag, "CVode", t);
-      record(result, model, time[sample], elongation[sample], trajectory.segment_velocity(sample - 1),
-             to_state(y.get()));
+    std::size_t sample = k + 1;
+    double steps_since_sample = 0;
+    while (sample <= end) {
+      while (t < time[sample]) {
+        // CVODES counts its mxstep per call; one step per call, the simulator counts them.
+        if (++steps_since_sample > config_.max_steps) {
+          throw SolverError(detail::message("CVode failed with CV_TOO_MUCH_WORK at t = ", t, " s: more than ",
+                                            config_.max_steps, " steps before the sample at t = ", time[sample],
+                                            " s (SimulatorConfig.max_steps)"));
+        }
+        // The output time only sizes the first step after a (re)start: the piece's end, so the
+        // samples leave the step sequence alone.
+        const int flag = CVode(cv, time[end], y.get(), &t, CV_ONE_STEP);
+        if (workspace.error) std::rethrow_exception(workspace.error);
+        check_flag(flag, "CVode", t);
+      }
+      for (; sample <= end && time[sample] <= t; ++sample) {
+        check_flag(CVodeGetDky(cv, time[sample], 0, sample_state.get()), "CVodeGetDky", time[sample]);
+        record(result, sample, model, workspace.output, trajectory.segment_velocity(sample - 1),
+               to_state(sample_state.get()));
+        steps_since_sample = 0;
+      }
     }
     k = end;
   }

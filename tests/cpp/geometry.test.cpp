@@ -156,3 +156,58 @@ TEST_CASE("BraidGeometry: shape() rejects lengths outside the braid's range", "[
     CHECK_NOTHROW(geometry.shape(0.5 * (geometry.min_length() + geometry.max_length())));
   }
 }
+
+TEST_CASE("BraidGeometry: a warm start from the last solve gives the cold start's shape", "[geometry][warm]") {
+  // Both stop on the same Newton step test (2^-46 relative), after which one more step would
+  // change D by ~(2^-46)^2: they agree to rounding, so 1e-14 relative (45x the double epsilon).
+  for (const MuscleBuild& build : {MuscleBuild{}, flat_ends()}) {
+    const BraidGeometry geometry(build);
+    ShapeHint hint;
+    // Up the working range and back down, as a stretch cycle visits it, then a jump across it.
+    std::vector<double> lengths = working_lengths();
+    lengths.insert(lengths.end(), lengths.rbegin(), lengths.rend());
+    const double span = geometry.max_length() - geometry.min_length();
+    lengths.push_back(geometry.min_length() + 1e-3 * span);
+    lengths.push_back(geometry.max_length() - 1e-3 * span);
+    for (double L : lengths) {
+      INFO("cone_generator_m = " << build.cone_generator_m << ", L = " << L << ", hint from L = " << hint.length_m);
+      const MuscleShape cold = geometry.shape(L);
+      const MuscleShape warm = geometry.shape_from(hint, L, ShapeParts::all);
+      CHECK_REL(warm.diameter, cold.diameter, 1e-14);
+      // dD/dL is dimensionless and passes near zero as the cones flatten (its sensitivity to D
+      // grows as 1 / LL^2): compared against 1, as the derivatives test compares it.
+      CHECK(std::abs(warm.d_diameter - cold.d_diameter) <= 1e-12);
+      CHECK_REL(warm.gas_volume, cold.gas_volume, 1e-13);
+      CHECK_REL(warm.braid_angle, cold.braid_angle, 1e-13);
+      // The hint now holds this solve, for the next one.
+      CHECK(hint.length_m == L);
+      CHECK(hint.diameter_m == warm.diameter);
+      CHECK(hint.d_diameter == warm.d_diameter);
+    }
+  }
+}
+
+TEST_CASE("BraidGeometry: the kinematic parts leave the angles out and the rest unchanged", "[geometry][warm]") {
+  const BraidGeometry geometry{MuscleBuild{}};
+  for (double L : working_lengths()) {
+    INFO("L = " << L);
+    ShapeHint all_hint;
+    ShapeHint kinematic_hint;
+    const MuscleShape all = geometry.shape_from(all_hint, L, ShapeParts::all);
+    const MuscleShape kinematic = geometry.shape_from(kinematic_hint, L, ShapeParts::kinematics);
+    CHECK(std::isnan(kinematic.braid_angle));
+    CHECK(std::isnan(kinematic.end_braid_angle));
+    CHECK(std::isnan(kinematic.cone_angle));
+    CHECK(std::isnan(kinematic.mean_braid_angle));
+    // The same solve from the same (empty) hint: identical bits for everything the rates use.
+    CHECK(kinematic.diameter == all.diameter);
+    CHECK(kinematic.cylinder_length == all.cylinder_length);
+    CHECK(kinematic.d_diameter == all.d_diameter);
+    CHECK(kinematic.d_cylinder_length == all.d_cylinder_length);
+    CHECK(kinematic.gas_volume == all.gas_volume);
+    CHECK(kinematic.d_gas_volume == all.d_gas_volume);
+    CHECK(kinematic.d_total_volume == all.d_total_volume);
+  }
+  ShapeHint hint;
+  CHECK_THROWS_AS(geometry.shape_from(hint, geometry.max_length() + 1e-3, ShapeParts::kinematics), InvalidInput);
+}

@@ -1,11 +1,16 @@
-// The simulator as a piece of software: re-entrant across threads, and its solver statistics.
+// The simulator as a piece of software: re-entrant across threads, its solver statistics, the
+// model's warm-started evaluation and the output path.
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
+#include "approx.hpp"
 #include "pamkit/sim/simulator.hpp"
 
 namespace {
@@ -100,4 +105,147 @@ TEST_CASE("Simulator: solver statistics are filled", "[sim][statistics]") {
   // With holds each cycle has four corners: up, hold, down, hold; the last hold ends the run.
   const SimulationResult held = simulator.run(model, thesis_protocol(0.05, 2.5e-3, 2, 0.1, 2.0));
   CHECK(held.statistics.restarts == 4 * 2 - 1);
+}
+
+TEST_CASE("MuscleModel: a warm-started evaluation gives the cold one's outputs", "[sim][warm]") {
+  // evaluate_with starts the braid's closure from the workspace's last solve; the Newton solve
+  // stops on the same test either way (2^-46 relative), so every output agrees to ~1e-13
+  // (the rates' subtractions, gauge pressure and force, lose two digits of the diameter's 1e-15).
+  MuscleParams plain;
+  plain.gas.process = GasProcess::heat_transfer;
+  MuscleParams extended = plain;
+  extended.extensions.fiber_compliance_per_N = 1e-4;  // the braid length solve calls the geometry too
+  extended.extensions.viscoelastic_strength = 0.3;
+  for (const MuscleParams& params : {plain, extended}) {
+    const MuscleModel model(params, InitialState{0.167, 236.63e3});
+    MuscleWorkspace workspace;
+    State y = model.initial();
+    y[State::temperature_K] = 300.0;
+    y[State::viscous_stress_l_Pa] = 1e3;
+    for (double elongation = 0.0; elongation <= 0.0523; elongation += 2.5e-4) {
+      const double length = 0.167 + elongation;
+      INFO("fiber compliance " << params.extensions.fiber_compliance_per_N << ", L = " << length);
+      const MuscleOutputs cold = model.evaluate(length, 2.5e-3, y);
+      const MuscleOutputs warm = model.evaluate_with(workspace, length, 2.5e-3, y, ShapeParts::kinematics);
+      CHECK_REL(warm.forces.total, cold.forces.total, 1e-12);
+      CHECK_REL(warm.gauge_pressure_Pa, cold.gauge_pressure_Pa, 1e-13);
+      CHECK_REL(warm.braid_length_m, cold.braid_length_m, 1e-14);
+      for (int i = 0; i < State::size; ++i) {
+        INFO("rate " << i);
+        CHECK(std::abs(warm.rate[i] - cold.rate[i]) <= 1e-12 * std::abs(cold.rate[i]) + 1e-300);
+      }
+      CHECK(std::isnan(warm.shape.braid_angle));
+      CHECK(!std::isnan(cold.shape.braid_angle));
+    }
+  }
+}
+
+namespace {
+
+/// The same piecewise-linear path as `coarse`, every segment sampled `per_segment` times.
+ElongationTrajectory refined(const ElongationTrajectory& coarse, int per_segment) {
+  std::vector<double> time;
+  std::vector<double> elongation;
+  for (std::size_t k = 0; k + 1 < coarse.size(); ++k) {
+    for (int i = 0; i < per_segment; ++i) {
+      const double f = static_cast<double>(i) / per_segment;
+      time.push_back(coarse.time()[k] + f * (coarse.time()[k + 1] - coarse.time()[k]));
+      elongation.push_back(coarse.elongation()[k] + f * (coarse.elongation()[k + 1] - coarse.elongation()[k]));
+    }
+  }
+  time.push_back(coarse.time().back());
+  elongation.push_back(coarse.elongation().back());
+  return ElongationTrajectory(time, elongation);
+}
+
+double largest_difference(const std::vector<double>& a, const std::vector<double>& reference, std::size_t stride) {
+  double difference = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) difference = std::max(difference, std::abs(a[k] - reference[k * stride]));
+  return difference;
+}
+
+double largest_magnitude(const std::vector<double>& values) {
+  double largest = 0.0;
+  for (double v : values) largest = std::max(largest, std::abs(v));
+  return largest;
+}
+
+SimulatorConfig tolerance(double rtol) {
+  SimulatorConfig config;
+  config.relative_tolerance = rtol;
+  config.absolute_tolerance_K = rtol;
+  config.absolute_tolerance_J = rtol;
+  return config;
+}
+
+}  // namespace
+
+TEST_CASE("Simulator: samples read off CVODES's steps agree with a dense reference to the tolerance", "[sim][output]") {
+  // Every sample is interpolated from the step that passed it (CVodeGetDky). Against the same
+  // run at rtol 1e-12, force, pressure and temperature must agree to 10 x rtol of each trace's
+  // largest value: BDF's global error is a small multiple of the local tolerance it controls
+  // (3.5 x on the thesis's 10-cycle test, with a CVode call per sample and with one per step).
+  MuscleParams params;
+  params.gas.process = GasProcess::heat_transfer;
+  params.gas.heat_transfer_time_constant_s = 2.0;
+  const MuscleModel model(params, InitialState{0.167, 236.63e3});
+  const ElongationTrajectory trajectory = thesis_protocol(0.05, 2.5e-3, 3, 0.1, 1.0);
+  const double rtol = 1e-8;
+  const SimulationResult run = Simulator(tolerance(rtol)).run(model, trajectory);
+  const SimulationResult reference = Simulator(tolerance(1e-12)).run(model, trajectory);
+  REQUIRE(run.time_s == trajectory.time());
+  CHECK(run.statistics.output_evaluations == static_cast<long>(trajectory.size()));
+  const std::pair<const char*, std::vector<double> SimulationResult::*> traces[] = {
+      {"force_N", &SimulationResult::force_N},
+      {"pressure_gauge_Pa", &SimulationResult::pressure_gauge_Pa},
+      {"temperature_K", &SimulationResult::temperature_K}};
+  for (const auto& [name, trace] : traces) {
+    const double error = largest_difference(run.*trace, reference.*trace, 1) / largest_magnitude(reference.*trace);
+    INFO(name << ": largest difference / largest value = " << error);
+    CHECK(error <= 10.0 * rtol);
+  }
+}
+
+TEST_CASE("Simulator: the samples do not steer the steps", "[sim][output]") {
+  // One CVODES step per call, from corner to corner: sampling the same path four times as
+  // densely must leave the steps alone and the shared samples equal to what rounding in the
+  // lengths (e_k + v (t - t_k) summed differently) lets through CVODES's Newton iteration, whose
+  // convergence test stops at 0.1 of the error tolerance: 0.1 x rtol of each trace's scale.
+  MuscleParams heat;
+  heat.gas.process = GasProcess::heat_transfer;
+  heat.gas.heat_transfer_time_constant_s = 2.0;
+  for (const MuscleParams& params : {MuscleParams{}, heat}) {
+    INFO("process " << static_cast<int>(params.gas.process));
+    const MuscleModel model(params, InitialState{0.167, 236.63e3});
+    const ElongationTrajectory coarse = thesis_protocol(0.05, 2.5e-3, 3, 0.1, 1.0);
+    const SimulatorConfig config;
+    const SimulationResult a = Simulator(config).run(model, coarse);
+    const SimulationResult b = Simulator(config).run(model, refined(coarse, 4));
+    CHECK(b.statistics.steps == a.statistics.steps);
+    CHECK(b.statistics.rhs_evaluations == a.statistics.rhs_evaluations);
+    CHECK(b.statistics.restarts == a.statistics.restarts);
+    CHECK(b.statistics.output_evaluations == 4 * (a.statistics.output_evaluations - 1) + 1);
+    CHECK(largest_difference(a.time_s, b.time_s, 4) <= 1e-12);
+    for (auto trace : {&SimulationResult::force_N, &SimulationResult::pressure_gauge_Pa,
+                       &SimulationResult::temperature_K, &SimulationResult::gas_volume_m3}) {
+      CHECK(largest_difference(a.*trace, b.*trace, 4) <= 0.1 * config.relative_tolerance * largest_magnitude(a.*trace));
+    }
+  }
+}
+
+TEST_CASE("Simulator: more steps than max_steps between two samples is an error", "[sim][output]") {
+  // One segment of 20 s with a gas that exchanges heat in 0.02 s: hundreds of steps, no sample
+  // between them. CVODES, called one step at a time, cannot count them; the simulator does.
+  MuscleParams params;
+  params.gas.process = GasProcess::heat_transfer;
+  params.gas.heat_transfer_time_constant_s = 0.02;
+  const MuscleModel model(params, InitialState{0.167, 236.63e3});
+  const ElongationTrajectory ramp({0.0, 20.0}, {0.0, 0.05});
+  SimulatorConfig config;
+  const SimulationResult unlimited = Simulator(config).run(model, ramp);
+  REQUIRE(unlimited.statistics.steps > 20);
+  config.max_steps = 20;
+  CHECK_THROWS_AS(Simulator(config).run(model, ramp), SolverError);
+  CHECK_THROWS_WITH(Simulator(config).run(model, ramp),
+                    Catch::Contains("CV_TOO_MUCH_WORK") && Catch::Contains("SimulatorConfig.max_steps"));
 }

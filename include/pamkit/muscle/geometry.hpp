@@ -50,6 +50,25 @@ struct MuscleShape {
   double d_gas_volume;       ///< dV_gas/dL [m^2]
 };
 
+/// Which parts of a MuscleShape to compute. The ODE's right-hand side needs the lengths, the
+/// volumes and their derivatives; the four angles (an output column, the Newtonian tensions)
+/// cost an atan2, two asin and a sin it never uses. Angles left out are NaN, so a misuse shows.
+enum class ShapeParts {
+  all,                         ///< every field
+  kinematics_and_braid_angle,  ///< all but the end, cone and mean angles: what a simulation reports
+  kinematics                   ///< all but the four angles: what the ODE's rates need
+};
+
+/// Where the last solve of the closure ended, for the next one to start from. Newton's method
+/// from the previous diameter extrapolated along dD/dL converges in about two iterations instead
+/// of five from the cylinder's guess. Mutable, so it belongs to one caller (a simulation's
+/// workspace), never to the const BraidGeometry, which stays safe to share between threads.
+struct ShapeHint {
+  double length_m = 0.0;    ///< length of the last solve [m]; 0: none yet
+  double diameter_m = 0.0;  ///< its braid diameter [m]
+  double d_diameter = 0.0;  ///< its dD/dL [1]
+};
+
 /// The braid of one muscle build: fixed fiber length and turns, fixed cones. Immutable and
 /// cheap to copy; `shape(L)` is safe to call from many threads.
 class BraidGeometry {
@@ -69,6 +88,12 @@ class BraidGeometry {
   /// no error, no allocation. Outside that range the result means nothing.
   MuscleShape shape_unchecked(double length_m) const noexcept;
 
+  /// `shape(length_m)` started from `hint`, which it updates to this solve; `parts` says
+  /// whether the angles are computed. The diameter agrees with the cold start's to the Newton
+  /// iteration's tolerance (about 1e-14 relative).
+  /// \throws InvalidInput if `length_m` is outside `(min_length(), max_length())`.
+  MuscleShape shape_from(ShapeHint& hint, double length_m, ShapeParts parts) const;
+
   /// Shortest length the model allows [m]: the cones flatten (D = d + 2 Lz) there.
   double min_length() const { return min_length_; }
   /// Longest length the model allows [m]: the braid closes onto the end diameter.
@@ -80,6 +105,11 @@ class BraidGeometry {
   const MuscleBuild& build() const { return build_; }
 
  private:
+  /// \throws InvalidInput if `length_m` is outside `(min_length(), max_length())`.
+  void check_range(double length_m) const;
+  /// The shape at a length inside the range, the closure's Newton iteration started from `hint`.
+  MuscleShape solve(ShapeHint& hint, double length_m, ShapeParts parts) const noexcept;
+
   MuscleBuild build_;
   double fiber_length_;
   double deflated_cylinder_length_;

@@ -79,16 +79,30 @@ inline BraidGeometry::BraidGeometry(const MuscleBuild& build) : build_(build) {
   }
 }
 
-inline MuscleShape BraidGeometry::shape(double length_m) const {
+inline void BraidGeometry::check_range(double length_m) const {
   if (!(length_m > min_length_ && length_m < max_length_)) {
     PAMKIT_THROW(
         InvalidInput(detail::message("muscle length ", length_m, " m is outside the range the braid model allows (",
                                      min_length_, ", ", max_length_, ") m for this build")));
   }
+}
+
+inline MuscleShape BraidGeometry::shape(double length_m) const {
+  check_range(length_m);
   return shape_unchecked(length_m);
 }
 
+inline MuscleShape BraidGeometry::shape_from(ShapeHint& hint, double length_m, ShapeParts parts) const {
+  check_range(length_m);
+  return solve(hint, length_m, parts);
+}
+
 inline MuscleShape BraidGeometry::shape_unchecked(double length_m) const noexcept {
+  ShapeHint cold;
+  return solve(cold, length_m, ShapeParts::all);
+}
+
+inline MuscleShape BraidGeometry::solve(ShapeHint& hint, double length_m, ShapeParts parts) const noexcept {
   // Inside the range the closure below brackets its root (G(d) < 0 < G(d + 2 Lz)), so Boost's
   // Newton iteration has no cause to raise its "no root" error.
   const double n = build_.fiber_revolutions;
@@ -101,7 +115,8 @@ inline MuscleShape BraidGeometry::shape_unchecked(double length_m) const noexcep
   s.length = length_m;
   if (lz > 0.0) {
     // Closure of braid (eq. 3.1.11) and cones: G(D) = (pi n D)^2 + (L - 2 LL(D))^2 - Lym^2 = 0.
-    // G rises monotonically in D on (d, d + 2 Lz), so a bracketed Newton iteration converges.
+    // G rises monotonically in D on (d, d + 2 Lz), so a bracketed Newton iteration converges
+    // from any guess inside; a good one only saves iterations.
     auto closure = [&](double diameter) {
       const double ll = detail::cone_axial_length(lz, diameter, d);
       const double lm = length_m - 2.0 * ll;
@@ -112,11 +127,14 @@ inline MuscleShape BraidGeometry::shape_unchecked(double length_m) const noexcep
     };
     const double lower = d;
     const double upper = d + 2.0 * lz;
-    const double cylinder_guess = std::sqrt(std::max(lym * lym - length_m * length_m, 0.0) / k2);
-    const double guess = std::clamp(cylinder_guess, lower + 1e-12, upper - 1e-12);
+    // From a hint, its diameter extrapolated to this length; without one, the diameter of a
+    // cylinder of this length (as if the cones were flat).
+    const double guess = hint.length_m > 0.0 ? hint.diameter_m + hint.d_diameter * (length_m - hint.length_m)
+                                             : std::sqrt(std::max(lym * lym - length_m * length_m, 0.0) / k2);
     std::uintmax_t iterations = 100;
-    s.diameter = boost::math::tools::newton_raphson_iterate(closure, guess, lower, upper,
-                                                            std::numeric_limits<double>::digits - 6, iterations);
+    s.diameter =
+        boost::math::tools::newton_raphson_iterate(closure, std::clamp(guess, lower + 1e-12, upper - 1e-12), lower,
+                                                   upper, std::numeric_limits<double>::digits - 6, iterations);
     s.cone_length = detail::cone_axial_length(lz, s.diameter, d);
   } else {
     s.diameter = std::sqrt((lym * lym - length_m * length_m) / k2);
@@ -127,21 +145,25 @@ inline MuscleShape BraidGeometry::shape_unchecked(double length_m) const noexcep
   const double lm = length_m - 2.0 * ll;
   const double c = 0.5 * (D - d);
   s.cylinder_length = lm;
-  s.braid_angle = std::atan2(detail::kPi * n * D, lm);
-  if (lz > 0.0) {
+  constexpr double left_out = std::numeric_limits<double>::quiet_NaN();
+  s.braid_angle = parts == ShapeParts::kinematics ? left_out : std::atan2(detail::kPi * n * D, lm);
+  if (parts != ShapeParts::all) {
+    s.end_braid_angle = s.cone_angle = s.mean_braid_angle = left_out;
+  } else if (lz > 0.0) {
     s.end_braid_angle = std::asin(std::min(1.0, d / D * std::sin(s.braid_angle)));
     s.cone_angle = std::asin(std::min(1.0, c / lz));
   } else {
     s.end_braid_angle = s.braid_angle;
     s.cone_angle = 0.0;
   }
-  s.mean_braid_angle = 0.5 * (s.braid_angle + s.end_braid_angle);
+  if (parts == ShapeParts::all) s.mean_braid_angle = 0.5 * (s.braid_angle + s.end_braid_angle);
 
   // Derivatives from the implicit closure: dD/dL = -G_L / G_D.
   const double cone_term = (lz > 0.0) ? lm * c / ll : 0.0;
   s.d_diameter = -lm / (k2 * D + cone_term);
   const double d_cone_length = (lz > 0.0) ? -c * s.d_diameter / (2.0 * ll) : 0.0;
   s.d_cylinder_length = 1.0 - 2.0 * d_cone_length;
+  hint = ShapeHint{length_m, D, s.d_diameter};
 
   // Eq. 3.1.1: two frusta and a cylinder.
   const double frustum = 0.25 * (D * D + d * d + d * D);

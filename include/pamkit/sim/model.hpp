@@ -142,6 +142,13 @@ struct MuscleOutputs {
   State rate;                     ///< d(state)/dt
 };
 
+/// The mutable half of model evaluations, as Pinocchio splits Model from Data: what one caller
+/// carries from one `MuscleModel::evaluate` to the next. One per simulation (or thread), so the
+/// const model stays shareable.
+struct MuscleWorkspace {
+  ShapeHint shape;  ///< where the braid's last closure solve ended
+};
+
 /// A muscle in a test: parameters plus the sealed gas mass. Immutable, so one model may be
 /// simulated from many threads at once.
 class MuscleModel {
@@ -153,6 +160,13 @@ class MuscleModel {
   /// Outputs and state derivative at muscle length `length_m` and elongation rate
   /// `velocity_m_per_s` (the crosshead's), in state `state`.
   MuscleOutputs evaluate(double length_m, double velocity_m_per_s, const State& state) const;
+
+  /// `evaluate`, the braid's closure started from `workspace` (which it updates), with the
+  /// shape's `parts`: `ShapeParts::kinematics` leaves the angles of `MuscleOutputs::shape`
+  /// NaN, which the rates do not need. Agrees with the cold evaluation to the closure's Newton
+  /// tolerance (about 1e-14 relative).
+  MuscleOutputs evaluate_with(MuscleWorkspace& workspace, double length_m, double velocity_m_per_s, const State& state,
+                              ShapeParts parts) const;
 
   /// The state at zero elongation: ambient temperature, the sealed mass, no viscous stress.
   State initial() const;
@@ -172,9 +186,9 @@ class MuscleModel {
 
  private:
   /// Elastic force [N] (gas, bladder and its viscous branch; no friction) at braid length L_b.
-  double elastic_force(double braid_length, const State& state) const;
+  double elastic_force(double braid_length, const State& state, ShapeHint& hint) const;
   /// Braid length whose stretched fibers span the muscle length `length_m`.
-  double braid_length(double length_m, const State& state) const;
+  double braid_length(double length_m, const State& state, ShapeHint& hint) const;
 
   MuscleParams params_;
   InitialState initial_;

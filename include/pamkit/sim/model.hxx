@@ -26,9 +26,9 @@ inline State MuscleModel::initial() const {
   return y;
 }
 
-inline double MuscleModel::elastic_force(double braid_length, const State& y) const {
+inline double MuscleModel::elastic_force(double braid_length, const State& y, ShapeHint& hint) const {
   const GasParams& g = params_.gas;
-  const MuscleShape shape = geometry_.shape(braid_length);
+  const MuscleShape shape = geometry_.shape_from(hint, braid_length, ShapeParts::kinematics);
   const double pressure =
       y[State::gas_mass_kg] * g.gas_constant_J_per_kgK * y[State::temperature_K] / (shape.gas_volume + dead_volume_);
   const FrictionParams no_friction{0.0, 0.0, 0.0, 0.0, 0.0};
@@ -40,13 +40,13 @@ inline double MuscleModel::elastic_force(double braid_length, const State& y) co
                        params_.extensions.slack_band_N);
 }
 
-inline double MuscleModel::braid_length(double length_m, const State& y) const {
+inline double MuscleModel::braid_length(double length_m, const State& y, ShapeHint& hint) const {
   // The fibers stretch by T Lym / EA; their tension sums to the force, so the braid is shorter
   // than the muscle by F Lym / (N EA): a spring in series with the braid.
   const double per_newton =
       params_.extensions.fiber_compliance_per_N * geometry_.fiber_length() / geometry_.build().fiber_count;
-  auto mismatch = [&](double braid) { return braid + per_newton * elastic_force(braid, y) - length_m; };
-  const double stretch = per_newton * elastic_force(length_m, y);
+  auto mismatch = [&](double braid) { return braid + per_newton * elastic_force(braid, y, hint) - length_m; };
+  const double stretch = per_newton * elastic_force(length_m, y, hint);
   if (std::abs(stretch) <= 1e-14 * length_m) return length_m;  // unloaded: nothing to solve
   // The force rises with the braid length, so the root lies between L - stretch(L) and L.
   const double margin = 1e-12;
@@ -63,21 +63,28 @@ inline double MuscleModel::braid_length(double length_m, const State& y) const {
 }
 
 inline MuscleOutputs MuscleModel::evaluate(double length_m, double velocity_m_per_s, const State& y) const {
+  MuscleWorkspace cold;
+  return evaluate_with(cold, length_m, velocity_m_per_s, y, ShapeParts::all);
+}
+
+inline MuscleOutputs MuscleModel::evaluate_with(MuscleWorkspace& workspace, double length_m, double velocity_m_per_s,
+                                                const State& y, ShapeParts parts) const {
   const GasParams& g = params_.gas;
   const ModelExtensions& x = params_.extensions;
   MuscleOutputs out{};
   out.braid_length_m = length_m;
   out.braid_velocity_m_per_s = velocity_m_per_s;
   if (x.fiber_compliance_per_N > 0.0) {
-    out.braid_length_m = braid_length(length_m, y);
+    out.braid_length_m = braid_length(length_m, y, workspace.shape);
     // dL/dL_b = 1 + c dF/dL_b, the slope by central differences (step well above rounding).
     const double h = 1e-7;
     const double per_newton = x.fiber_compliance_per_N * geometry_.fiber_length() / geometry_.build().fiber_count;
-    const double slope =
-        (elastic_force(out.braid_length_m + h, y) - elastic_force(out.braid_length_m - h, y)) / (2.0 * h);
+    const double slope = (elastic_force(out.braid_length_m + h, y, workspace.shape) -
+                          elastic_force(out.braid_length_m - h, y, workspace.shape)) /
+                         (2.0 * h);
     out.braid_velocity_m_per_s = velocity_m_per_s / (1.0 + per_newton * slope);
   }
-  out.shape = geometry_.shape(out.braid_length_m);
+  out.shape = geometry_.shape_from(workspace.shape, out.braid_length_m, parts);
 
   const double temperature = y[State::temperature_K];
   const double mass = y[State::gas_mass_kg];

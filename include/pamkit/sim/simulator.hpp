@@ -76,6 +76,8 @@ class Simulator {
   /// Simulates `model` along `trajectory` (elongation from the model's initial length).
   /// Samples are reported at the trajectory's times; the friction at a sample uses the
   /// elongation rate of the segment that ends there (of the first segment at the start).
+  /// Between corners CVODES takes its own steps and each sample is read off the polynomial of
+  /// the step that passed it (CVodeGetDky), so the samples do not steer the steps.
   /// \throws InvalidInput if a sample's length is outside the braid's range (naming the
   ///         sample), SolverError with the CVODES flag name and time if integration fails.
   SimulationResult run(const MuscleModel& model, const ElongationTrajectory& trajectory) const;
