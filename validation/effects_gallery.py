@@ -23,6 +23,7 @@ import numpy as np
 
 import pamkit
 from pamkit.effects import catalog, parse_effects
+from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
 
 HERE = Path(__file__).resolve().parents[1] / "docs" / "effects"  # where docs/effects.md shows them
 AMBIENT_C = 23.0
@@ -33,7 +34,7 @@ COLORS = ("C0", "C3")
 
 def params() -> pamkit.MuscleParams:
     gas = pamkit.GasParams()
-    gas.ambient_temperature_K = AMBIENT_C + 273.15
+    gas.ambient_temperature_K = AMBIENT_C + KELVIN_AT_ZERO_CELSIUS
     return pamkit.MuscleParams(
         build=pamkit.MuscleBuild(), bladder=pamkit.BladderLaw.thesis(), friction=pamkit.FrictionParams(), gas=gas
     )
@@ -42,7 +43,7 @@ def params() -> pamkit.MuscleParams:
 def free_length(pressure_kPa: float) -> float:
     p = params()
     return pamkit.free_inflation(
-        pamkit.BraidGeometry(p.build), p.bladder, p.gas.atmospheric_pressure_Pa, pressure_kPa * 1e3
+        pamkit.BraidGeometry(p.build), p.bladder, p.gas.atmospheric_pressure_Pa, pressure_kPa * PASCAL_PER_KILOPASCAL
     ).length_m
 
 
@@ -71,7 +72,9 @@ def simulate(pressure_kPa: float, path, specs=(), rate_Hz: float = SAMPLE_RATE_H
     t_corner, e_corner = path
     time = np.unique(np.concatenate([np.arange(0.0, t_corner[-1], 1.0 / rate_Hz), t_corner]))
     crosshead = pamkit.ElongationTrajectory(time, np.interp(time, t_corner, e_corner))
-    initial = pamkit.InitialState(length_m=free_length(pressure_kPa), gauge_pressure_Pa=pressure_kPa * 1e3)
+    initial = pamkit.InitialState(
+        length_m=free_length(pressure_kPa), gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL
+    )
     effects = [spec if isinstance(spec, pamkit.Effect) else parse_effects([spec])[0] for spec in specs]
     m = pamkit.simulate_measurement(params(), initial, crosshead, effects, pamkit.Simulator())
     return {
