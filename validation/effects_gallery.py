@@ -340,6 +340,20 @@ def sensor_offset() -> Path:
     return save(fig, "sensor_offset")
 
 
+def load_cell() -> Path:
+    spec = "load_cell:offset_N=-5,nonlinearity_per_kN=0.12"
+    p, e = 207.0, stretch(207.0, 0.9)
+    path = corners(e, 10e-3, 2)
+    base, run = simulate(p, path), simulate(p, path, [spec])
+    fig, (force, residual) = figure(f"{spec} (PAM 2, 207 kPa, 90 %, 10 mm/s): a tare and a share growing with F")
+    force.plot(base["time_s"], base["force_N"], **BASE, label="baseline")
+    force.plot(run["time_s"], run["force_N"], color=COLORS[0], label="tare and nonlinearity")
+    label(force, "time [s]", "force [N]")
+    residual.plot(base["force_N"], run["force_N"] - base["force_N"], color=COLORS[0], marker=".", ls="none", ms=2)
+    label(residual, "predicted force [N]", "reading - prediction [N]", legend=False)
+    return save(fig, "load_cell")
+
+
 def braid_slack() -> Path:
     spec = "braid_slack:band_N=2"
     fig, axes = figure(f"{spec} (PAM 2 held at fixed lengths, supplied pressure): no push below the free length")
@@ -387,6 +401,7 @@ FIGURES = {
         braid_slack,
         pressure_hysteresis,
         sensor_lag,
+        load_cell,
         time_skew,
         sensor_offset,
     )
