@@ -288,9 +288,13 @@ def diagnose(
             )
     judged.sort(key=lambda j: (-j.score.combined_gain, j.score.delta_bic, j.fit.name))
     # The baseline's calibration absorbed part of a measurement effect (an offset pulls the
-    # inflation pressure to its bound): the leading ones are refitted with the baseline free.
+    # inflation pressure to its bound): the leading ones are refitted with the baseline free. They
+    # lead among the measurement effects, not among all: an instrument error on one channel (a
+    # pressure offset) must not lose its refit because another channel's (the load cell's) scored
+    # higher on the calibrated baseline.
     factories = dict(todo)
-    leaders = [i for i, j in enumerate(judged[:REFIT_LEADERS]) if j.fit.effects[0].stage() == EffectStage.measurement]
+    measurement = [i for i, j in enumerate(judged) if j.fit.effects[0].stage() == EffectStage.measurement]
+    leaders = measurement[:REFIT_LEADERS]
     if leaders:
         report(f"refitting {', '.join(judged[i].fit.name for i in leaders)} with the baseline")
         with _pool(threads) as pool:
