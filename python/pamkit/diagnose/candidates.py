@@ -123,6 +123,12 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
         else:
             n_base = len(base_space)
             base_u = np.clip(x_to_unit(base_space, baseline.baseline_x), 0.0, 1.0)
+            # A baseline coordinate the calibration left at a search bound is straining to absorb
+            # what the candidate may explain; from the bound, the bounded solver may never leave
+            # it (the answer then flips with rounding). The joint fit starts it from its declared
+            # start instead, free to go either way.
+            at_bound = [c.at_bound(x) is not None for c, x in zip(base_space, baseline.baseline_x)]
+            base_u = np.where(at_bound, start_unit(base_space), base_u)
 
             def residual(u):
                 return chi_or_penalty(unit_to_x(base_space, u[:n_base]), unit_to_x(space, u[n_base:]))
