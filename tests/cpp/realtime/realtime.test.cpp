@@ -18,12 +18,18 @@ namespace {
 std::atomic<long> allocations{0};
 }  // namespace
 
-// Every allocation of this program is counted. The array, nothrow and sized forms of the
-// standard library call this one; aligned new is not used by pamkit.
+// Every allocation of this program is counted. The array and sized forms of the standard
+// library call this one; aligned new is not used by pamkit.
 void* operator new(std::size_t size) {
   allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
   throw std::bad_alloc();
+}
+// The nothrow form too (Catch2 uses it): a sanitizer's runtime supplies its own, which must not be
+// freed by the replacement below.
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  return std::malloc(size == 0 ? 1 : size);
 }
 void operator delete(void* memory) noexcept { std::free(memory); }
 void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
