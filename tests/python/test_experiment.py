@@ -299,3 +299,21 @@ def test_the_writer_refuses_what_the_reader_would_and_names_it(tmp_path, section
     with pytest.raises(ValueError, match=message):
         write_experiment(tmp_path / "run.toml", sections)
     assert not (tmp_path / "run.toml").exists()
+
+
+def test_a_series_written_in_blocks_is_every_row_once_in_csvs_format(tmp_path, monkeypatch):
+    # write_series formats WRITE_BLOCK_ROWS rows at a time (a 2-million-row simulation's text never
+    # whole in memory); across block ends the file is the csv module's: CRLF, "%.10g", each row once.
+    import pamkit.io.experiment as experiment
+
+    monkeypatch.setattr(experiment, "WRITE_BLOCK_ROWS", 4)
+    time = np.arange(10) * 0.1
+    elongation = np.linspace(0.0, 0.05, 10)
+    force = np.pi * np.arange(10) - 7.0
+    path = tmp_path / "series.csv"
+    experiment.write_series(path, {"time_s": time, "elongation_m": elongation, "force_N": force})
+    expected = "time_s,elongation_m,force_N\r\n" + "".join(
+        f"{t:.10g},{x:.10g},{f:.10g}\r\n" for t, x, f in zip(time, elongation, force)
+    )
+    assert path.read_bytes() == expected.encode()
+    assert np.allclose(read_series(path)["force_N"], force, rtol=1e-9)

@@ -888,16 +888,23 @@ def _parse_row(path: Path, line: int, header: list[str], row: list[str]) -> list
     return parsed
 
 
+#: Rows formatted at a time by write_series.
+WRITE_BLOCK_ROWS = 1 << 16
+
+
 def write_series(path: str | Path, columns: dict[str, np.ndarray], digits: int = 10) -> None:
     """Writes columns of equal length to CSV with a header row, `digits` significant digits."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     names = list(columns)
-    table = np.column_stack([np.asarray(columns[name], dtype=float) for name in names])
+    series = [np.asarray(columns[name], dtype=float) for name in names]
     with path.open("w", newline="") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(names)
-        writer.writerows([[f"{value:.{digits}g}" for value in row] for row in table])
+        csv.writer(handle).writerow(names)
+        # In blocks of rows, so that a long test's text never stands in memory whole; csv's line
+        # ends (CRLF) and Python's "%g", as before.
+        for start in range(0, len(series[0]) if series else 0, WRITE_BLOCK_ROWS):
+            block = np.column_stack([s[start : start + WRITE_BLOCK_ROWS] for s in series])
+            np.savetxt(handle, block, fmt=f"%.{digits}g", delimiter=",", newline="\r\n")
 
 
 def write_experiment(
