@@ -29,8 +29,8 @@ def register(subparsers) -> None:
         "--params-out",
         metavar="PARAMS.toml",
         help="write the calibrated baseline as a muscle-parameters file under the C++ field names (one time "
-        "series, or static tables of one muscle): what `pamkit simulate --params` and the C++ "
-        "pamkit::read_muscle_params load",
+        "series; static tables of one muscle; a campaign of time series: the muscle calibrated on all its tests): "
+        "what `pamkit simulate --params` and the C++ pamkit::read_muscle_params load",
     )
     parser.add_argument("--threads", type=int, default=None, help="fits in parallel (default: all cores)")
     batch = parser.add_argument_group(
@@ -59,13 +59,6 @@ def run(arguments: argparse.Namespace) -> int:
         if getattr(arguments, option) is not None:
             raise ValueError(f"--{option} belongs to --batch")
 
-    if arguments.params_out:  # refused before the work, not after it
-        from pamkit.diagnose.report import SERIES_CAMPAIGN_HAS_NO_PARAMS
-        from pamkit.io.experiment import load_tests
-
-        tests = [test for path in arguments.experiment for test in load_tests(path)]
-        if len(tests) > 1 and not all(test.is_table for test in tests):
-            raise ValueError(SERIES_CAMPAIGN_HAS_NO_PARAMS)
     d = diagnose(arguments.experiment, progress=progress, threads=arguments.threads)
     outputs = [p for p in (arguments.json, arguments.plot, arguments.params_out) if p]
     if outputs:

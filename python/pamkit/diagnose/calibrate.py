@@ -7,7 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import least_squares
+from scipy.optimize import OptimizeResult, least_squares
 
 from pamkit._core import Effect
 from pamkit.diagnose.kinds import Problem
@@ -35,6 +35,8 @@ class Fit:
     # (coordinate, fitted coordinate value) of every fitted parameter, effect parameters keyed
     # as in `params`, for the bound and plausibility checks
     coordinates: dict[str, tuple[Coordinate, float]] = field(default_factory=dict)
+    # 95 % intervals of the fitted baseline values (cluster_intervals), where computed
+    intervals: dict[str, tuple[float, float]] = field(default_factory=dict)
 
 
 def unit_to_x(space: list[Coordinate], u: np.ndarray) -> np.ndarray:
@@ -49,12 +51,44 @@ def start_unit(space: list[Coordinate]) -> np.ndarray:
     return np.clip(x_to_unit(space, np.array([c.start for c in space])), 0.0, 1.0)
 
 
-def solve(residual, u0: np.ndarray, max_evaluations: int) -> np.ndarray:
+def least_squares_in_box(residual, u0: np.ndarray, max_evaluations: int, **options) -> OptimizeResult:
     """SciPy's bounded trust-region least squares in the unit box."""
-    result = least_squares(
-        residual, u0, bounds=(0.0, 1.0), method="trf", diff_step=DIFF_STEP, x_scale=1.0, max_nfev=max_evaluations
+    return least_squares(
+        residual,
+        u0,
+        bounds=(0.0, 1.0),
+        method="trf",
+        diff_step=DIFF_STEP,
+        x_scale=1.0,
+        max_nfev=max_evaluations,
+        **options,
     )
-    return result.x
+
+
+def solve(residual, u0: np.ndarray, max_evaluations: int) -> np.ndarray:
+    return least_squares_in_box(residual, u0, max_evaluations).x
+
+
+def cluster_intervals(
+    space: list[Coordinate], u: np.ndarray, jacobian: np.ndarray, residual: np.ndarray, clusters: np.ndarray
+) -> dict[str, tuple[float, float]]:
+    """95 % intervals of fitted values from the least-squares Jacobian at the solution, with the
+    covariance clustered by unit (the sandwich (JᵀJ)⁻¹ (Σ_g J_gᵀ r_g r_gᵀ J_g) (JᵀJ)⁻¹ · G/(G−1)):
+    residuals correlated within a half cycle do not shrink the interval as if independent.
+    `clusters` gives each residual's unit."""
+    bread = np.linalg.pinv(jacobian.T @ jacobian)
+    labels = np.unique(clusters)
+    scores = np.array([jacobian[clusters == g].T @ residual[clusters == g] for g in labels])
+    meat = scores.T @ scores * len(labels) / max(len(labels) - 1, 1)
+    sd_u = np.sqrt(np.clip(np.diag(bread @ meat @ bread), 0.0, None))
+    out = {}
+    for c, ui, sd in zip(space, u, sd_u):
+        # Within the search interval: a scale cannot go below zero because its interval is wide.
+        ends = [
+            c.value(c.lower + np.clip(ui + sign * 1.96 * sd, 0.0, 1.0) * (c.upper - c.lower)) for sign in (-1.0, 1.0)
+        ]
+        out[c.name] = (float(min(ends)), float(max(ends)))
+    return out
 
 
 def penalty(problem: Problem, scale: float) -> np.ndarray:
@@ -82,8 +116,9 @@ def fit_baseline(problem: Problem) -> Fit:
         except (ValueError, RuntimeError):
             return bad_fit
 
-    u = solve(residual, start_unit(space), 20 * (len(space) + 1))
-    x = unit_to_x(space, u)
+    result = least_squares_in_box(residual, start_unit(space), 20 * (len(space) + 1))
+    u, x = result.x, unit_to_x(space, result.x)
+    intervals = cluster_intervals(space, u, result.jac, result.fun, problem.residual_units())
     predicted = problem.predictor.predict(x, [])
     values = problem.predictor.baseline.values(x)
     return Fit(
@@ -97,4 +132,5 @@ def fit_baseline(problem: Problem) -> Fit:
         evaluations,
         baseline_params=values,
         coordinates=baseline_coordinates(problem, x),
+        intervals=intervals,
     )

@@ -9,6 +9,10 @@ The campaign names the cause whose leave-one-test-out gain is significant in eve
 (at least MIN_GAIN, its 95 % interval above zero) and that at least one test named on its own;
 `none` when every test says `none`; otherwise `unexplained`, saying where the cause fails to
 carry or where the tests disagree.
+
+Beside the per-test calibrations, one muscle is calibrated on all the tests at once (joint.py):
+its shared values and their intervals are the campaign's baseline, and a test the shared muscle
+fits much worse than its own calibration is reported.
 """
 
 from __future__ import annotations
@@ -19,8 +23,9 @@ from pathlib import Path
 import numpy as np
 
 from pamkit.diagnose.calibrate import Fit
-from pamkit.diagnose.decide import MIN_GAIN, score
+from pamkit.diagnose.decide import MIN_GAIN, Finding, findings, score
 from pamkit.diagnose.engine import Diagnosis
+from pamkit.diagnose.joint import JointFit, calibrate_jointly
 from pamkit.diagnose.table_kinds import test_names
 from pamkit.plots import save_figure
 
@@ -47,6 +52,9 @@ class SeriesCampaign:
     transfers: dict[str, list[Transfer]]  # per effect named by some test: one per test
     cause: str
     reason: str
+    joint: JointFit  # one muscle calibrated on every test
+    extended: JointFit | None  # with the cause, its parameters shared too
+    warnings: list[Finding]  # the shared values at a bound or outside their plausible ranges
 
 
 def _single_effect_fits(d: Diagnosis) -> dict[str, Fit]:
@@ -76,11 +84,14 @@ def _carry(catalog, label: str, held: Diagnosis, others: list[Fit], name: str, s
     return Transfer(name, params, float(s.credited_gain), [float(v) for v in s.credited_ci95], carries)
 
 
-def campaign_of_series(diagnoses: list[Diagnosis], catalog, progress=None) -> SeriesCampaign:
-    """Carries every effect some test named to each test from the others, and decides."""
+def campaign_of_series(diagnoses: list[Diagnosis], catalog, progress=None, threads: int = 2) -> SeriesCampaign:
+    """Calibrates one muscle on every test, carries every effect some test named to each test
+    from the others, and decides."""
     progress = progress or (lambda message: None)
     paths = [str(d.problem.experiment.path) for d in diagnoses]
     names = test_names([d.problem.experiment for d in diagnoses])
+    progress(f"calibrating one muscle on all {len(diagnoses)} tests")
+    joint = calibrate_jointly([d.problem for d in diagnoses], [d.baseline for d in diagnoses], names, threads)
     fits = [_single_effect_fits(d) for d in diagnoses]
     named = {d.extended.name for d in diagnoses if d.decision.named is not None and len(d.extended.effects) == 1}
     transfers: dict[str, list[Transfer]] = {}
@@ -114,7 +125,36 @@ def campaign_of_series(diagnoses: list[Diagnosis], catalog, progress=None) -> Se
             for label, t in transfers.items()
         ]
         reason = f"no cause holds across the campaign ({said})" + (f"; {'; '.join(failing)}" if failing else "")
-    return SeriesCampaign(paths, names, diagnoses, transfers, cause, reason)
+    extended = None
+    if cause in holding:
+        progress(f"calibrating one muscle with {cause} on all {len(diagnoses)} tests")
+        extended = calibrate_jointly(
+            [d.problem for d in diagnoses],
+            [f[cause] for f in fits],
+            names,
+            threads,
+            make_effect=lambda: catalog.parse(cause),
+        )
+    warnings = findings(joint) + (findings(extended) if extended else [])
+    return SeriesCampaign(paths, names, diagnoses, transfers, cause, reason, joint, extended, warnings)
+
+
+def _joint_json(j: JointFit) -> dict:
+    return {
+        "params": j.params,
+        "intervals": {k: list(v) for k, v in j.intervals.items()},
+        "per_test": [
+            {"test": s.test, "params": s.own, "rmse_ratio": s.rmse_ratio, "alone": s.alone, "disagrees": s.disagrees}
+            for s in j.shares
+        ],
+    }
+
+
+def _shared(j: JointFit) -> str:
+    return ", ".join(
+        f"{name} = {value:.4g} [{j.intervals[name][0]:.4g}, {j.intervals[name][1]:.4g}]"
+        for name, value in j.params.items()
+    )
 
 
 def to_json(c: SeriesCampaign, test_report) -> dict:
@@ -126,6 +166,9 @@ def to_json(c: SeriesCampaign, test_report) -> dict:
         "held_out": "test",
         "cause": c.cause,
         "reason": c.reason,
+        "baseline": _joint_json(c.joint),
+        "extended": ({"effects": [c.cause], **_joint_json(c.extended)} if c.extended else None),
+        "warnings": [f.to_json() for f in c.warnings],
         "carried": {
             label: [
                 {"test": x.test, "params": x.params, "gain": x.gain, "gain_ci95": x.gain_ci95, "carries": x.carries}
@@ -139,6 +182,17 @@ def to_json(c: SeriesCampaign, test_report) -> dict:
 
 def verdict(c: SeriesCampaign) -> str:
     lines = [f"campaign of {len(c.tests)} tests, each held out in turn: cause {c.cause} — {c.reason}"]
+    lines.append(f"  one muscle calibrated on every test: {_shared(c.joint)}")
+    if c.extended:
+        lines.append(f"  with {c.cause}, shared by every test: {_shared(c.extended)}")
+    lines += [f"  the shared muscle {f.sentence()}" for f in c.warnings]
+    for s in (c.extended or c.joint).shares:
+        if s.disagrees:
+            alone = ", ".join(f"{k} = {v:.3g}" for k, v in s.alone.items())
+            lines.append(
+                f"  {s.test} disagrees: the shared muscle fits it {s.rmse_ratio:.1f}x worse than its own fit "
+                f"({alone}): a structural misfit, not one muscle's parameters"
+            )
     for name, d in zip(c.tests, c.diagnoses):
         lines.append(f"  {name}: alone, {d.cause}")
     for label, t in c.transfers.items():

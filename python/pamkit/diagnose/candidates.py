@@ -21,6 +21,8 @@ from pamkit._core import EffectCatalog, EffectStage, GasMode, Measurement
 from pamkit.diagnose.calibrate import (
     Fit,
     baseline_coordinates,
+    cluster_intervals,
+    least_squares_in_box,
     penalty,
     solve,
     start_unit,
@@ -117,9 +119,11 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
             def residual(u):
                 return chi_or_penalty(baseline.baseline_x, unit_to_x(space, u))
 
-            u = solve(residual, best_u, 30 * (len(space) + 1)) if space else best_u
+            result = least_squares_in_box(residual, best_u, 30 * (len(space) + 1)) if space else None
+            u = result.x if result is not None else best_u
             base_x, effect_x = baseline.baseline_x, unit_to_x(space, u)
             count = len(space)
+            fitted_space = space
         else:
             n_base = len(base_space)
             base_u = np.clip(x_to_unit(base_space, baseline.baseline_x), 0.0, 1.0)
@@ -133,15 +137,22 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
             def residual(u):
                 return chi_or_penalty(unit_to_x(base_space, u[:n_base]), unit_to_x(space, u[n_base:]))
 
-            u = solve(residual, np.concatenate([base_u, best_u]), 12 * (n_base + len(space) + 1))
+            result = least_squares_in_box(residual, np.concatenate([base_u, best_u]), 12 * (n_base + len(space) + 1))
+            u = result.x
             base_x, effect_x = unit_to_x(base_space, u[:n_base]), unit_to_x(space, u[n_base:])
             count = len(space) + n_base
+            fitted_space = base_space + space
         configure(effect, space, effect_x)
         predicted = predict(base_x, effect_x)
         params = {c.name: float(c.value(v)) for c, v in zip(space, effect_x)}
         params.update(effect.options())
         coordinates = {} if measurement_only else baseline_coordinates(problem, base_x)
         coordinates.update(_effect_coordinates(effect, space, effect_x))
+        intervals = (
+            cluster_intervals(fitted_space, u, result.jac, result.fun, problem.residual_units())
+            if result is not None
+            else {}
+        )
         # A measurement effect keeps the calibrated baseline: counted as one model with it.
         total = count + (len(base_space) if measurement_only else 0)
         return Fit(
@@ -155,6 +166,7 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
             evaluations,
             baseline_params=problem.predictor.baseline.values(base_x),
             coordinates=coordinates,
+            intervals=intervals,
         )
     except (ValueError, RuntimeError) as error:  # the effect drove the model out of its range
         return Fit(

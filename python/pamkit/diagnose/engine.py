@@ -347,11 +347,13 @@ def diagnose(
 def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress, threads, seed):
     """Each time series alone, then the causes carried from the others to each (campaign.py)."""
     from pamkit.diagnose.campaign import MIN_TESTS, campaign_of_series
+    from pamkit.diagnose.joint import check_one_muscle
 
     if any(e.is_table for e in tests):
         raise ExperimentError(
             f"{tests[0].path}: a campaign is of one kind: static tables together, or time series together"
         )
+    check_one_muscle(tests)
     report = progress or (lambda message: None)
     diagnoses = []
     for number, test in enumerate(tests, start=1):
@@ -359,4 +361,4 @@ def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress,
         diagnoses.append(diagnose(test, effect_catalog, progress, threads, seed))
     if len(diagnoses) < MIN_TESTS:
         raise ExperimentError(f"{tests[0].path}: a campaign needs at least {MIN_TESTS} tests")
-    return campaign_of_series(diagnoses, effect_catalog, report)
+    return campaign_of_series(diagnoses, effect_catalog, report, threads or 2)

@@ -58,6 +58,10 @@ class Problem:
     def chi(self, predicted: dict[str, np.ndarray], mask: np.ndarray) -> np.ndarray:
         return np.concatenate([((predicted[c] - self.measured[c]) / self.sigma[c])[mask] for c in self.channels])
 
+    def residual_units(self) -> np.ndarray:
+        """The half cycle of each entry of `chi(..., fit_mask)`: the clusters of its intervals."""
+        return np.tile(self.half_cycle[self.fit_mask], len(self.channels))
+
     def chi2_by_channel(self, predicted: dict[str, np.ndarray]) -> dict[str, float]:
         """Sum of squared noise-weighted residuals per channel on the fitted units."""
         return {

@@ -28,16 +28,19 @@ from pamkit._core import (
     MuscleParams,
     Simulator,
     SimulatorConfig,
+    fiber_revolutions_for_braid_angle,
     inflated_and_sealed,
     simulate_measurement,
     simulate_supplied_measurement,
 )
 from pamkit.diagnose.motion import measured_motion, programmed_motion
-from pamkit.io.experiment import Experiment
+from pamkit.io.experiment import BRAID_ANGLE_KEY, Experiment, declared_value
 from pamkit.simulate import initial_length, muscle_params
 from pamkit.units import PASCAL_PER_KILOPASCAL
 
 PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
+# [calibrate] unknowns whose declared range spans more than this ratio are searched on a log scale.
+LOG_SPAN = 20.0
 
 
 def _identity(x: float) -> float:
@@ -119,6 +122,34 @@ def effect_space(effect: Effect) -> list[Coordinate]:
     return [parameter_coordinate(p) for p in effect.parameters() if p.fit_min != p.fit_max]
 
 
+def unknown_coordinate(name: str, bounds: tuple[float, float], experiment: Experiment) -> Coordinate:
+    """The fit coordinate of a `[calibrate]` field (DESIGN.md, "Unknown builds"): its declared
+    bounds are both its search interval and its plausible range; it starts at the declared value
+    when that lies inside, else mid-interval. `name` may carry a test's suffix (`load_N[a]`)."""
+    lower, upper = bounds
+    declared = declared_value(name.split("[", 1)[0], experiment.build, experiment.bladder, experiment.load_N)
+    start = declared if lower < declared < upper else 0.5 * (lower + upper)
+    source = "the [calibrate] bounds the experiment file declares"
+    if lower > 0 and upper / lower > LOG_SPAN:
+        return _log(name, lower, upper, start, (lower, upper), source)
+    return _linear(name, lower, upper, start, (lower, upper), source)
+
+
+def with_unknowns(params: MuscleParams, values: dict[str, float]) -> MuscleParams:
+    """`params` with the `[calibrate]` build and bladder fields in `values` set (other names,
+    such as the baseline's scales, are left to the caller)."""
+    build = params.build
+    for name, value in values.items():
+        if name in type(build).fields():
+            setattr(build, name, value)
+    if BRAID_ANGLE_KEY in values:
+        build.fiber_revolutions = fiber_revolutions_for_braid_angle(build, values[BRAID_ANGLE_KEY])
+    params.build = build
+    if "bladder.shear_modulus_Pa" in values:
+        params.bladder = BladderLaw.neo_hookean(values["bladder.shear_modulus_Pa"])
+    return params
+
+
 def configure(effect: Effect, space: list[Coordinate], x: np.ndarray) -> Effect:
     for coordinate, value in zip(space, x):
         effect.set(coordinate.name, float(coordinate.value(value)))
@@ -127,16 +158,36 @@ def configure(effect: Effect, space: list[Coordinate], x: np.ndarray) -> Effect:
 
 @dataclass
 class Baseline:
-    """Maps baseline coordinates (pressure, friction scale, bladder scale) to model inputs."""
+    """Maps baseline coordinates to model inputs: the inflation pressure (sealed tests), the
+    friction and bladder scales, and the fields `[calibrate]` declares unknown. Names in `fixed`
+    are held at the given values instead of fitted (a campaign's jointly calibrated muscle)."""
 
     experiment: Experiment
+    fixed: dict[str, float] = field(default_factory=dict)
     params: MuscleParams = field(init=False)
     space: list[Coordinate] = field(init=False)
 
     def __post_init__(self):
         self.params = muscle_params(self.experiment)
-        p0 = self.experiment.inflation_pressure_kPa
-        self.space = [
+        self.space = [c for c in self.coordinates(self.experiment) if c.name not in self.fixed]
+
+    @staticmethod
+    def coordinates(experiment: Experiment) -> list[Coordinate]:
+        """Every coordinate a test's baseline may calibrate."""
+        p0 = experiment.inflation_pressure_kPa
+        space = []
+        if experiment.gas == "sealed":
+            space.append(
+                _linear(
+                    "inflation_pressure_kPa",
+                    p0 * (1 - PRESSURE_TOLERANCE),
+                    p0 * (1 + PRESSURE_TOLERANCE),
+                    p0,
+                    (p0 * (1 - PRESSURE_TOLERANCE), p0 * (1 + PRESSURE_TOLERANCE)),
+                    "the declared inflation pressure within the hand-read transducer's 5 %",
+                )
+            )
+        space.append(
             _linear(
                 "friction_scale",
                 0.0,
@@ -145,43 +196,53 @@ class Baseline:
                 (0.1, 10.0),
                 "eqs. 3.1.19-24 with the thesis's coefficients; a tenfold error either way is another "
                 "friction mechanism, not a coefficient",
-            ),
-            _linear(
-                "bladder_scale",
-                0.0,
-                5.0,
-                1.0,
-                (0.33, 3.0),
-                "eqs. 3.1.12-13 fitted to one butyl sample; rubbers of one nominal grade differ in modulus by "
-                "well under 3x",
-            ),
-        ]
-        if self.experiment.gas == "sealed":
-            self.space.insert(
-                0,
-                _linear(
-                    "inflation_pressure_kPa",
-                    p0 * (1 - PRESSURE_TOLERANCE),
-                    p0 * (1 + PRESSURE_TOLERANCE),
-                    p0,
-                    (p0 * (1 - PRESSURE_TOLERANCE), p0 * (1 + PRESSURE_TOLERANCE)),
-                    "the declared inflation pressure within the hand-read transducer's 5 %",
-                ),
             )
+        )
+        if "bladder.shear_modulus_Pa" not in experiment.calibrate:  # the modulus is the scale then
+            space.append(
+                _linear(
+                    "bladder_scale",
+                    0.0,
+                    5.0,
+                    1.0,
+                    (0.33, 3.0),
+                    "eqs. 3.1.12-13 fitted to one butyl sample; rubbers of one nominal grade differ in modulus "
+                    "by well under 3x",
+                )
+            )
+        space += [unknown_coordinate(name, bounds, experiment) for name, bounds in experiment.calibrate.items()]
+        return space
 
     def values(self, x: np.ndarray) -> dict[str, float]:
-        return {c.name: float(c.value(v)) for c, v in zip(self.space, x)}
+        """Every baseline value: the fitted coordinates' and the fixed ones."""
+        return self.fixed | {c.name: float(c.value(v)) for c, v in zip(self.space, x)}
 
     def model_params(self, x: np.ndarray) -> tuple[MuscleParams, float]:
         """Model parameters and inflation pressure [kPa] at baseline coordinates x."""
         values = self.values(x)
-        params = muscle_params(self.experiment)
+        params = with_unknowns(muscle_params(self.experiment), values)
         friction = params.friction
         friction.fiber_fiber_coefficient *= values["friction_scale"]
         friction.fiber_bladder_coefficient *= values["friction_scale"]
         params.friction = friction
-        params.bladder = scaled_law(params.bladder, values["bladder_scale"])
+        params.bladder = scaled_law(params.bladder, values.get("bladder_scale", 1.0))
         return params, values.get("inflation_pressure_kPa", self.experiment.inflation_pressure_kPa)
+
+
+def muscle_signature(params: MuscleParams) -> tuple:
+    """Every number of a MuscleParams that belongs to the muscle, to tell two muscles apart (the
+    room's temperature belongs to the test)."""
+    law = params.bladder
+    gas = {k: v for k, v in params.gas.to_dict().items() if k != "ambient_temperature_K"}
+    return (
+        *(part.to_dict() for part in (params.build, params.friction, params.extensions)),
+        gas,
+        params.gas.process,
+        law.form,
+        *law.longitudinal_Pa,
+        *law.hoop_Pa,
+        law.shear_modulus_Pa,
+    )
 
 
 def scaled_law(law: BladderLaw, scale: float) -> BladderLaw:

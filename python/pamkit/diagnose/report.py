@@ -14,6 +14,7 @@ from pamkit.diagnose.campaign import SeriesCampaign
 from pamkit.diagnose.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Judgement, credited_channels
 from pamkit.diagnose.engine import CHANNEL_UNITS as UNITS
 from pamkit.diagnose.engine import Diagnosis
+from pamkit.diagnose.model import Baseline, muscle_signature
 from pamkit.diagnose.table_fit import TableModel
 from pamkit.diagnose.tables import TableDiagnosis
 from pamkit.plots import save_figure
@@ -57,7 +58,11 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
     baseline_rmse = _heldout_rmse(d, d.baseline)
     named = d.extended_judgement
     report = {
-        "baseline": {"params": d.baseline.params, "rmse": baseline_rmse},
+        "baseline": {
+            "params": d.baseline.params,
+            "intervals": {k: list(v) for k, v in d.baseline.intervals.items()},
+            "rmse": baseline_rmse,
+        },
         "candidates": [
             {
                 "effect": j.fit.name,
@@ -78,6 +83,7 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
         "extended": {
             "effects": [e.name() for e in d.extended.effects],
             "params": {**d.extended.baseline_params, **d.extended.params},
+            "intervals": {k: list(v) for k, v in d.extended.intervals.items()},
             "rmse": _heldout_rmse(d, d.extended),
         },
         "gain": named.score.gain if named else {c: 0.0 for c in p.channels},
@@ -148,6 +154,13 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     decision = d.decision
     baseline_findings = [f.sentence() for f in d.warnings if f.parameter in d.baseline.coordinates]
     bounds = f"; the base model strains to fit: {'; '.join(baseline_findings)}" if baseline_findings else ""
+    unknowns = [name for name in p.experiment.calibrate if name in d.baseline.intervals]
+    if unknowns:
+        bounds += "; calibrated " + ", ".join(
+            f"{name} = {d.baseline.params[name]:.4g} (95 % CI {d.baseline.intervals[name][0]:.4g}–"
+            f"{d.baseline.intervals[name][1]:.4g})"
+            for name in unknowns
+        )
     if decision.cause == "none":
         best = d.candidates[0] if d.candidates else None
         if decision.rejected is not None:
@@ -281,39 +294,24 @@ def write(
         plot(d, plot_path)
 
 
-SERIES_CAMPAIGN_HAS_NO_PARAMS = (
-    "--params-out writes one calibrated muscle; a campaign of time series calibrates each test on its own: "
-    "diagnose the test whose parameters you want"
-)
-
-
-def _muscle_of(params: MuscleParams) -> tuple:
-    """Every number of a MuscleParams, to tell two muscles apart."""
-    law = params.bladder
-    parts = (params.build, params.friction, params.gas, params.extensions)
-    return (
-        *(part.to_dict() for part in parts),
-        params.gas.process,
-        law.form,
-        *law.longitudinal_Pa,
-        *law.hoop_Pa,
-        law.shear_modulus_Pa,
-    )
-
-
-def calibrated_params(d: Diagnosis | TableDiagnosis) -> tuple[MuscleParams, InitialState | None]:
+def calibrated_params(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> tuple[MuscleParams, InitialState | None]:
     """The calibrated baseline as the C++ model's parameters and, for a sealed test, its state at
     zero elongation at the calibrated inflation pressure: what the baseline prediction was
     simulated from (a time series: Baseline.model_params at the fitted coordinates; static tables:
-    TableModel.params with the calibrated unknowns, the same muscle for every table).
+    TableModel.params with the calibrated unknowns, the same muscle for every table; a campaign of
+    time series: the muscle calibrated on all its tests, with no [initial], each test being filled
+    to its own pressure).
 
     Raises:
         ValueError: for tables whose files declare different muscles.
     """
+    if isinstance(d, SeriesCampaign):
+        params, _ = Baseline(d.diagnoses[0].problem.experiment, d.joint.params).model_params(np.array([]))
+        return params, None
     if isinstance(d, TableDiagnosis):
         muscles = [TableModel.params(e, d.baseline.params) for e in d.campaign.experiments]
         for experiment, muscle in zip(d.campaign.experiments[1:], muscles[1:]):
-            if _muscle_of(muscle) != _muscle_of(muscles[0]):
+            if muscle_signature(muscle) != muscle_signature(muscles[0]):
                 raise ValueError(
                     f"--params-out: {experiment.path} declares another muscle than {d.campaign.experiments[0].path} "
                     "(its [muscle], [bladder], [friction] or [gas] differ): diagnose the table whose muscle you want"
@@ -330,14 +328,15 @@ def write_params(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Pat
     include/pamkit/io/params_file.hpp), with an [initial] section for a sealed test.
 
     Raises:
-        ValueError: for a campaign of time series, which calibrates each test on its own, or
-            tables that declare different muscles.
+        ValueError: for tables that declare different muscles.
     """
-    if isinstance(d, SeriesCampaign):
-        raise ValueError(SERIES_CAMPAIGN_HAS_NO_PARAMS)
     params, initial = calibrated_params(d)
-    baseline = ", ".join(f"{name} = {value:.6g}" for name, value in d.baseline.params.items())
-    tests = d.campaign.experiments if isinstance(d, TableDiagnosis) else [d.problem.experiment]
+    values = d.joint.params if isinstance(d, SeriesCampaign) else d.baseline.params
+    baseline = ", ".join(f"{name} = {value:.6g}" for name, value in values.items())
+    if isinstance(d, SeriesCampaign):
+        tests = [diagnosis.problem.experiment for diagnosis in d.diagnoses]
+    else:
+        tests = d.campaign.experiments if isinstance(d, TableDiagnosis) else [d.problem.experiment]
     comment = f"The calibrated baseline of `pamkit diagnose {' '.join(str(e.path) for e in tests)}`: {baseline}."
     if initial is not None:
         comment += (

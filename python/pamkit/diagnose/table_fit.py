@@ -10,10 +10,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
-from pamkit._core import BladderLaw, Effect, MuscleParams, fiber_revolutions_for_braid_angle
-from pamkit.diagnose.model import Coordinate, configure, effect_space
+from pamkit._core import Effect, MuscleParams
+from pamkit.diagnose.model import Coordinate, configure, effect_space, unknown_coordinate, with_unknowns
 from pamkit.diagnose.table_kinds import Campaign, test_names
-from pamkit.io.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, declared_value
+from pamkit.io.experiment import Experiment, ExperimentError
 from pamkit.simulate import muscle_params, simulate_table
 
 # The channels each kind predicts.
@@ -24,8 +24,6 @@ PER_TEST = ("load_N",)
 # Local least squares from the declared values, then from these points of each unknown's
 # interval: the static force is not convex in a braid angle and a modulus together.
 STARTS = (0.25, 0.75)
-# Unknowns whose declared range spans more than this ratio are searched on a log scale.
-LOG_SPAN = 20.0
 
 
 @dataclass
@@ -65,7 +63,7 @@ class TableModel:
                         f"{declared[name][1].path}: a campaign shares its unknowns"
                     )
                 declared.setdefault(name, (bounds, e))
-        self.unknowns = [self._coordinate(name, bounds, e) for name, (bounds, e) in declared.items()]
+        self.unknowns = [unknown_coordinate(name, bounds, e) for name, (bounds, e) in declared.items()]
 
     def unknown_of(self, name: str, experiment: Experiment) -> str:
         """The unknown's name: a test's own unknown (its load) carries the test's name in a campaign."""
@@ -74,31 +72,9 @@ class TableModel:
         index = next(i for i, e in enumerate(self.campaign.experiments) if e is experiment)
         return f"{name}[{self.test_names[index]}]"
 
-    def _coordinate(self, name: str, bounds: tuple[float, float], experiment: Experiment) -> Coordinate:
-        lower, upper = bounds
-        field = name.split("[", 1)[0]
-        declared = declared_value(field, experiment.build, experiment.bladder, experiment.load_N)
-        start = declared if lower < declared < upper else 0.5 * (lower + upper)
-        source = "the [calibrate] bounds the experiment file declares"
-        if lower > 0 and upper / lower > LOG_SPAN:
-            return Coordinate(
-                name, math.log(lower), math.log(upper), math.log(start), math.exp, math.log, (lower, upper), source
-            )
-        return Coordinate(name, lower, upper, start, plausible=(lower, upper), source=source)
-
     @staticmethod
     def params(experiment: Experiment, values: dict[str, float]) -> MuscleParams:
-        params = muscle_params(experiment)
-        build = params.build
-        for name, value in values.items():
-            if name in type(build).fields():
-                setattr(build, name, value)
-        if BRAID_ANGLE_KEY in values:
-            build.fiber_revolutions = fiber_revolutions_for_braid_angle(build, values[BRAID_ANGLE_KEY])
-        params.build = build
-        if "bladder.shear_modulus_Pa" in values:
-            params.bladder = BladderLaw.neo_hookean(values["bladder.shear_modulus_Pa"])
-        return params
+        return with_unknowns(muscle_params(experiment), values)
 
     def predict(self, values: dict[str, float], effects: list[Effect], rows: np.ndarray) -> dict[str, np.ndarray]:
         out = {c: np.empty(len(rows)) for c in PREDICTED[self.kind]}

@@ -105,12 +105,6 @@ def test_simulate_with_the_file_reproduces_the_baseline_prediction(diagnosed, tm
     )
 
 
-def test_params_out_refuses_a_campaign_before_diagnosing(diagnosed, capsys):
-    experiment_path = diagnosed[0]
-    assert main(["diagnose", str(experiment_path), str(experiment_path), "--params-out", "x.toml"]) == 2
-    assert "diagnose the test whose parameters you want" in capsys.readouterr().err
-
-
 def test_a_tables_calibrated_muscle_is_written_and_simulates_as_the_diagnosis_fitted_it(tmp_path, capsys):
     """An isometric map whose build is partly unknown ([calibrate]: braid angle, bladder
     diameter, membrane modulus): the file carries the calibrated values in [build] and [bladder],
