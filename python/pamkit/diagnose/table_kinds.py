@@ -11,8 +11,13 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit._core import pressure_branches
-from pamkit.io.experiment import Experiment, ExperimentError
+from pamkit._core import BraidGeometry, pressure_branches
+from pamkit.diagnose.kinds import LOCKING_ANGLE_DEG
+from pamkit.io.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError
+from pamkit.simulate import muscle_params
+
+# [calibrate] fields that move the braid's reach: with one of them unknown, the reach is too.
+REACH_FIELDS = ("length_m", "diameter_m", "fiber_revolutions", BRAID_ANGLE_KEY, "end_diameter_m", "cone_generator_m")
 
 
 @dataclass
@@ -81,6 +86,47 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
         rows = np.flatnonzero(records == record)
         branch[rows] = pressure_branches(columns["pressure_kPa"][rows])
     return Campaign(experiments, kind, columns, test, groups, labels, name, censored, branch)
+
+
+def beyond_reach(campaign: Campaign) -> list[dict]:
+    """Free-inflation diameters no cylinder of the declared braid can reach: at its locking angle
+    (inflated with no load, a braid approaches it and no further) the braid's diameter is
+    b sin(54.7°) / (n π) for fibre length b and n revolutions, and calipers
+    on the braid add at most its two crossing fibres. Each such test is a warning (a measurement
+    over a bulge, or a build other than the one declared), not a cause to fit."""
+    if campaign.kind != "free_inflation":
+        return []
+    out = []
+    for e in campaign.experiments:
+        if any(field in e.calibrate for field in REACH_FIELDS):
+            continue
+        build = muscle_params(e).build
+        reach = (
+            BraidGeometry(build).fiber_length
+            * math.sin(math.radians(LOCKING_ANGLE_DEG))
+            / (build.fiber_revolutions * math.pi)
+        )
+        reach += 2.0 * build.fiber_thickness_m
+        rows = np.flatnonzero(e.columns["diameter_m"] > reach)
+        if rows.size == 0:
+            continue
+        pressures = ", ".join(f"{e.columns['pressure_kPa'][r]:g}" for r in rows)
+        diameters = ", ".join(f"{1e3 * e.columns['diameter_m'][r]:.4g}" for r in rows)
+        out.append(
+            {
+                "data": "diameter_m",
+                "test": str(e.path),
+                "rows": [int(r) for r in rows],
+                "reach_m": reach,
+                "message": (
+                    f"{e.path}: the diameter at {pressures} kPa ({diameters} mm) exceeds the most a cylinder of the "
+                    f"declared braid reaches ({1e3 * reach:.4g} mm: its locking angle, plus two fibres for the "
+                    "calipers); measured over a bulge, or the braid is not the one declared — no model parameter of "
+                    "this build can fit it"
+                ),
+            }
+        )
+    return out
 
 
 def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:

@@ -130,6 +130,9 @@ def verdict(d: TableDiagnosis) -> str:
             )
             lines.append(f"also: {added['effect']} — held-out gain over {d.cause} alone {more}")
     for w in d.warnings:
+        if "message" in w:  # the data against the declared test
+            lines.append(f"warning: {w['message']}")
+            continue
         where = f"at its bound {w['bound']:.4g}" if w["bound"] is not None else "outside its plausible range"
         lines.append(f"warning: {w['parameter']} = {w['value']:.4g} {where} ({w['source']})")
     return "\n".join(lines)

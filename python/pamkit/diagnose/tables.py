@@ -27,7 +27,7 @@ from pamkit._core import EffectCatalog, EffectStage, GasMode
 from pamkit.diagnose.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE, findings
 from pamkit.diagnose.table_discover import discover_table
 from pamkit.diagnose.table_fit import PREDICTED, Fitter, TableFit, TableModel, fit_table, heldout_rmse
-from pamkit.diagnose.table_kinds import Campaign, campaign_of, noise_of
+from pamkit.diagnose.table_kinds import Campaign, beyond_reach, campaign_of, noise_of
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.io.experiment import Experiment, ExperimentError
 
@@ -204,7 +204,7 @@ def diagnose_table(
                     f"its held-out gain with {added[0]['effect']} beside it is significant, every parameter plausible"
                 )
     extended = chosen.fit if chosen else baseline
-    warnings = _findings(baseline) + (chosen.findings if chosen else [])
+    warnings = beyond_reach(campaign) + _findings(baseline) + (chosen.findings if chosen else [])
     discovered: dict[str, dict] = {}
     if cause == "unexplained":
         progress("looking for what the catalog lacks in the residual (sparse regression)")
