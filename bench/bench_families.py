@@ -16,8 +16,9 @@ files only, as a user would. Per family, the verdicts are counted as
 - error: a non-zero exit or a timeout, with the last line of stderr.
 
 The median decision margin (the smallest of the report's ``decision.margins``) is printed, and the median held-out
-RMSE of the calibrated baseline over the noise for force (F/σ) and pressure (p/σ). Datasets are generated
-into a temporary directory and deleted.
+RMSE of the calibrated baseline over the noise for force (F/σ) and pressure (p/σ); then the seconds per
+diagnosis for each kind of test (sealed cyclic, supplied sweep, table: median, 90th percentile, slowest).
+Datasets are generated into a temporary directory and deleted.
 """
 
 from __future__ import annotations
@@ -32,6 +33,8 @@ import time
 from collections import Counter
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
+
+import tomllib
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
@@ -113,6 +116,28 @@ def classify(expected: str, outcome: dict, present: tuple[str, ...] = ()) -> dic
     return row
 
 
+def kind_of(toml: Path) -> str:
+    """What kind of test a dataset is, as its file declares it: a time series by its gas (sealed
+    cyclic, supplied sweep), a table by its kind."""
+    test = tomllib.loads(toml.read_text()).get("test", {})
+    kind = test.get("kind", "series")
+    return f"{kind} ({test.get('gas', 'sealed')})" if kind == "series" else kind
+
+
+def timing_by_kind(rows: list[dict]) -> dict:
+    """Seconds per diagnosis for each kind of test: median, 90th percentile and slowest."""
+    out = {}
+    for kind in sorted({r["kind"] for r in rows}):
+        seconds = sorted(r["seconds"] for r in rows if r["kind"] == kind)
+        out[kind] = {
+            "datasets": len(seconds),
+            "median_seconds": statistics.median(seconds),
+            "p90_seconds": seconds[min(len(seconds) - 1, int(0.9 * len(seconds)))],
+            "slowest_seconds": seconds[-1],
+        }
+    return out
+
+
 def summarise(rows: list[dict]) -> dict:
     counts = Counter(r["outcome"] for r in rows)
     margins = [r["margin"] for r in rows if r.get("margin") is not None]
@@ -172,6 +197,7 @@ def main() -> int:
                 "seed": seed,
                 "expected": dataset.expected,
                 "truth": dataset.truth,
+                "kind": kind_of(dataset.experiment),
                 "seconds": outcome["seconds"],
                 **classify(dataset.expected, outcome, dataset.present),
             }
@@ -212,9 +238,17 @@ def main() -> int:
         f"{'all':28s} {'':14s} {total['datasets']:2d} {total['right']:5d} {total['honest']:6d} {total['wrong']:5d} "
         f"{total['none_with_structure']:8d} {total['errors']:3d}"
     )
+    timing = timing_by_kind(rows)
+    print(f"\n{'kind':22s} {'n':>3s} {'median s':>8s} {'p90 s':>6s} {'slowest s':>9s}")
+    for kind, t in timing.items():
+        print(
+            f"{kind:22s} {t['datasets']:3d} {t['median_seconds']:8.1f} {t['p90_seconds']:6.1f} "
+            f"{t['slowest_seconds']:9.1f}"
+        )
     if arguments.json:
         Path(arguments.json).write_text(
-            json.dumps({"table": table, "total": dict(total), "rows": rows}, indent=2, default=float) + "\n"
+            json.dumps({"table": table, "total": dict(total), "timing": timing, "rows": rows}, indent=2, default=float)
+            + "\n"
         )
     return 0
 

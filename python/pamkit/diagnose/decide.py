@@ -21,6 +21,10 @@ The rules (DESIGN.md, "The diagnosis report"; issue "Diagnosis decisions"):
 4. With no significant candidate the cause is "none" only if every channel's held-out RMSE is
    within NONE_WITHIN_NOISE of its noise; otherwise "unexplained".
 5. Every decision carries its margin: how far the deciding number is from its threshold.
+6. A credible best is named only when it beats every other significant, credible candidate on
+   the same bootstrap draws (the paired difference of combined held-out gains, its 95 % interval
+   above zero; margin `over_rival`). Otherwise two mechanisms explain the data alike, and naming
+   either would be a guess: "unexplained", the verdict naming both.
 """
 
 from __future__ import annotations
@@ -67,6 +71,9 @@ class Score:
     delta_bic: float
     credited_gain: float  # over the channels the fit's effects change only
     credited_ci95: list[float]
+    # the combined gain on each bootstrap draw; every candidate's draws are the same units
+    # (one seed), so two candidates' samples pair up
+    combined_samples: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
 
 
 def _gain(sse_fit: float, sse_base: float) -> float:
@@ -120,14 +127,15 @@ def score(problem: Problem, baseline: Fit, fit: Fit, rng: np.random.Generator) -
         return (
             _gain((w * sse_fit).sum(), (w * sse_base).sum()),
             [float(np.percentile(boot, 2.5)), float(np.percentile(boot, 97.5))],
+            boot,
         )
 
-    combined, combined_ci = combined_with(weights)
-    credited_gain, credited_ci = combined_with(credited_weights)
+    combined, combined_ci, samples = combined_with(weights)
+    credited_gain, credited_ci, _ = combined_with(credited_weights)
     n_fit = int(problem.fit_mask.sum()) * len(problem.channels)
     delta_chi2 = sum(fit.training_chi2[c] - baseline.training_chi2[c] for c in problem.channels)
     delta_bic = delta_chi2 + (fit.parameter_count - baseline.parameter_count) * math.log(n_fit)
-    return Score(rmse, gain, gain_ci, combined, combined_ci, float(delta_bic), credited_gain, credited_ci)
+    return Score(rmse, gain, gain_ci, combined, combined_ci, float(delta_bic), credited_gain, credited_ci, samples)
 
 
 def significant(s: Score) -> bool:
@@ -335,6 +343,16 @@ def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision
         runner = next((j for j in judged if j is not best), None)
         if runner is not None:
             margins["over_runner_up"] = best.score.combined_gain - runner.score.combined_gain
+        rival = next((j for j in judged if j is not best and j.significant and j.credible), None)
+        if best.credible and rival is not None:
+            low, high = np.percentile(best.score.combined_samples - rival.score.combined_samples, [2.5, 97.5])
+            margins["over_rival"] = float(low)
+            if low <= 0.0:  # rule 6: the data cannot tell the two apart
+                best.objections.append(
+                    f"{rival.fit.name} explains the held-out units as well (gain {rival.score.combined_gain:.3f} "
+                    f"against {best.score.combined_gain:.3f}; the difference's 95 % interval [{low:.3f}, {high:.3f}] "
+                    "holds zero): the data do not tell the two apart"
+                )
         if best.credible:
             left = structured(problem, best.fit, NONE_WITHIN_NOISE)
             return Decision(best.fit.effects[0].name(), best, None, margins, left)
