@@ -12,10 +12,10 @@ import pytest
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[3]))
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
 
-from independent.families import independent_leak, sealed_test  # noqa: E402 (needs the path above)
+from independent.families import independent_leak, isometric_sweep, sealed_test  # noqa: E402 (needs the path above)
 from independent.physics import Physics  # noqa: E402
 
-from pamkit import read_muscle_params_file  # noqa: E402
+from pamkit import deflated_braid_angle_deg, read_muscle_params_file  # noqa: E402
 from pamkit.diagnose import diagnose, verdict  # noqa: E402
 from pamkit.diagnose.campaign import campaign_of_series  # noqa: E402
 from pamkit.diagnose.joint import DISAGREES  # noqa: E402
@@ -164,3 +164,20 @@ def test_a_campaign_of_two_declared_muscles_is_refused_before_any_fit(tmp_path):
     (tmp_path / "b.toml").write_text("[muscle]\nlength_m = 0.3\n" + test)
     with pytest.raises(ExperimentError, match="b.toml: declares another muscle than .*a.toml"):
         diagnose([tmp_path / "a.toml", tmp_path / "b.toml"])
+
+
+def test_isometric_sweeps_at_three_held_lengths_calibrate_an_unknown_braid_angle(tmp_path):
+    """A commercial muscle's way: three supplied-pressure sweeps of the independent model, each
+    at its own held length, the braid angle unknown in [15, 45] deg. The shared calibration gives
+    back the independent braid's 31.2 deg (measured: 31.33 [30.98, 31.69]); a degree bounds it,
+    the geometric closeness of the two implementations' ideal cylinders."""
+    paths = []
+    for seed in (1, 2, 3):
+        path = isometric_sweep(seed, tmp_path / f"iso_{seed}").experiment
+        path.write_text(path.read_text() + "\n[calibrate]\nbraid_angle_deg = [15.0, 45.0]\n")
+        paths.append(path)
+    truth = deflated_braid_angle_deg(load_tests(paths[0])[0].build)
+    c = diagnose(paths, threads=2)
+    angle = c.joint.params["braid_angle_deg"]
+    low, high = c.joint.intervals["braid_angle_deg"]
+    assert abs(angle - truth) < 1.0 and low < angle < high and high - low < 2.0, verdict(c)
