@@ -144,7 +144,14 @@ def _joint_json(j: JointFit) -> dict:
         "params": j.params,
         "intervals": {k: list(v) for k, v in j.intervals.items()},
         "per_test": [
-            {"test": s.test, "params": s.own, "rmse_ratio": s.rmse_ratio, "alone": s.alone, "disagrees": s.disagrees}
+            {
+                "test": s.test,
+                "params": s.own,
+                "rmse_ratio": s.rmse_ratio,
+                "carried_rmse_ratio": s.carried_ratio,
+                "alone": s.alone,
+                "disagrees": s.disagrees,
+            }
             for s in j.shares
         ],
     }
@@ -185,6 +192,12 @@ def verdict(c: SeriesCampaign) -> str:
     lines.append(f"  one muscle calibrated on every test: {_shared(c.joint)}")
     if c.extended:
         lines.append(f"  with {c.cause}, shared by every test: {_shared(c.extended)}")
+    final = c.extended or c.joint
+    ratios = ", ".join(f"{s.test} {s.carried_ratio:.2f}" for s in final.shares)
+    lines.append(
+        f"  that muscle fitted without each test predicts its held-out units at {ratios} times the error of "
+        "the test's own fit"
+    )
     lines += [f"  the shared muscle {f.sentence()}" for f in c.warnings]
     for s in (c.extended or c.joint).shares:
         if s.disagrees:

@@ -46,6 +46,9 @@ class TestShare:
     own: dict[str, float]  # the test's own coordinates, fitted with the shared muscle
     rmse_ratio: float  # noise-weighted RMSE on its fitted units, shared / alone
     alone: dict[str, float]  # the shared values as the test fitted them by itself
+    # noise-weighted RMSE on its held-out units, the shared values fitted without this test
+    # (leave_one_test_out) / its own fit's
+    carried_ratio: float
 
     @property
     def disagrees(self) -> bool:
@@ -150,8 +153,14 @@ def calibrate_jointly(
         if name not in PER_TEST
     }
     x = unit_to_x(shared, u[: len(shared)])
+    carried = leave_one_test_out(jacobian, result.fun, rows, offsets, u, len(shared))
     shares = []
     for k, a in enumerate(alone):
+        problem = problems[k]
+        held = np.sqrt(
+            np.mean(problem.chi(problem.predictor.predict(*model(problem, carried[k], k)), problem.held_mask) ** 2)
+        )
+        own_held = np.sqrt(np.mean(problem.chi(a.predicted, problem.held_mask) ** 2))
         misfit = result.fun[rows[k] : rows[k + 1]]
         alone_rms = np.sqrt(sum(a.training_chi2.values()) / max(sizes[k], 1))
         mine = unit_to_x(own[k], u[offsets[k] : offsets[k + 1]])
@@ -161,6 +170,7 @@ def calibrate_jointly(
                 {c.name: float(c.value(v)) for c, v in zip(own[k], mine)},
                 float(np.sqrt(np.mean(misfit**2)) / alone_rms) if alone_rms > 0 else float("inf"),
                 {c.name: fitted[k][c.name] for c in shared},
+                float(held / own_held) if own_held > 0 else float("inf"),
             )
         )
     return JointFit(
@@ -170,3 +180,21 @@ def calibrate_jointly(
         shares,
         evaluations,
     )
+
+
+def leave_one_test_out(
+    jacobian: np.ndarray, residual: np.ndarray, rows: np.ndarray, offsets: np.ndarray, u: np.ndarray, n_shared: int
+) -> list[np.ndarray]:
+    """Each test's coordinates with the shared ones refitted without that test's rows: one
+    Gauss-Newton step from the joint solution (the approximate leave-one-out of least squares),
+    u₋ₖ = u + (JᵀJ − JₖᵀJₖ)⁺ Jₖᵀ rₖ, in the unit box; the test's own coordinates keep their joint
+    values (they are fitted on its fitted units, which the held-out units are not)."""
+    out = []
+    normal = jacobian.T @ jacobian
+    for k in range(len(rows) - 1):
+        block = jacobian[rows[k] : rows[k + 1]]
+        step = np.linalg.pinv(normal - block.T @ block) @ (block.T @ residual[rows[k] : rows[k + 1]])
+        moved = u.copy()
+        moved[:n_shared] = np.clip(u[:n_shared] + step[:n_shared], 0.0, 1.0)
+        out.append(moved)
+    return out

@@ -7,6 +7,7 @@ import os
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[3]))
@@ -18,7 +19,7 @@ from independent.physics import Physics  # noqa: E402
 from pamkit import deflated_braid_angle_deg, read_muscle_params_file  # noqa: E402
 from pamkit.diagnose import diagnose, verdict  # noqa: E402
 from pamkit.diagnose.campaign import campaign_of_series  # noqa: E402
-from pamkit.diagnose.joint import DISAGREES  # noqa: E402
+from pamkit.diagnose.joint import DISAGREES, calibrate_jointly  # noqa: E402
 from pamkit.diagnose.report import write, write_params  # noqa: E402
 from pamkit.effects import catalog  # noqa: E402
 from pamkit.io.experiment import ExperimentError, load_tests  # noqa: E402
@@ -181,3 +182,21 @@ def test_isometric_sweeps_at_three_held_lengths_calibrate_an_unknown_braid_angle
     angle = c.joint.params["braid_angle_deg"]
     low, high = c.joint.intervals["braid_angle_deg"]
     assert abs(angle - truth) < 1.0 and low < angle < high and high - low < 2.0, verdict(c)
+
+
+def test_the_one_step_leave_one_test_out_agrees_with_refitting_without_the_test(unknown_braid):
+    """joint.leave_one_test_out against the exact refit: the shared muscle calibrated on the
+    other two tests, this test's own inflation pressure kept, its held-out units predicted. A
+    Gauss-Newton step is exact for a linear model; near this solution the model is nearly
+    linear (measured agreement 0.05-0.13 %), so 1 % bounds it."""
+    c, _ = unknown_braid
+    problems = [d.problem for d in c.diagnoses]
+    alone = [d.baseline for d in c.diagnoses]
+    for k, problem in enumerate(problems):
+        others = [i for i in range(len(problems)) if i != k]
+        refit = calibrate_jointly([problems[i] for i in others], [alone[i] for i in others], ["a", "b"])
+        values = {**refit.params, **c.joint.shares[k].own}
+        x = np.array([coordinate.of(values[coordinate.name]) for coordinate in problem.predictor.baseline.space])
+        held = np.sqrt(np.mean(problem.chi(problem.predictor.predict(x, []), problem.held_mask) ** 2))
+        own = np.sqrt(np.mean(problem.chi(alone[k].predicted, problem.held_mask) ** 2))
+        assert c.joint.shares[k].carried_ratio == pytest.approx(held / own, rel=0.01)
