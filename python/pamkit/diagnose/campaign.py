@@ -25,7 +25,7 @@ import numpy as np
 from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.decide import MIN_GAIN, Finding, findings, score
 from pamkit.diagnose.engine import Diagnosis
-from pamkit.diagnose.joint import JointFit, calibrate_jointly
+from pamkit.diagnose.joint import DISAGREES, JointFit, calibrate_jointly
 from pamkit.diagnose.table_kinds import test_names
 from pamkit.plots import save_figure
 
@@ -215,26 +215,59 @@ def verdict(c: SeriesCampaign) -> str:
 
 
 def plot(c: SeriesCampaign, path: str | Path) -> Path:
-    """Each effect some test named, carried to each test from the others: its held-out gain with
-    the 95 % interval, against MIN_GAIN."""
+    """Three panels, test by test: each effect some test named, carried to the test from the
+    others (held-out gain with its 95 % interval, against MIN_GAIN); how the one shared muscle
+    fits the test against its own fit (fitted units, and held-out units with the muscle fitted
+    without the test, against DISAGREES); and each shared value as the test fitted it alone,
+    relative to the shared value and its interval."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    figure, axis = plt.subplots(figsize=(7.5, 4.2))
+    figure, (carried, shared, values) = plt.subplots(3, 1, figsize=(7.5, 9.6))
+    positions = np.arange(len(c.tests))
     labels = list(c.transfers)
     width = 0.8 / max(len(labels), 1)
     for i, label in enumerate(labels):
         gains = np.array([x.gain for x in c.transfers[label]])
         low = gains - np.array([x.gain_ci95[0] for x in c.transfers[label]])
         high = np.array([x.gain_ci95[1] for x in c.transfers[label]]) - gains
-        axis.bar(np.arange(len(c.tests)) + i * width, gains, width, yerr=[low, high], capsize=3, label=label)
-    axis.axhline(MIN_GAIN, color="k", lw=0.8, ls=":", label=f"MIN_GAIN {MIN_GAIN}")
-    axis.set_xticks(np.arange(len(c.tests)) + 0.4 - width / 2, c.tests)
-    axis.set_ylabel("held-out gain, parameters from the other tests")
-    axis.set_title(f"campaign: cause {c.cause}", fontsize=9)
-    axis.grid(alpha=0.3, axis="y")
-    axis.legend(fontsize=7)
+        carried.bar(positions + i * width, gains, width, yerr=[low, high], capsize=3, label=label)
+    carried.axhline(MIN_GAIN, color="k", lw=0.8, ls=":", label=f"MIN_GAIN {MIN_GAIN}")
+    if not labels:
+        carried.text(0.5, 0.5, "no test named a cause its own", ha="center", va="center", transform=carried.transAxes)
+    carried.set_xticks(positions + (0.4 - width / 2 if labels else 0.0), c.tests)
+    carried.set_ylabel("held-out gain,\nparameters from the other tests")
+    carried.set_title(f"campaign: cause {c.cause}", fontsize=9)
+    carried.legend(fontsize=7)
+
+    joint = c.extended or c.joint
+    model = f"the shared muscle{f' with {c.cause}' if c.extended else ''}"
+    shared.bar(positions - 0.2, [s.rmse_ratio for s in joint.shares], 0.4, label="fitted units, all tests")
+    shared.bar(positions + 0.2, [s.carried_ratio for s in joint.shares], 0.4, label="held-out units, fitted without it")
+    shared.axhline(1.0, color="k", lw=0.8)
+    shared.axhline(DISAGREES, color="C3", lw=0.8, ls=":", label=f"disagrees above {DISAGREES:g}")
+    shared.set_xticks(positions, c.tests)
+    shared.set_ylabel(f"RMSE of {model}\n/ the test's own fit")
+    shared.legend(fontsize=7)
+
+    names = list(joint.params)
+    step = 0.8 / max(len(names), 1)
+    for i, name in enumerate(names):
+        value = joint.params[name]
+        if value == 0.0:
+            continue
+        low, high = joint.intervals[name]
+        x = positions - 0.4 + (i + 0.5) * step
+        band = [[1.0 - low / value] * len(x), [high / value - 1.0] * len(x)]
+        values.errorbar(x, np.ones(len(x)), yerr=band, fmt="none", color=f"C{i}", alpha=0.4, lw=6)
+        values.plot(x, [s.alone[name] / value for s in joint.shares], "o", color=f"C{i}", label=name)
+    values.axhline(1.0, color="k", lw=0.8)
+    values.set_xticks(positions, c.tests)
+    values.set_ylabel("each test alone / shared value\n(bar: the shared 95 % interval)")
+    values.legend(fontsize=7)
+    for axis in (carried, shared, values):
+        axis.grid(alpha=0.3, axis="y")
     figure.tight_layout()
     return save_figure(figure, path)
