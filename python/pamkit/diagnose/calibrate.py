@@ -65,29 +65,25 @@ def least_squares_in_box(residual, u0: np.ndarray, max_evaluations: int, **optio
     )
 
 
-def solve(residual, u0: np.ndarray, max_evaluations: int) -> np.ndarray:
-    return least_squares_in_box(residual, u0, max_evaluations).x
-
-
 def cluster_intervals(
     space: list[Coordinate], u: np.ndarray, jacobian: np.ndarray, residual: np.ndarray, clusters: np.ndarray
-) -> dict[str, tuple[float, float]]:
+) -> list[tuple[float, float]]:
     """95 % intervals of fitted values from the least-squares Jacobian at the solution, with the
     covariance clustered by unit (the sandwich (JᵀJ)⁻¹ (Σ_g J_gᵀ r_g r_gᵀ J_g) (JᵀJ)⁻¹ · G/(G−1)):
     residuals correlated within a half cycle do not shrink the interval as if independent.
-    `clusters` gives each residual's unit."""
+    `clusters` gives each residual's unit. One interval per coordinate of `space`, in its order."""
     bread = np.linalg.pinv(jacobian.T @ jacobian)
     labels = np.unique(clusters)
     scores = np.array([jacobian[clusters == g].T @ residual[clusters == g] for g in labels])
     meat = scores.T @ scores * len(labels) / max(len(labels) - 1, 1)
     sd_u = np.sqrt(np.clip(np.diag(bread @ meat @ bread), 0.0, None))
-    out = {}
+    out = []
     for c, ui, sd in zip(space, u, sd_u):
         # Within the search interval: a scale cannot go below zero because its interval is wide.
         ends = [
             c.value(c.lower + np.clip(ui + sign * 1.96 * sd, 0.0, 1.0) * (c.upper - c.lower)) for sign in (-1.0, 1.0)
         ]
-        out[c.name] = (float(min(ends)), float(max(ends)))
+        out.append((float(min(ends)), float(max(ends))))
     return out
 
 
@@ -118,7 +114,8 @@ def fit_baseline(problem: Problem) -> Fit:
 
     result = least_squares_in_box(residual, start_unit(space), 20 * (len(space) + 1))
     u, x = result.x, unit_to_x(space, result.x)
-    intervals = cluster_intervals(space, u, result.jac, result.fun, problem.residual_units())
+    bands = cluster_intervals(space, u, result.jac, result.fun, problem.residual_units())
+    intervals = {c.name: band for c, band in zip(space, bands)}
     predicted = problem.predictor.predict(x, [])
     values = problem.predictor.baseline.values(x)
     return Fit(

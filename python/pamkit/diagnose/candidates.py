@@ -24,7 +24,6 @@ from pamkit.diagnose.calibrate import (
     cluster_intervals,
     least_squares_in_box,
     penalty,
-    solve,
     start_unit,
     unit_to_x,
     x_to_unit,
@@ -148,11 +147,12 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
         params.update(effect.options())
         coordinates = {} if measurement_only else baseline_coordinates(problem, base_x)
         coordinates.update(_effect_coordinates(effect, space, effect_x))
-        intervals = (
+        bands = (
             cluster_intervals(fitted_space, u, result.jac, result.fun, problem.residual_units())
             if result is not None
-            else {}
+            else []
         )
+        intervals = {c.name: band for c, band in zip(fitted_space, bands)}
         # A measurement effect keeps the calibrated baseline: counted as one model with it.
         total = count + (len(base_space) if measurement_only else 0)
         return Fit(
@@ -221,7 +221,8 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
         chi2 = float(np.sum(residual(u) ** 2))
         if chi2 < best_chi2:
             best_u, best_chi2 = u, chi2
-    u = solve(residual, best_u, 10 * (len(start) + 1))
+    result = least_squares_in_box(residual, best_u, 10 * (len(start) + 1))
+    u = result.x
     try:
         predicted = predict(u)
     except (ValueError, RuntimeError) as error:
@@ -233,6 +234,9 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
         params.update({f"{effect.name()}.{c.name}": float(c.value(v)) for c, v in zip(space, x)})
         params.update({f"{effect.name()}.{k}": v for k, v in effect.options().items()})
         coordinates.update(_effect_coordinates(effect, space, x, prefix=f"{effect.name()}."))
+    names = [c.name for c in base_space] + [f"{e.name()}.{c.name}" for e, space in zip(effects, spaces) for c in space]
+    bands = cluster_intervals(base_space + spaces[0] + spaces[1], u, result.jac, result.fun, problem.residual_units())
+    intervals = dict(zip(names, bands))
     return Fit(
         label,
         effects,
@@ -244,4 +248,5 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
         evaluations,
         baseline_params=problem.predictor.baseline.values(base_x),
         coordinates=coordinates,
+        intervals=intervals,
     )

@@ -146,12 +146,9 @@ def calibrate_jointly(
         [np.tile(p.half_cycle[p.fit_mask], len(p.channels)) + 1_000_000 * k for k, p in enumerate(problems)]
     )
     jacobian = result.jac.toarray() if hasattr(result.jac, "toarray") else result.jac
-    every = shared + [c for o in own for c in o]  # the tests' own coordinates share names: kept out below
-    intervals = {
-        name: interval
-        for name, interval in cluster_intervals(every, u, jacobian, result.fun, clusters).items()
-        if name not in PER_TEST
-    }
+    every = shared + [c for o in own for c in o]  # the shared coordinates come first
+    bands = cluster_intervals(every, u, jacobian, result.fun, clusters)
+    intervals = {c.name: band for c, band in zip(shared, bands)}
     x = unit_to_x(shared, u[: len(shared)])
     carried = leave_one_test_out(jacobian, result.fun, rows, offsets, u, len(shared))
     shares = []
