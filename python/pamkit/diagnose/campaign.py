@@ -133,8 +133,16 @@ def campaign_of_series(diagnoses: list[Diagnosis], catalog, progress=None, threa
             [f[cause] for f in fits],
             names,
             threads,
-            make_effect=lambda: catalog.parse(cause),
+            effect=(cause, lambda label=cause: catalog.parse(label)),
         )
+        shared_baseline = set(joint.params)
+        implausible = [f for f in findings(extended) if f.parameter not in shared_baseline]
+        if implausible:  # a cause is never named with a parameter at a bound or implausible
+            reason = (
+                f"{cause} carries to every test, but fitted on all of them at once "
+                f"{'; '.join(f.sentence() for f in implausible)}"
+            )
+            cause = "unexplained"
     warnings = findings(joint) + (findings(extended) if extended else [])
     return SeriesCampaign(paths, names, diagnoses, transfers, cause, reason, joint, extended, warnings)
 
@@ -174,7 +182,7 @@ def to_json(c: SeriesCampaign, test_report) -> dict:
         "cause": c.cause,
         "reason": c.reason,
         "baseline": _joint_json(c.joint),
-        "extended": ({"effects": [c.cause], **_joint_json(c.extended)} if c.extended else None),
+        "extended": ({"effects": [c.extended.effect], **_joint_json(c.extended)} if c.extended else None),
         "warnings": [f.to_json() for f in c.warnings],
         "carried": {
             label: [
@@ -191,7 +199,7 @@ def verdict(c: SeriesCampaign) -> str:
     lines = [f"campaign of {len(c.tests)} tests, each held out in turn: cause {c.cause} — {c.reason}"]
     lines.append(f"  one muscle calibrated on every test: {_shared(c.joint)}")
     if c.extended:
-        lines.append(f"  with {c.cause}, shared by every test: {_shared(c.extended)}")
+        lines.append(f"  with {c.extended.effect}, shared by every test: {_shared(c.extended)}")
     final = c.extended or c.joint
     ratios = ", ".join(f"{s.test} {s.carried_ratio:.2f}" for s in final.shares)
     lines.append(
@@ -243,7 +251,7 @@ def plot(c: SeriesCampaign, path: str | Path) -> Path:
     carried.legend(fontsize=7)
 
     joint = c.extended or c.joint
-    model = f"the shared muscle{f' with {c.cause}' if c.extended else ''}"
+    model = f"the shared muscle{f' with {c.extended.effect}' if c.extended else ''}"
     shared.bar(positions - 0.2, [s.rmse_ratio for s in joint.shares], 0.4, label="fitted units, all tests")
     shared.bar(positions + 0.2, [s.carried_ratio for s in joint.shares], 0.4, label="held-out units, fitted without it")
     shared.axhline(1.0, color="k", lw=0.8)

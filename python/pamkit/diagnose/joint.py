@@ -7,7 +7,8 @@ how that test was filled). The residual is every test's fitted units side by sid
 coordinate moves only its own rows, which SciPy's sparse finite differences exploit (all tests'
 own columns in one evaluation). Then each test is compared with its calibration alone: a muscle
 that fits each test by itself but not all of them together is a structural misfit the report
-names (a bladder that seems stiffer at one held length than at another).
+names (a bladder that seems stiffer at one held length than at another). And each test is held
+out whole: the shared values refitted without it (leave_one_test_out) predict its held-out units.
 """
 
 from __future__ import annotations
@@ -64,6 +65,7 @@ class JointFit:
     coordinates: dict[str, tuple[Coordinate, float]]  # for the bound and plausibility findings
     shares: list[TestShare]
     evaluations: int
+    effect: str | None = None  # the shared effect's label, when there is one
 
 
 def check_one_muscle(experiments: list[Experiment]) -> None:
@@ -89,11 +91,13 @@ def shared_space(problems: list[Problem]) -> list[Coordinate]:
 
 
 def calibrate_jointly(
-    problems: list[Problem], alone: list[Fit], names: list[str], threads: int = 2, make_effect=None
+    problems: list[Problem], alone: list[Fit], names: list[str], threads: int = 2, effect=None
 ) -> JointFit:
-    """The shared muscle (and, with `make_effect`, the shared effect's parameters) and each test's
-    own coordinates, fitted on every test's fitted units. `alone` holds each test's own fit of the
-    same model (its calibrated baseline, or its fit of the effect), to start from and compare with."""
+    """The shared muscle (and, with `effect` = (label, factory), the shared effect's parameters)
+    and each test's own coordinates, fitted on every test's fitted units. `alone` holds each test's
+    own fit of the same model (its calibrated baseline, or its fit of the effect), to start from
+    and compare with."""
+    label, make_effect = effect if effect is not None else (None, None)
     base_shared = shared_space(problems)
     effect_coordinates = effect_space(make_effect()) if make_effect is not None else []
     shared = base_shared + effect_coordinates
@@ -150,7 +154,7 @@ def calibrate_jointly(
     bands = cluster_intervals(every, u, jacobian, result.fun, clusters)
     intervals = {c.name: band for c, band in zip(shared, bands)}
     x = unit_to_x(shared, u[: len(shared)])
-    carried = leave_one_test_out(jacobian, result.fun, rows, offsets, u, len(shared))
+    carried = leave_one_test_out(jacobian, result.fun, rows, u, len(shared))
     shares = []
     for k, a in enumerate(alone):
         problem = problems[k]
@@ -176,11 +180,12 @@ def calibrate_jointly(
         {c.name: (c, float(v)) for c, v in zip(shared, x)},
         shares,
         evaluations,
+        label,
     )
 
 
 def leave_one_test_out(
-    jacobian: np.ndarray, residual: np.ndarray, rows: np.ndarray, offsets: np.ndarray, u: np.ndarray, n_shared: int
+    jacobian: np.ndarray, residual: np.ndarray, rows: np.ndarray, u: np.ndarray, n_shared: int
 ) -> list[np.ndarray]:
     """Each test's coordinates with the shared ones refitted without that test's rows: one
     Gauss-Newton step from the joint solution (the approximate leave-one-out of least squares),

@@ -200,3 +200,22 @@ def test_the_one_step_leave_one_test_out_agrees_with_refitting_without_the_test(
         held = np.sqrt(np.mean(problem.chi(problem.predictor.predict(x, []), problem.held_mask) ** 2))
         own = np.sqrt(np.mean(problem.chi(alone[k].predicted, problem.held_mask) ** 2))
         assert c.joint.shares[k].carried_ratio == pytest.approx(held / own, rel=0.01)
+
+
+def test_a_cause_whose_shared_parameter_ends_at_a_bound_is_not_named(unknown_braid, monkeypatch):
+    """The rule's wiring: the heat campaign, with the shared time constant reported at its search
+    bound (as a fit that strains would end), comes back unexplained and says why."""
+    import pamkit.diagnose.campaign as campaign
+    from pamkit.diagnose.decide import Finding
+
+    c, _ = unknown_braid
+    real = campaign.findings
+
+    def at_bound(fit):
+        extra = [Finding("time_constant_s", 100.0, 100.0, [0.5, 20.0], "test")] if fit.effect else []
+        return real(fit) + extra
+
+    monkeypatch.setattr(campaign, "findings", at_bound)
+    strained = campaign_of_series(c.diagnoses, catalog())
+    assert strained.cause == "unexplained" and "time_constant_s = 100 ended at its search bound" in strained.reason
+    assert strained.extended.effect == "heat_transfer"
