@@ -37,6 +37,9 @@ class Fit:
     coordinates: dict[str, tuple[Coordinate, float]] = field(default_factory=dict)
     # 95 % intervals of the fitted baseline values (cluster_intervals), where computed
     intervals: dict[str, tuple[float, float]] = field(default_factory=dict)
+    # per coordinate at a bound: (value the fit would reach without the bound, fitted-RMSE drop
+    # there), where computed (strain_at_bounds)
+    strain: dict[str, tuple[float, float]] = field(default_factory=dict)
 
 
 def unit_to_x(space: list[Coordinate], u: np.ndarray) -> np.ndarray:
@@ -87,6 +90,24 @@ def cluster_intervals(
     return out
 
 
+def strain_at_bounds(
+    space: list[Coordinate], u: np.ndarray, jacobian: np.ndarray, residual: np.ndarray
+) -> dict[str, tuple[float, float]]:
+    """How much a fit strains against the bounds it ended at: one Gauss-Newton step from the
+    solution with the bounds lifted, δ = −(JᵀJ)⁺ Jᵀ r, gives where each coordinate at a bound
+    would go and, to first order, the fitted RMSE there, 1 − |r + J δ| / |r| lower. Only
+    coordinates the step pushes further past their bound are reported."""
+    step = -np.linalg.pinv(jacobian.T @ jacobian) @ (jacobian.T @ residual)
+    norm = float(np.linalg.norm(residual))
+    drop = 1.0 - float(np.linalg.norm(residual + jacobian @ step)) / norm if norm > 0 else 0.0
+    out = {}
+    for c, ui, di in zip(space, u, step):
+        side = c.at_bound(c.lower + ui * (c.upper - c.lower))
+        if (side == "lower" and di < 0) or (side == "upper" and di > 0):
+            out[c.name] = (float(c.value(c.lower + (ui + di) * (c.upper - c.lower))), drop)
+    return out
+
+
 def penalty(problem: Problem, scale: float) -> np.ndarray:
     """The residual of parameters that drive the model out of its range (a braid stretched
     past its fibers' length, a root not bracketed): a bad fit, not a failed diagnosis."""
@@ -116,6 +137,7 @@ def fit_baseline(problem: Problem) -> Fit:
     u, x = result.x, unit_to_x(space, result.x)
     bands = cluster_intervals(space, u, result.jac, result.fun, problem.residual_units())
     intervals = {c.name: band for c, band in zip(space, bands)}
+    strain = strain_at_bounds(space, u, result.jac, result.fun)
     predicted = problem.predictor.predict(x, [])
     values = problem.predictor.baseline.values(x)
     return Fit(
@@ -130,4 +152,5 @@ def fit_baseline(problem: Problem) -> Fit:
         baseline_params=values,
         coordinates=baseline_coordinates(problem, x),
         intervals=intervals,
+        strain=strain,
     )

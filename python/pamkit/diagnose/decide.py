@@ -177,6 +177,10 @@ class Finding:
     bound: float | None
     plausible: list[float]
     source: str
+    # at a bound: where the fit would take the parameter without it, and how much lower the
+    # fitted RMSE would be there (calibrate.strain_at_bounds), when known
+    beyond: float | None = None
+    rmse_drop: float | None = None
 
     def to_json(self) -> dict:
         return {
@@ -185,11 +189,19 @@ class Finding:
             "bound": self.bound,
             "plausible": self.plausible,
             "source": self.source,
+            "beyond_bound": self.beyond,
+            "rmse_drop_beyond_bound": self.rmse_drop,
         }
 
     def sentence(self) -> str:
         if self.bound is not None:
-            return f"{self.parameter} = {self.value:.4g} ended at its search bound {self.bound:.4g}"
+            strain = (
+                f" (unbounded, the fit would take it to {self.beyond:.4g}, its fitted RMSE "
+                f"{100 * self.rmse_drop:.2g} % lower)"
+                if self.beyond is not None
+                else ""
+            )
+            return f"{self.parameter} = {self.value:.4g} ended at its search bound {self.bound:.4g}{strain}"
         return (
             f"{self.parameter} = {self.value:.4g} is outside its plausible range "
             f"[{self.plausible[0]:.4g}, {self.plausible[1]:.4g}]"
@@ -197,13 +209,17 @@ class Finding:
 
 
 def findings(fit: Fit) -> list[Finding]:
-    """Every parameter of `fit` at a bound of its search or outside its plausible range."""
+    """Every parameter of `fit` (anything with `coordinates`: a Fit, a table's or a campaign's)
+    at a bound of its search or outside its plausible range, with how far beyond the bound the
+    fit strains where it knows (`strain`)."""
     out = []
+    strain = getattr(fit, "strain", {})
     for key, (coordinate, x) in fit.coordinates.items():
         value = float(coordinate.value(x))
         side = coordinate.at_bound(x)
         if side is None and not coordinate.implausible(value):
             continue
+        beyond, drop = strain.get(key, (None, None)) if side else (None, None)
         out.append(
             Finding(
                 key,
@@ -211,6 +227,8 @@ def findings(fit: Fit) -> list[Finding]:
                 coordinate.bound_value(side) if side else None,
                 [float(coordinate.plausible[0]), float(coordinate.plausible[1])],
                 coordinate.source,
+                beyond,
+                drop,
             )
         )
     return out

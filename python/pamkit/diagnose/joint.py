@@ -14,7 +14,7 @@ out whole: the shared values refitted without it (leave_one_test_out) predict it
 from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -23,6 +23,7 @@ from pamkit.diagnose.calibrate import (
     cluster_intervals,
     least_squares_in_box,
     penalty,
+    strain_at_bounds,
     unit_to_x,
     x_to_unit,
 )
@@ -66,6 +67,7 @@ class JointFit:
     shares: list[TestShare]
     evaluations: int
     effect: str | None = None  # the shared effect's label, when there is one
+    strain: dict[str, tuple[float, float]] = field(default_factory=dict)  # calibrate.strain_at_bounds
 
 
 def check_one_muscle(experiments: list[Experiment]) -> None:
@@ -181,6 +183,7 @@ def calibrate_jointly(
         shares,
         evaluations,
         label,
+        {name: v for name, v in strain_at_bounds(every, u, jacobian, result.fun).items() if name not in PER_TEST},
     )
 
 
