@@ -167,8 +167,7 @@ void bind_sim(py::module_& m) {
       .def_readonly("restarts", &SolverStatistics::restarts)
       .def_readonly("output_evaluations", &SolverStatistics::output_evaluations)
       .def("__repr__", [](const SolverStatistics& s) {
-        return std::string("SolverStatistics(method=") + to_string(s.method) +
-               ", steps=" + std::to_string(s.steps) +
+        return std::string("SolverStatistics(method=") + to_string(s.method) + ", steps=" + std::to_string(s.steps) +
                ", rhs_evaluations=" + std::to_string(s.rhs_evaluations) +
                ", jacobian_evaluations=" + std::to_string(s.jacobian_evaluations) +
                ", error_test_failures=" + std::to_string(s.error_test_failures) +

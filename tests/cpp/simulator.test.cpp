@@ -297,8 +297,8 @@ TEST_CASE("Simulator: BDF and Adams agree to the tolerance on a stiff and a non-
     for (IntegrationMethod method : {IntegrationMethod::bdf, IntegrationMethod::adams}) {
       const SimulationResult run = Simulator(with_method(tolerance(rtol), method)).run(model, trajectory);
       CHECK(run.statistics.method == method);
-      for (auto trace : {&SimulationResult::force_N, &SimulationResult::pressure_gauge_Pa,
-                         &SimulationResult::temperature_K}) {
+      for (auto trace :
+           {&SimulationResult::force_N, &SimulationResult::pressure_gauge_Pa, &SimulationResult::temperature_K}) {
         const double error = largest_difference(run.*trace, reference.*trace, 1) / largest_magnitude(reference.*trace);
         INFO("tau = " << tau << " s, " << method << ": largest difference / largest value = " << error);
         CHECK(error <= 10.0 * rtol);
