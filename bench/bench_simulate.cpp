@@ -34,6 +34,7 @@ struct Options {
   double rtol = 1e-8;                     ///< SimulatorConfig.relative_tolerance [1]
   double atol_K = 1e-8;                   ///< SimulatorConfig.absolute_tolerance_K [K]
   double atol_J = 1e-8;                   ///< SimulatorConfig.absolute_tolerance_J [J]
+  std::string method = "bdf";             ///< SimulatorConfig.method: bdf, adams or auto
   int repeats = 7;                        ///< timed simulations; the best is reported
   long evaluations = 200000;              ///< evaluate() calls per timed batch
   int evaluation_batches = 7;             ///< timed batches; the best is reported
@@ -54,8 +55,9 @@ Options parse(int argc, char** argv) {
       std::puts(
           "pamkit_bench_simulate [--length L] [--gauge P] [--max-elongation E] [--speed V] [--cycles N]\n"
           "  [--sample-period S] [--process heat_transfer|polytropic] [--tau T] [--polytropic-index N]\n"
-          "  [--sharpness K] [--rtol R] [--atol-K A] [--atol-J A] [--repeats N] [--evaluations N]\n"
-          "  [--evaluation-batches N]\nPrints one JSON object; times in seconds.");
+          "  [--sharpness K] [--rtol R] [--atol-K A] [--atol-J A] [--method bdf|adams|auto] [--repeats N]\n"
+          "  [--evaluations N]"
+          " [--evaluation-batches N]\nPrints one JSON object; times in seconds.");
       std::exit(0);
     }
     if (key.rfind("--", 0) != 0 || i + 1 >= argc) throw std::invalid_argument("bad argument: " + key);
@@ -74,6 +76,7 @@ Options parse(int argc, char** argv) {
     else if (name == "rtol") o.rtol = number("rtol", value);
     else if (name == "atol-K") o.atol_K = number("atol-K", value);
     else if (name == "atol-J") o.atol_J = number("atol-J", value);
+    else if (name == "method") o.method = value;
     else if (name == "repeats") o.repeats = static_cast<int>(number("repeats", value));
     else if (name == "evaluations") o.evaluations = static_cast<long>(number("evaluations", value));
     else if (name == "evaluation-batches") o.evaluation_batches = static_cast<int>(number("evaluation-batches", value));
@@ -81,6 +84,9 @@ Options parse(int argc, char** argv) {
   }
   if (o.process != "heat_transfer" && o.process != "polytropic") {
     throw std::invalid_argument("--process must be heat_transfer or polytropic, got " + o.process);
+  }
+  if (o.method != "bdf" && o.method != "adams" && o.method != "auto") {
+    throw std::invalid_argument("--method must be bdf, adams or auto, got " + o.method);
   }
   if (o.repeats < 1 || o.evaluations < 1 || o.evaluation_batches < 1) {
     throw std::invalid_argument("--repeats, --evaluations and --evaluation-batches must be >= 1");
@@ -112,6 +118,9 @@ int main(int argc, char** argv) try {
   config.relative_tolerance = o.rtol;
   config.absolute_tolerance_K = o.atol_K;
   config.absolute_tolerance_J = o.atol_J;
+  config.method = o.method == "bdf"     ? pamkit::IntegrationMethod::bdf
+                  : o.method == "adams" ? pamkit::IntegrationMethod::adams
+                                        : pamkit::IntegrationMethod::automatic;
   const pamkit::Simulator simulator(config);
 
   // The whole simulation, best of `repeats` (the first run also warms the caches).
@@ -165,10 +174,11 @@ int main(int argc, char** argv) try {
       "\"rhs_evaluations\": %ld, \"output_evaluations\": %ld, "
       "\"jacobian_evaluations\": %ld, \"error_test_failures\": %ld, \"nonlinear_convergence_failures\": %ld, "
       "\"restarts\": %ld, \"final_force_N\": %.17g, \"final_temperature_K\": %.17g, \"process\": \"%s\", "
-      "\"rtol\": %.3g, \"repeats\": %d, \"sink\": %.6g}\n",
+      "\"method\": \"%s\", \"rtol\": %.3g, \"repeats\": %d, \"sink\": %.6g}\n",
       best_run, best_evaluation, best_warm_evaluation, samples, s.steps, s.rhs_evaluations, s.output_evaluations,
       s.jacobian_evaluations, s.error_test_failures, s.nonlinear_convergence_failures, s.restarts,
-      result.force_N.back(), result.temperature_K.back(), o.process.c_str(), o.rtol, o.repeats, sink);
+      result.force_N.back(), result.temperature_K.back(), o.process.c_str(), pamkit::to_string(s.method), o.rtol,
+      o.repeats, sink);
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "pamkit_bench_simulate: %s\n", e.what());

@@ -16,11 +16,25 @@ It prints ratios (no absolute pass/fail; the times are in --json):
                            the second core gives at the moment, without Dask; and dask 2 workers /
                            those 2 processes, Dask's own cost at 2 workers
 Cluster start-up (workers spawned, pamkit imported, the base experiment read on each worker) is
-timed apart and left out of the ratios: a command pays it once. Each time is the best of --rounds,
+timed apart and left out of the ratios: a command pays it once.
+
+With --jax (needs bench/requirements-jax.txt, e.g. in .venv-bench), the same runs also go through
+JAX + diffrax (Tsit5, jit, vmap over the runs: bench/jax_reference.py, the same equations written
+apart from pamkit), side by side with pamkit's Simulator.run on each run's model:
+  CPU per run             process CPU time / runs (every thread counted), pamkit's plain loop of
+                          Simulator.run and JAX's one vectorised call (its compilation timed apart);
+                          and the sweep's own per-run wall time, loop and 2 Dask workers (without
+                          --jax-tau, when the sweep and the side-by-side run the same gas)
+  JAX / pamkit            the ratio of those CPU times
+  agreement               max |F_jax - F_pamkit| / max |F_pamkit| over every run (pamkit by bdf, its
+                          default, and by auto, the stiffness test's pick), all at rtol 1e-8
+                          (pamkit's default): at most 1e-6, the bound bench_simulate.py holds pamkit
+                          to against SciPy Each time is the best of --rounds,
 the three ways taking turns. The rows of the three ways are checked equal (Dask changes no number).
 
 Usage:
   PYTHONPATH=build/python .venv/bin/python bench/bench_sweep.py [--runs 1000] [--cycles 1] [--rounds 3] [--json OUT]
+  PYTHONPATH=build/python .venv-bench/bin/python bench/bench_sweep.py --jax   # JAX side by side
 """
 
 from __future__ import annotations
@@ -36,14 +50,28 @@ from concurrent.futures import ProcessPoolExecutor
 from functools import partial
 from pathlib import Path
 
+import numpy as np
+
 ROOT = Path(__file__).resolve().parents[1]
 try:
-    import pamkit  # noqa: F401
+    import pamkit
 except ImportError:  # convenience: the usual build directory
     sys.path.insert(0, str(ROOT / "build" / "python"))
 
+import pamkit  # noqa: E402
 from pamkit.cluster import chunked, client  # noqa: E402
-from pamkit.sweep import load_spec, prepare_base, run_chunk, run_in_process, sweep  # noqa: E402
+from pamkit.simulate import muscle_params  # noqa: E402
+from pamkit.sweep import (  # noqa: E402
+    base_experiment,
+    load_spec,
+    prepare_base,
+    run_chunk,
+    run_in_process,
+    sweep,
+    with_parameters,
+)
+
+AGREEMENT = 1e-6  # max |F_jax - F_pamkit| / max |F_pamkit|: bench_simulate.py's bound against SciPy
 
 SPEC = """[sweep]
 experiment = "{base}"
@@ -62,12 +90,93 @@ def best(times: dict, key: str, seconds: float) -> None:
     times[key] = min(times.get(key, seconds), seconds)
 
 
+def jax_side_by_side(spec, rows: list[dict], repeats: int, tau_s: float | None) -> dict:
+    """Times the sweep's runs that succeeded with pamkit's Simulator.run, one after the other, and
+    with JAX + diffrax vectorised over all of them; checks they agree. CPU seconds per run. With
+    `tau_s`, both sides give the gas a heat exchange with the wall in tau_s instead of the base's
+    process (the thesis's tests are isothermal: their temperature ODE does nothing)."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import jax
+    from jax_reference import JaxMuscle
+
+    base = base_experiment(spec.experiment, spec.cycles)
+    experiments = [with_parameters(base, spec.parameters(row["run"])) for row in rows if row["error"] is None]
+    thesis = pamkit.BladderLaw.thesis()
+    if base.bladder.form != thesis.form or (
+        list(base.bladder.longitudinal_Pa) != list(thesis.longitudinal_Pa)
+        or list(base.bladder.hoop_Pa) != list(thesis.hoop_Pa)
+    ):
+        raise SystemExit("--jax: jax_reference.py knows the thesis's bladder law only")
+    gas = {**base.gas_params.to_dict(), "process": pamkit.GasProcess(base.gas_params.process).name}
+    if tau_s is not None:
+        gas.update(process="heat_transfer", heat_transfer_time_constant_s=tau_s)
+    muscle = JaxMuscle(
+        base.build.to_dict(), base.friction.to_dict(), gas, base.initial_length_m, base.time_s, base.elongation_m
+    )
+    pressures = np.array([e.inflation_pressure_kPa * 1e3 for e in experiments])
+    revolutions = np.array([e.build.fiber_revolutions for e in experiments])
+
+    # pamkit: each run's model along the same crosshead, the sweep's own configuration.
+    trajectory = pamkit.ElongationTrajectory(base.time_s, base.elongation_m)
+    simulators = {
+        name: pamkit.Simulator(pamkit.SimulatorConfig(method=getattr(pamkit.IntegrationMethod, name)))
+        for name in ("bdf", "auto")  # the default, and the stiffness test's pick
+    }
+    models = []
+    for e, p in zip(experiments, pressures):
+        params = muscle_params(e)
+        if tau_s is not None:
+            params.gas.process = pamkit.GasProcess.heat_transfer
+            params.gas.heat_transfer_time_constant_s = tau_s
+        initial = pamkit.InitialState(length_m=base.initial_length_m, gauge_pressure_Pa=p)
+        models.append(pamkit.MuscleModel(params, initial))
+    pamkit_cpu, forces = dict.fromkeys(simulators, float("inf")), {}
+    for _ in range(repeats):
+        for name, simulator in simulators.items():
+            started = time.process_time()
+            forces[name] = [np.asarray(simulator.run(model, trajectory).force_N) for model in models]
+            pamkit_cpu[name] = min(pamkit_cpu[name], time.process_time() - started)
+    auto_ran = simulators["auto"].run(models[0], trajectory).statistics.method.name
+
+    batch = muscle.batch(rtol=pamkit.SimulatorConfig().relative_tolerance)
+    started = time.perf_counter()
+    jax_force, _ = jax.block_until_ready(batch(pressures, revolutions))  # compiles
+    compile_s = time.perf_counter() - started
+    jax_cpu, jax_wall = float("inf"), float("inf")
+    for _ in range(repeats):
+        started, wall = time.process_time(), time.perf_counter()
+        jax_force, _ = jax.block_until_ready(batch(pressures, revolutions))
+        jax_cpu, jax_wall = min(jax_cpu, time.process_time() - started), min(jax_wall, time.perf_counter() - wall)
+    jax_force = np.asarray(jax_force)
+    agreement = max(
+        float(np.max(np.abs(jax_force[i] - pamkit_force[i])) / np.max(np.abs(pamkit_force[i])))
+        for pamkit_force in forces.values()
+        for i in range(len(pamkit_force))
+    )
+    runs = len(experiments)
+    return {
+        "jax_runs": runs,
+        "jax_version": jax.__version__,
+        "pamkit_cpu_per_run_s": pamkit_cpu["bdf"] / runs,
+        "pamkit_auto_cpu_per_run_s": pamkit_cpu["auto"] / runs,
+        "pamkit_auto_ran": auto_ran,
+        "jax_cpu_per_run_s": jax_cpu / runs,
+        "jax_wall_per_run_s": jax_wall / runs,
+        "jax_compile_s": compile_s,
+        "jax_agreement": agreement,
+    }
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--runs", type=int, default=1000)
     parser.add_argument("--cycles", type=int, default=1)
     parser.add_argument("--rounds", type=int, default=3, help="each way's time is the best of this many")
     parser.add_argument("--json", help="write every time here")
+    parser.add_argument("--jax", action="store_true", help="time JAX + diffrax on the same runs, side by side")
+    parser.add_argument(
+        "--jax-tau", type=float, help="with --jax: the gas exchanges heat with the wall in this time [s] on both sides"
+    )
     arguments = parser.parse_args(argv)
 
     with tempfile.TemporaryDirectory() as scratch:
@@ -126,6 +235,31 @@ def main(argv: list[str] | None = None) -> int:
         print(f"  {name:34} {value:8.2f}")
     startup = f"{times['startup_1_s']:.2f} s, {times['startup_2_s']:.2f} s"
     print(f"  {'cluster start-up (1, 2 workers)':34} {startup} (not in the ratios)")
+    if arguments.jax:
+        times.update(jax_side_by_side(spec, reference, arguments.rounds, arguments.jax_tau))
+        ms = {name: 1e3 * times[name] for name in ("pamkit_cpu_per_run_s", "jax_cpu_per_run_s", "jax_wall_per_run_s")}
+        gas = "the base's gas" if arguments.jax_tau is None else f"heat exchange in {arguments.jax_tau:g} s"
+        print(
+            f"side by side with JAX {times['jax_version']} + diffrax (Tsit5, jit, vmap over {times['jax_runs']} runs; "
+            f"{gas}):"
+        )
+        print(f"  {'pamkit Simulator.run, CPU per run, ms':42} {ms['pamkit_cpu_per_run_s']:8.2f}")
+        auto = f"pamkit method=auto ({times['pamkit_auto_ran']}), CPU per run, ms"
+        print(f"  {auto:42} {1e3 * times['pamkit_auto_cpu_per_run_s']:8.2f}")
+        if arguments.jax_tau is None:  # the sweep above ran the base's gas
+            print(f"  {'pamkit sweep loop, wall per run, ms':42} {1e3 * times['loop_s'] / runs:8.2f}")
+            print(f"  {'pamkit sweep, 2 Dask workers, wall per run, ms':42} {1e3 * times['dask_2_s'] / runs:8.2f}")
+        print(f"  {'JAX + diffrax vectorised, CPU per run, ms':42} {ms['jax_cpu_per_run_s']:8.2f}")
+        print(f"  {'JAX + diffrax vectorised, wall per run, ms':42} {ms['jax_wall_per_run_s']:8.2f}")
+        print(f"  {'JAX CPU / pamkit CPU, per run':42} {ms['jax_cpu_per_run_s'] / ms['pamkit_cpu_per_run_s']:8.2f}")
+        auto_ratio = times["jax_cpu_per_run_s"] / times["pamkit_auto_cpu_per_run_s"]
+        print(f"  {'JAX CPU / pamkit auto CPU, per run':42} {auto_ratio:8.2f}")
+        agreement = times["jax_agreement"]
+        verdict = "ok" if agreement <= AGREEMENT else "DISAGREE"
+        print(f"  {'max |F_jax - F_pamkit| / max |F|, worst run':42} {agreement:8.1e}  <= {AGREEMENT:.0e}: {verdict}")
+        print(f"  {'JAX compilation, s':42} {times['jax_compile_s']:8.2f}  (not in the ratios)")
+        if agreement > AGREEMENT:
+            return 1
     if arguments.json:
         Path(arguments.json).write_text(json.dumps({"runs": runs, "cycles": arguments.cycles, **times}, indent=2))
     return 0

@@ -8,6 +8,7 @@
 
 #include <sstream>
 #include <string>
+#include <type_traits>
 
 #include "pamkit/fields.hpp"
 
@@ -18,8 +19,11 @@ namespace py = pybind11;
 template <class Struct>
 void bind_fields(py::class_<Struct>& cls) {
   Struct::for_each_field([&](const char* name, auto Struct::*member, const FieldInfo& info) {
-    const std::string doc = std::string(info.description) + " [" + info.unit + "], allowed [" +
-                            std::to_string(info.min) + ", " + std::to_string(info.max) + "]";
+    // An enumeration's range is its enumerators, which its Python type already lists.
+    const bool enumerated = std::is_enum_v<std::remove_reference_t<decltype(std::declval<Struct&>().*member)>>;
+    const std::string doc = enumerated ? std::string(info.description)
+                                       : std::string(info.description) + " [" + info.unit + "], allowed [" +
+                                             std::to_string(info.min) + ", " + std::to_string(info.max) + "]";
     cls.def_readwrite(name, member, doc.c_str());
   });
   cls.def(py::init([](const py::kwargs& kwargs) {

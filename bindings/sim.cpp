@@ -5,6 +5,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <sstream>
+
 #include "bind_fields.hpp"
 #include "pamkit/sim/simulator.hpp"
 
@@ -121,10 +123,40 @@ void bind_sim(py::module_& m) {
         py::arg("cycles") = 10, py::arg("sample_period_s") = 0.1, py::arg("hold_s") = 0.0,
         "The bench protocol of section 3.2.1: triangular stretch cycles at constant speed.");
 
+  py::enum_<IntegrationMethod>(m, "IntegrationMethod",
+                               "How CVODES integrates: bdf (dense Newton), adams (fixed-point iteration), or auto "
+                               "(adams where estimate_stiffness finds the run non-stiff, bdf otherwise).")
+      .value("auto", IntegrationMethod::automatic)
+      .value("bdf", IntegrationMethod::bdf)
+      .value("adams", IntegrationMethod::adams);
+
   py::class_<SimulatorConfig> config(m, "SimulatorConfig", "CVODES settings.");
   bind_fields(config);
 
+  py::class_<StiffnessEstimate>(m, "StiffnessEstimate",
+                                "The stiffness test of IntegrationMethod.auto: the model's fastest rate times the step "
+                                "the tolerance allows on the trajectory's longest piece; above 1, stiff.")
+      .def_readonly("fastest_rate_per_s", &StiffnessEstimate::fastest_rate_per_s,
+                    "the model's fastest relaxation rate [1/s]")
+      .def_readonly("longest_piece_s", &StiffnessEstimate::longest_piece_s,
+                    "longest stretch between the trajectory's corners [s]")
+      .def_readonly("expected_step_s", &StiffnessEstimate::expected_step_s,
+                    "longest_piece_s * rtol^(1/6), at most max_step_s [s]")
+      .def_property_readonly("ratio", &StiffnessEstimate::ratio, "fastest_rate_per_s * expected_step_s [1]")
+      .def_property_readonly("stiff", &StiffnessEstimate::stiff, "ratio > 1: auto runs bdf")
+      .def("__repr__", [](const StiffnessEstimate& e) {
+        std::ostringstream out;
+        out << "StiffnessEstimate(fastest_rate_per_s=" << e.fastest_rate_per_s
+            << ", longest_piece_s=" << e.longest_piece_s << ", expected_step_s=" << e.expected_step_s
+            << ", ratio=" << e.ratio() << ", stiff=" << (e.stiff() ? "True" : "False") << ")";
+        return out.str();
+      });
+  m.def("estimate_stiffness", &estimate_stiffness, py::arg("model"), py::arg("trajectory"),
+        py::arg("config") = SimulatorConfig{},
+        "The stiffness test SimulatorConfig(method=IntegrationMethod.auto) makes before a run.");
+
   py::class_<SolverStatistics>(m, "SolverStatistics", "CVODES counters over one run.")
+      .def_readonly("method", &SolverStatistics::method, "the method that ran: bdf or adams")
       .def_readonly("steps", &SolverStatistics::steps)
       .def_readonly("rhs_evaluations", &SolverStatistics::rhs_evaluations)
       .def_readonly("jacobian_evaluations", &SolverStatistics::jacobian_evaluations)
@@ -135,7 +167,7 @@ void bind_sim(py::module_& m) {
       .def_readonly("restarts", &SolverStatistics::restarts)
       .def_readonly("output_evaluations", &SolverStatistics::output_evaluations)
       .def("__repr__", [](const SolverStatistics& s) {
-        return "SolverStatistics(steps=" + std::to_string(s.steps) +
+        return std::string("SolverStatistics(method=") + to_string(s.method) + ", steps=" + std::to_string(s.steps) +
                ", rhs_evaluations=" + std::to_string(s.rhs_evaluations) +
                ", jacobian_evaluations=" + std::to_string(s.jacobian_evaluations) +
                ", error_test_failures=" + std::to_string(s.error_test_failures) +

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "pamkit/error.hpp"
 
@@ -31,6 +32,17 @@ inline void check_range(const char* struct_name, const char* name, double value,
   }
 }
 
+/// A field's value as a number: an enumeration's by its underlying value (its range then spans
+/// the enumerators, so a value cast from a stray integer is caught).
+template <class T>
+double field_value(T value) {
+  if constexpr (std::is_enum_v<T>) {
+    return static_cast<double>(static_cast<std::underlying_type_t<T>>(value));
+  } else {
+    return static_cast<double>(value);
+  }
+}
+
 /// Visitor that throws InvalidParameter for the first field out of its range.
 template <class Struct>
 struct RangeChecker {
@@ -39,7 +51,7 @@ struct RangeChecker {
 
   template <class T, class... Extra>
   void operator()(const char* name, T Struct::*member, const FieldInfo& info, const Extra&...) const {
-    check_range(struct_name, name, static_cast<double>(object.*member), info);
+    check_range(struct_name, name, field_value(object.*member), info);
   }
 };
 

@@ -9,8 +9,8 @@ table row), units in the column names:
     (a static table: its own columns, e.g. length_m, pressure_kPa, force_N)
 
 with ``df.attrs``: "experiment" (the TOML's path), "data" (its CSV's path), "kind", "gas",
-"effects" (each effect's repr), "solver_statistics" (CVODES counters of a sealed time series as a
-dict, None where no ODE is integrated) and "units" (column -> unit).
+"effects" (each effect's repr), "solver_statistics" (CVODES counters of a sealed time series and
+the method that ran, as a dict; None where no ODE is integrated) and "units" (column -> unit).
 
     import pamkit
     df = pamkit.simulate("experiment.toml", effects=["heat_transfer:time_constant_s=2"])
@@ -266,7 +266,8 @@ def simulate_frame(
         gauge], temperature_C [°C]; a static table its own (length_m [m], pressure_kPa,
         force_N, diameter_m). ``df.attrs`` holds "experiment", "data" (paths, str), "kind",
         "gas", "effects" (list of str), "units" (column -> unit) and "solver_statistics" (a
-        dict of CVODES counters for a sealed time series, None where no ODE is integrated).
+        dict of CVODES counters and the method that ran, "bdf" or "adams", for a sealed time
+        series; None where no ODE is integrated).
 
     Raises:
         ExperimentError: (a ValueError) for a file that cannot be read, an effect that cannot
@@ -297,6 +298,7 @@ def simulate_frame(
         columns = _channels(experiment, measurement)
         if experiment.gas == "sealed":
             statistics = {name: int(getattr(measurement.statistics, name)) for name in STATISTICS_FIELDS}
+            statistics["method"] = measurement.statistics.method.name  # the method that ran: "bdf" or "adams"
     frame = pd.DataFrame(columns)
     frame.attrs.update(
         experiment=str(experiment.path),

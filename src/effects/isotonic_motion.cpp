@@ -186,7 +186,7 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
     workspace.piece_start = k;
     workspace.piece_end = end;
     if (k > 0) {
-      cvodes::add_statistics(cv, result.statistics);
+      cvodes::add_statistics(solver, result.statistics);
       check_flag(CVodeReInit(cv, t, y.get()), "CVodeReInit", t);
       ++result.statistics.restarts;
     }
@@ -210,7 +210,7 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
     }
     k = end;
   }
-  cvodes::add_statistics(cv, result.statistics);
+  cvodes::add_statistics(solver, result.statistics);
   return result;
 }
 

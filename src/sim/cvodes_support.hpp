@@ -8,9 +8,11 @@
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
+#include <sundials/sundials_nonlinearsolver.h>
 #include <sundials/sundials_nvector.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include <memory>
 
@@ -41,6 +43,9 @@ struct MatrixDeleter {
 struct LinearSolverDeleter {
   void operator()(_generic_SUNLinearSolver* s) const { SUNLinSolFree(s); }
 };
+struct NonlinearSolverDeleter {
+  void operator()(_generic_SUNNonlinearSolver* s) const { SUNNonlinSolFree(s); }
+};
 struct CvodeDeleter {
   void operator()(void* mem) const { CVodeFree(&mem); }
 };
@@ -48,6 +53,7 @@ using Context = std::unique_ptr<SUNContext, ContextDeleter>;
 using Vector = std::unique_ptr<_generic_N_Vector, VectorDeleter>;
 using Matrix = std::unique_ptr<_generic_SUNMatrix, MatrixDeleter>;
 using LinearSolver = std::unique_ptr<_generic_SUNLinearSolver, LinearSolverDeleter>;
+using NonlinearSolver = std::unique_ptr<_generic_SUNNonlinearSolver, NonlinearSolverDeleter>;
 using Memory = std::unique_ptr<void, CvodeDeleter>;
 
 // pamkit reports every failed flag itself, as an exception with the flag's name; CVODES's own
@@ -80,22 +86,34 @@ inline void silence_errors([[maybe_unused]] void* mem, [[maybe_unused]] double t
 #endif
 }
 
-/// A BDF solver with a dense Newton system, owning what CVODES borrows: its memory, the
-/// Jacobian matrix and the linear solver (destroyed together, in reverse order of creation).
-struct BdfSolver {
+/// A CVODES solver owning what CVODES borrows: its memory and, for BDF, the Jacobian matrix and
+/// the linear solver of its Newton iteration or, for Adams, its fixed-point iteration (destroyed
+/// together, in reverse order of creation).
+struct Solver {
+  IntegrationMethod method;
   Memory memory;
   Matrix jacobian;
   LinearSolver linear_solver;
+  NonlinearSolver fixed_point;
   void* get() const { return memory.get(); }
 };
+/// The name the BDF-only callers (effects/isotonic_motion.cpp) know it by.
+using BdfSolver = Solver;
 
-/// Creates and configures a BDF solver for `rhs` from `y0` at `t0`, every flag checked by name:
-/// `user_data` for the right-hand side, per-component absolute `tolerances`, at most
-/// `max_steps` between outputs and steps of at most `max_step_s` (0: no limit). Stiff friction
-/// (a sharp tanh) is why the simulations use BDF with Newton.
-inline BdfSolver make_bdf(SUNContext ctx, CVRhsFn rhs, double t0, N_Vector y0, void* user_data,
-                          double relative_tolerance, N_Vector tolerances, double max_steps, double max_step_s) {
-  BdfSolver solver{Memory(CVodeCreate(CV_BDF, ctx)), nullptr, nullptr};
+/// Creates and configures a solver of `method` (bdf or adams) for `rhs` from `y0` at `t0`, every
+/// flag checked by name: `user_data` for the right-hand side, per-component absolute
+/// `tolerances`, at most `max_steps` between outputs and steps of at most `max_step_s` (0: no
+/// limit). BDF iterates with Newton on a dense Jacobian (stable on stiff runs: a fast heat
+/// exchange, a sharp tanh friction); Adams with a fixed-point iteration, which needs no Jacobian
+/// and converges while the step times the fastest rate stays below about 1.
+inline Solver make_solver(IntegrationMethod method, SUNContext ctx, CVRhsFn rhs, double t0, N_Vector y0,
+                          void* user_data, double relative_tolerance, N_Vector tolerances, double max_steps,
+                          double max_step_s) {
+  if (method != IntegrationMethod::bdf && method != IntegrationMethod::adams) {
+    throw SolverError(detail::message("make_solver: method ", method, " is neither bdf nor adams"));
+  }
+  const bool adams = method == IntegrationMethod::adams;
+  Solver solver{method, Memory(CVodeCreate(adams ? CV_ADAMS : CV_BDF, ctx)), nullptr, nullptr, nullptr};
   if (!solver.memory) throw SolverError("CVodeCreate failed");
   void* cv = solver.get();
   check_flag(CVodeInit(cv, rhs, t0, y0), "CVodeInit", t0);
@@ -104,6 +122,13 @@ inline BdfSolver make_bdf(SUNContext ctx, CVRhsFn rhs, double t0, N_Vector y0, v
   check_flag(CVodeSVtolerances(cv, relative_tolerance, tolerances), "CVodeSVtolerances", t0);
   check_flag(CVodeSetMaxNumSteps(cv, static_cast<long>(max_steps)), "CVodeSetMaxNumSteps", t0);
   if (max_step_s > 0.0) check_flag(CVodeSetMaxStep(cv, max_step_s), "CVodeSetMaxStep", t0);
+  if (adams) {
+    // Plain fixed-point iteration (no Anderson acceleration: 0 vectors kept).
+    solver.fixed_point.reset(SUNNonlinSol_FixedPoint(y0, 0, ctx));
+    if (!solver.fixed_point) throw SolverError("SUNNonlinSol_FixedPoint failed");
+    check_flag(CVodeSetNonlinearSolver(cv, solver.fixed_point.get()), "CVodeSetNonlinearSolver", t0);
+    return solver;
+  }
   const auto size = static_cast<sunindextype>(N_VGetLength(y0));
   solver.jacobian.reset(SUNDenseMatrix(size, size, ctx));
   if (!solver.jacobian) throw SolverError("SUNDenseMatrix failed");
@@ -113,20 +138,31 @@ inline BdfSolver make_bdf(SUNContext ctx, CVRhsFn rhs, double t0, N_Vector y0, v
   return solver;
 }
 
-/// Adds the counters of the CVODES memory `mem` since its last (re)initialisation to `s`.
-inline void add_statistics(void* mem, SolverStatistics& s) {
+/// A BDF solver with a dense Newton system (make_solver).
+inline Solver make_bdf(SUNContext ctx, CVRhsFn rhs, double t0, N_Vector y0, void* user_data, double relative_tolerance,
+                       N_Vector tolerances, double max_steps, double max_step_s) {
+  return make_solver(IntegrationMethod::bdf, ctx, rhs, t0, y0, user_data, relative_tolerance, tolerances, max_steps,
+                     max_step_s);
+}
+
+/// Adds the counters of `solver` since its last (re)initialisation to `s`; the linear solver's
+/// only where there is one (BDF).
+inline void add_statistics(const Solver& solver, SolverStatistics& s) {
+  void* mem = solver.get();
+  s.method = solver.method;
   long value = 0;
   check_flag(CVodeGetNumSteps(mem, &value), "CVodeGetNumSteps", 0.0);
   s.steps += value;
-  long rhs = 0;
-  check_flag(CVodeGetNumRhsEvals(mem, &rhs), "CVodeGetNumRhsEvals", 0.0);
-  long jacobian_rhs = 0;
-  check_flag(CVodeGetNumLinRhsEvals(mem, &jacobian_rhs), "CVodeGetNumLinRhsEvals", 0.0);
-  s.rhs_evaluations += rhs + jacobian_rhs;
-  check_flag(CVodeGetNumJacEvals(mem, &value), "CVodeGetNumJacEvals", 0.0);
-  s.jacobian_evaluations += value;
-  check_flag(CVodeGetNumLinSolvSetups(mem, &value), "CVodeGetNumLinSolvSetups", 0.0);
-  s.linear_solver_setups += value;
+  check_flag(CVodeGetNumRhsEvals(mem, &value), "CVodeGetNumRhsEvals", 0.0);
+  s.rhs_evaluations += value;
+  if (solver.linear_solver) {
+    check_flag(CVodeGetNumLinRhsEvals(mem, &value), "CVodeGetNumLinRhsEvals", 0.0);
+    s.rhs_evaluations += value;  // the difference-quotient Jacobian's
+    check_flag(CVodeGetNumJacEvals(mem, &value), "CVodeGetNumJacEvals", 0.0);
+    s.jacobian_evaluations += value;
+    check_flag(CVodeGetNumLinSolvSetups(mem, &value), "CVodeGetNumLinSolvSetups", 0.0);
+    s.linear_solver_setups += value;
+  }
   check_flag(CVodeGetNumErrTestFails(mem, &value), "CVodeGetNumErrTestFails", 0.0);
   s.error_test_failures += value;
   check_flag(CVodeGetNumNonlinSolvIters(mem, &value), "CVodeGetNumNonlinSolvIters", 0.0);

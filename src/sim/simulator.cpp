@@ -1,6 +1,6 @@
 // CVODES glue for pamkit::Simulator: the trajectory integrated piece by piece between its
-// corners, one CVODES step per call, the samples interpolated; with the handles and flag checks
-// of cvodes_support.hpp.
+// corners, one CVODES step per call, the samples interpolated, by BDF or Adams as the
+// configuration or the stiffness test says; with the handles and flag checks of cvodes_support.hpp.
 
 #include "pamkit/sim/simulator.hpp"
 
@@ -73,6 +73,25 @@ bool is_corner(double previous_velocity, double velocity, double threshold) {
   return std::abs(velocity - previous_velocity) > threshold;
 }
 
+/// The rate jump that makes a corner: `config.corner_threshold` of the trajectory's largest rate.
+double corner_jump(const ElongationTrajectory& trajectory, const SimulatorConfig& config) {
+  double largest_rate = 0.0;
+  for (std::size_t k = 0; k + 1 < trajectory.size(); ++k) {
+    largest_rate = std::max(largest_rate, std::abs(trajectory.segment_velocity(k)));
+  }
+  return config.corner_threshold * largest_rate;
+}
+
+/// The last sample of the piece that starts at sample `k`: the next corner, or the end.
+std::size_t piece_end(const ElongationTrajectory& trajectory, std::size_t k, double corner) {
+  std::size_t end = k + 1;
+  while (end + 1 < trajectory.size() &&
+         !is_corner(trajectory.segment_velocity(end - 1), trajectory.segment_velocity(end), corner)) {
+    ++end;
+  }
+  return end;
+}
+
 /// A result with every column sized for the trajectory's samples, the prescribed ones filled.
 SimulationResult allocate(const ElongationTrajectory& trajectory) {
   const std::size_t n = trajectory.size();
@@ -108,6 +127,25 @@ void record(SimulationResult& r, std::size_t k, const MuscleModel& model, Muscle
 }
 
 }  // namespace
+
+StiffnessEstimate estimate_stiffness(const MuscleModel& model, const ElongationTrajectory& trajectory,
+                                     const SimulatorConfig& config) {
+  config.validate();
+  const auto& time = trajectory.time();
+  const double corner = corner_jump(trajectory, config);
+  double longest = 0.0;
+  for (std::size_t k = 0; k + 1 < trajectory.size();) {
+    const std::size_t end = piece_end(trajectory, k, corner);
+    longest = std::max(longest, time[end] - time[k]);
+    k = end;
+  }
+  // Inside a piece the motion is smooth on the piece's own time scale, so a method of order q
+  // meets the tolerance with steps of about that scale times rtol^(1/(q+1)); q = 5, BDF's
+  // highest order, is the smaller step of the two methods (Adams goes to 12).
+  double step = longest * std::pow(config.relative_tolerance, 1.0 / 6.0);
+  if (config.max_step_s > 0.0) step = std::min(step, config.max_step_s);
+  return StiffnessEstimate{model.fastest_rate_per_s(), longest, step};
+}
 
 Simulator::Simulator(SimulatorConfig config) : config_(config) { config_.validate(); }
 
@@ -147,9 +185,13 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
 
   RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}};
   const double t0 = time.front();
-  const cvodes::BdfSolver solver =
-      cvodes::make_bdf(ctx, muscle_rhs, t0, y.get(), &workspace, config_.relative_tolerance, tolerances.get(),
-                       config_.max_steps, config_.max_step_s);
+  IntegrationMethod method = config_.method;
+  if (method == IntegrationMethod::automatic) {
+    method = estimate_stiffness(model, trajectory, config_).stiff() ? IntegrationMethod::bdf : IntegrationMethod::adams;
+  }
+  const cvodes::Solver solver =
+      cvodes::make_solver(method, ctx, muscle_rhs, t0, y.get(), &workspace, config_.relative_tolerance,
+                          tolerances.get(), config_.max_steps, config_.max_step_s);
   void* cv = solver.get();
 
   SimulationResult result = allocate(trajectory);
@@ -160,23 +202,15 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
   // step per call, and every sample the step passed is read off its interpolating polynomial
   // (CVodeGetDky, which CV_NORMAL mode uses too): one call per step, not per sample, and the
   // samples do not steer the steps.
-  double largest_rate = 0.0;
-  for (std::size_t k = 0; k + 1 < trajectory.size(); ++k) {
-    largest_rate = std::max(largest_rate, std::abs(trajectory.segment_velocity(k)));
-  }
-  const double corner = config_.corner_threshold * largest_rate;
+  const double corner = corner_jump(trajectory, config_);
   double t = t0;
   std::size_t k = 0;
   while (k + 1 < trajectory.size()) {
-    std::size_t end = k + 1;
-    while (end + 1 < trajectory.size() &&
-           !is_corner(trajectory.segment_velocity(end - 1), trajectory.segment_velocity(end), corner)) {
-      ++end;
-    }
+    const std::size_t end = piece_end(trajectory, k, corner);
     workspace.piece_start = k;
     workspace.piece_end = end;
     if (k > 0) {
-      add_statistics(cv, result.statistics);
+      add_statistics(solver, result.statistics);
       check_flag(CVodeReInit(cv, t, y.get()), "CVodeReInit", t);
       ++result.statistics.restarts;
     }
@@ -206,7 +240,7 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
     }
     k = end;
   }
-  add_statistics(cv, result.statistics);
+  add_statistics(solver, result.statistics);
   return result;
 }
 

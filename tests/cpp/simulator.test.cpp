@@ -249,3 +249,89 @@ TEST_CASE("Simulator: more steps than max_steps between two samples is an error"
   CHECK_THROWS_WITH(Simulator(config).run(model, ramp),
                     Catch::Contains("CV_TOO_MUCH_WORK") && Catch::Contains("SimulatorConfig.max_steps"));
 }
+
+namespace {
+
+/// The sealed muscle of table C.2 whose gas exchanges heat with the wall in `tau_s`.
+MuscleModel heat_exchanging(double tau_s) {
+  MuscleParams params;
+  params.gas.process = GasProcess::heat_transfer;
+  params.gas.heat_transfer_time_constant_s = tau_s;
+  return MuscleModel(params, InitialState{0.167, 236.63e3});
+}
+
+SimulatorConfig with_method(SimulatorConfig config, IntegrationMethod method) {
+  config.method = method;
+  return config;
+}
+
+}  // namespace
+
+TEST_CASE("MuscleModel::fastest_rate_per_s: the rates at which states relax on their own", "[sim][stiffness]") {
+  // Each rate is the magnitude of the state's own term in its equation (model.hxx):
+  // dT/dt = -(T - T_amb) / tau + ..., dm/dt = -leak (m - p_atm V / (R T)), ds/dt = -s / tau_v + ...
+  const InitialState initial{0.167, 236.63e3};
+  CHECK(MuscleModel(MuscleParams{}, initial).fastest_rate_per_s() == 0.0);  // polytropic, sealed
+  CHECK(heat_exchanging(0.02).fastest_rate_per_s() == Approx(50.0).epsilon(1e-15));
+  CHECK(heat_exchanging(0.0).fastest_rate_per_s() == 0.0);  // instant exchange: isothermal, no state relaxes
+  MuscleParams leaking;
+  leaking.extensions.leak_rate_per_s = 3.0;
+  CHECK(MuscleModel(leaking, initial).fastest_rate_per_s() == 3.0);
+  MuscleParams viscous;
+  viscous.extensions.viscoelastic_time_constant_s = 0.01;
+  CHECK(MuscleModel(viscous, initial).fastest_rate_per_s() == 0.0);  // no strength: the stresses stay zero
+  viscous.extensions.viscoelastic_strength = 0.5;
+  CHECK(MuscleModel(viscous, initial).fastest_rate_per_s() == Approx(100.0).epsilon(1e-15));
+}
+
+TEST_CASE("Simulator: BDF and Adams agree to the tolerance on a stiff and a non-stiff run", "[sim][stiffness]") {
+  // Both methods against the same run by BDF at rtol 1e-12: force, pressure and temperature
+  // within 10 x rtol of each trace's largest value, the bound the dense-reference test above
+  // holds BDF to (its global error a small multiple of the local tolerance it controls), on a
+  // gas that exchanges heat in 5 s (non-stiff) and in 0.02 s (stiff: Adams pays in steps).
+  const ElongationTrajectory trajectory = thesis_protocol(0.05, 2.5e-3, 3, 0.1, 1.0);
+  const double rtol = 1e-8;
+  for (double tau : {5.0, 0.02}) {
+    const MuscleModel model = heat_exchanging(tau);
+    const SimulationResult reference = Simulator(tolerance(1e-12)).run(model, trajectory);
+    for (IntegrationMethod method : {IntegrationMethod::bdf, IntegrationMethod::adams}) {
+      const SimulationResult run = Simulator(with_method(tolerance(rtol), method)).run(model, trajectory);
+      CHECK(run.statistics.method == method);
+      for (auto trace :
+           {&SimulationResult::force_N, &SimulationResult::pressure_gauge_Pa, &SimulationResult::temperature_K}) {
+        const double error = largest_difference(run.*trace, reference.*trace, 1) / largest_magnitude(reference.*trace);
+        INFO("tau = " << tau << " s, " << method << ": largest difference / largest value = " << error);
+        CHECK(error <= 10.0 * rtol);
+      }
+    }
+  }
+}
+
+TEST_CASE("Simulator: auto runs Adams on a non-stiff run and BDF on a stiff one", "[sim][stiffness]") {
+  // The thesis's 10-cycle protocol: ramps of 0.0523 m / 2.5 mm/s = 20.9 s between corners, so
+  // the step the tolerance allows is 20.9 s x rtol^(1/6) = 0.97 s at rtol 1e-8. A gas exchanging
+  // heat in 5 s relaxes at 0.2 /s (ratio 0.19: Adams); in 0.02 s at 50 /s (ratio 48: BDF).
+  const ElongationTrajectory trajectory = thesis_protocol(0.0523);
+  const SimulatorConfig automatic = with_method(tolerance(1e-8), IntegrationMethod::automatic);
+  const StiffnessEstimate slow = estimate_stiffness(heat_exchanging(5.0), trajectory, automatic);
+  CHECK(slow.longest_piece_s == Approx(20.92).epsilon(1e-12));
+  CHECK(slow.expected_step_s == Approx(20.92 * std::pow(1e-8, 1.0 / 6.0)).epsilon(1e-12));
+  CHECK(slow.ratio() == Approx(0.2 * slow.expected_step_s).epsilon(1e-12));
+  CHECK_FALSE(slow.stiff());
+  CHECK(estimate_stiffness(heat_exchanging(0.02), trajectory, automatic).stiff());
+  // A step limit below 1 / rate makes the fast gas non-stiff too: the steps cannot grow past it.
+  SimulatorConfig limited = automatic;
+  limited.max_step_s = 0.01;
+  CHECK_FALSE(estimate_stiffness(heat_exchanging(0.02), trajectory, limited).stiff());
+
+  for (const auto& [tau, expected] : {std::pair{5.0, IntegrationMethod::adams}, {0.02, IntegrationMethod::bdf}}) {
+    const MuscleModel model = heat_exchanging(tau);
+    const SimulationResult chosen = Simulator(automatic).run(model, trajectory);
+    INFO("tau = " << tau << " s");
+    CHECK(chosen.statistics.method == expected);
+    // The same solver as asking for the method by name: the same numbers, bit for bit.
+    const SimulationResult named = Simulator(with_method(automatic, expected)).run(model, trajectory);
+    CHECK(chosen.force_N == named.force_N);
+    CHECK(chosen.statistics.steps == named.statistics.steps);
+  }
+}

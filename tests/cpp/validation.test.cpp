@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -24,9 +26,21 @@ template <class Struct>
 void check_every_field(bool check_bounds_accepted) {
   Struct::for_each_field([&](const char* name, auto member, const FieldInfo& info) {
     const std::string qualified = std::string(Struct::kName) + "." + name;
-    for (double bad : {info.min - 0.5 * std::abs(info.min) - 1.0, 2.0 * info.max + 1.0, kNaN}) {
+    using Field = std::remove_reference_t<decltype(std::declval<Struct&>().*member)>;
+    // An enumeration's range spans its enumerators' values: an integer just outside (a stray
+    // cast) is out of range; NaN has no enumeration counterpart.
+    auto assign = [&](Struct& object, double value) {
+      if constexpr (std::is_enum_v<Field>) {
+        object.*member = static_cast<Field>(static_cast<std::underlying_type_t<Field>>(value));
+      } else {
+        object.*member = value;
+      }
+    };
+    std::vector<double> bad_values{info.min - 0.5 * std::abs(info.min) - 1.0, 2.0 * info.max + 1.0};
+    if (!std::is_enum_v<Field>) bad_values.push_back(kNaN);
+    for (double bad : bad_values) {
       Struct object;
-      object.*member = bad;
+      assign(object, bad);
       INFO(qualified << " = " << bad);
       CHECK_THROWS_AS(object.validate(), InvalidParameter);
       CHECK_THROWS_WITH(object.validate(), Contains(qualified));
@@ -34,7 +48,7 @@ void check_every_field(bool check_bounds_accepted) {
     if (check_bounds_accepted) {
       for (double edge : {info.min, info.max}) {
         Struct object;
-        object.*member = edge;
+        assign(object, edge);
         INFO(qualified << " = " << edge << " (a bound of its range, inclusive)");
         CHECK_NOTHROW(object.validate());
       }

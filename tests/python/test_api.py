@@ -51,6 +51,7 @@ def test_the_solver_statistics_come_with_a_sealed_run(machines_dir):
     assert statistics["rhs_evaluations"] >= statistics["steps"]
     assert statistics["nonlinear_iterations"] >= statistics["steps"]
     assert statistics["restarts"] >= 1
+    assert statistics["method"] == "bdf"  # SimulatorConfig's default
     json.dumps(statistics)  # plain ints: attrs survive pandas' copies and serialise
 
 

@@ -55,3 +55,20 @@ def test_runs_in_threads_match_serial_runs():
         parallel = list(pool.map(lambda m: simulator.run(m, trajectory).force_N.copy(), models))
     for a, b in zip(serial, parallel):
         np.testing.assert_array_equal(a, b)
+
+
+def test_integration_method_is_a_field_and_the_statistics_name_the_method_that_ran():
+    config = pamkit.SimulatorConfig(method=pamkit.IntegrationMethod.auto)
+    assert config.method == pamkit.IntegrationMethod.auto and "method=auto" in repr(config)
+    assert config.to_dict()["method"] == pamkit.IntegrationMethod.auto
+    assert pamkit.SimulatorConfig().method == pamkit.IntegrationMethod.bdf  # the default stays BDF
+    with pytest.raises(TypeError):
+        pamkit.SimulatorConfig(method="adams")  # an IntegrationMethod, not a string
+    # A gas exchanging heat in 5 s along 20.9 s ramps: 0.2 /s x 20.9 s x (1e-8)^(1/6) = 0.19 < 1, not stiff.
+    gas = pamkit.GasParams(process=pamkit.GasProcess.heat_transfer, heat_transfer_time_constant_s=5.0)
+    model = pamkit.MuscleModel(pamkit.MuscleParams(gas=gas), pamkit.InitialState())
+    trajectory = pamkit.thesis_protocol(0.0523, cycles=1)
+    estimate = pamkit.estimate_stiffness(model, trajectory, config)
+    assert estimate.ratio == pytest.approx(0.2 * 20.92 * 1e-8 ** (1 / 6), rel=1e-12) and not estimate.stiff
+    assert pamkit.Simulator(config).run(model, trajectory).statistics.method == pamkit.IntegrationMethod.adams
+    assert pamkit.Simulator().run(model, trajectory).statistics.method == pamkit.IntegrationMethod.bdf

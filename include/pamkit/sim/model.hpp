@@ -171,6 +171,13 @@ class MuscleModel {
   /// The state at zero elongation: ambient temperature, the sealed mass, no viscous stress.
   State initial() const;
 
+  /// The fastest rate [1/s] at which a state relaxes on its own, whatever the motion: the gas
+  /// temperature towards the wall's (1 / the heat-transfer time constant), the gas mass through a
+  /// leak (its rate) and the bladder's viscous stresses (1 / their time constant, when the
+  /// branch is on); 0 when none relaxes (a polytropic sealed muscle). The rates the motion drives
+  /// (dV/dt / V) change on the trajectory's own time scale and do not make a run stiff.
+  double fastest_rate_per_s() const;
+
   /// Gas temperature at the start [K]: the ambient temperature.
   double initial_temperature() const { return params_.gas.ambient_temperature_K; }
   /// Sealed mass of air at the start [kg], from the initial state by the ideal gas law (eq. 3.1.17).

@@ -26,6 +26,19 @@ inline State MuscleModel::initial() const {
   return y;
 }
 
+inline double MuscleModel::fastest_rate_per_s() const {
+  const GasParams& g = params_.gas;
+  const ModelExtensions& x = params_.extensions;
+  double rate = x.leak_rate_per_s;
+  // tau = 0 exchanges instantly: the temperature is then algebraic (isothermal), not a state that relaxes.
+  if (g.process == GasProcess::heat_transfer && g.heat_transfer_time_constant_s > 0.0) {
+    rate = std::max(rate, 1.0 / g.heat_transfer_time_constant_s);
+  }
+  // With no strength the viscous stresses start at zero and stay there.
+  if (x.viscoelastic_strength > 0.0) rate = std::max(rate, 1.0 / x.viscoelastic_time_constant_s);
+  return rate;
+}
+
 inline double MuscleModel::elastic_force(double braid_length, const State& y, ShapeHint& hint) const {
   const GasParams& g = params_.gas;
   const MuscleShape shape = geometry_.shape_from(hint, braid_length, ShapeParts::kinematics);

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
-/// Integrates a MuscleModel along a prescribed elongation with SUNDIALS CVODES (BDF, dense
-/// Newton); the energy flows are integrated with the state.
+/// Integrates a MuscleModel along a prescribed elongation with SUNDIALS CVODES (BDF with a dense
+/// Newton solver, or Adams with a fixed-point iteration where a stiffness test allows it); the
+/// energy flows are integrated with the state.
 
 #include <string>
 #include <vector>
@@ -30,6 +31,8 @@ struct SimulatorConfig {
   double corner_threshold = 0.2;       ///< a jump of the elongation rate above this share of the largest rate
                                        ///< restarts the integrator (turning points, holds); smaller ones
                                        ///< (sampled curves, encoder noise) are integrated through [1]
+  IntegrationMethod method = IntegrationMethod::bdf;  ///< bdf, adams, or automatic: adams where
+                                                      ///< estimate_stiffness finds the run non-stiff
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
@@ -43,9 +46,30 @@ struct SimulatorConfig {
     visit("max_step_s", &SimulatorConfig::max_step_s, FieldInfo{"s", 0.0, 1e9, "largest step (0: no limit)"});
     visit("corner_threshold", &SimulatorConfig::corner_threshold,
           FieldInfo{"1", 0.0, 2.0, "rate jump that restarts, share of the largest rate"});
+    visit("method", &SimulatorConfig::method,
+          FieldInfo{"1", 0.0, 2.0, "integration method: bdf, adams or auto (adams where the run is not stiff)"});
   }
   void validate() const { validate_fields(*this); }
 };
+
+/// The stiffness test behind IntegrationMethod::automatic, made before a run from the model's
+/// parameters and the trajectory's times alone (so the same on every machine and thread).
+/// A run is stiff where the model relaxes faster than the steps the tolerance allows: Adams's
+/// fixed-point iteration then stalls and its steps shrink to ~1 / rate, where BDF's Newton
+/// iteration keeps steps the tolerance sets.
+struct StiffnessEstimate {
+  double fastest_rate_per_s;  ///< MuscleModel::fastest_rate_per_s [1/s]
+  double longest_piece_s;     ///< longest stretch between corners of the trajectory [s]
+  double expected_step_s;     ///< a step the tolerance allows on it: longest_piece_s rtol^(1/6), at most max_step_s
+  /// fastest_rate_per_s x expected_step_s: above 1, stiff.
+  double ratio() const { return fastest_rate_per_s * expected_step_s; }
+  bool stiff() const { return ratio() > 1.0; }
+};
+
+/// The stiffness test of `model` along `trajectory` under `config` (its tolerance, max_step_s
+/// and corner_threshold); `Simulator::run` makes it when `config.method` is automatic.
+StiffnessEstimate estimate_stiffness(const MuscleModel& model, const ElongationTrajectory& trajectory,
+                                     const SimulatorConfig& config);
 
 /// Time series of one run; every vector has one entry per trajectory sample.
 struct SimulationResult {

@@ -9,7 +9,7 @@ import os
 import typing
 from . import logger
 from . import units
-__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
+__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'IntegrationMethod', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'StiffnessEstimate', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'estimate_stiffness', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
 class Error(RuntimeError):
     pass
 class SolverError(RuntimeError):
@@ -802,6 +802,56 @@ class ElongationTrajectory:
     @property
     def time_s(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
+class IntegrationMethod:
+    """
+    How CVODES integrates: bdf (dense Newton), adams (fixed-point iteration), or auto (adams where estimate_stiffness finds the run non-stiff, bdf otherwise).
+    
+    Members:
+    
+      auto
+    
+      bdf
+    
+      adams
+    """
+    __members__: typing.ClassVar[dict[str, IntegrationMethod]]
+    adams: typing.ClassVar[IntegrationMethod]
+    auto: typing.ClassVar[IntegrationMethod]
+    bdf: typing.ClassVar[IntegrationMethod]
+    @typing.overload
+    def __eq__(self, other: IntegrationMethod) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: IntegrationMethod) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class SimulatorConfig:
     """
     CVODES settings.
@@ -864,6 +914,14 @@ class SimulatorConfig:
     def max_steps(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def method(self) -> IntegrationMethod:
+        """
+        integration method: bdf, adams or auto (adams where the run is not stiff)
+        """
+    @method.setter
+    def method(self, arg0: IntegrationMethod) -> None:
+        ...
+    @property
     def relative_tolerance(self) -> float:
         """
         relative tolerance [1], allowed [0.000000, 0.010000]
@@ -871,6 +929,37 @@ class SimulatorConfig:
     @relative_tolerance.setter
     def relative_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+class StiffnessEstimate:
+    """
+    The stiffness test of IntegrationMethod.auto: the model's fastest rate times the step the tolerance allows on the trajectory's longest piece; above 1, stiff.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def expected_step_s(self) -> float:
+        """
+        longest_piece_s * rtol^(1/6), at most max_step_s [s]
+        """
+    @property
+    def fastest_rate_per_s(self) -> float:
+        """
+        the model's fastest relaxation rate [1/s]
+        """
+    @property
+    def longest_piece_s(self) -> float:
+        """
+        longest stretch between the trajectory's corners [s]
+        """
+    @property
+    def ratio(self) -> float:
+        """
+        fastest_rate_per_s * expected_step_s [1]
+        """
+    @property
+    def stiff(self) -> bool:
+        """
+        ratio > 1: auto runs bdf
+        """
 class SolverStatistics:
     """
     CVODES counters over one run.
@@ -886,6 +975,11 @@ class SolverStatistics:
     @property
     def linear_solver_setups(self) -> int:
         ...
+    @property
+    def method(self) -> IntegrationMethod:
+        """
+        the method that ran: bdf or adams
+        """
     @property
     def nonlinear_convergence_failures(self) -> int:
         ...
@@ -2201,6 +2295,10 @@ def deflated_braid_angle_deg(build: MuscleBuild) -> float:
 def detect_gait_events(data: GaitData) -> GaitEvents:
     """
     Stride, heel strike and toe-off from the data alone.
+    """
+def estimate_stiffness(model: MuscleModel, trajectory: ElongationTrajectory, config: SimulatorConfig = ...) -> StiffnessEstimate:
+    """
+    The stiffness test SimulatorConfig(method=IntegrationMethod.auto) makes before a run.
     """
 def fiber_revolutions_for_braid_angle(build: MuscleBuild, braid_angle_deg: typing.SupportsFloat | typing.SupportsIndex) -> float:
     """
