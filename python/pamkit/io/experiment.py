@@ -989,17 +989,47 @@ WRITE_BLOCK_ROWS = 1 << 16
 
 def write_series(path: str | Path, columns: dict[str, np.ndarray], digits: int = 10) -> None:
     """Writes columns of equal length to CSV with a header row, `digits` significant digits."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    names = list(columns)
-    series = [np.asarray(columns[name], dtype=float) for name in names]
-    with path.open("w", newline="") as handle:
-        csv.writer(handle).writerow(names)
-        # In blocks of rows, so that a long test's text never stands in memory whole; csv's line
-        # ends (CRLF) and Python's "%g", as before.
-        for start in range(0, len(series[0]) if series else 0, WRITE_BLOCK_ROWS):
-            block = np.column_stack([s[start : start + WRITE_BLOCK_ROWS] for s in series])
-            np.savetxt(handle, block, fmt=f"%.{digits}g", delimiter=",", newline="\r\n")
+    series = {name: np.asarray(column, dtype=float) for name, column in columns.items()}
+    rows = len(next(iter(series.values()))) if series else 0
+    with SeriesWriter(path, list(series), digits) as writer:
+        # In blocks of rows, so that a long test's text never stands in memory whole.
+        for start in range(0, rows, WRITE_BLOCK_ROWS):
+            writer.write({name: column[start : start + WRITE_BLOCK_ROWS] for name, column in series.items()})
+
+
+class SeriesWriter:
+    """Writes a CSV block of rows by block, as they are computed, in write_series's format (the
+    same bytes): a header row of `names`, then `digits` significant digits ("%g"), csv's line
+    ends (CRLF). A context manager; a failure inside it removes the partial file, so that a
+    simulation that stops half-way leaves no CSV to mistake for its result.
+
+        with SeriesWriter("out.csv", ["time_s", "force_N"]) as writer:
+            writer.write({"time_s": t, "force_N": f})  # as often as there are blocks
+    """
+
+    def __init__(self, path: str | Path, names: Sequence[str], digits: int = 10):
+        self.path = Path(path)
+        self.names = list(names)
+        self.digits = digits
+        self.rows = 0  # written so far
+        self._handle = None
+
+    def __enter__(self) -> SeriesWriter:
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self._handle = self.path.open("w", newline="")
+        csv.writer(self._handle).writerow(self.names)
+        return self
+
+    def write(self, columns: Mapping[str, np.ndarray]) -> None:
+        """Appends rows: `columns` holds each name's values for them, all of one length."""
+        block = np.column_stack([np.asarray(columns[name], dtype=float) for name in self.names])
+        np.savetxt(self._handle, block, fmt=f"%.{self.digits}g", delimiter=",", newline="\r\n")
+        self.rows += block.shape[0]
+
+    def __exit__(self, kind, error, trace) -> None:
+        self._handle.close()
+        if error is not None:
+            self.path.unlink(missing_ok=True)
 
 
 def write_experiment(
