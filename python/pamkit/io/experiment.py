@@ -74,6 +74,7 @@ TEST_KEYS = {
     "preload_N": (False, "supplied: the force the deflated muscle was mounted with; sets its length [N]"),
     "force_range_N": (False, "[lowest, highest] force the load cell reads; it clips beyond [N]"),
     "pressure_range_kPa": (False, "[lowest, highest] gauge pressure the transducer reads; it clips beyond [kPa]"),
+    "specimen": (False, "a tensile machine's export of several specimens: the one this test is (its Specimen Number)"),
 }
 # [test] ranges of the instruments, by the channel they read.
 RANGE_KEYS = {"force_N": "force_range_N", "pressure_kPa": "pressure_range_kPa"}
@@ -505,13 +506,18 @@ def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
         ranges=ranges,
         load_mass_kg=mass,
     )
+    if kind != SERIES_KIND and "specimen" in test:
+        raise _fail(path, f"[test] specimen chooses among a tensile machine's specimens: a {kind} table has none")
     if kind == "isotonic":
         experiment.columns = _read_isotonic(data_path, build, dynamic=mass is not None)
         return experiment
     if kind in TABLE_COLUMNS:
         experiment.columns = read_table(data_path, TABLE_COLUMNS[kind])
         return experiment
-    experiment.columns = read_series(data_path)
+    specimen = test.get("specimen")
+    if specimen is not None and (isinstance(specimen, bool) or not isinstance(specimen, (str, int))):
+        raise _fail(path, f"[test] specimen = {specimen!r} must be a specimen's label (its Specimen Number)")
+    experiment.columns = read_series(data_path, None if specimen is None else str(specimen))
     if "zero" in test:
         _zero(experiment, path, test["zero"])
     if gas == "supplied" and "pressure_kPa" not in experiment.columns:
@@ -519,23 +525,30 @@ def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
     return experiment
 
 
-def read_series(path: str | Path) -> dict[str, np.ndarray]:
+def read_series(path: str | Path, specimen: str | None = None) -> dict[str, np.ndarray]:
     """Reads a measured-data CSV: a header row, then numbers. Requires time_s and elongation_m,
     accepts force_N, pressure_kPa, temperature_C; time must increase.
 
     A tensile machine's export (Instron Bluehill, ZwickRoell testXpert: pamkit.io.machine) is
     recognised by its header and read as time_s, elongation_m (the crosshead's extension, which
-    the machine zeroes at the start of the test) and force_N, converted from its units row.
+    the machine zeroes at the start of the test) and force_N, converted from its units row; of an
+    export of several specimens, `specimen` (its label) is read.
 
     Raises:
-        ExperimentError: naming the file, line and column of the first bad value.
+        ExperimentError: naming the file, line and column of the first bad value; for a
+            `specimen` asked of a file that is not a machine's export.
     """
     path = Path(path)
     if _is_machine_export(path):
         from pamkit.io.machine import read_machine_export  # it builds on this module
 
-        columns = read_machine_export(path).columns
+        columns = read_machine_export(path, specimen).columns
         return {"time_s": columns["time_s"], "elongation_m": columns["extension_m"], "force_N": columns["force_N"]}
+    if specimen is not None:
+        raise ExperimentError(
+            f"{path}: [test] specimen = {specimen!r} chooses among a tensile machine's specimens; this is pamkit's CSV "
+            "of one test: leave it out"
+        )
     return _read_csv(path, REQUIRED_COLUMNS, OPTIONAL_COLUMNS, increasing="time_s")
 
 
