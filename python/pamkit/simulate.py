@@ -21,7 +21,7 @@ The functions below (simulate_experiment: numpy columns in a dict) are the imple
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -31,6 +31,7 @@ from pamkit._core import (
     BladderLaw,
     BraidGeometry,
     Effect,
+    EffectStage,
     ElongationTrajectory,
     GasMode,
     InitialState,
@@ -38,11 +39,13 @@ from pamkit._core import (
     MuscleParams,
     Simulator,
     SimulatorConfig,
+    SolverStatistics,
     free_inflation,
     inflated_and_sealed,
     isotonic_lengths,
     isotonic_motion,
     simulate_measurement,
+    simulate_measurement_blocks,
     simulate_supplied_measurement,
     static_forces,
 )
@@ -121,18 +124,11 @@ def _measurement(
 ) -> Measurement:
     """The simulated time series of an experiment (with the solver's statistics); a sealed test
     starts from `initial` when given."""
-    mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
-    for effect in effects:
-        acts, why_not = effect.acts_in(mode)
-        if not acts:
-            raise ExperimentError(f"{experiment.path}: effect {effect.name()} cannot act here: {why_not}")
+    mode = _checked_mode(experiment, effects)
     if mode == GasMode.supplied:
         length0 = initial_length(experiment, params)
-    elif initial is None:
-        initial = InitialState(
-            length_m=initial_length(experiment, params),
-            gauge_pressure_Pa=experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL,
-        )
+    else:
+        initial = _initial_state(experiment, params, initial)
     crosshead = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
     try:
         if mode == GasMode.supplied:
@@ -150,6 +146,90 @@ def _measurement(
     except ValueError as error:
         raise ExperimentError(f"{experiment.data_path}: {error}") from None
     return measurement
+
+
+def _checked_mode(experiment: Experiment, effects: Sequence[Effect]) -> GasMode:
+    """The test's gas mode, once every effect can act in it."""
+    mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
+    for effect in effects:
+        acts, why_not = effect.acts_in(mode)
+        if not acts:
+            raise ExperimentError(f"{experiment.path}: effect {effect.name()} cannot act here: {why_not}")
+    return mode
+
+
+def _initial_state(experiment: Experiment, params: MuscleParams, initial: InitialState | None) -> InitialState:
+    """A sealed test's state at its start: `initial` when given, else the file's inflation."""
+    if initial is not None:
+        return initial
+    return InitialState(
+        length_m=initial_length(experiment, params),
+        gauge_pressure_Pa=experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL,
+    )
+
+
+#: Samples simulated (and handed on) at a time when a simulation streams its output.
+STREAM_BLOCK_ROWS = 1 << 16
+
+
+def why_not_streamed(experiment: Experiment, effects: Sequence[Effect] = ()) -> str | None:
+    """Why :func:`simulate_streamed` cannot predict the experiment (None: it can). It streams a
+    sealed time series: a static table is one solve a row, and a supplied test's pressure
+    branches and transducer effects read the whole record. An effect on the measured channels
+    (a sensor's lag, a clock's skew) reads the whole series too, a filter's past or a later
+    sample."""
+    if experiment.is_table:
+        return f"a {experiment.kind} table is predicted row by row, not integrated in time"
+    if experiment.gas != "sealed":
+        return "a supplied test's pressure branches and transducer read the whole record"
+    whole = [effect.name() for effect in effects if effect.stage() == EffectStage.measurement]
+    if whole:
+        return f"{', '.join(whole)} act(s) on the whole measured series"
+    return None
+
+
+def simulate_streamed(
+    experiment: Experiment,
+    sink: Callable[[dict[str, np.ndarray]], None],
+    params: MuscleParams | None = None,
+    config: SimulatorConfig | None = None,
+    effects: Sequence[Effect] = (),
+    initial: InitialState | None = None,
+    block_rows: int = STREAM_BLOCK_ROWS,
+) -> SolverStatistics:
+    """Predicts a sealed time series as :func:`simulate_experiment` does, handing its channels to
+    `sink` as they are integrated, `block_rows` samples at a time: the prediction never stands in
+    memory whole (the C++ simulator hands each block over as it fills, as SUNDIALS's and
+    Drake's hand output to a monitor), so a test of 10^7 samples needs memory for its input
+    only. Each block is a dict of 1-D arrays, SERIES_COLUMNS in order (time_s [s],
+    elongation_m [m], force_N [N], pressure_kPa [kPa gauge], temperature_C [°C]), as the
+    instruments read them; the blocks joined equal simulate_experiment's columns bit for bit.
+
+    Returns:
+        The CVODES counters of the run.
+
+    Raises:
+        ExperimentError: for what simulate_experiment refuses, and for an experiment
+            :func:`why_not_streamed` names a reason for (simulate it whole).
+    """
+    params = params if params is not None else muscle_params(experiment)
+    why_not = why_not_streamed(experiment, effects)
+    if why_not is not None:
+        raise ExperimentError(f"{experiment.path}: cannot stream the simulation: {why_not}; simulate it whole")
+    _checked_mode(experiment, effects)
+    initial = _initial_state(experiment, params, initial)
+    crosshead = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
+    simulator = Simulator(config if config is not None else SimulatorConfig())
+
+    def read(first: int, channels: dict[str, np.ndarray]) -> None:
+        sink({name: experiment.read(name, channels[name]) for name in SERIES_COLUMNS})
+
+    try:
+        return simulate_measurement_blocks(params, initial, crosshead, list(effects), simulator, block_rows, read)
+    except ExperimentError:
+        raise
+    except ValueError as error:
+        raise ExperimentError(f"{experiment.data_path}: {error}") from None
 
 
 def simulate_table(

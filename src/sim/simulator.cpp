@@ -7,9 +7,11 @@
 #include <nvector/nvector_serial.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "cvodes_support.hpp"
@@ -92,39 +94,73 @@ std::size_t piece_end(const ElongationTrajectory& trajectory, std::size_t k, dou
   return end;
 }
 
-/// A result with every column sized for the trajectory's samples, the prescribed ones filled.
-SimulationResult allocate(const ElongationTrajectory& trajectory) {
-  const std::size_t n = trajectory.size();
-  SimulationResult r;
-  r.time_s = trajectory.time();
-  r.elongation_m = trajectory.elongation();
-  for (std::vector<double>* column :
-       {&r.length_m, &r.force_N, &r.friction_force_N, &r.pressure_gauge_Pa, &r.temperature_K, &r.gas_volume_m3,
-        &r.gas_mass_kg, &r.braid_angle_rad, &r.diameter_m, &r.work_J, &r.heat_lost_J, &r.friction_dissipated_J}) {
-    column->resize(n);
-  }
-  return r;
+/// Every output column of a result (all but the prescribed time and elongation); `Result` is
+/// SimulationResult or const SimulationResult.
+template <class Result>
+auto outputs(Result& r) {
+  using Column = std::conditional_t<std::is_const_v<Result>, const std::vector<double>, std::vector<double>>;
+  return std::array<Column*, 12>{&r.length_m,      &r.force_N,       &r.friction_force_N, &r.pressure_gauge_Pa,
+                                 &r.temperature_K, &r.gas_volume_m3, &r.gas_mass_kg,      &r.braid_angle_rad,
+                                 &r.diameter_m,    &r.work_J,        &r.heat_lost_J,      &r.friction_dissipated_J};
 }
 
-/// Fills sample `k` of `r`: one model evaluation at the state CVODES reports for its time.
-void record(SimulationResult& r, std::size_t k, const MuscleModel& model, MuscleWorkspace& workspace, double velocity,
-            const State& y) {
-  const double length = model.initial_state().length_m + r.elongation_m[k];
-  const MuscleOutputs out = model.evaluate_with(workspace, length, velocity, y, ShapeParts::kinematics_and_braid_angle);
-  ++r.statistics.output_evaluations;
-  r.length_m[k] = length;
-  r.force_N[k] = out.forces.total;
-  r.friction_force_N[k] = out.forces.friction;
-  r.pressure_gauge_Pa[k] = out.gauge_pressure_Pa;
-  r.temperature_K[k] = y[State::temperature_K];
-  r.gas_volume_m3[k] = out.gas_volume_m3;
-  r.gas_mass_kg[k] = y[State::gas_mass_kg];
-  r.braid_angle_rad[k] = out.shape.braid_angle;
-  r.diameter_m[k] = out.shape.diameter;
-  r.work_J[k] = y[State::work_J];
-  r.heat_lost_J[k] = y[State::heat_lost_J];
-  r.friction_dissipated_J[k] = y[State::friction_dissipated_J];
-}
+/// Collects samples, recorded in order, into blocks of a SimulationResult and hands each full
+/// block to the sink.
+class BlockRecorder {
+ public:
+  BlockRecorder(const ElongationTrajectory& trajectory, std::size_t block_size, const SampleSink& sink)
+      : trajectory_(trajectory), block_size_(block_size), sink_(sink) {
+    start_block();
+  }
+
+  /// Records sample `k` (the one after the last recorded): one model evaluation at the state
+  /// CVODES reports for its time.
+  void record(std::size_t k, const MuscleModel& model, MuscleWorkspace& workspace, double velocity, const State& y,
+              SolverStatistics& statistics) {
+    const std::size_t i = k - first_;
+    const double length = model.initial_state().length_m + block_.elongation_m[i];
+    const MuscleOutputs out =
+        model.evaluate_with(workspace, length, velocity, y, ShapeParts::kinematics_and_braid_angle);
+    ++statistics.output_evaluations;
+    block_.length_m[i] = length;
+    block_.force_N[i] = out.forces.total;
+    block_.friction_force_N[i] = out.forces.friction;
+    block_.pressure_gauge_Pa[i] = out.gauge_pressure_Pa;
+    block_.temperature_K[i] = y[State::temperature_K];
+    block_.gas_volume_m3[i] = out.gas_volume_m3;
+    block_.gas_mass_kg[i] = y[State::gas_mass_kg];
+    block_.braid_angle_rad[i] = out.shape.braid_angle;
+    block_.diameter_m[i] = out.shape.diameter;
+    block_.work_J[i] = y[State::work_J];
+    block_.heat_lost_J[i] = y[State::heat_lost_J];
+    block_.friction_dissipated_J[i] = y[State::friction_dissipated_J];
+    if (i + 1 == block_.time_s.size()) {
+      sink_(first_, block_);
+      first_ += block_.time_s.size();
+      if (first_ < trajectory_.size()) start_block();
+    }
+  }
+
+ private:
+  /// Sizes the block for the samples from first_, the prescribed columns filled.
+  void start_block() {
+    const std::size_t n = std::min(block_size_, trajectory_.size() - first_);
+    const auto from = static_cast<std::ptrdiff_t>(first_);
+    const auto to = static_cast<std::ptrdiff_t>(first_ + n);
+    block_.time_s.assign(trajectory_.time().begin() + from, trajectory_.time().begin() + to);
+    block_.elongation_m.assign(trajectory_.elongation().begin() + from, trajectory_.elongation().begin() + to);
+    for (std::vector<double>* column : outputs(block_)) column->resize(n);
+  }
+
+  const ElongationTrajectory& trajectory_;
+  std::size_t block_size_;
+  const SampleSink& sink_;
+  std::size_t first_ = 0;
+  SimulationResult block_;
+};
+
+/// Samples per block when run() collects a whole result.
+constexpr std::size_t kCollectBlockSize = 4096;
 
 }  // namespace
 
@@ -150,6 +186,23 @@ StiffnessEstimate estimate_stiffness(const MuscleModel& model, const ElongationT
 Simulator::Simulator(SimulatorConfig config) : config_(config) { config_.validate(); }
 
 SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajectory& trajectory) const {
+  SimulationResult result;
+  result.time_s = trajectory.time();
+  result.elongation_m = trajectory.elongation();
+  for (std::vector<double>* column : outputs(result)) column->resize(trajectory.size());
+  result.statistics =
+      run_blocks(model, trajectory, kCollectBlockSize, [&result](std::size_t first, const SimulationResult& block) {
+        const auto at = static_cast<std::ptrdiff_t>(first);
+        const auto from = outputs(block);
+        const auto to = outputs(result);
+        for (std::size_t c = 0; c < from.size(); ++c) std::copy(from[c]->begin(), from[c]->end(), to[c]->begin() + at);
+      });
+  return result;
+}
+
+SolverStatistics Simulator::run_blocks(const MuscleModel& model, const ElongationTrajectory& trajectory,
+                                       std::size_t block_size, const SampleSink& sink) const {
+  if (block_size == 0) throw InvalidInput("Simulator.run_blocks: block_size must be at least 1");
   const auto& time = trajectory.time();
   const auto& elongation = trajectory.elongation();
   const BraidGeometry& geometry = model.geometry();
@@ -194,8 +247,9 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
                           tolerances.get(), config_.max_steps, config_.max_step_s);
   void* cv = solver.get();
 
-  SimulationResult result = allocate(trajectory);
-  record(result, 0, model, workspace.output, trajectory.segment_velocity(0), initial);
+  SolverStatistics statistics;
+  BlockRecorder recorder(trajectory, block_size, sink);
+  recorder.record(0, model, workspace.output, trajectory.segment_velocity(0), initial, statistics);
 
   // Integrate piece by piece between corners, where the elongation rate jumps: CVODES stops
   // exactly there (its stop time) and restarts its BDF history. Inside a piece it takes one
@@ -210,9 +264,9 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
     workspace.piece_start = k;
     workspace.piece_end = end;
     if (k > 0) {
-      add_statistics(solver, result.statistics);
+      add_statistics(solver, statistics);
       check_flag(CVodeReInit(cv, t, y.get()), "CVodeReInit", t);
-      ++result.statistics.restarts;
+      ++statistics.restarts;
     }
     check_flag(CVodeSetStopTime(cv, time[end]), "CVodeSetStopTime", t);
     std::size_t sample = k + 1;
@@ -233,15 +287,15 @@ SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajec
       }
       for (; sample <= end && time[sample] <= t; ++sample) {
         check_flag(CVodeGetDky(cv, time[sample], 0, sample_state.get()), "CVodeGetDky", time[sample]);
-        record(result, sample, model, workspace.output, trajectory.segment_velocity(sample - 1),
-               to_state(sample_state.get()));
+        recorder.record(sample, model, workspace.output, trajectory.segment_velocity(sample - 1),
+                        to_state(sample_state.get()), statistics);
         steps_since_sample = 0;
       }
     }
     k = end;
   }
-  add_statistics(solver, result.statistics);
-  return result;
+  add_statistics(solver, statistics);
+  return statistics;
 }
 
 }  // namespace pamkit

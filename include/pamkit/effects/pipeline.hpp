@@ -4,7 +4,10 @@
 /// fixture, read through the sensors.
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <optional>
 
 #include <boost/math/tools/roots.hpp>
 
@@ -14,6 +17,55 @@
 
 namespace pamkit {
 
+/// Receives a simulated measurement's samples in order, a block at a time: `first` is the index
+/// of the block's first sample. The block is reused after the call returns.
+using MeasurementSink = std::function<void(std::size_t first, const Measurement& block)>;
+
+namespace detail {
+/// A sealed test's run with `effects` applied to the parameters and the motion, its samples
+/// handed to `sink` in blocks as the instruments' channels before the measurement stage (the
+/// elongation is the crosshead's: what the machine records). \returns the solver's counters.
+/// \throws InvalidParameter if an effect cannot act on a sealed test, and whatever the
+///         simulator or the sink throws.
+inline SolverStatistics sealed_measurement_blocks(const MuscleParams& params, const InitialState& initial,
+                                                  const ElongationTrajectory& crosshead,
+                                                  const std::vector<EffectPtr>& effects, const Simulator& simulator,
+                                                  std::size_t block_size, const MeasurementSink& sink) {
+  MuscleParams extended = params;
+  for (const EffectPtr& effect : effects) {
+    std::string why_not;
+    if (!effect->acts_in(GasMode::sealed, &why_not)) throw InvalidParameter(why_not);
+    effect->apply_to_params(extended);
+  }
+  // The muscle's motion, when an effect may change it: the crosshead's otherwise, not copied.
+  std::optional<ElongationTrajectory> moved;
+  if (!effects.empty()) {
+    std::vector<double> motion = crosshead.elongation();
+    for (const EffectPtr& effect : effects) motion = effect->apply_to_elongation(crosshead.time(), motion);
+    moved.emplace(crosshead.time(), std::move(motion));
+  }
+  Measurement block;
+  const auto channels = [&](std::size_t first, const SimulationResult& r) {
+    const std::size_t n = r.time_s.size();
+    const auto from = crosshead.elongation().begin() + static_cast<std::ptrdiff_t>(first);
+    block.time_s = r.time_s;
+    block.elongation_m.assign(from, from + static_cast<std::ptrdiff_t>(n));
+    block.force_N = r.force_N;
+    block.pressure_kPa.resize(n);
+    block.temperature_C.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      block.pressure_kPa[k] = units::kilopascal_from_pascal(r.pressure_gauge_Pa[k]);
+      block.temperature_C[k] = units::celsius_from_kelvin(r.temperature_K[k]);
+    }
+    sink(first, block);
+  };
+  return simulator.run_blocks(MuscleModel(extended, initial), moved ? *moved : crosshead, block_size, channels);
+}
+
+/// Samples per block when a whole measurement is collected.
+constexpr std::size_t kMeasurementBlockSize = 4096;
+}  // namespace detail
+
 /// Simulates a sealed test with `effects` applied at every stage, in order: parameters, the
 /// muscle's motion from the crosshead's `crosshead`, then the measured channels. The result's
 /// elongation is the crosshead's (what the machine records).
@@ -22,29 +74,45 @@ namespace pamkit {
 inline Measurement simulate_measurement(const MuscleParams& params, const InitialState& initial,
                                         const ElongationTrajectory& crosshead, const std::vector<EffectPtr>& effects,
                                         const Simulator& simulator = Simulator()) {
-  MuscleParams extended = params;
-  std::vector<double> motion = crosshead.elongation();
-  for (const EffectPtr& effect : effects) {
-    std::string why_not;
-    if (!effect->acts_in(GasMode::sealed, &why_not)) throw InvalidParameter(why_not);
-    effect->apply_to_params(extended);
-    motion = effect->apply_to_elongation(crosshead.time(), motion);
-  }
-  const SimulationResult r =
-      simulator.run(MuscleModel(extended, initial), ElongationTrajectory(crosshead.time(), motion));
   Measurement m;
-  m.time_s = r.time_s;
-  m.elongation_m = crosshead.elongation();
-  m.force_N = r.force_N;
-  m.pressure_kPa.reserve(r.time_s.size());
-  m.temperature_C.reserve(r.time_s.size());
-  for (std::size_t k = 0; k < r.time_s.size(); ++k) {
-    m.pressure_kPa.push_back(units::kilopascal_from_pascal(r.pressure_gauge_Pa[k]));
-    m.temperature_C.push_back(units::celsius_from_kelvin(r.temperature_K[k]));
+  for (std::vector<double>* column : {&m.time_s, &m.elongation_m, &m.force_N, &m.pressure_kPa, &m.temperature_C}) {
+    column->reserve(crosshead.size());
   }
+  const SolverStatistics statistics = detail::sealed_measurement_blocks(
+      params, initial, crosshead, effects, simulator, detail::kMeasurementBlockSize,
+      [&m](std::size_t, const Measurement& block) {
+        m.time_s.insert(m.time_s.end(), block.time_s.begin(), block.time_s.end());
+        m.elongation_m.insert(m.elongation_m.end(), block.elongation_m.begin(), block.elongation_m.end());
+        m.force_N.insert(m.force_N.end(), block.force_N.begin(), block.force_N.end());
+        m.pressure_kPa.insert(m.pressure_kPa.end(), block.pressure_kPa.begin(), block.pressure_kPa.end());
+        m.temperature_C.insert(m.temperature_C.end(), block.temperature_C.begin(), block.temperature_C.end());
+      });
   for (const EffectPtr& effect : effects) effect->apply_to_measurement(m);
-  m.statistics = r.statistics;  // after the effects: a user effect may return a new Measurement
+  m.statistics = statistics;  // after the effects: a user effect may return a new Measurement
   return m;
+}
+
+/// `simulate_measurement`, its samples handed to `sink` in blocks of `block_size` as they are
+/// integrated (Simulator::run_blocks): a long test's channels need not stand in memory at once,
+/// only one block and the crosshead's trajectory do. The samples are simulate_measurement's,
+/// bit for bit. An effect on the measured channels (EffectStage::measurement: a sensor's lag,
+/// a clock's skew, a load cell's or thermometer's response) reads the whole series, a filter's
+/// past or a later sample, so it is refused here: simulate the whole measurement for it.
+/// \returns the solver's counters.
+/// \throws InvalidParameter naming an effect that cannot act on a sealed test or on blocks;
+///         InvalidInput for a block_size of 0; whatever the simulator or the sink throws.
+inline SolverStatistics simulate_measurement_blocks(const MuscleParams& params, const InitialState& initial,
+                                                    const ElongationTrajectory& crosshead,
+                                                    const std::vector<EffectPtr>& effects, const Simulator& simulator,
+                                                    std::size_t block_size, const MeasurementSink& sink) {
+  for (const EffectPtr& effect : effects) {
+    if (effect->stage() == EffectStage::measurement) {
+      throw InvalidParameter(detail::message(effect->name(),
+                                             " acts on the whole measured series, which a simulation in blocks "
+                                             "never holds: simulate the whole measurement for it"));
+    }
+  }
+  return detail::sealed_measurement_blocks(params, initial, crosshead, effects, simulator, block_size, sink);
 }
 
 /// The branch of each sample of a supplied pressure: +1 while it is raised, -1 while it is

@@ -4,6 +4,8 @@
 /// Newton solver, or Adams with a fixed-point iteration where a stiffness test allows it); the
 /// energy flows are integrated with the state.
 
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -90,6 +92,11 @@ struct SimulationResult {
   SolverStatistics statistics;
 };
 
+/// Receives a run's samples in order, a block at a time: `first` is the trajectory index of the
+/// block's first sample, and every column of `block` holds the block's samples (its statistics
+/// are empty: the run returns them at its end). The block is reused after the call returns.
+using SampleSink = std::function<void(std::size_t first, const SimulationResult& block)>;
+
 /// Runs simulations. Holds only its configuration, so one Simulator may run many models at
 /// once from different threads; each run owns its own CVODES memory.
 class Simulator {
@@ -105,6 +112,16 @@ class Simulator {
   /// \throws InvalidInput if a sample's length is outside the braid's range (naming the
   ///         sample), SolverError with the CVODES flag name and time if integration fails.
   SimulationResult run(const MuscleModel& model, const ElongationTrajectory& trajectory) const;
+
+  /// `run`, its samples handed to `sink` as they are integrated, in blocks of `block_size`
+  /// samples (the last block may be shorter), as SUNDIALS's and Drake's simulators hand output
+  /// to a monitor: only one block stands in memory, so a long test's outputs need not. The
+  /// samples are `run`'s, bit for bit (`run` is this with a sink that copies the blocks).
+  /// \returns the solver's counters over the run.
+  /// \throws InvalidInput for a block_size of 0, and whatever `run` or `sink` throws; the
+  ///         samples handed over before stand.
+  SolverStatistics run_blocks(const MuscleModel& model, const ElongationTrajectory& trajectory, std::size_t block_size,
+                              const SampleSink& sink) const;
 
   const SimulatorConfig& config() const { return config_; }
 

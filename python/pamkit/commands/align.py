@@ -26,6 +26,12 @@ def register(subparsers) -> None:
         help="tensile machine export: Instron Bluehill's or ZwickRoell testXpert's CSV (metadata block, names "
         "row, units row; ';' and decimal commas too), or a CSV whose column names carry their units",
     )
+    parser.add_argument(
+        "--specimen",
+        metavar="LABEL",
+        help='the specimen the logger recorded, in a machine export of several (Bluehill\'s "Specimen Number"); '
+        "one logger file is one specimen's test, so one is aligned at a time",
+    )
     parser.add_argument("-o", "--output", required=True, help="experiment TOML to write (its CSV gets the same stem)")
     parser.add_argument(
         "--muscle",
@@ -82,7 +88,7 @@ def run(arguments: argparse.Namespace) -> int:
         logger = read_logger_csv(arguments.logger)
     for warning in dropped:
         print(f"warning: {warning.message}")
-    machine = read_machine_csv(arguments.machine)
+    machine = read_machine_csv(arguments.machine, arguments.specimen)
     sections = read_muscle_source(arguments.muscle)
     for name in LOGGER_CHANNELS:
         if name not in logger:
@@ -127,8 +133,9 @@ def run(arguments: argparse.Namespace) -> int:
         "joint record, before the first stretch"
     )
 
+    specimen = f" (specimen {arguments.specimen})" if arguments.specimen is not None else ""
     test = {
-        "description": f"{arguments.logger} and {arguments.machine} aligned by pamkit align: "
+        "description": f"{arguments.logger} and {arguments.machine}{specimen} aligned by pamkit align: "
         "logger time = machine time "
         f"{'+' if offset >= 0 else '-'} {abs(offset):.4f} s (r = {found.correlation:.3f})",
         "inflation_pressure_kPa": round(inflation, 3),

@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from pamkit.io.experiment import load_experiment, write_series
+from pamkit.io.experiment import SERIES_COLUMNS, SeriesWriter, load_experiment, write_series
 from pamkit.units import PASCAL_PER_KILOPASCAL
 
 
@@ -15,7 +15,9 @@ def register(subparsers) -> None:
         "simulate",
         help="predict force, pressure and temperature for an experiment",
         description="Drives the muscle model with the experiment's time_s and elongation_m and writes the "
-        "predicted force_N, pressure_kPa (gauge) and temperature_C.",
+        "predicted force_N, pressure_kPa (gauge) and temperature_C. A sealed time series is written as it is "
+        "integrated, so a long test's prediction never stands in memory whole; with --plot, or an effect on the "
+        "measured channels (sensor_lag, time_skew, ...), it is simulated whole first.",
     )
     parser.add_argument("experiment", help="experiment TOML file")
     parser.add_argument(
@@ -39,7 +41,7 @@ def register(subparsers) -> None:
 
 def run(arguments: argparse.Namespace) -> int:
     from pamkit.effects import parse_effects
-    from pamkit.simulate import simulate_experiment
+    from pamkit.simulate import simulate_experiment, simulate_streamed, why_not_streamed
 
     effects = parse_effects(arguments.effect)
     experiment = load_experiment(arguments.experiment)
@@ -56,6 +58,13 @@ def run(arguments: argparse.Namespace) -> int:
                 f"{initial.gauge_pressure_Pa / PASCAL_PER_KILOPASCAL:.6g} kPa (the experiment declares "
                 f"{experiment.inflation_pressure_kPa:.6g} kPa)"
             )
+    if not arguments.plot and why_not_streamed(experiment, effects) is None:
+        # Written block by block as it is integrated: a long test's prediction never stands in
+        # memory whole. A figure needs it whole, and so do the tests why_not_streamed names.
+        with SeriesWriter(arguments.output, SERIES_COLUMNS) as writer:
+            simulate_streamed(experiment, writer.write, params=params, effects=effects, initial=initial)
+        print(f"wrote {arguments.output} ({writer.rows} samples: {', '.join(SERIES_COLUMNS)})")
+        return 0
     predicted = simulate_experiment(experiment, params=params, effects=effects, initial=initial)
     write_series(arguments.output, predicted)
     rows = len(next(iter(predicted.values())))

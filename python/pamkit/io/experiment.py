@@ -74,6 +74,7 @@ TEST_KEYS = {
     "preload_N": (False, "supplied: the force the deflated muscle was mounted with; sets its length [N]"),
     "force_range_N": (False, "[lowest, highest] force the load cell reads; it clips beyond [N]"),
     "pressure_range_kPa": (False, "[lowest, highest] gauge pressure the transducer reads; it clips beyond [kPa]"),
+    "specimen": (False, "a tensile machine's export of several specimens: the one this test is (its Specimen Number)"),
 }
 # [test] ranges of the instruments, by the channel they read.
 RANGE_KEYS = {"force_N": "force_range_N", "pressure_kPa": "pressure_range_kPa"}
@@ -505,13 +506,18 @@ def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
         ranges=ranges,
         load_mass_kg=mass,
     )
+    if kind != SERIES_KIND and "specimen" in test:
+        raise _fail(path, f"[test] specimen chooses among a tensile machine's specimens: a {kind} table has none")
     if kind == "isotonic":
         experiment.columns = _read_isotonic(data_path, build, dynamic=mass is not None)
         return experiment
     if kind in TABLE_COLUMNS:
         experiment.columns = read_table(data_path, TABLE_COLUMNS[kind])
         return experiment
-    experiment.columns = read_series(data_path)
+    specimen = test.get("specimen")
+    if specimen is not None and (isinstance(specimen, bool) or not isinstance(specimen, (str, int))):
+        raise _fail(path, f"[test] specimen = {specimen!r} must be a specimen's label (its Specimen Number)")
+    experiment.columns = read_series(data_path, None if specimen is None else str(specimen))
     if "zero" in test:
         _zero(experiment, path, test["zero"])
     if gas == "supplied" and "pressure_kPa" not in experiment.columns:
@@ -519,23 +525,30 @@ def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
     return experiment
 
 
-def read_series(path: str | Path) -> dict[str, np.ndarray]:
+def read_series(path: str | Path, specimen: str | None = None) -> dict[str, np.ndarray]:
     """Reads a measured-data CSV: a header row, then numbers. Requires time_s and elongation_m,
     accepts force_N, pressure_kPa, temperature_C; time must increase.
 
     A tensile machine's export (Instron Bluehill, ZwickRoell testXpert: pamkit.io.machine) is
     recognised by its header and read as time_s, elongation_m (the crosshead's extension, which
-    the machine zeroes at the start of the test) and force_N, converted from its units row.
+    the machine zeroes at the start of the test) and force_N, converted from its units row; of an
+    export of several specimens, `specimen` (its label) is read.
 
     Raises:
-        ExperimentError: naming the file, line and column of the first bad value.
+        ExperimentError: naming the file, line and column of the first bad value; for a
+            `specimen` asked of a file that is not a machine's export.
     """
     path = Path(path)
     if _is_machine_export(path):
         from pamkit.io.machine import read_machine_export  # it builds on this module
 
-        columns = read_machine_export(path).columns
+        columns = read_machine_export(path, specimen).columns
         return {"time_s": columns["time_s"], "elongation_m": columns["extension_m"], "force_N": columns["force_N"]}
+    if specimen is not None:
+        raise ExperimentError(
+            f"{path}: [test] specimen = {specimen!r} chooses among a tensile machine's specimens; this is pamkit's CSV "
+            "of one test: leave it out"
+        )
     return _read_csv(path, REQUIRED_COLUMNS, OPTIONAL_COLUMNS, increasing="time_s")
 
 
@@ -636,17 +649,16 @@ def read_table(path: str | Path, columns: tuple[str, ...]) -> dict[str, np.ndarr
 def _read_csv(
     path: Path, required: tuple[str, ...], optional: tuple[str, ...], increasing: str | None
 ) -> dict[str, np.ndarray]:
+    """The columns of a CSV: `required` ones and any of `optional`, `increasing` (if given) not
+    decreasing, rows repeating it merged. A plain file is read in blocks by numpy; any other, or
+    one with an error to name, row by row with the csv module."""
+    columns = _read_plain_csv(path, required, optional, increasing)
+    if columns is not None:
+        return columns
     text = _text(path, "data")
     header_end = text.find("\n")
     delimiter = _delimiter(text[:header_end] if header_end >= 0 else text)
     decimal_comma = delimiter != ","
-    if header_end >= 0 and '"' not in text and text.count("\r") == text.count("\r\n"):
-        # Plain text (no quoted cells, no bare carriage returns): numpy may read the rows at once.
-        header = _checked_header(path, next(csv.reader([text[:header_end]], delimiter=delimiter)), required, optional)
-        order = header.index(increasing) if increasing else None
-        table = _read_rows_at_once(path, text[header_end + 1 :], header, delimiter)
-        if table is not None:
-            return _checked_columns(path, header, table, 2, order, increasing)
     # Something numpy cannot read as it stands: row by row, to name the line and column.
     with io.StringIO(text, newline="") as handle:
         reader = csv.reader(handle, delimiter=delimiter)
@@ -721,52 +733,136 @@ def _checked_header(path: Path, cells: list[str], required: tuple[str, ...], opt
     return header
 
 
-def _read_rows_at_once(path: Path, body: str, header: list[str], delimiter: str) -> np.ndarray | None:
-    """The rows under the header (`body`, from line 2), parsed by numpy at once (10^6 rows in
-    about 1.5 s of CPU, where the csv module and float() take ten times that), or None when a
-    row is not plain finite numbers in the header's columns, or a line is blank (numpy skips
-    it, and rows would no longer be lines): the caller then reads row by row and names the
-    first bad line. A cut last line (no line end: a killed logger) is parsed on its own and,
-    as row by row, dropped with a warning unless it is a whole row."""
-    cut = not body.endswith("\n")
-    body, _, last = body.rpartition("\n") if cut else (body.removesuffix("\n"), "", "")
-    if not body:
-        return None
-    if delimiter != ",":  # decimal commas
-        body = body.replace(",", ".")
+#: Bytes of a data file numpy parses at a time (then to the end of the line): the file's text
+#: never stands in memory whole, only one block of it beside the numbers read so far.
+READ_BLOCK_BYTES = 4 << 20
+
+
+def _read_plain_csv(
+    path: Path, required: tuple[str, ...], optional: tuple[str, ...], increasing: str | None
+) -> dict[str, np.ndarray] | None:
+    """The columns of a plain CSV, read block by block (READ_BLOCK_BYTES) by numpy: a 2-million-row
+    file (108 MB) in 80 MB, its numbers, where its bytes, text and numbers at once took 4.5 times
+    the file. None when the file is not plain throughout: a quoted cell, a bare carriage return,
+    a blank line (numpy skips it, and rows would no longer be lines), a cell numpy does not read
+    as a finite number, a row of another width, text that is not UTF-8, a line over
+    MAX_LINE_BYTES, no data row, or a file that cannot be opened. The caller then reads its
+    whole text row by row, which names the first problem's line and column. A cut last line
+    (no line end: a killed logger) is parsed on its own and, as row by row, dropped with a
+    warning unless it is a whole row. The header is checked after the rows, as the whole-text
+    reader's order of errors has it (a file that cannot be decoded is named as such first)."""
+    limit = _checked_size(path, "data")
     try:
-        # Bytes, not a StringIO: numpy reads them in chunks, a StringIO would hold 4 bytes a character.
-        table = np.loadtxt(
-            io.BytesIO(body.encode()), delimiter=delimiter, dtype=float, ndmin=2, comments=None, encoding="utf-8"
-        )
-    except ValueError:
+        with path.open("rb") as handle:
+            first = handle.readline(MAX_LINE_BYTES + 1)
+            try:
+                header_line = first.decode("utf-8-sig")
+            except UnicodeDecodeError:
+                return None
+            if not header_line.endswith("\n") or not _is_plain(header_line):
+                return None
+            delimiter = _delimiter(header_line)
+            cells = next(csv.reader([header_line[:-1]], delimiter=delimiter))
+            # A first pass counts the lines, so that numpy's rows go straight into columns of their
+            # final size: the numbers then stand in memory once, not in blocks and again in columns.
+            counted = lines = 0
+            while block := handle.read(READ_BLOCK_BYTES):
+                counted += len(block)
+                lines += block.count(b"\n")
+                if counted > limit:
+                    return None
+            if lines * 2 * len(cells) > counted:  # shorter than one character a cell: blank lines
+                return None
+            handle.seek(len(first))
+            columns = [np.empty(lines + 1) for _ in cells]  # and a last line without a line end
+            size, rows_read, last = len(first), 0, ""
+            while block := handle.read(READ_BLOCK_BYTES):
+                if not block.endswith(b"\n"):
+                    block += handle.readline(MAX_LINE_BYTES + 1)
+                size += len(block)
+                if size > limit or _has_long_line(block):
+                    return None
+                try:
+                    text = block.decode("utf-8")
+                except UnicodeDecodeError:
+                    return None
+                if not _is_plain(text):
+                    return None
+                if not text.endswith("\n"):  # the file's end, without a line end: maybe cut
+                    text, _, last = text.rpartition("\n")
+                    text = text + "\n" if text else ""
+                rows = _parse_block(text, delimiter, len(cells)) if text else np.empty((0, len(cells)))
+                if rows is None or rows_read + len(rows) > lines:  # the file grew since it was counted
+                    return None
+                for index, column in enumerate(columns):
+                    column[rows_read : rows_read + len(rows)] = rows[:, index]
+                rows_read += len(rows)
+    except OSError:
         return None
-    if table.shape != (body.count("\n") + 1, len(header)) or not np.isfinite(table).all():
+    if not rows_read:
         return None
-    if cut and last.strip(delimiter + " \t\r"):
-        line = table.shape[0] + 2
-        cells = next(csv.reader([last], delimiter=delimiter))
+    header = _checked_header(path, cells, required, optional)
+    if last.strip(delimiter + " \t"):
+        line = rows_read + 2
+        row = next(csv.reader([last], delimiter=delimiter))
         try:
-            row = _parse_row(path, line, header, [c.replace(",", ".") for c in cells] if delimiter != "," else cells)
+            values = _parse_row(path, line, header, [c.replace(",", ".") for c in row] if delimiter != "," else row)
         except ExperimentError as error:
             warnings.warn(f"{path}:{line}: the last line is cut off ({error}); dropped", ExperimentWarning, 3)
         else:
-            table = np.vstack([table, row])
-    return table
+            for column, value in zip(columns, values):
+                column[rows_read] = value
+            rows_read += 1
+    for column in columns:
+        column.resize(rows_read, refcheck=False)  # in place: nothing else refers to it
+    columns = dict(zip(header, columns))
+    return _checked_columns(path, columns, 2, increasing)
+
+
+def _is_plain(text: str) -> bool:
+    """No quoted cell (numpy's reader does not unquote), no carriage return but before a line feed."""
+    return '"' not in text and text.count("\r") == text.count("\r\n")
+
+
+def _has_long_line(raw: bytes) -> bool:
+    """Whether a line of `raw` (whole lines) is longer than MAX_LINE_BYTES."""
+    if len(raw) <= MAX_LINE_BYTES:
+        return False
+    codes = np.frombuffer(raw, dtype=np.uint8)
+    ends = np.concatenate([[-1], np.flatnonzero((codes == ord("\n")) | (codes == ord("\r"))), [len(raw)]])
+    return bool((np.diff(ends) - 1 > MAX_LINE_BYTES).any())
+
+
+def _parse_block(text: str, delimiter: str, width: int) -> np.ndarray | None:
+    """Whole lines of numbers parsed by numpy (10^6 rows in about 1.5 s of CPU, where the csv
+    module and float() take ten times that): one row a line, `width` finite numbers each, or None."""
+    if delimiter != ",":  # decimal commas
+        text = text.replace(",", ".")
+    try:
+        # Bytes, not a StringIO: numpy reads them in chunks, a StringIO would hold 4 bytes a character.
+        rows = np.loadtxt(
+            io.BytesIO(text.encode()), delimiter=delimiter, dtype=float, ndmin=2, comments=None, encoding="utf-8"
+        )
+    except ValueError:
+        return None
+    if rows.shape != (text.count("\n"), width) or not np.isfinite(rows).all():
+        return None
+    return rows
 
 
 def _checked_columns(
-    path: Path, header: list[str], table: np.ndarray, first_line: int, order: int | None, increasing: str | None
+    path: Path, columns: dict[str, np.ndarray], first_line: int, increasing: str | None
 ) -> dict[str, np.ndarray]:
     """The columns of rows read at once, with what the row-by-row reader checks and repairs:
     `increasing` must not decrease, and rows repeating its value before them are merged into
     one sample (their mean) with a warning. Row i is on line first_line + i."""
-    if order is not None:
-        stamps = table[:, order]
+    if increasing is not None:
+        stamps = columns[increasing]
         step = np.diff(stamps)
         back = np.flatnonzero(step < 0)
         if back.size:
             row = int(back[0]) + 1
+            order = list(columns).index(increasing)
             raise ExperimentError(
                 f"{path}:{first_line + row}: column {order + 1} ({increasing}) = {float(stamps[row])} does not increase"
             )
@@ -774,25 +870,27 @@ def _checked_columns(
         if repeats.size:
             starts = np.flatnonzero(np.concatenate([[True], step != 0]))
             counts = np.diff(np.append(starts, stamps.size))
-            table = np.add.reduceat(table, starts, axis=0) / counts[:, None]
+            columns = {name: np.add.reduceat(column, starts) / counts for name, column in columns.items()}
             first = first_line + int(repeats[0])
             warnings.warn(
                 f"{path}:{first}: {repeats.size} row(s) repeat the time stamp before them (first at line {first}); "
                 "each is merged with it into one sample (their mean)",
                 ExperimentWarning,
-                3,
+                4,
             )
-    if table.shape[0] < 2:
-        raise ExperimentError(f"{path}: needs at least 2 data rows, found {table.shape[0]}")
-    return {name: table[:, index].copy() for index, name in enumerate(header)}
+    rows = len(next(iter(columns.values())))
+    if rows < 2:
+        raise ExperimentError(f"{path}: needs at least 2 data rows, found {rows}")
+    return columns
 
 
 # What a file pamkit reads may hold (issue #14: data = "/dev/zero" once grew to 23 GB). A
 # measured row of five channels is about 45 bytes: 10^6 rows, a 17-minute test at 1 kHz, are
-# 45 MB, and 256 MiB holds about 6 M rows (1.6 h at 1 kHz). Reading peaks at about 4 bytes of
-# memory per byte of file (its bytes, its text, numpy's copy, the columns: 630 MB for 163 MB),
-# so the largest file allowed still reads within about 1 GB. An experiment TOML is a few
-# kilobytes. No line pamkit writes or reads
+# 45 MB, and 256 MiB holds about 6 M rows (1.6 h at 1 kHz). A plain file is read in blocks into
+# less memory than its size (its numbers: 8 bytes for ~11 of text); one read row by row (quoted
+# cells, blank lines, an error to name) peaks at about 4 bytes of memory per byte of file (its
+# bytes, its text, the rows), so the largest file allowed still reads within about 1 GB. An
+# experiment TOML is a few kilobytes. No line pamkit writes or reads
 # reaches 1 KiB (a header of every channel is 56 bytes); 64 KiB is far beyond any real one and
 # below the csv module's 128 KiB cell limit, so an over-long line is named, not a csv error.
 MAX_FILE_BYTES = {"experiment": 1 << 20, "data": 256 << 20}
@@ -804,19 +902,8 @@ def _text(path: Path, what: str, decode=None) -> str:
     or an ExperimentError that says why it cannot be read: missing, a folder, not a regular
     file, larger than MAX_FILE_BYTES[what] (its size named), a line over MAX_LINE_BYTES (its
     number named), not UTF-8 (with the line)."""
-    if path.is_symlink() and not path.exists():
-        raise ExperimentError(f"{path}: a symbolic link to nothing (or to itself): give the {what} file itself")
-    if not path.exists():
-        raise ExperimentError(f"{path}: no such {what} file")
-    if path.is_dir():
-        raise ExperimentError(f"{path}: is a folder; give the {what} file itself")
-    if not path.is_file():
-        raise ExperimentError(f"{path}: not a regular file (a device or a pipe?): give the {what} file itself")
-    limit = MAX_FILE_BYTES[what]
+    limit = _checked_size(path, what)
     try:
-        size = path.stat().st_size
-        if size > limit:
-            raise ExperimentError(f"{path}: {_size(size)}, more than the {_size(limit)} a {what} file may be")
         with path.open("rb") as handle:
             raw = handle.read(limit + 1)  # a file that grows while read (or lies about its size) stops here
     except OSError as error:
@@ -831,6 +918,27 @@ def _text(path: Path, what: str, decode=None) -> str:
     except UnicodeDecodeError as error:
         line = raw[: error.start].count(b"\n") + 1
         raise ExperimentError(f"{path}:{line}: byte 0x{raw[error.start]:02x} is not UTF-8 text") from None
+
+
+def _checked_size(path: Path, what: str) -> int:
+    """MAX_FILE_BYTES[what], once `path` is a regular file no larger; else an ExperimentError that
+    says what it is: missing, a link to nothing, a folder, a device or pipe, too large (its size)."""
+    if path.is_symlink() and not path.exists():
+        raise ExperimentError(f"{path}: a symbolic link to nothing (or to itself): give the {what} file itself")
+    if not path.exists():
+        raise ExperimentError(f"{path}: no such {what} file")
+    if path.is_dir():
+        raise ExperimentError(f"{path}: is a folder; give the {what} file itself")
+    if not path.is_file():
+        raise ExperimentError(f"{path}: not a regular file (a device or a pipe?): give the {what} file itself")
+    limit = MAX_FILE_BYTES[what]
+    try:
+        size = path.stat().st_size
+    except OSError as error:
+        raise ExperimentError(f"{path}: cannot be read: {error.strerror}") from None
+    if size > limit:
+        raise ExperimentError(f"{path}: {_size(size)}, more than the {_size(limit)} a {what} file may be")
+    return limit
 
 
 def _size(count: int) -> str:
@@ -894,17 +1002,47 @@ WRITE_BLOCK_ROWS = 1 << 16
 
 def write_series(path: str | Path, columns: dict[str, np.ndarray], digits: int = 10) -> None:
     """Writes columns of equal length to CSV with a header row, `digits` significant digits."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    names = list(columns)
-    series = [np.asarray(columns[name], dtype=float) for name in names]
-    with path.open("w", newline="") as handle:
-        csv.writer(handle).writerow(names)
-        # In blocks of rows, so that a long test's text never stands in memory whole; csv's line
-        # ends (CRLF) and Python's "%g", as before.
-        for start in range(0, len(series[0]) if series else 0, WRITE_BLOCK_ROWS):
-            block = np.column_stack([s[start : start + WRITE_BLOCK_ROWS] for s in series])
-            np.savetxt(handle, block, fmt=f"%.{digits}g", delimiter=",", newline="\r\n")
+    series = {name: np.asarray(column, dtype=float) for name, column in columns.items()}
+    rows = len(next(iter(series.values()))) if series else 0
+    with SeriesWriter(path, list(series), digits) as writer:
+        # In blocks of rows, so that a long test's text never stands in memory whole.
+        for start in range(0, rows, WRITE_BLOCK_ROWS):
+            writer.write({name: column[start : start + WRITE_BLOCK_ROWS] for name, column in series.items()})
+
+
+class SeriesWriter:
+    """Writes a CSV block of rows by block, as they are computed, in write_series's format (the
+    same bytes): a header row of `names`, then `digits` significant digits ("%g"), csv's line
+    ends (CRLF). A context manager; a failure inside it removes the partial file, so that a
+    simulation that stops half-way leaves no CSV to mistake for its result.
+
+        with SeriesWriter("out.csv", ["time_s", "force_N"]) as writer:
+            writer.write({"time_s": t, "force_N": f})  # as often as there are blocks
+    """
+
+    def __init__(self, path: str | Path, names: Sequence[str], digits: int = 10):
+        self.path = Path(path)
+        self.names = list(names)
+        self.digits = digits
+        self.rows = 0  # written so far
+        self._handle = None
+
+    def __enter__(self) -> SeriesWriter:
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self._handle = self.path.open("w", newline="")
+        csv.writer(self._handle).writerow(self.names)
+        return self
+
+    def write(self, columns: Mapping[str, np.ndarray]) -> None:
+        """Appends rows: `columns` holds each name's values for them, all of one length."""
+        block = np.column_stack([np.asarray(columns[name], dtype=float) for name in self.names])
+        np.savetxt(self._handle, block, fmt=f"%.{self.digits}g", delimiter=",", newline="\r\n")
+        self.rows += block.shape[0]
+
+    def __exit__(self, kind, error, trace) -> None:
+        self._handle.close()
+        if error is not None:
+            self.path.unlink(missing_ok=True)
 
 
 def write_experiment(

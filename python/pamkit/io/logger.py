@@ -135,18 +135,20 @@ def load_calibration(path: str | Path) -> Calibration:
 # --- reading the two logs ---------------------------------------------------------------------
 
 
-def read_machine_csv(path: str | Path) -> dict[str, np.ndarray]:
+def read_machine_csv(path: str | Path, specimen: str | None = None) -> dict[str, np.ndarray]:
     """Reads a tensile machine's export (Instron Bluehill, ZwickRoell testXpert, or a CSV whose
-    column names carry their units: pamkit.io.machine): time_s, extension_m and force_N.
+    column names carry their units: pamkit.io.machine): time_s, extension_m and force_N, of
+    `specimen` (its label) in an export of several.
 
     Raises:
-        LoggerError: naming the file, line and column of the first problem.
+        LoggerError: naming the file, line and column of the first problem; naming the
+            specimens when there are several and none (or another) is chosen.
     """
     from pamkit.io.experiment import ExperimentError
     from pamkit.io.machine import read_machine_export
 
     try:
-        return read_machine_export(path).columns
+        return read_machine_export(path, specimen).columns
     except ExperimentError as error:
         raise LoggerError(str(error)) from None
 

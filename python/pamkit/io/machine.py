@@ -13,6 +13,11 @@ other's habits depending on the export settings:
     "(s)","(mm)","(N)"                       0,00;0,000;0,52
     "0.000","0.00000","0.51234"              0,10;0,250;1,87
 
+Bluehill exports every specimen of a test into one file when asked to: each specimen's block
+(its metadata, "Specimen Number" among it, then names, units and rows) follows the one before
+after a blank line. :func:`read_machine_export` reads the specimen asked for, and refuses to
+guess when there are several, naming them.
+
 A plain CSV whose column names carry their units ("Time (s)", "Extension [mm]", "load_kN") is
 read the same way, with no units row. The header row is found by its names (English or
 German, :data:`ALIASES`), so neither format has to be declared.
@@ -26,7 +31,7 @@ from __future__ import annotations
 import csv
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -70,13 +75,21 @@ _NAME_AND_UNIT = re.compile(r"^\s*([^\W\d_][^()\[\]_]*?)\s*(?:[(\[]\s*([^()\[\]\
 _UNIT_CELL = re.compile(r"^\s*[(\[]?\s*[^\d()\[\]]*?\s*[)\]]?\s*$")
 
 
+# The metadata line that names a block's specimen: "Specimen Number","2" (Bluehill), Probe;2 (testXpert).
+SPECIMEN_NAMES = ("specimen number", "specimen", "specimen #", "probennummer", "probe", "probe nr.", "probennr.")
+
+
 @dataclass
 class MachineExport:
-    """A tensile machine's export: its format and its columns in SI units (time_s [s],
-    extension_m [m], force_N [N], one entry per sample, time increasing)."""
+    """A tensile machine's export: its format and one specimen's columns in SI units (time_s
+    [s], extension_m [m], force_N [N], one entry per sample, time increasing); `specimens` are
+    the labels of every specimen the file holds (its "Specimen Number", else 1, 2, ... in
+    order), `specimen` the one read."""
 
     format: str  # "instron_bluehill", "zwick_testxpert" or "units_in_names"
     columns: dict[str, np.ndarray]
+    specimens: list[str] = field(default_factory=lambda: ["1"])
+    specimen: str = "1"
 
 
 def split_name(cell: str) -> tuple[str, str | None]:
@@ -157,14 +170,17 @@ def _number(cell: str) -> float:
     return float(cell)
 
 
-def read_machine_export(path: str | Path) -> MachineExport:
+def read_machine_export(path: str | Path, specimen: str | None = None) -> MachineExport:
     """Reads an Instron Bluehill or ZwickRoell testXpert CSV export (or a CSV whose column
-    names carry their units): time, extension and load converted to s, m and N.
+    names carry their units): time, extension and load converted to s, m and N, of `specimen`
+    (its label: the block's "Specimen Number", else its place, 1, 2, ...). A file of one
+    specimen needs none; of several, one must be named.
 
     Raises:
         ExperimentError: naming the file, and the line and column, of the first problem: no
             names row, a missing or unknown unit, a cell that is not a number, time that does
-            not increase, fewer than 2 samples.
+            not increase, fewer than 2 samples; several specimens and none chosen, or one the
+            file does not hold (naming those it holds).
     """
     path = Path(path)
     lines = _lines(_text(path, "data", decode=lambda raw: _decode(raw, path)))
@@ -174,7 +190,71 @@ def read_machine_export(path: str | Path) -> MachineExport:
             f"{path}: no row naming time, extension (or displacement, Standardweg) and load (or force, "
             f"Standardkraft) in its first {MAX_HEADER_LINES} lines: not a tensile machine's export"
         )
-    header_index, delimiter, columns = found
+    blocks = _specimen_blocks(lines, *found)
+    labels = [label for label, _, _ in blocks]
+    if specimen is None and len(blocks) > 1:
+        raise ExperimentError(
+            f"{path}: holds {len(blocks)} specimens ({', '.join(labels)}): choose one "
+            "(pamkit align --specimen LABEL; an experiment's [test] specimen = LABEL)"
+        )
+    if specimen is not None and str(specimen) not in labels:
+        raise ExperimentError(f"{path}: no specimen {str(specimen)!r}; it holds {', '.join(labels)}")
+    label, header_index, end = blocks[labels.index(str(specimen)) if specimen is not None else 0]
+    export = _read_block(path, lines[:end], header_index, found[1], found[2])
+    export.specimens, export.specimen = labels, label
+    return export
+
+
+def _specimen_blocks(
+    lines: list[str], first_header: int, delimiter: str, columns: dict[str, int]
+) -> list[tuple[str, int, int]]:
+    """Each specimen's block: (its label, the index of its names row, the index after its last
+    row). A block's rows end where the next specimen's metadata starts: the lines before its
+    names row back to the last one whose time cell is a number."""
+    time_words = ALIASES["time"]
+    headers = [first_header] + [
+        index
+        for index in range(first_header + 1, len(lines))
+        if delimiter in lines[index]
+        and any(word in lines[index].lower() for word in time_words)  # cheap, before parsing the row
+        and _find_columns(_cells(lines[index], delimiter)) == columns
+    ]
+    blocks = []
+    for place, header in enumerate(headers):
+        start = headers[place - 1] + 1 if place else 0
+        metadata = header
+        if place:
+            while metadata > start and not _is_number_row(lines[metadata - 1], delimiter, columns["time"]):
+                metadata -= 1
+            blocks[-1] = (*blocks[-1][:2], metadata)
+        label = _specimen_label(lines[metadata if place else 0 : header], delimiter) or str(place + 1)
+        blocks.append((label, header, len(lines)))
+    return blocks
+
+
+def _is_number_row(line: str, delimiter: str, column: int) -> bool:
+    cells = _cells(line, delimiter)
+    try:
+        _number(cells[column])
+    except (IndexError, ValueError):
+        return False
+    return True
+
+
+def _specimen_label(metadata: list[str], delimiter: str) -> str | None:
+    """The specimen a block's metadata names ("Specimen Number","2"), or None."""
+    for line in metadata:
+        cells = [cell.strip() for cell in _cells(line, delimiter)]
+        if len(cells) >= 2 and cells[0].lower().rstrip(":") in SPECIMEN_NAMES and cells[1]:
+            return cells[1]
+    return None
+
+
+def _read_block(
+    path: Path, lines: list[str], header_index: int, delimiter: str, columns: dict[str, int]
+) -> MachineExport:
+    """One specimen's block: the names row at `header_index` of `lines`, its units row, its rows
+    to the end of `lines`."""
     header = _cells(lines[header_index], delimiter)
     units_row = None
     if header_index + 1 < len(lines):
