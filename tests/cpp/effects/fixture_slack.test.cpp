@@ -31,14 +31,18 @@ TEST_CASE("fixture_slack: the force stays flat for the slack's travel after each
   REQUIRE(reversals.size() == 4);  // start, top, bottom, top
   for (const std::size_t r : reversals) {
     // While the crosshead takes up the play the muscle stands still: with the isothermal gas its
-    // state does not change and its friction is zero, so the force is the same to the bit.
+    // state does not change and its friction is zero, so the force is the same to the geometry's
+    // precision: its Newton iteration, warm-started from the previous sample's shape, stops at
+    // 47 bits (7e-15 relative), so the same length may differ in the last bits with the build.
     // (At a turning point itself the force still carries the friction of the segment before it.)
     const std::size_t first = (r == 0) ? 0 : r + 1;
     std::size_t last = first;
     while (last + 1 < c.size() && std::abs(c[last + 1] - c[r]) <= slack * (1.0 + 1e-9)) ++last;
     INFO("reversal at t = " << m.time_s[r] << " s: flat from sample " << first << " to " << last);
     CHECK(last - r == 8);
-    for (std::size_t k = first; k <= last; ++k) CHECK(m.force_N[k] == m.force_N[first]);
+    for (std::size_t k = first; k <= last; ++k) {
+      CHECK(std::abs(m.force_N[k] - m.force_N[first]) <= 1e-12 * std::abs(m.force_N[first]));
+    }
     CHECK(std::abs(m.force_N[last + 1] - m.force_N[last]) > 0.1);  // then the muscle moves
   }
 
