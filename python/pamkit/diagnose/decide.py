@@ -350,6 +350,8 @@ class Decision:
     rejected: Judgement | None  # the best significant candidate, when it could not be named
     margins: dict[str, float]  # each decision's distance from its threshold
     left_structure: list[str]  # channels above NONE_WITHIN_NOISE after the decision
+    # the named cause refitted with the braid's wind free (buildcheck.BuildCheck.to_json), when checked
+    build_check: dict | None = None
 
 
 def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision:

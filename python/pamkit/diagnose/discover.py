@@ -14,7 +14,7 @@ gain and the mechanism each term resembles::
     print(result["equation"])   # force_N residual ≈ 0.3 N/kPa · p · tanh(v / 2.1 mm/s)
     save_effect(result, "friction.json")  # discovered.py: a pamkit.Effect for the next run
 
-Method (docs/diagnosis.md, rule 8): orthogonal matching pursuit (scikit-learn's
+Method (docs/diagnosis.md, rule 9): orthogonal matching pursuit (scikit-learn's
 ``orthogonal_mp``) on columns centred and scaled over the fitted samples, the offset as the
 intercept; unshrunk coefficients read as physical constants; the number of terms chosen on
 held-out units only, by the one-standard-error rule (Hastie, Tibshirani & Friedman, The

@@ -17,10 +17,12 @@ from pathlib import Path
 import numpy as np
 
 from pamkit._core import EffectCatalog, EffectStage
+from pamkit.diagnose.buildcheck import check_wind
 from pamkit.diagnose.calibrate import Fit, fit_baseline
 from pamkit.diagnose.candidates import candidates, fit_candidate, fit_pair
 from pamkit.diagnose.decide import (
     MIN_GAIN,
+    NONE_WITHIN_NOISE,
     PAIR_PARTNERS,
     PAIR_TRIGGER,
     Decision,
@@ -158,6 +160,29 @@ def _try_pairs(
             ):
                 best = candidate
     return best
+
+
+def _check_the_build(problem: Problem, baseline: Fit, decision: Decision, judged, factories, seed: int, pool, report):
+    """The named cause and its rivals refitted with the braid's wind free (buildcheck.py). If
+    the same rules do not name it there, it is rejected as a best candidate that is not credible
+    is (decide.py, rule 3): `unexplained` while the baseline leaves structure, else `none`."""
+    named = decision.named
+    report(f"refitting {named.fit.name} and its rivals with the braid's wind free")
+    check = check_wind(problem, named, judged, factories, seed, pool)
+    if check is None:
+        return decision, named
+    decision.build_check = check.to_json()
+    decision.margins["wind"] = check.margin()
+    if check.survives:
+        return decision, named
+    named.objections.append(check.objection())
+    left = structured(problem, baseline, NONE_WITHIN_NOISE)
+    if not left:
+        decision.margins["within_noise"] = float(NONE_WITHIN_NOISE - max(noise_ratios(problem, baseline).values()))
+    return (
+        Decision("unexplained" if left else "none", None, named, decision.margins, left, decision.build_check),
+        None,
+    )
 
 
 CHANNEL_UNITS = {"force_N": "N", "pressure_kPa": "kPa", "temperature_C": "°C"}  # as the report prints them
@@ -320,7 +345,9 @@ def diagnose(
         if structured(problem, named.fit, PAIR_TRIGGER):
             named = _try_pairs(problem, baseline, named, judged, factories, attainable, seed, threads, report)
             decision.named = named
-        extended = named.fit
+        with _pool(threads) as pool:
+            decision, named = _check_the_build(problem, baseline, decision, judged, factories, seed, pool, report)
+        extended = named.fit if named is not None else baseline
     # A named cause is credible, so has no finding; the rejected best candidate's are why not.
     warnings = findings(baseline)
     if decision.rejected is not None:

@@ -4,7 +4,10 @@ to predicted channels.
 Baseline parameters (the model's own uncertainty, not a cause):
   - the inflation pressure, within the transducer's tolerance (sealed tests only);
   - a scale on both friction coefficients (eqs. 3.1.19-3.1.24 are the least certain part);
-  - a scale on the bladder stress law (eqs. 3.1.12-13 were fitted to one rubber sample).
+  - a scale on the bladder stress law (eqs. 3.1.12-13 were fitted to one rubber sample);
+  - with `wind`, the braid's wind (fiber revolutions) within what counting it by hand allows,
+    unless `[calibrate]` declares the wind or the braid angle itself (buildcheck.py: a named
+    cause must survive it).
 An effect adds its own physical parameters, fitted in a space where they move smoothly
 (log for time constants, rates for "infinite means off" constants).
 """
@@ -42,6 +45,10 @@ from pamkit.simulate import initial_length, muscle_params
 from pamkit.units import PASCAL_PER_KILOPASCAL
 
 PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
+# relative: the fibers' turns over the braided length, counted by hand on the built muscle (a
+# tenth of a turn in the thesis's two), and the angle the sleeve settles at once pulled onto its
+# end fittings; 5 % is 0.6 degrees of braid angle at the thesis's 23 degrees
+WIND_TOLERANCE = 0.05
 # [calibrate] unknowns whose declared range spans more than this ratio are searched on a log scale.
 LOG_SPAN = 20.0
 
@@ -168,21 +175,23 @@ def configure(effect: Effect, space: list[Coordinate], x: np.ndarray) -> Effect:
 @dataclass
 class Baseline:
     """Maps baseline coordinates to model inputs: the inflation pressure (sealed tests), the
-    friction and bladder scales, and the fields `[calibrate]` declares unknown. Names in `fixed`
-    are held at the given values instead of fitted (a campaign's jointly calibrated muscle)."""
+    friction and bladder scales, and the fields `[calibrate]` declares unknown; with `wind`, the
+    braid's wind too. Names in `fixed` are held at the given values instead of fitted (a
+    campaign's jointly calibrated muscle)."""
 
     experiment: Experiment
     fixed: dict[str, float] = field(default_factory=dict)
+    wind: bool = False
     params: MuscleParams = field(init=False)
     space: list[Coordinate] = field(init=False)
 
     def __post_init__(self):
         self.params = muscle_params(self.experiment)
-        self.space = [c for c in self.coordinates(self.experiment) if c.name not in self.fixed]
+        self.space = [c for c in self.coordinates(self.experiment, self.wind) if c.name not in self.fixed]
 
     @staticmethod
-    def coordinates(experiment: Experiment) -> list[Coordinate]:
-        """Every coordinate a test's baseline may calibrate."""
+    def coordinates(experiment: Experiment, wind: bool = False) -> list[Coordinate]:
+        """Every coordinate a test's baseline may calibrate (with `wind`, the braid's wind)."""
         p0 = experiment.inflation_pressure_kPa
         space = []
         if experiment.gas == "sealed":
@@ -219,6 +228,19 @@ class Baseline:
                     "by well under 3x",
                 )
             )
+        if wind and not winds_declared(experiment):
+            n0 = experiment.build.fiber_revolutions
+            wind = (n0 * (1 - WIND_TOLERANCE), n0 * (1 + WIND_TOLERANCE))
+            space.append(
+                _linear(
+                    "fiber_revolutions",
+                    *wind,
+                    n0,
+                    wind,
+                    "the declared fiber revolutions within 5 %: turns counted by hand over the braided length, "
+                    "and the angle the sleeve settles at on its end fittings",
+                )
+            )
         space += [unknown_coordinate(name, bounds, experiment) for name, bounds in experiment.calibrate.items()]
         return space
 
@@ -236,6 +258,11 @@ class Baseline:
         params.friction = friction
         params.bladder = scaled_law(params.bladder, values.get("bladder_scale", 1.0))
         return params, values.get("inflation_pressure_kPa", self.experiment.inflation_pressure_kPa)
+
+
+def winds_declared(experiment: Experiment) -> bool:
+    """Whether `[calibrate]` already declares the braid's wind or angle unknown."""
+    return bool({"fiber_revolutions", BRAID_ANGLE_KEY} & set(experiment.calibrate))
 
 
 def muscle_signature(params: MuscleParams) -> tuple:
@@ -267,10 +294,12 @@ def scaled_law(law: BladderLaw, scale: float) -> BladderLaw:
 class Predictor:
     """Predicted channels for baseline coordinates and a list of effects; thread-safe."""
 
-    def __init__(self, experiment: Experiment, channels: list[str], config: SimulatorConfig | None = None):
+    def __init__(
+        self, experiment: Experiment, channels: list[str], config: SimulatorConfig | None = None, wind: bool = False
+    ):
         self.experiment = experiment
         self.channels = channels
-        self.baseline = Baseline(experiment)
+        self.baseline = Baseline(experiment, wind=wind)
         self.mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
         self.motion = (
             programmed_motion(experiment.time_s, experiment.elongation_m)

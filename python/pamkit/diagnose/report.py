@@ -110,6 +110,7 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
         "decision": {
             "margins": d.decision.margins,
             "left_above_noise": d.decision.left_structure,
+            "build_check": d.decision.build_check,
             "rejected": (
                 {
                     "effect": d.decision.rejected.fit.name,
