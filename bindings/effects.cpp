@@ -261,34 +261,42 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
       .def("names", &EffectCatalog::names);
 
   m.def("simulate_measurement", &simulate_measurement, py::arg("params"), py::arg("initial"), py::arg("crosshead"),
-        py::arg("effects"), py::arg("simulator") = Simulator(), py::call_guard<py::gil_scoped_release>(),
+        py::arg("effects"), py::arg("simulator") = Simulator(), py::arg("shapes") = nullptr,
+        py::call_guard<py::gil_scoped_release>(),
         "Simulates a sealed test as its instruments read it, with the effects applied at every stage. Releases "
-        "the GIL: diagnosis fits run in parallel threads (a Python effect takes the GIL for its own calls).");
+        "the GIL: diagnosis fits run in parallel threads (a Python effect takes the GIL for its own calls). "
+        "shapes: a ShapeTable of the build along the muscle's motion (ShapeTable(params, initial.length_m, "
+        "crosshead) when no effect moves the muscle), read where it applies to the run (the effects leave the "
+        "build, the motion and the fibres' stiffness as it has them), with the same result bit for bit; ignored "
+        "otherwise (statistics.tabulated_shapes says which).");
   m.def(
       "simulate_measurement_blocks",
       [](const MuscleParams& params, const InitialState& initial, const ElongationTrajectory& crosshead,
          const std::vector<EffectPtr>& effects, const Simulator& simulator, std::size_t block_rows,
-         const py::function& sink) {
+         const py::function& sink, const ShapeTable* shapes) {
         py::gil_scoped_release release;
-        return simulate_measurement_blocks(params, initial, crosshead, effects, simulator, block_rows,
-                                           [&sink](std::size_t first, const Measurement& block) {
-                                             py::gil_scoped_acquire gil;
-                                             py::dict channels;
-                                             channels["time_s"] = copy(block.time_s);
-                                             channels["elongation_m"] = copy(block.elongation_m);
-                                             channels["force_N"] = copy(block.force_N);
-                                             channels["pressure_kPa"] = copy(block.pressure_kPa);
-                                             channels["temperature_C"] = copy(block.temperature_C);
-                                             sink(first, channels);
-                                           });
+        return simulate_measurement_blocks(
+            params, initial, crosshead, effects, simulator, block_rows,
+            [&sink](std::size_t first, const Measurement& block) {
+              py::gil_scoped_acquire gil;
+              py::dict channels;
+              channels["time_s"] = copy(block.time_s);
+              channels["elongation_m"] = copy(block.elongation_m);
+              channels["force_N"] = copy(block.force_N);
+              channels["pressure_kPa"] = copy(block.pressure_kPa);
+              channels["temperature_C"] = copy(block.temperature_C);
+              sink(first, channels);
+            },
+            shapes);
       },
       py::arg("params"), py::arg("initial"), py::arg("crosshead"), py::arg("effects"), py::arg("simulator"),
-      py::arg("block_rows"), py::arg("sink"),
+      py::arg("block_rows"), py::arg("sink"), py::arg("shapes") = nullptr,
       "simulate_measurement, its samples handed to sink(first, channels) as they are integrated, block_rows at a "
       "time: first is the index of the block's first sample, channels a dict of numpy arrays (time_s [s], "
       "elongation_m [m], force_N [N], pressure_kPa [kPa gauge], temperature_C [degC]). The samples equal "
       "simulate_measurement's bit for bit; only one block is held. Effects on the measured channels read the whole "
-      "series and are refused (ValueError). Returns the SolverStatistics. Releases the GIL but for the sink's calls.");
+      "series and are refused (ValueError). Returns the SolverStatistics. Releases the GIL but for the sink's calls. "
+      "shapes: as for simulate_measurement.");
   m.def(
       "simulate_supplied_measurement",
       [](const MuscleParams& params, double length_m, const ElongationTrajectory& crosshead,

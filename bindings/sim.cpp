@@ -166,6 +166,8 @@ void bind_sim(py::module_& m) {
       .def_readonly("nonlinear_convergence_failures", &SolverStatistics::nonlinear_convergence_failures)
       .def_readonly("restarts", &SolverStatistics::restarts)
       .def_readonly("output_evaluations", &SolverStatistics::output_evaluations)
+      .def_readonly("tabulated_shapes", &SolverStatistics::tabulated_shapes,
+                    "output evaluations whose braid shape a ShapeTable gave (0: none, or it did not apply)")
       .def("__repr__", [](const SolverStatistics& s) {
         return std::string("SolverStatistics(method=") + to_string(s.method) + ", steps=" + std::to_string(s.steps) +
                ", rhs_evaluations=" + std::to_string(s.rhs_evaluations) +
@@ -197,10 +199,53 @@ void bind_sim(py::module_& m) {
 #undef PAMKIT_RESULT_COLUMN
   result.def_readonly("statistics", &SimulationResult::statistics);
 
+  py::class_<ShapeTable>(
+      m, "ShapeTable",
+      "The braid's shape (kinematics and cylinder braid angle) at every sample length initial_length_m + "
+      "elongation_m[k] of a trajectory, solved once for one build and shared, immutable, by the runs along it that "
+      "differ only in pressure, friction, bladder law, gas or effects that leave the build, the motion and the "
+      "fibres' stiffness alone (Simulator.run, simulate_measurement: shapes=). A run that reads it gives the same "
+      "numbers bit for bit; a run it does not apply to ignores it.")
+      .def(py::init([](const MuscleBuild& build, double initial_length_m, const ElongationTrajectory& trajectory) {
+             py::gil_scoped_release release;
+             return ShapeTable(build, initial_length_m, trajectory);
+           }),
+           py::arg("build"), py::arg("initial_length_m"), py::arg("trajectory"),
+           "Solves the shapes of `build` at initial_length_m [m] plus each elongation [m] of the muscle's trajectory "
+           "(after any motion effect). Releases the GIL. ValueError naming a sample outside the braid's range.")
+      .def(py::init([](const MuscleParams& params, double initial_length_m, const ElongationTrajectory& trajectory) {
+             py::gil_scoped_release release;
+             return ShapeTable(params.build, initial_length_m, trajectory);
+           }),
+           py::arg("params"), py::arg("initial_length_m"), py::arg("trajectory"),
+           "The table of params.build (the rest of params does not shape the braid).")
+      .def("applies_to", &ShapeTable::applies_to, py::arg("model"), py::arg("trajectory"),
+           "Whether a run of `model` along `trajectory` reads its shapes here: the same build field for field, the "
+           "same sample lengths bit for bit, inextensible fibres (fiber_compliance_per_N = 0).")
+      .def(
+          "shape",
+          [](const ShapeTable& table, std::size_t k) {
+            if (k >= table.size()) {
+              throw py::index_error("ShapeTable.shape: sample " + std::to_string(k) + " of " +
+                                    std::to_string(table.size()));
+            }
+            return table.shape(k);
+          },
+          py::arg("k"), "the shape at sample k (its end, cone and mean braid angles are NaN: not tabulated)")
+      .def_property_readonly(
+          "length_m", [](py::object self) { return view(self.cast<const ShapeTable&>().length_m(), self); },
+          "muscle length at each sample [m]")
+      .def_property_readonly("build", &ShapeTable::build)
+      .def_property_readonly("initial_length_m", &ShapeTable::initial_length_m, "muscle length at zero elongation [m]")
+      .def("__len__", &ShapeTable::size);
+
   py::class_<Simulator>(m, "Simulator", "Integrates a MuscleModel along a trajectory with CVODES. Re-entrant.")
       .def(py::init<SimulatorConfig>(), py::arg("config") = SimulatorConfig{})
-      .def("run", &Simulator::run, py::arg("model"), py::arg("trajectory"), py::call_guard<py::gil_scoped_release>(),
-           "Simulates the model along the trajectory; releases the GIL while it runs.")
+      .def("run", &Simulator::run, py::arg("model"), py::arg("trajectory"), py::arg("shapes") = nullptr,
+           py::call_guard<py::gil_scoped_release>(),
+           "Simulates the model along the trajectory; releases the GIL while it runs. shapes: a ShapeTable whose "
+           "braid shapes the samples read where it applies to this run (statistics.tabulated_shapes counts them), "
+           "with the same result bit for bit; None or a table that does not apply: the shapes are solved.")
       .def_property_readonly("config", &Simulator::config);
 }
 

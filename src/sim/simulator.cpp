@@ -108,20 +108,24 @@ auto outputs(Result& r) {
 /// block to the sink.
 class BlockRecorder {
  public:
-  BlockRecorder(const ElongationTrajectory& trajectory, std::size_t block_size, const SampleSink& sink)
-      : trajectory_(trajectory), block_size_(block_size), sink_(sink) {
+  /// `shapes`: the samples' braid shapes, or null to solve them (a table that applies to the run).
+  BlockRecorder(const ElongationTrajectory& trajectory, std::size_t block_size, const SampleSink& sink,
+                const ShapeTable* shapes)
+      : trajectory_(trajectory), block_size_(block_size), sink_(sink), shapes_(shapes) {
     start_block();
   }
 
   /// Records sample `k` (the one after the last recorded): one model evaluation at the state
-  /// CVODES reports for its time.
+  /// CVODES reports for its time, at the tabulated shape if there is a table.
   void record(std::size_t k, const MuscleModel& model, MuscleWorkspace& workspace, double velocity, const State& y,
               SolverStatistics& statistics) {
     const std::size_t i = k - first_;
     const double length = model.initial_state().length_m + block_.elongation_m[i];
     const MuscleOutputs out =
-        model.evaluate_with(workspace, length, velocity, y, ShapeParts::kinematics_and_braid_angle);
+        shapes_ ? model.evaluate_at_shape(shapes_->shape(k), velocity, y)
+                : model.evaluate_with(workspace, length, velocity, y, ShapeParts::kinematics_and_braid_angle);
     ++statistics.output_evaluations;
+    if (shapes_) ++statistics.tabulated_shapes;
     block_.length_m[i] = length;
     block_.force_N[i] = out.forces.total;
     block_.friction_force_N[i] = out.forces.friction;
@@ -155,6 +159,7 @@ class BlockRecorder {
   const ElongationTrajectory& trajectory_;
   std::size_t block_size_;
   const SampleSink& sink_;
+  const ShapeTable* shapes_;
   std::size_t first_ = 0;
   SimulationResult block_;
 };
@@ -185,23 +190,26 @@ StiffnessEstimate estimate_stiffness(const MuscleModel& model, const ElongationT
 
 Simulator::Simulator(SimulatorConfig config) : config_(config) { config_.validate(); }
 
-SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajectory& trajectory) const {
+SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajectory& trajectory,
+                                const ShapeTable* shapes) const {
   SimulationResult result;
   result.time_s = trajectory.time();
   result.elongation_m = trajectory.elongation();
   for (std::vector<double>* column : outputs(result)) column->resize(trajectory.size());
-  result.statistics =
-      run_blocks(model, trajectory, kCollectBlockSize, [&result](std::size_t first, const SimulationResult& block) {
+  result.statistics = run_blocks(
+      model, trajectory, kCollectBlockSize,
+      [&result](std::size_t first, const SimulationResult& block) {
         const auto at = static_cast<std::ptrdiff_t>(first);
         const auto from = outputs(block);
         const auto to = outputs(result);
         for (std::size_t c = 0; c < from.size(); ++c) std::copy(from[c]->begin(), from[c]->end(), to[c]->begin() + at);
-      });
+      },
+      shapes);
   return result;
 }
 
 SolverStatistics Simulator::run_blocks(const MuscleModel& model, const ElongationTrajectory& trajectory,
-                                       std::size_t block_size, const SampleSink& sink) const {
+                                       std::size_t block_size, const SampleSink& sink, const ShapeTable* shapes) const {
   if (block_size == 0) throw InvalidInput("Simulator.run_blocks: block_size must be at least 1");
   const auto& time = trajectory.time();
   const auto& elongation = trajectory.elongation();
@@ -248,7 +256,10 @@ SolverStatistics Simulator::run_blocks(const MuscleModel& model, const Elongatio
   void* cv = solver.get();
 
   SolverStatistics statistics;
-  BlockRecorder recorder(trajectory, block_size, sink);
+  // A table for another build, other lengths or compliant fibers is left alone: the shapes are
+  // then solved as without one.
+  const ShapeTable* tabulated = shapes && shapes->applies_to(model, trajectory) ? shapes : nullptr;
+  BlockRecorder recorder(trajectory, block_size, sink, tabulated);
   recorder.record(0, model, workspace.output, trajectory.segment_velocity(0), initial, statistics);
 
   // Integrate piece by piece between corners, where the elongation rate jumps: CVODES stops

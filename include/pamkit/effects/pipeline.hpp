@@ -24,13 +24,15 @@ using MeasurementSink = std::function<void(std::size_t first, const Measurement&
 namespace detail {
 /// A sealed test's run with `effects` applied to the parameters and the motion, its samples
 /// handed to `sink` in blocks as the instruments' channels before the measurement stage (the
-/// elongation is the crosshead's: what the machine records). \returns the solver's counters.
+/// elongation is the crosshead's: what the machine records); `shapes` as in Simulator::run, for
+/// the extended model along the muscle's motion. \returns the solver's counters.
 /// \throws InvalidParameter if an effect cannot act on a sealed test, and whatever the
 ///         simulator or the sink throws.
 inline SolverStatistics sealed_measurement_blocks(const MuscleParams& params, const InitialState& initial,
                                                   const ElongationTrajectory& crosshead,
                                                   const std::vector<EffectPtr>& effects, const Simulator& simulator,
-                                                  std::size_t block_size, const MeasurementSink& sink) {
+                                                  std::size_t block_size, const MeasurementSink& sink,
+                                                  const ShapeTable* shapes) {
   MuscleParams extended = params;
   for (const EffectPtr& effect : effects) {
     std::string why_not;
@@ -59,7 +61,7 @@ inline SolverStatistics sealed_measurement_blocks(const MuscleParams& params, co
     }
     sink(first, block);
   };
-  return simulator.run_blocks(MuscleModel(extended, initial), moved ? *moved : crosshead, block_size, channels);
+  return simulator.run_blocks(MuscleModel(extended, initial), moved ? *moved : crosshead, block_size, channels, shapes);
 }
 
 /// Samples per block when a whole measurement is collected.
@@ -69,11 +71,15 @@ constexpr std::size_t kMeasurementBlockSize = 4096;
 /// Simulates a sealed test with `effects` applied at every stage, in order: parameters, the
 /// muscle's motion from the crosshead's `crosshead`, then the measured channels. The result's
 /// elongation is the crosshead's (what the machine records).
+/// \param shapes the braid's shapes along the muscle's motion, solved once (ShapeTable) for the
+///        many runs of one test that differ in pressure, scales or effects: used where it applies
+///        to the run (the effects leave the build, the motion and the fibers' stiffness as the
+///        table has them), with the same result bit for bit; ignored otherwise. Null: none.
 /// \throws InvalidParameter if an effect cannot act on a sealed test, and whatever the
 ///         simulator throws.
 inline Measurement simulate_measurement(const MuscleParams& params, const InitialState& initial,
                                         const ElongationTrajectory& crosshead, const std::vector<EffectPtr>& effects,
-                                        const Simulator& simulator = Simulator()) {
+                                        const Simulator& simulator = Simulator(), const ShapeTable* shapes = nullptr) {
   Measurement m;
   for (std::vector<double>* column : {&m.time_s, &m.elongation_m, &m.force_N, &m.pressure_kPa, &m.temperature_C}) {
     column->reserve(crosshead.size());
@@ -86,7 +92,8 @@ inline Measurement simulate_measurement(const MuscleParams& params, const Initia
         m.force_N.insert(m.force_N.end(), block.force_N.begin(), block.force_N.end());
         m.pressure_kPa.insert(m.pressure_kPa.end(), block.pressure_kPa.begin(), block.pressure_kPa.end());
         m.temperature_C.insert(m.temperature_C.end(), block.temperature_C.begin(), block.temperature_C.end());
-      });
+      },
+      shapes);
   for (const EffectPtr& effect : effects) effect->apply_to_measurement(m);
   m.statistics = statistics;  // after the effects: a user effect may return a new Measurement
   return m;
@@ -95,7 +102,7 @@ inline Measurement simulate_measurement(const MuscleParams& params, const Initia
 /// `simulate_measurement`, its samples handed to `sink` in blocks of `block_size` as they are
 /// integrated (Simulator::run_blocks): a long test's channels need not stand in memory at once,
 /// only one block and the crosshead's trajectory do. The samples are simulate_measurement's,
-/// bit for bit. An effect on the measured channels (EffectStage::measurement: a sensor's lag,
+/// bit for bit; `shapes` as there. An effect on the measured channels (EffectStage::measurement: a sensor's lag,
 /// a clock's skew, a load cell's or thermometer's response) reads the whole series, a filter's
 /// past or a later sample, so it is refused here: simulate the whole measurement for it.
 /// \returns the solver's counters.
@@ -104,7 +111,8 @@ inline Measurement simulate_measurement(const MuscleParams& params, const Initia
 inline SolverStatistics simulate_measurement_blocks(const MuscleParams& params, const InitialState& initial,
                                                     const ElongationTrajectory& crosshead,
                                                     const std::vector<EffectPtr>& effects, const Simulator& simulator,
-                                                    std::size_t block_size, const MeasurementSink& sink) {
+                                                    std::size_t block_size, const MeasurementSink& sink,
+                                                    const ShapeTable* shapes = nullptr) {
   for (const EffectPtr& effect : effects) {
     if (effect->stage() == EffectStage::measurement) {
       throw InvalidParameter(detail::message(effect->name(),
@@ -112,7 +120,7 @@ inline SolverStatistics simulate_measurement_blocks(const MuscleParams& params, 
                                              "never holds: simulate the whole measurement for it"));
     }
   }
-  return detail::sealed_measurement_blocks(params, initial, crosshead, effects, simulator, block_size, sink);
+  return detail::sealed_measurement_blocks(params, initial, crosshead, effects, simulator, block_size, sink, shapes);
 }
 
 /// The branch of each sample of a supplied pressure: +1 while it is raised, -1 while it is

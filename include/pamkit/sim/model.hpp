@@ -168,6 +168,14 @@ class MuscleModel {
   MuscleOutputs evaluate_with(MuscleWorkspace& workspace, double length_m, double velocity_m_per_s, const State& state,
                               ShapeParts parts) const;
 
+  /// `evaluate_with` at a braid shape solved beforehand (a ShapeTable's, sim/shape_table.hpp),
+  /// for fibers that are inextensible: the braid's length is the muscle's, `shape.length`. The
+  /// same operations on the same shape as `evaluate_with`, so the same outputs bit for bit.
+  /// \throws InvalidInput if the fibers are compliant (fiber_compliance_per_N > 0): their
+  ///         braid's length depends on the force, so on the state, and no shape fixed
+  ///         beforehand holds it.
+  MuscleOutputs evaluate_at_shape(const MuscleShape& shape, double velocity_m_per_s, const State& state) const;
+
   /// The state at zero elongation: ambient temperature, the sealed mass, no viscous stress.
   State initial() const;
 
@@ -196,6 +204,9 @@ class MuscleModel {
   double elastic_force(double braid_length, const State& state, ShapeHint& hint) const;
   /// Braid length whose stretched fibers span the muscle length `length_m`.
   double braid_length(double length_m, const State& state, ShapeHint& hint) const;
+  /// Fills `out`'s gas, forces and rates from its shape, braid length and braid velocity, at the
+  /// crosshead's rate `velocity_m_per_s` (the work's) in state `state`.
+  void complete_outputs(MuscleOutputs& out, double velocity_m_per_s, const State& state) const;
 
   MuscleParams params_;
   InitialState initial_;

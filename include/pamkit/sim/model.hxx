@@ -82,7 +82,6 @@ inline MuscleOutputs MuscleModel::evaluate(double length_m, double velocity_m_pe
 
 inline MuscleOutputs MuscleModel::evaluate_with(MuscleWorkspace& workspace, double length_m, double velocity_m_per_s,
                                                 const State& y, ShapeParts parts) const {
-  const GasParams& g = params_.gas;
   const ModelExtensions& x = params_.extensions;
   MuscleOutputs out{};
   out.braid_length_m = length_m;
@@ -98,7 +97,29 @@ inline MuscleOutputs MuscleModel::evaluate_with(MuscleWorkspace& workspace, doub
     out.braid_velocity_m_per_s = velocity_m_per_s / (1.0 + per_newton * slope);
   }
   out.shape = geometry_.shape_from(workspace.shape, out.braid_length_m, parts);
+  complete_outputs(out, velocity_m_per_s, y);
+  return out;
+}
 
+inline MuscleOutputs MuscleModel::evaluate_at_shape(const MuscleShape& shape, double velocity_m_per_s,
+                                                    const State& y) const {
+  if (params_.extensions.fiber_compliance_per_N > 0.0) {
+    PAMKIT_THROW(InvalidInput(detail::message(
+        "MuscleModel.evaluate_at_shape: fiber_compliance_per_N = ", params_.extensions.fiber_compliance_per_N,
+        " 1/N makes the braid's length depend on the force; a shape solved "
+        "beforehand needs inextensible fibers")));
+  }
+  MuscleOutputs out{};
+  out.braid_length_m = shape.length;
+  out.braid_velocity_m_per_s = velocity_m_per_s;
+  out.shape = shape;
+  complete_outputs(out, velocity_m_per_s, y);
+  return out;
+}
+
+inline void MuscleModel::complete_outputs(MuscleOutputs& out, double velocity_m_per_s, const State& y) const {
+  const GasParams& g = params_.gas;
+  const ModelExtensions& x = params_.extensions;
   const double temperature = y[State::temperature_K];
   const double mass = y[State::gas_mass_kg];
   const double R = g.gas_constant_J_per_kgK;
@@ -150,7 +171,6 @@ inline MuscleOutputs MuscleModel::evaluate_with(MuscleWorkspace& workspace, doub
   rate[State::work_J] = out.forces.total * velocity_m_per_s;
   rate[State::heat_lost_J] = out.heat_loss_rate_W;
   rate[State::friction_dissipated_J] = out.forces.friction * out.braid_velocity_m_per_s;
-  return out;
 }
 
 }  // namespace pamkit

@@ -11,6 +11,7 @@
 
 #include "pamkit/fields.hpp"
 #include "pamkit/sim/model.hpp"
+#include "pamkit/sim/shape_table.hpp"
 #include "pamkit/sim/statistics.hpp"
 #include "pamkit/sim/trajectory.hpp"
 
@@ -109,19 +110,25 @@ class Simulator {
   /// elongation rate of the segment that ends there (of the first segment at the start).
   /// Between corners CVODES takes its own steps and each sample is read off the polynomial of
   /// the step that passed it (CVodeGetDky), so the samples do not steer the steps.
+  /// With `shapes`, the samples' braid shapes are read from that table where it applies to this
+  /// run (ShapeTable::applies_to: the same build, the same sample lengths, inextensible fibers)
+  /// instead of solved, with the same numbers bit for bit; where it does not apply, they are
+  /// solved as without it. `statistics.tabulated_shapes` counts the samples it gave.
   /// \throws InvalidInput if a sample's length is outside the braid's range (naming the
   ///         sample), SolverError with the CVODES flag name and time if integration fails.
-  SimulationResult run(const MuscleModel& model, const ElongationTrajectory& trajectory) const;
+  SimulationResult run(const MuscleModel& model, const ElongationTrajectory& trajectory,
+                       const ShapeTable* shapes = nullptr) const;
 
   /// `run`, its samples handed to `sink` as they are integrated, in blocks of `block_size`
   /// samples (the last block may be shorter), as SUNDIALS's and Drake's simulators hand output
   /// to a monitor: only one block stands in memory, so a long test's outputs need not. The
-  /// samples are `run`'s, bit for bit (`run` is this with a sink that copies the blocks).
+  /// samples are `run`'s, bit for bit (`run` is this with a sink that copies the blocks);
+  /// `shapes` as in `run`.
   /// \returns the solver's counters over the run.
   /// \throws InvalidInput for a block_size of 0, and whatever `run` or `sink` throws; the
   ///         samples handed over before stand.
   SolverStatistics run_blocks(const MuscleModel& model, const ElongationTrajectory& trajectory, std::size_t block_size,
-                              const SampleSink& sink) const;
+                              const SampleSink& sink, const ShapeTable* shapes = nullptr) const;
 
   const SimulatorConfig& config() const { return config_; }
 

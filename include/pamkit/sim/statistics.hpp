@@ -37,6 +37,7 @@ struct SolverStatistics {
   long steps = 0;                                     ///< internal time steps
   long rhs_evaluations = 0;                           ///< right-hand-side evaluations, Jacobian ones included
   long output_evaluations = 0;                        ///< model evaluations to report the samples
+  long tabulated_shapes = 0;                          ///< of those, the ones that read a ShapeTable's shape
   long jacobian_evaluations = 0;                      ///< dense Jacobian evaluations (none with adams)
   long linear_solver_setups = 0;                      ///< Newton matrix factorisations (none with adams)
   long error_test_failures = 0;                       ///< steps rejected by the local error test

@@ -9,7 +9,7 @@ import os
 import typing
 from . import logger
 from . import units
-__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'IntegrationMethod', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'StiffnessEstimate', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'estimate_stiffness', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_measurement_blocks', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
+__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'IntegrationMethod', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'ShapeTable', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'StiffnessEstimate', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'estimate_stiffness', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_measurement_blocks', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
 class Error(RuntimeError):
     pass
 class SolverError(RuntimeError):
@@ -998,6 +998,11 @@ class SolverStatistics:
     @property
     def steps(self) -> int:
         ...
+    @property
+    def tabulated_shapes(self) -> int:
+        """
+        output evaluations whose braid shape a ShapeTable gave (0: none, or it did not apply)
+        """
 class SimulationResult:
     """
     Time series of one run, one entry per trajectory sample.
@@ -1075,15 +1080,52 @@ class SimulationResult:
         """
         work done on the muscle since the start [J]
         """
+class ShapeTable:
+    """
+    The braid's shape (kinematics and cylinder braid angle) at every sample length initial_length_m + elongation_m[k] of a trajectory, solved once for one build and shared, immutable, by the runs along it that differ only in pressure, friction, bladder law, gas or effects that leave the build, the motion and the fibres' stiffness alone (Simulator.run, simulate_measurement: shapes=). A run that reads it gives the same numbers bit for bit; a run it does not apply to ignores it.
+    """
+    @typing.overload
+    def __init__(self, build: MuscleBuild, initial_length_m: typing.SupportsFloat | typing.SupportsIndex, trajectory: ElongationTrajectory) -> None:
+        """
+        Solves the shapes of `build` at initial_length_m [m] plus each elongation [m] of the muscle's trajectory (after any motion effect). Releases the GIL. ValueError naming a sample outside the braid's range.
+        """
+    @typing.overload
+    def __init__(self, params: MuscleParams, initial_length_m: typing.SupportsFloat | typing.SupportsIndex, trajectory: ElongationTrajectory) -> None:
+        """
+        The table of params.build (the rest of params does not shape the braid).
+        """
+    def __len__(self) -> int:
+        ...
+    def applies_to(self, model: MuscleModel, trajectory: ElongationTrajectory) -> bool:
+        """
+        Whether a run of `model` along `trajectory` reads its shapes here: the same build field for field, the same sample lengths bit for bit, inextensible fibres (fiber_compliance_per_N = 0).
+        """
+    def shape(self, k: typing.SupportsInt | typing.SupportsIndex) -> MuscleShape:
+        """
+        the shape at sample k (its end, cone and mean braid angles are NaN: not tabulated)
+        """
+    @property
+    def build(self) -> MuscleBuild:
+        ...
+    @property
+    def initial_length_m(self) -> float:
+        """
+        muscle length at zero elongation [m]
+        """
+    @property
+    def length_m(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        muscle length at each sample [m]
+        """
 class Simulator:
     """
     Integrates a MuscleModel along a trajectory with CVODES. Re-entrant.
     """
     def __init__(self, config: SimulatorConfig = ...) -> None:
         ...
-    def run(self, model: MuscleModel, trajectory: ElongationTrajectory) -> SimulationResult:
+    def run(self, model: MuscleModel, trajectory: ElongationTrajectory, shapes: ShapeTable = None) -> SimulationResult:
         """
-        Simulates the model along the trajectory; releases the GIL while it runs.
+        Simulates the model along the trajectory; releases the GIL while it runs. shapes: a ShapeTable whose braid shapes the samples read where it applies to this run (statistics.tabulated_shapes counts them), with the same result bit for bit; None or a table that does not apply: the shapes are solved.
         """
     @property
     def config(self) -> SimulatorConfig:
@@ -2384,13 +2426,13 @@ def run_device(cycle: GaitCycle, linkage: Linkage, clutch: ClutchParams, play: P
     """
     The device over `strides` repeats of the gait cycle; returns the last stride (DeviceRun). `spring` is a LinearSpring, ThesisPolynomialSpring, PamStaticSpring or any callable force_N(elongation_m).
     """
-def simulate_measurement(params: MuscleParams, initial: InitialState, crosshead: ElongationTrajectory, effects: collections.abc.Sequence[Effect], simulator: Simulator = ...) -> Measurement:
+def simulate_measurement(params: MuscleParams, initial: InitialState, crosshead: ElongationTrajectory, effects: collections.abc.Sequence[Effect], simulator: Simulator = ..., shapes: ShapeTable = None) -> Measurement:
     """
-    Simulates a sealed test as its instruments read it, with the effects applied at every stage. Releases the GIL: diagnosis fits run in parallel threads (a Python effect takes the GIL for its own calls).
+    Simulates a sealed test as its instruments read it, with the effects applied at every stage. Releases the GIL: diagnosis fits run in parallel threads (a Python effect takes the GIL for its own calls). shapes: a ShapeTable of the build along the muscle's motion (ShapeTable(params, initial.length_m, crosshead) when no effect moves the muscle), read where it applies to the run (the effects leave the build, the motion and the fibres' stiffness as it has them), with the same result bit for bit; ignored otherwise (statistics.tabulated_shapes says which).
     """
-def simulate_measurement_blocks(params: MuscleParams, initial: InitialState, crosshead: ElongationTrajectory, effects: collections.abc.Sequence[Effect], simulator: Simulator, block_rows: typing.SupportsInt | typing.SupportsIndex, sink: collections.abc.Callable) -> SolverStatistics:
+def simulate_measurement_blocks(params: MuscleParams, initial: InitialState, crosshead: ElongationTrajectory, effects: collections.abc.Sequence[Effect], simulator: Simulator, block_rows: typing.SupportsInt | typing.SupportsIndex, sink: collections.abc.Callable, shapes: ShapeTable = None) -> SolverStatistics:
     """
-    simulate_measurement, its samples handed to sink(first, channels) as they are integrated, block_rows at a time: first is the index of the block's first sample, channels a dict of numpy arrays (time_s [s], elongation_m [m], force_N [N], pressure_kPa [kPa gauge], temperature_C [degC]). The samples equal simulate_measurement's bit for bit; only one block is held. Effects on the measured channels read the whole series and are refused (ValueError). Returns the SolverStatistics. Releases the GIL but for the sink's calls.
+    simulate_measurement, its samples handed to sink(first, channels) as they are integrated, block_rows at a time: first is the index of the block's first sample, channels a dict of numpy arrays (time_s [s], elongation_m [m], force_N [N], pressure_kPa [kPa gauge], temperature_C [degC]). The samples equal simulate_measurement's bit for bit; only one block is held. Effects on the measured channels read the whole series and are refused (ValueError). Returns the SolverStatistics. Releases the GIL but for the sink's calls. shapes: as for simulate_measurement.
     """
 def simulate_supplied_measurement(params: MuscleParams, length_m: typing.SupportsFloat | typing.SupportsIndex, crosshead: ElongationTrajectory, pressure_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], ambient_temperature_C: typing.SupportsFloat | typing.SupportsIndex, effects: collections.abc.Sequence[Effect]) -> Measurement:
     """

@@ -32,6 +32,7 @@ from pamkit._core import (
     InitialState,
     Measurement,
     MuscleParams,
+    ShapeTable,
     Simulator,
     SimulatorConfig,
     fiber_revolutions_for_braid_angle,
@@ -311,6 +312,11 @@ class Predictor:
             config if config is not None else SimulatorConfig(relative_tolerance=1e-6, absolute_tolerance_K=1e-6)
         )
         self._last_run = threading.local()  # (x's bytes, the model's measurement there), per thread
+        # The braid's shapes along the motion, by build and initial length, the most recent last:
+        # shared by the runs of a Jacobian that leave both alone (friction, bladder law, effects).
+        self._shape_tables: dict[tuple, ShapeTable] = {}
+        self._shape_tables_kept = 8  # about 2 MB each for a record of 15000 samples
+        self._shape_tables_lock = threading.Lock()
 
     def measurement(self, x: np.ndarray, effects: list[Effect]) -> Measurement:
         """The simulated measurement at baseline coordinates x with `effects`. With instrument
@@ -339,7 +345,9 @@ class Predictor:
         return not (self.mode == GasMode.supplied and effect.reads_supplied_pressure())
 
     def simulate(self, x: np.ndarray, effects: list[Effect]) -> Measurement:
-        """One run of the model with `effects` at baseline coordinates x."""
+        """One run of the model with `effects` at baseline coordinates x. A sealed run whose
+        effects leave the muscle's motion and fibres alone reads the braid's shapes from a table
+        solved once per build and initial length (the same numbers, bit for bit, as solving them)."""
         params, pressure_kPa = self.baseline.model_params(x)
         if self.mode == GasMode.supplied:
             # The measured motion (not the programmed one): samples and pressures line up.
@@ -351,9 +359,26 @@ class Predictor:
                 self.experiment.ambient_temperature_C,
                 effects,
             )
-        return simulate_measurement(
-            params, self.initial_state(params, pressure_kPa), self.trajectory, effects, self.simulator
-        )
+        initial = self.initial_state(params, pressure_kPa)
+        extended = params
+        for effect in effects:
+            extended = effect.apply_to_params(extended)
+        shapes = None
+        # A motion effect moves the muscle off the programmed lengths and compliant fibres make the
+        # braid's length depend on the force: no table applies (the run would ignore one).
+        if extended.extensions.fiber_compliance_per_N == 0 and all(e.stage() != EffectStage.motion for e in effects):
+            key = (*extended.build.to_dict().values(), initial.length_m)
+            with self._shape_tables_lock:
+                shapes = self._shape_tables.pop(key, None)
+                if shapes is not None:
+                    self._shape_tables[key] = shapes  # now the most recent
+            if shapes is None:
+                shapes = ShapeTable(extended.build, initial.length_m, self.trajectory)  # releases the GIL
+                with self._shape_tables_lock:
+                    self._shape_tables[key] = shapes
+                    while len(self._shape_tables) > self._shape_tables_kept:
+                        del self._shape_tables[next(iter(self._shape_tables))]
+        return simulate_measurement(params, initial, self.trajectory, effects, self.simulator, shapes=shapes)
 
     def initial_state(self, params: MuscleParams, pressure_kPa: float) -> InitialState:
         """A sealed test's state at zero elongation at inflation pressure `pressure_kPa`: at the
