@@ -84,7 +84,7 @@ class Physics:
     heat_time_constant_s: float | None = None
     """τ_h; None: isothermal gas"""
     dead_volume_fraction: float = 0.0
-    """V_dead / V at the inflated free length"""
+    """V_dead / V at the length the muscle was sealed at (its free length unless given)"""
     leak_time_constant_s: float | None = None
     """τ_L; None: sealed"""
     mullins_softening: float = 0.0
@@ -195,14 +195,20 @@ class SealedRun:
 
 
 class SealedMuscle:
-    """A sealed muscle inflated at `gauge_kPa` and released to its free length at ambient."""
+    """A sealed muscle inflated at `gauge_kPa` and released to its free length at ambient; or,
+    given `sealed_length_m`, inflated and sealed while held at that length (a test that declares
+    its initial length: held longer than its free length it pulls before it moves, shorter its
+    braid is slack). Elongations in `run` are from the length it was sealed at."""
 
-    def __init__(self, build: Build, physics: Physics, gauge_kPa: float, ambient_C: float):
+    def __init__(
+        self, build: Build, physics: Physics, gauge_kPa: float, ambient_C: float, sealed_length_m: float | None = None
+    ):
         self.geometry = Geometry(build)
         self.physics = physics
         self.ambient_K = ambient_C + KELVIN
         self.free_length_m = self.geometry.free_length(gauge_kPa * 1e3, physics.shear_modulus_Pa)
-        volume, _ = self.geometry.volume_and_slope(self.free_length_m)
+        self.sealed_length_m = self.free_length_m if sealed_length_m is None else sealed_length_m
+        volume, _ = self.geometry.volume_and_slope(self.sealed_length_m)
         self.dead_volume_m3 = physics.dead_volume_fraction * float(volume)
         self.moles0 = (
             (gauge_kPa * 1e3 + ATMOSPHERE_PA) * (float(volume) + self.dead_volume_m3) / (GAS_CONSTANT * self.ambient_K)
@@ -231,7 +237,7 @@ class SealedMuscle:
 
             def rhs(t, y, speed=speed, x0=x0, t0=t0):
                 moles, temperature, dahl = y
-                length = self.free_length_m + x0 + speed * (t - t0)
+                length = self.sealed_length_m + x0 + speed * (t - t0)
                 volume, slope = self.geometry.volume_and_slope(length)
                 gauge = moles * GAS_CONSTANT * temperature / (volume + self.dead_volume_m3) - ATMOSPHERE_PA
                 outflow = self.leak_conductance * gauge
@@ -273,7 +279,7 @@ class SealedMuscle:
             state = solution.y[:, -1]
         moles, temperature, dahl = out
         x = motion.elongation(times)
-        length = self.free_length_m + x
+        length = self.sealed_length_m + x
         gauge = self._gauge(moles, temperature, length)
         mu = p.shear_modulus_Pa * (
             1.0 - p.mullins_softening * motion.running_max(times) / max(motion.corner_x.max(), 1e-12)

@@ -152,3 +152,21 @@ def test_a_sealed_isothermal_gas_keeps_boyles_product():
     product = (run.gauge_kPa * 1e3 + 101325.0) * volume
     assert np.ptp(product) / product.mean() < 1e-9
     assert run.gauge_kPa[20] > run.gauge_kPa[0] + 10  # stretching shrinks the volume
+
+
+def test_a_muscle_sealed_at_a_declared_length_starts_there():
+    """Sealed while held 5 mm past its free length (a test that declares its initial length, as
+    bench/bench_campaign.py's thesis tests do): at rest it holds the declared pressure and pulls
+    the static tension of that length (no motion, no friction), and from there on it keeps
+    Boyle's product."""
+    gauge_kPa = 150.0
+    length = SealedMuscle(Build(), Physics(), gauge_kPa, 22.0).free_length_m + 0.005
+    muscle = SealedMuscle(Build(), Physics(), gauge_kPa, 22.0, sealed_length_m=length)
+    motion = Motion(np.array([0.0, 1.0, 6.0]), np.array([0.0, 0.0, 0.03]))
+    run = muscle.run(motion, np.linspace(0, 6, 25))
+    assert run.gauge_kPa[0] == pytest.approx(gauge_kPa, rel=1e-12)
+    static = float(muscle.geometry.static_tension(length, gauge_kPa * 1e3, Physics().shear_modulus_Pa))
+    assert static > 1.0 and run.force_N[0] == pytest.approx(static, rel=1e-9)
+    volume, _ = muscle.geometry.volume_and_slope(length + run.elongation_m)
+    product = (run.gauge_kPa * 1e3 + 101325.0) * volume
+    assert np.ptp(product) / product.mean() < 1e-9
