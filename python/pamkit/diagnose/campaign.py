@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.decide import MIN_GAIN, Finding, findings, score
@@ -84,10 +85,25 @@ def _carry(catalog, label: str, held: Diagnosis, others: list[Fit], name: str, s
     return Transfer(name, params, float(s.credited_gain), [float(v) for v in s.credited_ci95], carries)
 
 
+def one_blas_thread():
+    """A context in which NumPy's and SciPy's BLAS run on one thread. A campaign's residuals are
+    long (a joint fit's holds every test's units side by side, 10⁴-10⁵ rows): long enough for
+    OpenBLAS to split each norm and product over threads of its own, on top of the diagnosis's
+    `threads` simulating. On this project's 2 shared cores that made a norm of 55 000 values take
+    5 ms instead of 20 µs, the campaign's joint part 1.5-1.9x slower and each test's diagnosis
+    use a fifth more CPU (bench/README.md, "A campaign of the thesis's tests"): the parallelism
+    is the simulations'. The limit is the process's while the context lasts (threadpoolctl)."""
+    return threadpool_limits(limits=1, user_api="blas")
+
+
 def campaign_of_series(diagnoses: list[Diagnosis], catalog, progress=None, threads: int = 2) -> SeriesCampaign:
     """Calibrates one muscle on every test, carries every effect some test named to each test
     from the others, and decides."""
-    progress = progress or (lambda message: None)
+    with one_blas_thread():
+        return _campaign_of_series(diagnoses, catalog, progress or (lambda message: None), threads)
+
+
+def _campaign_of_series(diagnoses: list[Diagnosis], catalog, progress, threads: int) -> SeriesCampaign:
     paths = [str(d.problem.experiment.path) for d in diagnoses]
     names = test_names([d.problem.experiment for d in diagnoses])
     progress(f"calibrating one muscle on all {len(diagnoses)} tests")

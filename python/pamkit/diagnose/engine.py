@@ -373,7 +373,7 @@ def diagnose(
 
 def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress, threads, seed):
     """Each time series alone, then the causes carried from the others to each (campaign.py)."""
-    from pamkit.diagnose.campaign import MIN_TESTS, campaign_of_series
+    from pamkit.diagnose.campaign import MIN_TESTS, campaign_of_series, one_blas_thread
     from pamkit.diagnose.joint import check_one_muscle
 
     if any(e.is_table for e in tests):
@@ -383,9 +383,10 @@ def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress,
     check_one_muscle(tests)
     report = progress or (lambda message: None)
     diagnoses = []
-    for number, test in enumerate(tests, start=1):
-        report(f"test {number}/{len(tests)}: {test.path}")
-        diagnoses.append(diagnose(test, effect_catalog, progress, threads, seed))
+    with one_blas_thread():
+        for number, test in enumerate(tests, start=1):
+            report(f"test {number}/{len(tests)}: {test.path}")
+            diagnoses.append(diagnose(test, effect_catalog, progress, threads, seed))
     if len(diagnoses) < MIN_TESTS:
         raise ExperimentError(f"{tests[0].path}: a campaign needs at least {MIN_TESTS} tests")
     return campaign_of_series(diagnoses, effect_catalog, report, threads or 2)
