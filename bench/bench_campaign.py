@@ -15,8 +15,8 @@ A campaign is of one muscle, so the 15 tests are two campaigns, diagnosed in-pro
 
 Printed per campaign and in total: the cause named (and whether it is the hidden one); seconds,
 split into the tests' own diagnoses and the joint part (one muscle calibrated on all tests, the
-effects carried from the others), and the process's CPU seconds; simulations (every call of the
-diagnosis's predictor, counted by where it was asked for, with the share of the tests' own that
+effects carried from the others), and the process's CPU seconds; simulations (every model run of
+the diagnosis's predictors, counted by where it was asked for, with the share of the tests' own that
 are finite-difference Jacobian columns); and the ratio of the campaign's time to one simulation
 of each of its tests (the sum over tests of one simulation as the diagnosis runs it, at the
 test's calibrated baseline; median of --repeats). Measured on this machine: bench/README.md.
@@ -122,10 +122,11 @@ def _asked_by(frame) -> str:
 
 @contextmanager
 def counting_simulations():
-    """Counts every simulation the diagnosis's predictors run."""
+    """Counts every simulation the diagnosis's predictors run (Predictor.simulate: an instrument
+    that reads the model's last run costs none)."""
     count = Simulations()
     lock = threading.Lock()
-    measurement = Predictor.measurement
+    simulate = Predictor.simulate
 
     def counted(self, x, effects):
         asked_by = _asked_by(sys._getframe(1))
@@ -135,13 +136,13 @@ def counting_simulations():
             else:
                 count.tests_alone += 1
                 count.finite_differences += asked_by == "finite_differences"
-        return measurement(self, x, effects)
+        return simulate(self, x, effects)
 
-    Predictor.measurement = counted
+    Predictor.simulate = counted
     try:
         yield count
     finally:
-        Predictor.measurement = measurement
+        Predictor.simulate = simulate
 
 
 def one_simulation_s(d, repeats: int) -> float:
