@@ -90,9 +90,9 @@ def one_blas_thread():
     long (a joint fit's holds every test's units side by side, 10⁴-10⁵ rows): long enough for
     OpenBLAS to split each norm and product over threads of its own, on top of the diagnosis's
     `threads` simulating. On this project's 2 shared cores that made a norm of 55 000 values take
-    5 ms instead of 20 µs, the campaign's joint part 1.5-1.9x slower and each test's diagnosis
-    use a fifth more CPU (bench/README.md, "A campaign of the thesis's tests"): the parallelism
-    is the simulations'. The limit is the process's while the context lasts (threadpoolctl)."""
+    5 ms instead of 20 µs, the campaign's joint part 1.2-2x slower and the whole campaign use a
+    fifth more CPU (bench/README.md, "A campaign of the thesis's tests"): the parallelism is the
+    simulations'. The limit is the process's while the context lasts (threadpoolctl)."""
     return threadpool_limits(limits=1, user_api="blas")
 
 
