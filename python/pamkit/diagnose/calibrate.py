@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import OptimizeResult, least_squares
+from threadpoolctl import threadpool_limits
 
 from pamkit._core import Effect
 from pamkit.diagnose.kinds import Problem
@@ -40,6 +41,18 @@ class Fit:
     # per coordinate at a bound: (value the fit would reach without the bound, fitted-RMSE drop
     # there), where computed (strain_at_bounds)
     strain: dict[str, tuple[float, float]] = field(default_factory=dict)
+
+
+def one_blas_thread():
+    """A context in which NumPy's and SciPy's BLAS run on one thread. A diagnosis's residuals are
+    long (10⁴ rows; a campaign's joint fit holds every test's units side by side, 10⁵): long
+    enough for OpenBLAS to split each norm and product over threads of its own, on top of the
+    diagnosis's `threads` simulating, and a sum split over threads may round otherwise on a
+    machine with another core count. On this project's 2 shared cores that made a norm of 55 000 values take
+    5 ms instead of 20 µs, the campaign's joint part 1.2-2x slower and the whole campaign use a
+    fifth more CPU (bench/README.md, "A campaign of the thesis's tests"): the parallelism is the
+    simulations'. The limit is the process's while the context lasts (threadpoolctl)."""
+    return threadpool_limits(limits=1, user_api="blas")
 
 
 def unit_to_x(space: list[Coordinate], u: np.ndarray) -> np.ndarray:

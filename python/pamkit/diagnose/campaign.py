@@ -21,9 +21,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
-from pamkit.diagnose.calibrate import Fit
+from pamkit.diagnose.calibrate import Fit, one_blas_thread
 from pamkit.diagnose.decide import MIN_GAIN, Finding, findings, score
 from pamkit.diagnose.engine import Diagnosis
 from pamkit.diagnose.joint import DISAGREES, JointFit, calibrate_jointly
@@ -83,17 +82,6 @@ def _carry(catalog, label: str, held: Diagnosis, others: list[Fit], name: str, s
     s = score(problem, baseline, carried, np.random.default_rng(seed))
     carries = s.credited_gain >= MIN_GAIN and s.credited_ci95[0] > 0.0
     return Transfer(name, params, float(s.credited_gain), [float(v) for v in s.credited_ci95], carries)
-
-
-def one_blas_thread():
-    """A context in which NumPy's and SciPy's BLAS run on one thread. A campaign's residuals are
-    long (a joint fit's holds every test's units side by side, 10⁴-10⁵ rows): long enough for
-    OpenBLAS to split each norm and product over threads of its own, on top of the diagnosis's
-    `threads` simulating. On this project's 2 shared cores that made a norm of 55 000 values take
-    5 ms instead of 20 µs, the campaign's joint part 1.2-2x slower and the whole campaign use a
-    fifth more CPU (bench/README.md, "A campaign of the thesis's tests"): the parallelism is the
-    simulations'. The limit is the process's while the context lasts (threadpoolctl)."""
-    return threadpool_limits(limits=1, user_api="blas")
 
 
 def campaign_of_series(diagnoses: list[Diagnosis], catalog, progress=None, threads: int = 2) -> SeriesCampaign:

@@ -18,7 +18,7 @@ import numpy as np
 
 from pamkit._core import EffectCatalog, EffectStage
 from pamkit.diagnose.buildcheck import check_wind
-from pamkit.diagnose.calibrate import Fit, fit_baseline
+from pamkit.diagnose.calibrate import Fit, fit_baseline, one_blas_thread
 from pamkit.diagnose.candidates import candidates, fit_candidate, fit_pair
 from pamkit.diagnose.decide import (
     MIN_GAIN,
@@ -249,6 +249,11 @@ def diagnose(
     Raises:
         ExperimentError: for data that cannot be diagnosed, naming file, row and column.
     """
+    with one_blas_thread():  # the parallelism is the simulations' (calibrate.one_blas_thread)
+        return _diagnose(experiment, effect_catalog, progress, threads, seed)
+
+
+def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis | TableDiagnosis:
     started = clock.perf_counter()
     report = progress or (lambda message: None)
     tests = list(experiment) if isinstance(experiment, (list, tuple)) else [experiment]
@@ -373,7 +378,7 @@ def diagnose(
 
 def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress, threads, seed):
     """Each time series alone, then the causes carried from the others to each (campaign.py)."""
-    from pamkit.diagnose.campaign import MIN_TESTS, campaign_of_series, one_blas_thread
+    from pamkit.diagnose.campaign import MIN_TESTS, campaign_of_series
     from pamkit.diagnose.joint import check_one_muscle
 
     if any(e.is_table for e in tests):
@@ -383,10 +388,9 @@ def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress,
     check_one_muscle(tests)
     report = progress or (lambda message: None)
     diagnoses = []
-    with one_blas_thread():
-        for number, test in enumerate(tests, start=1):
-            report(f"test {number}/{len(tests)}: {test.path}")
-            diagnoses.append(diagnose(test, effect_catalog, progress, threads, seed))
+    for number, test in enumerate(tests, start=1):
+        report(f"test {number}/{len(tests)}: {test.path}")
+        diagnoses.append(diagnose(test, effect_catalog, progress, threads, seed))
     if len(diagnoses) < MIN_TESTS:
         raise ExperimentError(f"{tests[0].path}: a campaign needs at least {MIN_TESTS} tests")
     return campaign_of_series(diagnoses, effect_catalog, report, threads or 2)
