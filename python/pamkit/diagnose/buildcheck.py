@@ -11,8 +11,8 @@ So a named cause is fitted again with the wind free within its tolerance (model.
 beside its leading rivals and against a baseline calibrated with the same freedom, and judged by
 the same rules (decide.py). A cause that no longer leads there — not significant, or another
 candidate explains more, or as much on the same bootstrap draws — cannot be told from a braid
-wound otherwise than declared: the diagnosis says so instead of naming it. A `[calibrate]` table that already
-declares the wind or the braid angle unknown needs no check (the baseline fits it).
+wound otherwise than declared: the diagnosis says so instead of naming it. A `[calibrate]` table
+that already declares the wind or the braid angle unknown needs no check (the baseline fits it).
 """
 
 from __future__ import annotations

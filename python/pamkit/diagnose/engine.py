@@ -164,8 +164,8 @@ def _try_pairs(
 
 def _check_the_build(problem: Problem, baseline: Fit, decision: Decision, judged, factories, seed: int, pool, report):
     """The named cause and its rivals refitted with the braid's wind free (buildcheck.py). If
-    the same rules do not name it there, it is rejected as a best candidate that is not credible
-    is (decide.py, rule 3): `unexplained` while the baseline leaves structure, else `none`."""
+    the cause does not lead there, it is rejected as a best candidate that is not credible is
+    (decide.py, rule 3): `unexplained` while the baseline leaves structure, else `none`."""
     named = decision.named
     report(f"refitting {named.fit.name} and its rivals with the braid's wind free")
     check = check_wind(problem, named, judged, factories, seed, pool)
