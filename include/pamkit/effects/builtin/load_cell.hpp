@@ -7,6 +7,11 @@
 namespace pamkit {
 
 /// load_cell: the force reading's zero and linearity (the cell's tare, its nonlinearity).
+///
+/// No gain: a reading 2 % high throughout is absorbed by the calibrated baseline (the inflation
+/// pressure moves within its tolerance, the friction and bladder scales with it) to within the
+/// noise on two of three of pamkit's nulls (seeds 1-3) and left `unexplained` on the third, so a
+/// gain would not be told from the baseline; a share that grows with the force would.
 struct LoadCellParams {
   static constexpr const char* kName = "load_cell";
   static constexpr const char* kDescription =
