@@ -25,6 +25,7 @@ errors (paired over held-out units) and by a tenth of the noise.
 from __future__ import annotations
 
 import math
+import threading
 import warnings
 
 import numpy as np
@@ -37,6 +38,9 @@ MAX_TERMS = 5  # an explanation with more terms is not one a reader can check
 MIN_Z = 2.0  # the chosen terms must beat "no term" by 2 standard errors (one-sided ~2 %) ...
 MIN_RMSE_DROP = 0.1  # ... and lower the held-out RMSE by a tenth of the noise to be worth reading
 BOOTSTRAP_SAMPLES = 1000  # as the diagnosis's own gain intervals (engine.BOOTSTRAP_SAMPLES)
+# warnings.catch_warnings saves and restores the process's filters: two threads inside it at once
+# (a campaign's tests diagnosed side by side) would restore each other's and leak a filter.
+_FILTERS = threading.Lock()
 
 # --------------------------------------------------------------------------- the regression
 
@@ -99,7 +103,7 @@ def _candidate_models(terms: list[Term], X_fit: np.ndarray, residual_fit: np.nda
     candidates = others[usable]
     models: list[list[int]] = [[]] + ([[offset]] if offset is not None else [])
     if candidates.size:
-        with warnings.catch_warnings():
+        with _FILTERS, warnings.catch_warnings():
             # Ending early because the rest is linearly dependent is a shorter path, not an error.
             warnings.filterwarnings(
                 "ignore", message="Orthogonal matching pursuit ended prematurely", category=RuntimeWarning

@@ -387,10 +387,19 @@ def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress,
         )
     check_one_muscle(tests)
     report = progress or (lambda message: None)
-    diagnoses = []
-    for number, test in enumerate(tests, start=1):
+    # The tests side by side, one thread each: a test's own diagnosis has stretches one thread
+    # runs (its baseline, its decision, the discovery), which another test's fits fill. Each
+    # report is the one a single diagnosis gives (the same with 1 or 2 threads).
+    workers = min(threads or os.cpu_count() or 1, len(tests))
+
+    def one(numbered):
+        number, test = numbered
         report(f"test {number}/{len(tests)}: {test.path}")
-        diagnoses.append(diagnose(test, effect_catalog, progress, threads, seed))
+        # Two tests report at once: each line says whose it is.
+        return diagnose(test, effect_catalog, lambda message: report(f"{test.path.name}: {message}"), 1, seed)
+
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        diagnoses = list(pool.map(one, enumerate(tests, start=1)))
     if len(diagnoses) < MIN_TESTS:
         raise ExperimentError(f"{tests[0].path}: a campaign needs at least {MIN_TESTS} tests")
     return campaign_of_series(diagnoses, effect_catalog, report, threads or 2)
