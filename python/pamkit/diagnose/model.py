@@ -48,7 +48,7 @@ from pamkit.units import PASCAL_PER_KILOPASCAL
 PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
 # relative: the fibers' turns over the braided length, counted by hand on the built muscle (a
 # tenth of a turn in the thesis's two), and the angle the sleeve settles at once pulled onto its
-# end fittings; 5 % is 0.6 degrees of braid angle at the thesis's 23 degrees
+# end fittings; 5 % is 1.3 degrees of braid angle at PAM 2's deflated 31.2 degrees
 WIND_TOLERANCE = 0.05
 # [calibrate] unknowns whose declared range spans more than this ratio are searched on a log scale.
 LOG_SPAN = 20.0
