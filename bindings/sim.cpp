@@ -168,6 +168,8 @@ void bind_sim(py::module_& m) {
       .def_readonly("output_evaluations", &SolverStatistics::output_evaluations)
       .def_readonly("tabulated_shapes", &SolverStatistics::tabulated_shapes,
                     "output evaluations whose braid shape a ShapeTable gave (0: none, or it did not apply)")
+      .def_readonly("sensitivity_rhs_evaluations", &SolverStatistics::sensitivity_rhs_evaluations,
+                    "moved models' right-hand sides for the sensitivities (Simulator.run_sensitivities; 0 otherwise)")
       .def("__repr__", [](const SolverStatistics& s) {
         return std::string("SolverStatistics(method=") + to_string(s.method) + ", steps=" + std::to_string(s.steps) +
                ", rhs_evaluations=" + std::to_string(s.rhs_evaluations) +
@@ -239,6 +241,13 @@ void bind_sim(py::module_& m) {
       .def_property_readonly("initial_length_m", &ShapeTable::initial_length_m, "muscle length at zero elongation [m]")
       .def("__len__", &ShapeTable::size);
 
+  py::class_<SensitivityResult>(m, "SensitivityResult",
+                                "A run and its forward sensitivities (Simulator.run_sensitivities).")
+      .def_readonly("run", &SensitivityResult::run, "the run at the nominal parameters")
+      .def_readonly("derivatives", &SensitivityResult::derivatives,
+                    "per parameter, a SimulationResult whose output columns are the derivatives of run's (per unit of "
+                    "the parameter); elongation_m is zero, statistics empty");
+
   py::class_<Simulator>(m, "Simulator", "Integrates a MuscleModel along a trajectory with CVODES. Re-entrant.")
       .def(py::init<SimulatorConfig>(), py::arg("config") = SimulatorConfig{})
       .def("run", &Simulator::run, py::arg("model"), py::arg("trajectory"), py::arg("shapes") = nullptr,
@@ -246,6 +255,16 @@ void bind_sim(py::module_& m) {
            "Simulates the model along the trajectory; releases the GIL while it runs. shapes: a ShapeTable whose "
            "braid shapes the samples read where it applies to this run (statistics.tabulated_shapes counts them), "
            "with the same result bit for bit; None or a table that does not apply: the shapes are solved.")
+      .def("run_sensitivities", &Simulator::run_sensitivities, py::arg("model"), py::arg("moved"), py::arg("steps"),
+           py::arg("trajectory"), py::arg("shapes") = nullptr, py::call_guard<py::gil_scoped_release>(),
+           "run, with the forward sensitivities of every output column to parameters integrated by CVODES beside the "
+           "state (BDF, staggered corrector, on the state's own steps: outside the error test, so the run is the plain "
+           "run's to rounding). Parameter i is given as moved[i], the model with it "
+           "moved by steps[i] (signed; its own initial state follows); each sensitivity's right-hand side and output "
+           "derivative is the directional difference quotient (f_i(y + h_i s_i) - f(y)) / h_i. Parameters should be "
+           "of order one (the sensitivities share the state's absolute tolerances); steps near 1e-6 give derivatives "
+           "to ~1e-6 relative. Returns a SensitivityResult; releases the GIL. ValueError for mismatched sizes, a zero "
+           "step or a moved model whose trajectory leaves its braid's range.")
       .def_property_readonly("config", &Simulator::config);
 }
 

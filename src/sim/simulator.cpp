@@ -11,6 +11,7 @@
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -28,6 +29,17 @@ State to_state(N_Vector v) {
   return s;
 }
 
+/// The moved models of a run with sensitivities (Simulator::run_sensitivities), each with its
+/// own warm starts, and the counters of their evaluations.
+struct MovedModels {
+  const std::vector<MuscleModel>& models;
+  const std::vector<double>& steps;
+  std::vector<MuscleWorkspace> rhs;
+  std::vector<MuscleWorkspace> output;
+  std::vector<const ShapeTable*> shapes;  // per moved model: the table where it applies, else null
+  long rhs_evaluations = 0;
+};
+
 /// Per-run mutable workspace handed to CVODES as user data.
 struct RunWorkspace {
   const MuscleModel& model;
@@ -37,6 +49,7 @@ struct RunWorkspace {
   std::exception_ptr error;  // an exception thrown inside the callback, rethrown after CVode returns
   MuscleWorkspace rhs;       // the right-hand side's warm start: CVODES calls it at nearby lengths
   MuscleWorkspace output;    // the samples' own, which run behind CVODES's steps
+  MovedModels* moved;        // null without sensitivities
 
   /// The segment [t_k, t_k+1] of the piece that holds time t (CVODES may step past samples).
   std::size_t segment(double t) const {
@@ -47,23 +60,57 @@ struct RunWorkspace {
     const std::size_t k = static_cast<std::size_t>(upper - time.begin());
     return std::clamp(k == 0 ? 0 : k - 1, piece_start, piece_end - 1);
   }
-  double length(double t, std::size_t k) const {
-    return model.initial_state().length_m + trajectory.elongation()[k] +
+  /// The length of `m` (the model or a moved one, each from its own initial length) at time t in segment k.
+  double length(const MuscleModel& m, double t, std::size_t k) const {
+    return m.initial_state().length_m + trajectory.elongation()[k] +
            trajectory.segment_velocity(k) * (t - trajectory.time()[k]);
   }
 };
+
+/// y + h s: the state a moved model is evaluated at, s a sensitivity.
+State shifted(const State& y, double h, N_Vector s) {
+  State out = y;
+  for (int j = 0; j < State::size; ++j) out[j] += h * NV_Ith_S(s, j);
+  return out;
+}
 
 int muscle_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto& w = *static_cast<RunWorkspace*>(user_data);
   try {
     const std::size_t k = w.segment(t);
-    const MuscleOutputs out = w.model.evaluate_with(w.rhs, w.length(t, k), w.trajectory.segment_velocity(k),
+    const MuscleOutputs out = w.model.evaluate_with(w.rhs, w.length(w.model, t, k), w.trajectory.segment_velocity(k),
                                                     to_state(y), ShapeParts::kinematics);
     std::copy(out.rate.values.begin(), out.rate.values.end(), NV_DATA_S(ydot));
     return 0;
   } catch (...) {
     w.error = std::current_exception();
     return -1;  // unrecoverable: CVode returns CV_RHSFUNC_FAIL and run() rethrows
+  }
+}
+
+/// The sensitivities' right-hand sides, s_i' = (f_i(t, y + h_i s_i) - f(t, y)) / h_i with f_i the
+/// moved model i: the directional difference quotient CVODES forms for parameters it holds.
+int sensitivity_rhs(int count, sunrealtype t, N_Vector y, N_Vector ydot, N_Vector* yS, N_Vector* ySdot, void* user_data,
+                    N_Vector, N_Vector) {
+  auto& w = *static_cast<RunWorkspace*>(user_data);
+  try {
+    const std::size_t k = w.segment(t);
+    const State state = to_state(y);
+    MovedModels& moved = *w.moved;
+    for (int i = 0; i < count; ++i) {
+      const auto m = static_cast<std::size_t>(i);
+      const double h = moved.steps[m];
+      const MuscleModel& model = moved.models[m];
+      const MuscleOutputs out =
+          model.evaluate_with(moved.rhs[m], w.length(model, t, k), w.trajectory.segment_velocity(k),
+                              shifted(state, h, yS[i]), ShapeParts::kinematics);
+      for (int j = 0; j < State::size; ++j) NV_Ith_S(ySdot[i], j) = (out.rate[j] - NV_Ith_S(ydot, j)) / h;
+    }
+    moved.rhs_evaluations += count;
+    return 0;
+  } catch (...) {
+    w.error = std::current_exception();
+    return -1;
   }
 }
 
@@ -117,8 +164,9 @@ class BlockRecorder {
 
   /// Records sample `k` (the one after the last recorded): one model evaluation at the state
   /// CVODES reports for its time, at the tabulated shape if there is a table.
-  void record(std::size_t k, const MuscleModel& model, MuscleWorkspace& workspace, double velocity, const State& y,
-              SolverStatistics& statistics) {
+  /// \returns the model's outputs there.
+  MuscleOutputs record(std::size_t k, const MuscleModel& model, MuscleWorkspace& workspace, double velocity,
+                       const State& y, SolverStatistics& statistics) {
     const std::size_t i = k - first_;
     const double length = model.initial_state().length_m + block_.elongation_m[i];
     const MuscleOutputs out =
@@ -143,6 +191,7 @@ class BlockRecorder {
       first_ += block_.time_s.size();
       if (first_ < trajectory_.size()) start_block();
     }
+    return out;
   }
 
  private:
@@ -162,6 +211,58 @@ class BlockRecorder {
   const ShapeTable* shapes_;
   std::size_t first_ = 0;
   SimulationResult block_;
+};
+
+/// Differentiates each sample's outputs into SensitivityResult::derivatives: output j of moved
+/// model i at y + h_i s_i less the nominal's, over h_i.
+class DerivativeRecorder {
+ public:
+  /// `nominal_length_m`: the nominal model's initial length, which a moved one may differ from.
+  DerivativeRecorder(MovedModels& moved, const ElongationTrajectory& trajectory, double nominal_length_m,
+                     std::vector<SimulationResult>& derivatives)
+      : moved_(moved), nominal_length_(nominal_length_m), derivatives_(derivatives) {
+    derivatives_.resize(moved.models.size());
+    for (SimulationResult& d : derivatives_) {
+      d.time_s = trajectory.time();
+      d.elongation_m.assign(trajectory.size(), 0.0);
+      for (std::vector<double>* column : outputs(d)) column->resize(trajectory.size());
+    }
+  }
+
+  void record(std::size_t k, const ElongationTrajectory& trajectory, double velocity, const State& y, N_Vector* yS,
+              const MuscleOutputs& nominal, SolverStatistics& statistics) {
+    for (std::size_t i = 0; i < derivatives_.size(); ++i) {
+      const double h = moved_.steps[i];
+      const MuscleModel& model = moved_.models[i];
+      const State y_moved = shifted(y, h, yS[i]);
+      const double length = model.initial_state().length_m + trajectory.elongation()[k];
+      const MuscleOutputs out = moved_.shapes[i]
+                                    ? model.evaluate_at_shape(moved_.shapes[i]->shape(k), velocity, y_moved)
+                                    : model.evaluate_with(moved_.output[i], length, velocity, y_moved,
+                                                          ShapeParts::kinematics_and_braid_angle);
+      ++statistics.output_evaluations;
+      if (moved_.shapes[i]) ++statistics.tabulated_shapes;
+      SimulationResult& d = derivatives_[i];
+      const auto slope = [h](double moved, double base) { return (moved - base) / h; };
+      d.length_m[k] = slope(model.initial_state().length_m, nominal_length_);
+      d.force_N[k] = slope(out.forces.total, nominal.forces.total);
+      d.friction_force_N[k] = slope(out.forces.friction, nominal.forces.friction);
+      d.pressure_gauge_Pa[k] = slope(out.gauge_pressure_Pa, nominal.gauge_pressure_Pa);
+      d.temperature_K[k] = NV_Ith_S(yS[i], State::temperature_K);
+      d.gas_volume_m3[k] = slope(out.gas_volume_m3, nominal.gas_volume_m3);
+      d.gas_mass_kg[k] = NV_Ith_S(yS[i], State::gas_mass_kg);
+      d.braid_angle_rad[k] = slope(out.shape.braid_angle, nominal.shape.braid_angle);
+      d.diameter_m[k] = slope(out.shape.diameter, nominal.shape.diameter);
+      d.work_J[k] = NV_Ith_S(yS[i], State::work_J);
+      d.heat_lost_J[k] = NV_Ith_S(yS[i], State::heat_lost_J);
+      d.friction_dissipated_J[k] = NV_Ith_S(yS[i], State::friction_dissipated_J);
+    }
+  }
+
+ private:
+  MovedModels& moved_;
+  double nominal_length_;
+  std::vector<SimulationResult>& derivatives_;
 };
 
 /// Samples per block when run() collects a whole result.
@@ -190,27 +291,29 @@ StiffnessEstimate estimate_stiffness(const MuscleModel& model, const ElongationT
 
 Simulator::Simulator(SimulatorConfig config) : config_(config) { config_.validate(); }
 
-SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajectory& trajectory,
-                                const ShapeTable* shapes) const {
+namespace {
+
+/// A sink that copies each block into `result` (sized beforehand).
+SampleSink collect_into(SimulationResult& result) {
+  return [&result](std::size_t first, const SimulationResult& block) {
+    const auto at = static_cast<std::ptrdiff_t>(first);
+    const auto from = outputs(block);
+    const auto to = outputs(result);
+    for (std::size_t c = 0; c < from.size(); ++c) std::copy(from[c]->begin(), from[c]->end(), to[c]->begin() + at);
+  };
+}
+
+/// A result with the trajectory's columns and room for every output.
+SimulationResult sized_result(const ElongationTrajectory& trajectory) {
   SimulationResult result;
   result.time_s = trajectory.time();
   result.elongation_m = trajectory.elongation();
   for (std::vector<double>* column : outputs(result)) column->resize(trajectory.size());
-  result.statistics = run_blocks(
-      model, trajectory, kCollectBlockSize,
-      [&result](std::size_t first, const SimulationResult& block) {
-        const auto at = static_cast<std::ptrdiff_t>(first);
-        const auto from = outputs(block);
-        const auto to = outputs(result);
-        for (std::size_t c = 0; c < from.size(); ++c) std::copy(from[c]->begin(), from[c]->end(), to[c]->begin() + at);
-      },
-      shapes);
   return result;
 }
 
-SolverStatistics Simulator::run_blocks(const MuscleModel& model, const ElongationTrajectory& trajectory,
-                                       std::size_t block_size, const SampleSink& sink, const ShapeTable* shapes) const {
-  if (block_size == 0) throw InvalidInput("Simulator.run_blocks: block_size must be at least 1");
+/// \throws InvalidInput naming the first sample whose length leaves the braid's range for `model`.
+void check_lengths(const MuscleModel& model, const ElongationTrajectory& trajectory) {
   const auto& time = trajectory.time();
   const auto& elongation = trajectory.elongation();
   const BraidGeometry& geometry = model.geometry();
@@ -224,6 +327,29 @@ SolverStatistics Simulator::run_blocks(const MuscleModel& model, const Elongatio
                                          "start of the test) and [test] initial_length_m"));
     }
   }
+}
+
+/// An array of N_Vectors (the sensitivities), destroyed together.
+struct VectorArray {
+  N_Vector* vectors = nullptr;
+  int count = 0;
+  VectorArray(int n, N_Vector like) : vectors(n > 0 ? N_VCloneVectorArray(n, like) : nullptr), count(n) {
+    if (n > 0 && !vectors) throw SolverError("N_VCloneVectorArray failed");
+  }
+  VectorArray(const VectorArray&) = delete;
+  VectorArray& operator=(const VectorArray&) = delete;
+  ~VectorArray() {
+    if (vectors) N_VDestroyVectorArray(vectors, count);
+  }
+};
+
+/// The run loop of Simulator::run_blocks and run_sensitivities: with `moved` (and `derivatives`
+/// to fill), the sensitivities to the moved models are integrated beside the state.
+SolverStatistics integrate(const SimulatorConfig& config, const MuscleModel& model,
+                           const ElongationTrajectory& trajectory, std::size_t block_size, const SampleSink& sink,
+                           const ShapeTable* shapes, MovedModels* moved, std::vector<SimulationResult>* derivatives) {
+  const auto& time = trajectory.time();
+  check_lengths(model, trajectory);
 
   auto context = cvodes::make_context();
   SUNContext ctx = *context;
@@ -235,39 +361,71 @@ SolverStatistics Simulator::run_blocks(const MuscleModel& model, const Elongatio
   std::copy(initial.values.begin(), initial.values.end(), NV_DATA_S(y.get()));
   // Absolute tolerances by each state's scale: the temperature's, relative to the ambient
   // temperature, carried over to the gas mass and to stresses of order 1 MPa.
-  const double relative = config_.absolute_tolerance_K / model.initial_temperature();
-  NV_Ith_S(tolerances.get(), State::temperature_K) = config_.absolute_tolerance_K;
+  const double relative = config.absolute_tolerance_K / model.initial_temperature();
+  NV_Ith_S(tolerances.get(), State::temperature_K) = config.absolute_tolerance_K;
   NV_Ith_S(tolerances.get(), State::gas_mass_kg) = relative * model.gas_mass();
   NV_Ith_S(tolerances.get(), State::viscous_stress_l_Pa) = relative * 1e6;
   NV_Ith_S(tolerances.get(), State::viscous_stress_h_Pa) = relative * 1e6;
   for (int i : {State::work_J, State::heat_lost_J, State::friction_dissipated_J}) {
-    NV_Ith_S(tolerances.get(), i) = config_.absolute_tolerance_J;
+    NV_Ith_S(tolerances.get(), i) = config.absolute_tolerance_J;
   }
 
-  RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}};
+  RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}, moved};
   const double t0 = time.front();
-  IntegrationMethod method = config_.method;
-  if (method == IntegrationMethod::automatic) {
-    method = estimate_stiffness(model, trajectory, config_).stiff() ? IntegrationMethod::bdf : IntegrationMethod::adams;
+  IntegrationMethod method = config.method;
+  if (moved) {
+    method = IntegrationMethod::bdf;  // the sensitivities' corrector is Newton's
+  } else if (method == IntegrationMethod::automatic) {
+    method = estimate_stiffness(model, trajectory, config).stiff() ? IntegrationMethod::bdf : IntegrationMethod::adams;
   }
   const cvodes::Solver solver =
-      cvodes::make_solver(method, ctx, muscle_rhs, t0, y.get(), &workspace, config_.relative_tolerance,
-                          tolerances.get(), config_.max_steps, config_.max_step_s);
+      cvodes::make_solver(method, ctx, muscle_rhs, t0, y.get(), &workspace, config.relative_tolerance, tolerances.get(),
+                          config.max_steps, config.max_step_s);
   void* cv = solver.get();
+
+  // The sensitivities: s_i(0) = (y0_i - y0) / h_i, from each moved model's own initial state;
+  // absolute tolerances the state's (parameters of order one), for the corrector's convergence test.
+  const int count = moved ? static_cast<int>(moved->models.size()) : 0;
+  VectorArray sensitivities(count, y.get());
+  VectorArray sample_sensitivities(count, y.get());
+  VectorArray sensitivity_tolerances(count, y.get());
+  for (int i = 0; i < count; ++i) {
+    const auto m = static_cast<std::size_t>(i);
+    const State moved_initial = moved->models[m].initial();
+    for (int j = 0; j < State::size; ++j) {
+      NV_Ith_S(sensitivities.vectors[i], j) = (moved_initial[j] - initial[j]) / moved->steps[m];
+    }
+    N_VScale(1.0, tolerances.get(), sensitivity_tolerances.vectors[i]);
+  }
+  if (count > 0) {
+    check_flag(CVodeSensInit(cv, count, CV_STAGGERED, sensitivity_rhs, sensitivities.vectors), "CVodeSensInit", t0);
+    check_flag(CVodeSensSVtolerances(cv, config.relative_tolerance, sensitivity_tolerances.vectors),
+               "CVodeSensSVtolerances", t0);
+    // Outside the error test: the steps stay the state's, and the sensitivities' accuracy (3e-5 of
+    // a slope at rtol 1e-8, tests/cpp/sensitivities.test.cpp) is far finer than a fit needs.
+    check_flag(CVodeSetSensErrCon(cv, SUNFALSE), "CVodeSetSensErrCon", t0);
+  }
 
   SolverStatistics statistics;
   // A table for another build, other lengths or compliant fibers is left alone: the shapes are
   // then solved as without one.
   const ShapeTable* tabulated = shapes && shapes->applies_to(model, trajectory) ? shapes : nullptr;
   BlockRecorder recorder(trajectory, block_size, sink, tabulated);
-  recorder.record(0, model, workspace.output, trajectory.segment_velocity(0), initial, statistics);
+  std::optional<DerivativeRecorder> differentiator;
+  if (moved) differentiator.emplace(*moved, trajectory, model.initial_state().length_m, *derivatives);
+  const auto record = [&](std::size_t sample, double velocity, const State& state, N_Vector* state_sensitivities) {
+    const MuscleOutputs out = recorder.record(sample, model, workspace.output, velocity, state, statistics);
+    if (differentiator)
+      differentiator->record(sample, trajectory, velocity, state, state_sensitivities, out, statistics);
+  };
+  record(0, trajectory.segment_velocity(0), initial, sensitivities.vectors);
 
   // Integrate piece by piece between corners, where the elongation rate jumps: CVODES stops
   // exactly there (its stop time) and restarts its BDF history. Inside a piece it takes one
   // step per call, and every sample the step passed is read off its interpolating polynomial
   // (CVodeGetDky, which CV_NORMAL mode uses too): one call per step, not per sample, and the
   // samples do not steer the steps.
-  const double corner = corner_jump(trajectory, config_);
+  const double corner = corner_jump(trajectory, config);
   double t = t0;
   std::size_t k = 0;
   while (k + 1 < trajectory.size()) {
@@ -277,6 +435,11 @@ SolverStatistics Simulator::run_blocks(const MuscleModel& model, const Elongatio
     if (k > 0) {
       add_statistics(solver, statistics);
       check_flag(CVodeReInit(cv, t, y.get()), "CVodeReInit", t);
+      if (count > 0) {
+        double at = t;
+        check_flag(CVodeGetSens(cv, &at, sensitivities.vectors), "CVodeGetSens", t);
+        check_flag(CVodeSensReInit(cv, CV_STAGGERED, sensitivities.vectors), "CVodeSensReInit", t);
+      }
       ++statistics.restarts;
     }
     check_flag(CVodeSetStopTime(cv, time[end]), "CVodeSetStopTime", t);
@@ -285,9 +448,9 @@ SolverStatistics Simulator::run_blocks(const MuscleModel& model, const Elongatio
     while (sample <= end) {
       while (t < time[sample]) {
         // CVODES counts its mxstep per call; one step per call, the simulator counts them.
-        if (++steps_since_sample > config_.max_steps) {
+        if (++steps_since_sample > config.max_steps) {
           throw SolverError(detail::message("CVode failed with CV_TOO_MUCH_WORK at t = ", t, " s: more than ",
-                                            config_.max_steps, " steps before the sample at t = ", time[sample],
+                                            config.max_steps, " steps before the sample at t = ", time[sample],
                                             " s (SimulatorConfig.max_steps)"));
         }
         // The output time only sizes the first step after a (re)start: the piece's end, so the
@@ -298,15 +461,59 @@ SolverStatistics Simulator::run_blocks(const MuscleModel& model, const Elongatio
       }
       for (; sample <= end && time[sample] <= t; ++sample) {
         check_flag(CVodeGetDky(cv, time[sample], 0, sample_state.get()), "CVodeGetDky", time[sample]);
-        recorder.record(sample, model, workspace.output, trajectory.segment_velocity(sample - 1),
-                        to_state(sample_state.get()), statistics);
+        if (count > 0) {
+          check_flag(CVodeGetSensDky(cv, time[sample], 0, sample_sensitivities.vectors), "CVodeGetSensDky",
+                     time[sample]);
+        }
+        record(sample, trajectory.segment_velocity(sample - 1), to_state(sample_state.get()),
+               sample_sensitivities.vectors);
         steps_since_sample = 0;
       }
     }
     k = end;
   }
   add_statistics(solver, statistics);
+  if (moved) statistics.sensitivity_rhs_evaluations = moved->rhs_evaluations;
   return statistics;
+}
+
+}  // namespace
+
+SimulationResult Simulator::run(const MuscleModel& model, const ElongationTrajectory& trajectory,
+                                const ShapeTable* shapes) const {
+  SimulationResult result = sized_result(trajectory);
+  result.statistics = run_blocks(model, trajectory, kCollectBlockSize, collect_into(result), shapes);
+  return result;
+}
+
+SolverStatistics Simulator::run_blocks(const MuscleModel& model, const ElongationTrajectory& trajectory,
+                                       std::size_t block_size, const SampleSink& sink, const ShapeTable* shapes) const {
+  if (block_size == 0) throw InvalidInput("Simulator.run_blocks: block_size must be at least 1");
+  return integrate(config_, model, trajectory, block_size, sink, shapes, nullptr, nullptr);
+}
+
+SensitivityResult Simulator::run_sensitivities(const MuscleModel& model, const std::vector<MuscleModel>& moved,
+                                               const std::vector<double>& steps, const ElongationTrajectory& trajectory,
+                                               const ShapeTable* shapes) const {
+  if (moved.size() != steps.size()) {
+    throw InvalidInput(
+        detail::message("Simulator.run_sensitivities: ", moved.size(), " moved models for ", steps.size(), " steps"));
+  }
+  MovedModels moved_models{
+      moved, steps, std::vector<MuscleWorkspace>(moved.size()), std::vector<MuscleWorkspace>(moved.size()), {}, 0};
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    if (!(std::isfinite(steps[i]) && steps[i] != 0.0)) {
+      throw InvalidInput(detail::message("Simulator.run_sensitivities: step ", i, " is ", steps[i],
+                                         "; it must be finite and not zero"));
+    }
+    check_lengths(moved[i], trajectory);
+    moved_models.shapes.push_back(shapes && shapes->applies_to(moved[i], trajectory) ? shapes : nullptr);
+  }
+  SensitivityResult out;
+  out.run = sized_result(trajectory);
+  out.run.statistics = integrate(config_, model, trajectory, kCollectBlockSize, collect_into(out.run), shapes,
+                                 &moved_models, &out.derivatives);
+  return out;
 }
 
 }  // namespace pamkit

@@ -93,6 +93,15 @@ struct SimulationResult {
   SolverStatistics statistics;
 };
 
+/// A run and its forward sensitivities (Simulator::run_sensitivities).
+struct SensitivityResult {
+  SimulationResult run;  ///< the run at the nominal parameters (its statistics count the sensitivities' work too)
+  /// One per parameter: the derivative of each output column of `run` with respect to it (per
+  /// unit of the parameter). time_s is the run's; elongation_m is zero (the trajectory is
+  /// prescribed); statistics are empty.
+  std::vector<SimulationResult> derivatives;
+};
+
 /// Receives a run's samples in order, a block at a time: `first` is the trajectory index of the
 /// block's first sample, and every column of `block` holds the block's samples (its statistics
 /// are empty: the run returns them at its end). The block is reused after the call returns.
@@ -129,6 +138,32 @@ class Simulator {
   ///         samples handed over before stand.
   SolverStatistics run_blocks(const MuscleModel& model, const ElongationTrajectory& trajectory, std::size_t block_size,
                               const SampleSink& sink, const ShapeTable* shapes = nullptr) const;
+
+  /// `run`, with the forward sensitivities of every output column to parameters of the caller's
+  /// choosing, integrated by CVODES beside the state (staggered corrector) on the state's own
+  /// steps: outside the error test, so the run is the plain run's to rounding (a fit's residual
+  /// and its Jacobian see one model). The Jacobian a fit needs, free of the noise that
+  /// differencing two adaptively stepped runs carries.
+  ///
+  /// Parameter i is given as `moved[i]`: the model with that parameter (and nothing else) moved by
+  /// `steps[i]` (signed), its own initial state, sealed gas mass and initial length following
+  /// from it. Any number of the model, of its build, bladder law, gas, initial state or an
+  /// effect's extension, is thus a parameter, and so is a coordinate that maps to several. Each
+  /// sensitivity's right-hand side, and each sample's output derivative, is the directional
+  /// difference quotient (f_i(y + h_i s_i) - f(y)) / h_i that CVODES forms for the parameters it
+  /// holds itself: the model's functions are smooth and their closure solved to ~1e-14, so
+  /// steps near 1e-6 of a parameter of order one give derivatives to ~1e-6 relative.
+  ///
+  /// The sensitivities share the state's absolute tolerances, so parameters should be of order
+  /// one (a fit's unit box). They are integrated by BDF whatever config().method says (Adams's
+  /// fixed-point iteration has no sensitivity corrector here). `shapes` serves the nominal
+  /// model and every moved one it applies to (a moved friction, bladder law, gas or pressure
+  /// at a given initial length).
+  /// 	hrows InvalidInput if `moved` and `steps` differ in size, a step is zero or not finite,
+  ///         or a moved model's trajectory leaves its braid's range; as `run` otherwise.
+  SensitivityResult run_sensitivities(const MuscleModel& model, const std::vector<MuscleModel>& moved,
+                                      const std::vector<double>& steps, const ElongationTrajectory& trajectory,
+                                      const ShapeTable* shapes = nullptr) const;
 
   const SimulatorConfig& config() const { return config_; }
 

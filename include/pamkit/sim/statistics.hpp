@@ -44,6 +44,7 @@ struct SolverStatistics {
   long nonlinear_iterations = 0;                      ///< Newton (bdf) or fixed-point (adams) iterations
   long nonlinear_convergence_failures = 0;            ///< failures of those iterations to converge
   long restarts = 0;                                  ///< CVodeReInit calls at trajectory corners
+  long sensitivity_rhs_evaluations = 0;  ///< moved models' right-hand sides for the sensitivities (run_sensitivities)
 };
 
 }  // namespace pamkit

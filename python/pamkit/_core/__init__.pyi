@@ -9,7 +9,7 @@ import os
 import typing
 from . import logger
 from . import units
-__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'IntegrationMethod', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'ShapeTable', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'StiffnessEstimate', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'estimate_stiffness', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_measurement_blocks', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
+__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'IntegrationMethod', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SensitivityResult', 'ShapeTable', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'StiffnessEstimate', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'estimate_stiffness', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_measurement_blocks', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
 class Error(RuntimeError):
     pass
 class SolverError(RuntimeError):
@@ -996,6 +996,11 @@ class SolverStatistics:
     def rhs_evaluations(self) -> int:
         ...
     @property
+    def sensitivity_rhs_evaluations(self) -> int:
+        """
+        moved models' right-hand sides for the sensitivities (Simulator.run_sensitivities; 0 otherwise)
+        """
+    @property
     def steps(self) -> int:
         ...
     @property
@@ -1117,6 +1122,20 @@ class ShapeTable:
         """
         muscle length at each sample [m]
         """
+class SensitivityResult:
+    """
+    A run and its forward sensitivities (Simulator.run_sensitivities).
+    """
+    @property
+    def derivatives(self) -> list[SimulationResult]:
+        """
+        per parameter, a SimulationResult whose output columns are the derivatives of run's (per unit of the parameter); elongation_m is zero, statistics empty
+        """
+    @property
+    def run(self) -> SimulationResult:
+        """
+        the run at the nominal parameters
+        """
 class Simulator:
     """
     Integrates a MuscleModel along a trajectory with CVODES. Re-entrant.
@@ -1126,6 +1145,10 @@ class Simulator:
     def run(self, model: MuscleModel, trajectory: ElongationTrajectory, shapes: ShapeTable = None) -> SimulationResult:
         """
         Simulates the model along the trajectory; releases the GIL while it runs. shapes: a ShapeTable whose braid shapes the samples read where it applies to this run (statistics.tabulated_shapes counts them), with the same result bit for bit; None or a table that does not apply: the shapes are solved.
+        """
+    def run_sensitivities(self, model: MuscleModel, moved: collections.abc.Sequence[MuscleModel], steps: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], trajectory: ElongationTrajectory, shapes: ShapeTable = None) -> SensitivityResult:
+        """
+        run, with the forward sensitivities of every output column to parameters integrated by CVODES beside the state (BDF, staggered corrector, on the state's own steps: outside the error test, so the run is the plain run's to rounding). Parameter i is given as moved[i], the model with it moved by steps[i] (signed; its own initial state follows); each sensitivity's right-hand side and output derivative is the directional difference quotient (f_i(y + h_i s_i) - f(y)) / h_i. Parameters should be of order one (the sensitivities share the state's absolute tolerances); steps near 1e-6 give derivatives to ~1e-6 relative. Returns a SensitivityResult; releases the GIL. ValueError for mismatched sizes, a zero step or a moved model whose trajectory leaves its braid's range.
         """
     @property
     def config(self) -> SimulatorConfig:

@@ -1,0 +1,119 @@
+// Simulator::run_sensitivities: the forward sensitivities CVODES integrates beside the state,
+// checked against a closed form, against central differences of two tightly integrated runs,
+// and the nominal run against the plain run.
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "pamkit/sim/simulator.hpp"
+
+namespace {
+
+using namespace pamkit;
+
+constexpr double kStep = 1e-6;
+
+/// Table C.2's test with a gas that exchanges heat in `tau` s; pressure, friction and tau scaled.
+MuscleModel muscle(double pressure_scale = 1.0, double friction_scale = 1.0, double tau = 2.0) {
+  MuscleParams p;
+  p.gas.process = GasProcess::heat_transfer;
+  p.gas.heat_transfer_time_constant_s = tau;
+  p.friction.fiber_fiber_coefficient *= friction_scale;
+  p.friction.fiber_bladder_coefficient *= friction_scale;
+  return MuscleModel(p, InitialState{0.167, 236.63e3 * pressure_scale});
+}
+
+Simulator simulator(double tolerance) {
+  SimulatorConfig config;
+  config.relative_tolerance = tolerance;
+  config.absolute_tolerance_K = tolerance;
+  return Simulator(config);
+}
+
+double largest(const std::vector<double>& v) {
+  double out = 0.0;
+  for (double x : v) out = std::max(out, std::abs(x));
+  return out;
+}
+
+/// Largest |a - b| over the largest |b|.
+double relative_gap(const std::vector<double>& a, const std::vector<double>& b) {
+  double gap = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) gap = std::max(gap, std::abs(a[k] - b[k]));
+  return gap / largest(b);
+}
+
+}  // namespace
+
+TEST_CASE("run_sensitivities: the pressure's sensitivity to the initial pressure is the closed form",
+          "[sim][sensitivities]") {
+  // The sealed gas's mass is proportional to the initial absolute pressure and its temperature
+  // does not depend on the mass (the heat exchange is per unit mass), so p_abs(t) scales with
+  // p_abs(0): d p(t) / d p(0) = p_abs(t) / p_abs(0), at every sample.
+  const ElongationTrajectory trajectory = thesis_protocol(0.04, 2.5e-3, 2);
+  const MuscleModel nominal = muscle();
+  const double h = kStep * 236.63e3;  // per pascal of initial pressure
+  const SensitivityResult r =
+      simulator(1e-8).run_sensitivities(nominal, {muscle(1.0 + kStep)}, {h}, trajectory);
+  const double atmosphere = nominal.params().gas.atmospheric_pressure_Pa;
+  const double initial_absolute = atmosphere + 236.63e3;
+  std::vector<double> closed_form;
+  for (double gauge : r.run.pressure_gauge_Pa) closed_form.push_back((gauge + atmosphere) / initial_absolute);
+  CHECK(relative_gap(r.derivatives[0].pressure_gauge_Pa, closed_form) < 1e-6);
+  // The temperature does not depend on it: its sensitivity stays at the noise of the quotient.
+  CHECK(largest(r.derivatives[0].temperature_K) < 1e-6);
+}
+
+TEST_CASE("run_sensitivities: agree with central differences of tightly integrated runs", "[sim][sensitivities]") {
+  const ElongationTrajectory trajectory = thesis_protocol(0.04, 2.5e-3, 2);
+  const SensitivityResult r = simulator(1e-8).run_sensitivities(
+      muscle(), {muscle(1.0, 1.0 + kStep), muscle(1.0, 1.0, 2.0 + kStep)}, {kStep, kStep}, trajectory);
+  // Central differences of runs at rtol 1e-11, a step of 1e-4: truncation ~1e-8, the runs'
+  // own error ~1e-11 / 1e-4 = 1e-7 of the slope.
+  const Simulator tight = simulator(1e-11);
+  const double d = 1e-4;
+  const SimulationResult friction_up = tight.run(muscle(1.0, 1.0 + d), trajectory);
+  const SimulationResult friction_down = tight.run(muscle(1.0, 1.0 - d), trajectory);
+  const SimulationResult tau_up = tight.run(muscle(1.0, 1.0, 2.0 + d), trajectory);
+  const SimulationResult tau_down = tight.run(muscle(1.0, 1.0, 2.0 - d), trajectory);
+  const auto central = [d](const std::vector<double>& up, const std::vector<double>& down) {
+    std::vector<double> out(up.size());
+    for (std::size_t k = 0; k < up.size(); ++k) out[k] = (up[k] - down[k]) / (2.0 * d);
+    return out;
+  };
+  // Tolerances: measured 2e-7 (friction, which the gas does not feel) and 3e-5 (tau, through the
+  // integrated temperature at rtol 1e-8, the sensitivities outside the error test).
+  CHECK(relative_gap(r.derivatives[0].force_N, central(friction_up.force_N, friction_down.force_N)) < 1e-6);
+  CHECK(largest(r.derivatives[0].pressure_gauge_Pa) == 0.0);
+  CHECK(relative_gap(r.derivatives[1].force_N, central(tau_up.force_N, tau_down.force_N)) < 1e-4);
+  CHECK(relative_gap(r.derivatives[1].pressure_gauge_Pa,
+                     central(tau_up.pressure_gauge_Pa, tau_down.pressure_gauge_Pa)) < 1e-4);
+  CHECK(relative_gap(r.derivatives[1].temperature_K, central(tau_up.temperature_K, tau_down.temperature_K)) < 1e-4);
+  CHECK(r.run.statistics.sensitivity_rhs_evaluations > 0);
+}
+
+TEST_CASE("run_sensitivities: the run beside the sensitivities is the plain run's, to its tolerance",
+          "[sim][sensitivities]") {
+  // The sensitivities ride on the state's steps, outside the error test: the run differs from a
+  // plain one only by the Newton iterations' rounding (a fit's residual and Jacobian see one
+  // model). Measured: 5e-14 of a channel's range at rtol 1e-6, rounding.
+  const ElongationTrajectory trajectory = thesis_protocol(0.04, 2.5e-3, 2);
+  const Simulator s = simulator(1e-6);
+  const SimulationResult plain = s.run(muscle(), trajectory);
+  const SensitivityResult r = s.run_sensitivities(muscle(), {muscle(1.0 + kStep)}, {kStep}, trajectory);
+  CHECK(relative_gap(r.run.force_N, plain.force_N) < 1e-12);
+  CHECK(relative_gap(r.run.pressure_gauge_Pa, plain.pressure_gauge_Pa) < 1e-12);
+  CHECK(relative_gap(r.run.temperature_K, plain.temperature_K) < 1e-12);
+  CHECK(r.run.statistics.steps == plain.statistics.steps);
+}
+
+TEST_CASE("run_sensitivities: refuses mismatched sizes and zero steps", "[sim][sensitivities]") {
+  const ElongationTrajectory trajectory = thesis_protocol(0.04, 2.5e-3, 1);
+  const Simulator s;
+  CHECK_THROWS_AS(s.run_sensitivities(muscle(), {muscle(1.1)}, {}, trajectory), InvalidInput);
+  CHECK_THROWS_WITH(s.run_sensitivities(muscle(), {muscle(1.1)}, {0.0}, trajectory),
+                    Catch::Contains("step 0 is 0"));
+}
