@@ -48,6 +48,8 @@ from independent import bench
 from independent.families import draws, record_sealed
 from independent.physics import Build, Motion, Physics, SealedMuscle
 
+import pamkit.diagnose.jacobian
+import pamkit.diagnose.joint
 from pamkit.diagnose import diagnose
 from pamkit.diagnose.model import Predictor
 
@@ -100,6 +102,7 @@ class Simulations:
     tests_alone: int = 0  # each test's own diagnosis (engine, candidates, calibrate)
     finite_differences: int = 0  # of those, for a column of a finite-difference Jacobian
     campaign: int = 0  # the campaign's own: the joint calibrations and the carried effects
+    sensitivity_runs: int = 0  # runs with forward sensitivities (a fit's Jacobian each), not in the counts above
 
     @property
     def total(self) -> int:
@@ -138,11 +141,24 @@ def counting_simulations():
                 count.finite_differences += asked_by == "finite_differences"
         return simulate(self, x, effects)
 
+    # joint.py holds its own name for it: both are counted.
+    modules = (pamkit.diagnose.jacobian, pamkit.diagnose.joint)
+    sensitivity_jacobian = pamkit.diagnose.jacobian.sensitivity_jacobian
+
+    def counted_sensitivities(*args):
+        with lock:
+            count.sensitivity_runs += 1
+        return sensitivity_jacobian(*args)
+
     Predictor.simulate = counted
+    for module in modules:
+        module.sensitivity_jacobian = counted_sensitivities
     try:
         yield count
     finally:
         Predictor.simulate = simulate
+        for module in modules:
+            module.sensitivity_jacobian = sensitivity_jacobian
 
 
 def one_simulation_s(d, repeats: int) -> float:
@@ -189,6 +205,7 @@ def run_campaign(paths: list[Path], threads: int, repeats: int) -> dict:
         "simulations_tests_alone": simulations.tests_alone,
         "simulations_finite_differences": simulations.finite_differences,
         "simulations_campaign": simulations.campaign,
+        "sensitivity_runs": simulations.sensitivity_runs,
         "one_simulation_each_s": one_each,
         "ratio": seconds / one_each,
         "shared_time_constant_s": c.extended.params.get("time_constant_s") if c.extended else None,
@@ -217,16 +234,22 @@ def print_tables(results: dict, total: dict) -> None:
         "  ratio: seconds / (one simulation of each test); CPU s: the process's CPU time over the campaign,\n"
         "  every thread's (wall x cores it kept busy)\n"
     )
-    header = f"{'campaign':8s} {'simulations':>11s} {'alone':>6s} {'(fin. diff.)':>12s} {'joint':>6s} {'per test':>8s}"
+    header = (
+        f"{'campaign':8s} {'simulations':>11s} {'alone':>6s} {'(fin. diff.)':>12s} {'joint':>6s} {'per test':>8s} "
+        f"{'sensitivity runs':>16s}"
+    )
     print(header)
     print("-" * len(header))
     for name, r in rows:
         finite = f"{r['simulations_finite_differences'] / max(r['simulations_tests_alone'], 1):.0%}"
         print(
             f"{name:8s} {r['simulations']:11d} {r['simulations_tests_alone']:6d} {finite:>12s} "
-            f"{r['simulations_campaign']:6d} {r['simulations'] / r['tests']:8.0f}"
+            f"{r['simulations_campaign']:6d} {r['simulations'] / r['tests']:8.0f} {r['sensitivity_runs']:16d}"
         )
-    print("  (fin. diff.): the share of the tests' own simulations that are finite-difference Jacobian columns")
+    print(
+        "  (fin. diff.): the share of the tests' own simulations that are finite-difference Jacobian columns;\n"
+        "  sensitivity runs: runs with CVODES forward sensitivities, one per Jacobian (diagnose/jacobian.py)"
+    )
 
 
 def main() -> int:
@@ -271,6 +294,7 @@ def main() -> int:
             "simulations_tests_alone",
             "simulations_campaign",
             "simulations_finite_differences",
+            "sensitivity_runs",
             "one_simulation_each_s",
         )
     }

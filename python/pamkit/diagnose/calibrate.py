@@ -11,12 +11,9 @@ from scipy.optimize import OptimizeResult, least_squares
 from threadpoolctl import threadpool_limits
 
 from pamkit._core import Effect
+from pamkit.diagnose.jacobian import DIFF_STEP, jacobian_for
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import Coordinate
-
-# Finite-difference step in the unit box of each coordinate: large enough that the
-# integrator's adaptive steps (relative error ~1e-7) do not swamp the slopes.
-DIFF_STEP = 1e-3
 
 
 @dataclass
@@ -67,11 +64,13 @@ def start_unit(space: list[Coordinate]) -> np.ndarray:
     return np.clip(x_to_unit(space, np.array([c.start for c in space])), 0.0, 1.0)
 
 
-def least_squares_in_box(residual, u0: np.ndarray, max_evaluations: int, **options) -> OptimizeResult:
-    """SciPy's bounded trust-region least squares in the unit box."""
+def least_squares_in_box(residual, u0: np.ndarray, max_evaluations: int, jac="2-point", **options) -> OptimizeResult:
+    """SciPy's bounded trust-region least squares in the unit box; `jac` a callable (jacobian.py)
+    or SciPy's 2-point differences at DIFF_STEP."""
     return least_squares(
         residual,
         u0,
+        jac=jac,
         bounds=(0.0, 1.0),
         method="trf",
         diff_step=DIFF_STEP,
@@ -146,7 +145,12 @@ def fit_baseline(problem: Problem) -> Fit:
         except (ValueError, RuntimeError):
             return bad_fit
 
-    result = least_squares_in_box(residual, start_unit(space), 20 * (len(space) + 1))
+    def counted():
+        nonlocal evaluations
+        evaluations += 1
+
+    jac = jacobian_for(problem, lambda u: (unit_to_x(space, u), []), residual, [], counted)
+    result = least_squares_in_box(residual, start_unit(space), 20 * (len(space) + 1), jac=jac)
     u, x = result.x, unit_to_x(space, result.x)
     bands = cluster_intervals(space, u, result.jac, result.fun, problem.residual_units())
     intervals = {c.name: band for c, band in zip(space, bands)}

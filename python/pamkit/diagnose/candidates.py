@@ -28,6 +28,7 @@ from pamkit.diagnose.calibrate import (
     unit_to_x,
     x_to_unit,
 )
+from pamkit.diagnose.jacobian import jacobian_for
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import configure, effect_space
 from pamkit.io.experiment import SERIES_COLUMNS
@@ -76,6 +77,11 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
     # the model (on the calibrated baseline), not only the instruments' stage.
     drives_model = problem.experiment.gas == "supplied" and effect.reads_supplied_pressure()
     evaluations = 0
+
+    def counted():
+        nonlocal evaluations
+        evaluations += 1
+
     if measurement_only and not drives_model:
         base_measurement = problem.predictor.measurement(baseline.baseline_x, [])
 
@@ -136,7 +142,15 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
             def residual(u):
                 return chi_or_penalty(unit_to_x(base_space, u[:n_base]), unit_to_x(space, u[n_base:]))
 
-            result = least_squares_in_box(residual, np.concatenate([base_u, best_u]), 12 * (n_base + len(space) + 1))
+            def point(u):
+                return unit_to_x(base_space, u[:n_base]), [
+                    configure(make_effect(), space, unit_to_x(space, u[n_base:]))
+                ]
+
+            jac = jacobian_for(problem, point, residual, [effect], counted)
+            result = least_squares_in_box(
+                residual, np.concatenate([base_u, best_u]), 12 * (n_base + len(space) + 1), jac=jac
+            )
             u = result.x
             base_x, effect_x = unit_to_x(base_space, u[:n_base]), unit_to_x(space, u[n_base:])
             count = len(space) + n_base
@@ -183,6 +197,10 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
     n_base, n_first = len(base_space), len(spaces[0])
     evaluations = 0
 
+    def counted():
+        nonlocal evaluations
+        evaluations += 1
+
     def split(u):
         return (
             unit_to_x(base_space, u[:n_base]),
@@ -221,7 +239,15 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
         chi2 = float(np.sum(residual(u) ** 2))
         if chi2 < best_chi2:
             best_u, best_chi2 = u, chi2
-    result = least_squares_in_box(residual, best_u, 10 * (len(start) + 1))
+
+    def point(u):
+        base_x, x1, x2 = split(u)
+        return base_x, [
+            configure(make(), space, x) for make, space, x in zip((make_first, make_second), spaces, (x1, x2))
+        ]
+
+    jac = jacobian_for(problem, point, residual, effects, counted)
+    result = least_squares_in_box(residual, best_u, 10 * (len(start) + 1), jac=jac)
     u = result.x
     try:
         predicted = predict(u)

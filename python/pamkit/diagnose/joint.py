@@ -17,6 +17,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.sparse
 
 from pamkit.diagnose.calibrate import (
     Fit,
@@ -27,6 +28,7 @@ from pamkit.diagnose.calibrate import (
     unit_to_x,
     x_to_unit,
 )
+from pamkit.diagnose.jacobian import applies, forward_differences, sensitivity_jacobian
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import Baseline, Coordinate, configure, effect_space, muscle_signature
 from pamkit.io.experiment import Experiment, ExperimentError
@@ -135,10 +137,40 @@ def calibrate_jointly(
             evaluations += 1
             return np.concatenate(list(pool.map(lambda k: chi(k, u), range(len(problems)))))
 
+        # Test k's residual moves with the shared coordinates and its own only.
+        columns = [np.r_[0 : len(shared), offsets[k] : offsets[k + 1]] for k in range(len(problems))]
+
+        def block(k: int, u: np.ndarray) -> np.ndarray:
+            def moved(v):
+                out = u.copy()
+                out[columns[k]] = v
+                return out
+
+            try:
+                return sensitivity_jacobian(problems[k], lambda v: model(problems[k], moved(v), k), u[columns[k]])
+            except (ValueError, RuntimeError):
+                return forward_differences(lambda v: chi(k, moved(v)), u[columns[k]])
+
+        def jac(u):
+            nonlocal evaluations
+            evaluations += 1
+            blocks = list(pool.map(lambda k: block(k, u), range(len(problems))))
+            return scipy.sparse.vstack(
+                [
+                    scipy.sparse.csr_matrix(
+                        (b.ravel(), np.tile(columns[k], b.shape[0]), np.arange(0, b.size + 1, b.shape[1])),
+                        shape=(b.shape[0], offsets[-1]),
+                    )
+                    for k, b in enumerate(blocks)
+                ],
+                format="csr",
+            )
+
         sparsity = np.zeros((rows[-1], offsets[-1]), dtype=bool)
-        sparsity[:, : len(shared)] = True
         for k in range(len(problems)):
-            sparsity[rows[k] : rows[k + 1], offsets[k] : offsets[k + 1]] = True
+            sparsity[rows[k] : rows[k + 1], columns[k]] = True
+        effects = [make_effect()] if make_effect is not None else []
+        sensitivities = all(applies(p, effects) for p in problems)
         # Each shared coordinate starts at the median of the tests' own fits, each test's own at its own.
         fitted = [{**a.baseline_params, **{k: v for k, v in a.params.items() if not isinstance(v, str)}} for a in alone]
         median = np.array([np.median([c.of(f[c.name]) for f in fitted]) for c in shared])
@@ -146,7 +178,10 @@ def calibrate_jointly(
             [np.clip(x_to_unit(shared, median), 0, 1)]
             + [np.clip(x_to_unit(o, np.array([c.of(f[c.name]) for c in o])), 0, 1) for o, f in zip(own, fitted)]
         )
-        result = least_squares_in_box(residual, u0, 20 * (len(shared) + 1), jac_sparsity=sparsity)
+        if sensitivities:
+            result = least_squares_in_box(residual, u0, 20 * (len(shared) + 1), jac=jac, tr_solver="lsmr")
+        else:
+            result = least_squares_in_box(residual, u0, 20 * (len(shared) + 1), jac_sparsity=sparsity)
     u = result.x
     clusters = np.concatenate(
         [np.tile(p.half_cycle[p.fit_mask], len(p.channels)) + 1_000_000 * k for k, p in enumerate(problems)]

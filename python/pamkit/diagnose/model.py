@@ -31,6 +31,7 @@ from pamkit._core import (
     GasMode,
     InitialState,
     Measurement,
+    MuscleModel,
     MuscleParams,
     ShapeTable,
     Simulator,
@@ -364,21 +365,37 @@ class Predictor:
         for effect in effects:
             extended = effect.apply_to_params(extended)
         shapes = None
-        # A motion effect moves the muscle off the programmed lengths and compliant fibres make the
-        # braid's length depend on the force: no table applies (the run would ignore one).
-        if extended.extensions.fiber_compliance_per_N == 0 and all(e.stage() != EffectStage.motion for e in effects):
-            key = (*extended.build.to_dict().values(), initial.length_m)
-            with self._shape_tables_lock:
-                shapes = self._shape_tables.pop(key, None)
-                if shapes is not None:
-                    self._shape_tables[key] = shapes  # now the most recent
-            if shapes is None:
-                shapes = ShapeTable(extended.build, initial.length_m, self.trajectory)  # releases the GIL
-                with self._shape_tables_lock:
-                    self._shape_tables[key] = shapes
-                    while len(self._shape_tables) > self._shape_tables_kept:
-                        del self._shape_tables[next(iter(self._shape_tables))]
+        # A motion effect moves the muscle off the programmed lengths: no table applies.
+        if all(e.stage() != EffectStage.motion for e in effects):
+            shapes = self.shape_table(extended, initial)
         return simulate_measurement(params, initial, self.trajectory, effects, self.simulator, shapes=shapes)
+
+    def sealed_model(self, x: np.ndarray, effects: list[Effect]) -> MuscleModel:
+        """The sealed test's model at baseline coordinates x, extended by `effects`' parameters."""
+        params, pressure_kPa = self.baseline.model_params(x)
+        initial = self.initial_state(params, pressure_kPa)
+        for effect in effects:
+            params = effect.apply_to_params(params)
+        return MuscleModel(params, initial)
+
+    def shape_table(self, extended: MuscleParams, initial: InitialState) -> ShapeTable | None:
+        """The braid's shapes along the programmed motion for `extended`'s build from `initial`'s
+        length, solved once and kept (the most recent 8); None for compliant fibres, whose braid's
+        length depends on the force (a run would ignore a table)."""
+        if extended.extensions.fiber_compliance_per_N != 0:
+            return None
+        key = (*extended.build.to_dict().values(), initial.length_m)
+        with self._shape_tables_lock:
+            shapes = self._shape_tables.pop(key, None)
+            if shapes is not None:
+                self._shape_tables[key] = shapes  # now the most recent
+        if shapes is None:
+            shapes = ShapeTable(extended.build, initial.length_m, self.trajectory)  # releases the GIL
+            with self._shape_tables_lock:
+                self._shape_tables[key] = shapes
+                while len(self._shape_tables) > self._shape_tables_kept:
+                    del self._shape_tables[next(iter(self._shape_tables))]
+        return shapes
 
     def initial_state(self, params: MuscleParams, pressure_kPa: float) -> InitialState:
         """A sealed test's state at zero elongation at inflation pressure `pressure_kPa`: at the

@@ -1,0 +1,137 @@
+"""The Jacobian of a fit's residual from one run with CVODES forward sensitivities.
+
+A fit moves coordinates in its unit box; each coordinate maps to the model's parameters (a
+pressure, a scale, a build field, an effect's parameter) and to its instruments. Differencing two
+adaptively stepped runs mixes the slope with the integrator's own error, so the finite
+differences a fit used before had to step a thousandth of the box (DIFF_STEP). Here one
+run integrates the sensitivities of the state to every coordinate that moves the model beside the
+state (Simulator.run_sensitivities), on the run's own steps; the instruments, a cheap post-process
+of the run's channels, are differenced at the first-order moved channels. A coordinate that only
+moves an instrument needs no sensitivity at all.
+
+Where no sensitivity run applies, the fit keeps SciPy's finite differences: a supplied-pressure
+test or a static table (no ODE: the model is evaluated sample by sample, without integrator
+noise), and an effect that moves the muscle off the crosshead's motion (its trajectory depends on
+the coordinates).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from pamkit._core import Effect, EffectStage, GasMode, Measurement
+from pamkit.diagnose.kinds import Problem
+from pamkit.diagnose.model import muscle_signature
+from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
+
+# Finite-difference step in the unit box of each coordinate, where a fit differences runs: large
+# enough that the integrator's adaptive steps (relative error ~1e-7) do not swamp the slopes.
+DIFF_STEP = 1e-3
+# Step in the unit box of the sensitivities' difference quotients (of smooth model functions
+# solved to ~1e-14, not of runs): derivatives to ~1e-6 relative (tests/python/diagnose/test_jacobian.py).
+SENSITIVITY_STEP = 1e-6
+
+# A fit's point: the baseline coordinates and freshly made, configured effects at unit coordinates u.
+Point = Callable[[np.ndarray], tuple[np.ndarray, list[Effect]]]
+
+
+def applies(problem: Problem, effects: list[Effect]) -> bool:
+    """Whether a sensitivity run can give this fit's Jacobian: a sealed test (an ODE) whose
+    effects leave the muscle on the crosshead's motion."""
+    return problem.predictor.mode == GasMode.sealed and all(e.stage() != EffectStage.motion for e in effects)
+
+
+def _key(model) -> tuple:
+    initial = model.initial_state
+    return (
+        muscle_signature(model.params),
+        model.params.gas.ambient_temperature_K,
+        initial.length_m,
+        initial.gauge_pressure_Pa,
+    )
+
+
+def _channels(run, derivative=None, step: float = 0.0) -> Measurement:
+    """The channels a sealed test's instruments read of `run` (simulate_measurement's), moved by
+    step x `derivative` when given."""
+
+    def column(name):
+        values = np.asarray(getattr(run, name))
+        return values + step * np.asarray(getattr(derivative, name)) if derivative is not None else values
+
+    m = Measurement()
+    m.time_s = np.asarray(run.time_s)
+    m.elongation_m = np.asarray(run.elongation_m)
+    m.force_N = column("force_N")
+    m.pressure_kPa = column("pressure_gauge_Pa") / PASCAL_PER_KILOPASCAL
+    m.temperature_C = column("temperature_K") - KELVIN_AT_ZERO_CELSIUS
+    return m
+
+
+def _read(problem: Problem, m: Measurement, effects: list[Effect], mask: np.ndarray) -> np.ndarray:
+    for effect in effects:
+        m = effect.apply_to_measurement(m)
+    return problem.chi(problem.predictor.select(m), mask)
+
+
+def sensitivity_jacobian(problem: Problem, point: Point, u: np.ndarray) -> np.ndarray:
+    """d chi / du at u on the fitted units, from one run with the sensitivities of every
+    coordinate that moves the model. Each step is SENSITIVITY_STEP into the box.
+    \\raises ValueError or RuntimeError where a moved model leaves its range."""
+    predictor = problem.predictor
+    mask = problem.fit_mask
+    steps = np.where(u + SENSITIVITY_STEP <= 1.0, SENSITIVITY_STEP, -SENSITIVITY_STEP)
+    base_x, effects = point(u)
+    nominal = predictor.sealed_model(base_x, effects)
+    moved_points = [point(u + step * np.eye(len(u))[j]) for j, step in enumerate(steps)]
+    moved_models = [predictor.sealed_model(x, e) for x, e in moved_points]
+    nominal_key = _key(nominal)
+    moves_model = [_key(m) != nominal_key for m in moved_models]
+    shapes = predictor.shape_table(nominal.params, nominal.initial_state)
+    result = predictor.simulator.run_sensitivities(
+        nominal,
+        [m for m, moves in zip(moved_models, moves_model) if moves],
+        [float(h) for h, moves in zip(steps, moves_model) if moves],
+        predictor.trajectory,
+        shapes,
+    )
+    chi = _read(problem, _channels(result.run), effects, mask)
+    derivatives = iter(result.derivatives)
+    jacobian = np.empty((chi.size, len(u)))
+    for j, ((_, moved_effects), h, moves) in enumerate(zip(moved_points, steps, moves_model)):
+        channels = _channels(result.run, next(derivatives), h) if moves else _channels(result.run)
+        jacobian[:, j] = (_read(problem, channels, moved_effects, mask) - chi) / h
+    return jacobian
+
+
+def forward_differences(residual: Callable[[np.ndarray], np.ndarray], u: np.ndarray) -> np.ndarray:
+    """The fit's former Jacobian, SciPy's 2-point scheme at DIFF_STEP stepping into the box:
+    where a moved model leaves its range, so that the fit goes on as it did without sensitivities."""
+    r0 = residual(u)
+    steps = np.where(u + DIFF_STEP <= 1.0, DIFF_STEP, -DIFF_STEP)
+    return np.column_stack([(residual(u + h * np.eye(len(u))[j]) - r0) / h for j, h in enumerate(steps)])
+
+
+def jacobian_for(
+    problem: Problem,
+    point: Point,
+    residual: Callable[[np.ndarray], np.ndarray],
+    effects: list[Effect],
+    on_run: Callable[[], None] = lambda: None,
+):
+    """The `jac` a fit hands least_squares: sensitivities where they apply (`applies`), SciPy's
+    2-point differences otherwise. `on_run` is called for each run with sensitivities (a fit
+    counts its model runs)."""
+    if not applies(problem, effects):
+        return "2-point"
+
+    def jac(u: np.ndarray) -> np.ndarray:
+        try:
+            on_run()
+            return sensitivity_jacobian(problem, point, u)
+        except (ValueError, RuntimeError):
+            return forward_differences(residual, u)
+
+    return jac
