@@ -244,9 +244,18 @@ void bind_sim(py::module_& m) {
   py::class_<SensitivityResult>(m, "SensitivityResult",
                                 "A run and its forward sensitivities (Simulator.run_sensitivities).")
       .def_readonly("run", &SensitivityResult::run, "the run at the nominal parameters")
-      .def_readonly("derivatives", &SensitivityResult::derivatives,
-                    "per parameter, a SimulationResult whose output columns are the derivatives of run's (per unit of "
-                    "the parameter); elongation_m is zero, statistics empty");
+      .def_property_readonly(
+          "derivatives",
+          [](py::object self) {
+            // Views into the result, not copies: a long record's derivatives are megabytes.
+            py::list out;
+            for (const SimulationResult& d : self.cast<const SensitivityResult&>().derivatives) {
+              out.append(py::cast(&d, py::return_value_policy::reference_internal, self));
+            }
+            return out;
+          },
+          "per parameter, a SimulationResult whose output columns are the derivatives of run's (per unit of the "
+          "parameter); elongation_m is zero, statistics empty. Views into this result, which they keep alive.");
 
   py::class_<Simulator>(m, "Simulator", "Integrates a MuscleModel along a trajectory with CVODES. Re-entrant.")
       .def(py::init<SimulatorConfig>(), py::arg("config") = SimulatorConfig{})

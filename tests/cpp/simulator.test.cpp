@@ -112,6 +112,10 @@ TEST_CASE("MuscleModel: a warm-started evaluation gives the cold one's outputs",
   // evaluate_with starts the braid's closure from the workspace's last solve; the Newton solve
   // stops on the same test either way (2^-46 relative), so every output agrees to ~1e-13
   // (the rates' subtractions, gauge pressure and force, lose two digits of the diameter's 1e-15).
+  // With compliant fibers the warm braid length is a chord Newton iteration from the last
+  // solve's stretch, the cold one a bracketing search: they stop within 1e-14 of each other,
+  // and the rates, through the braid's velocity v / (1 + c dF/dL_b), agree to the rounding of
+  // that central-difference slope: eps |F| / h over |dF/dL_b| ~ 1e-10 (measured 2e-12).
   MuscleParams plain;
   plain.gas.process = GasProcess::heat_transfer;
   MuscleParams extended = plain;
@@ -131,9 +135,10 @@ TEST_CASE("MuscleModel: a warm-started evaluation gives the cold one's outputs",
       CHECK_REL(warm.forces.total, cold.forces.total, 1e-12);
       CHECK_REL(warm.gauge_pressure_Pa, cold.gauge_pressure_Pa, 1e-13);
       CHECK_REL(warm.braid_length_m, cold.braid_length_m, 1e-14);
+      const double rate_tolerance = params.extensions.fiber_compliance_per_N > 0.0 ? 1e-10 : 1e-12;
       for (int i = 0; i < State::size; ++i) {
         INFO("rate " << i);
-        CHECK(std::abs(warm.rate[i] - cold.rate[i]) <= 1e-12 * std::abs(cold.rate[i]) + 1e-300);
+        CHECK(std::abs(warm.rate[i] - cold.rate[i]) <= rate_tolerance * std::abs(cold.rate[i]) + 1e-300);
       }
       CHECK(std::isnan(warm.shape.braid_angle));
       CHECK(!std::isnan(cold.shape.braid_angle));

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "pamkit/gas/air.hpp"
 #include "pamkit/muscle/force.hpp"
@@ -147,6 +148,11 @@ struct MuscleOutputs {
 /// const model stays shareable.
 struct MuscleWorkspace {
   ShapeHint shape;  ///< where the braid's last closure solve ended
+  /// Compliant fibers only: the fibers' stretch L - L_b [m] and the elastic force's slope
+  /// dF/dL_b [N/m] where the last braid-length solve ended (NaN: none yet). The next solve
+  /// starts there: Newton from a nearby length instead of a bracketing search.
+  double fiber_stretch_m = std::numeric_limits<double>::quiet_NaN();
+  double force_slope_N_per_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// A muscle in a test: parameters plus the sealed gas mass. Immutable, so one model may be
@@ -202,8 +208,13 @@ class MuscleModel {
  private:
   /// Elastic force [N] (gas, bladder and its viscous branch; no friction) at braid length L_b.
   double elastic_force(double braid_length, const State& state, ShapeHint& hint) const;
-  /// Braid length whose stretched fibers span the muscle length `length_m`.
-  double braid_length(double length_m, const State& state, ShapeHint& hint) const;
+  /// Braid length whose stretched fibers span the muscle length `length_m`, started from where
+  /// `workspace` ended; leaves there the solution's stretch and the force's slope dF/dL_b.
+  double braid_length(double length_m, const State& state, MuscleWorkspace& workspace) const;
+  /// The bracketing search braid_length falls back on where Newton does not converge.
+  double bracketed_braid_length(double length_m, const State& state, ShapeHint& hint) const;
+  /// dF/dL_b [N/m] of the elastic force at braid length L_b, by central differences.
+  double elastic_slope(double braid_length, const State& state, ShapeHint& hint) const;
   /// Fills `out`'s gas, forces and rates from its shape, braid length and braid velocity, at the
   /// crosshead's rate `velocity_m_per_s` (the work's) in state `state`.
   void complete_outputs(MuscleOutputs& out, double velocity_m_per_s, const State& state) const;

@@ -53,9 +53,43 @@ inline double MuscleModel::elastic_force(double braid_length, const State& y, Sh
                        params_.extensions.slack_band_N);
 }
 
-inline double MuscleModel::braid_length(double length_m, const State& y, ShapeHint& hint) const {
+inline double MuscleModel::elastic_slope(double braid_length, const State& y, ShapeHint& hint) const {
+  const double h = 1e-7;  // well above rounding, well below the braid's length scales
+  return (elastic_force(braid_length + h, y, hint) - elastic_force(braid_length - h, y, hint)) / (2.0 * h);
+}
+
+inline double MuscleModel::braid_length(double length_m, const State& y, MuscleWorkspace& workspace) const {
   // The fibers stretch by T Lym / EA; their tension sums to the force, so the braid is shorter
-  // than the muscle by F Lym / (N EA): a spring in series with the braid.
+  // than the muscle by F Lym / (N EA): a spring in series with the braid. Its length solves
+  // g(L_b) = L_b + c F(L_b) - L = 0, g' = 1 + c dF/dL_b > 0. The integrator and the samples
+  // move L a little between calls, so the last solve's stretch and slope start a chord Newton
+  // iteration that converges in two or three force evaluations (a bracketing search took ten).
+  const double per_newton =
+      params_.extensions.fiber_compliance_per_N * geometry_.fiber_length() / geometry_.build().fiber_count;
+  const double shortest = geometry_.min_length() * (1.0 + 1e-12);
+  const double longest = geometry_.max_length() * (1.0 - 1e-12);
+  ShapeHint& hint = workspace.shape;
+  double braid = length_m;
+  if (std::isfinite(workspace.fiber_stretch_m) && std::isfinite(workspace.force_slope_N_per_m)) {
+    braid = length_m - workspace.fiber_stretch_m;
+    const double chord = 1.0 + per_newton * workspace.force_slope_N_per_m;
+    bool converged = false;
+    for (int iteration = 0; iteration < 12 && !converged && chord > 0.0; ++iteration) {
+      if (!(braid > shortest && braid < longest)) break;
+      const double step = (braid + per_newton * elastic_force(braid, y, hint) - length_m) / chord;
+      braid -= step;
+      converged = std::abs(step) <= 4.0 * std::numeric_limits<double>::epsilon() * length_m;
+    }
+    if (!converged || !(braid > shortest && braid < longest)) braid = bracketed_braid_length(length_m, y, hint);
+  } else {
+    braid = bracketed_braid_length(length_m, y, hint);
+  }
+  workspace.fiber_stretch_m = length_m - braid;
+  workspace.force_slope_N_per_m = elastic_slope(braid, y, hint);
+  return braid;
+}
+
+inline double MuscleModel::bracketed_braid_length(double length_m, const State& y, ShapeHint& hint) const {
   const double per_newton =
       params_.extensions.fiber_compliance_per_N * geometry_.fiber_length() / geometry_.build().fiber_count;
   auto mismatch = [&](double braid) { return braid + per_newton * elastic_force(braid, y, hint) - length_m; };
@@ -87,14 +121,10 @@ inline MuscleOutputs MuscleModel::evaluate_with(MuscleWorkspace& workspace, doub
   out.braid_length_m = length_m;
   out.braid_velocity_m_per_s = velocity_m_per_s;
   if (x.fiber_compliance_per_N > 0.0) {
-    out.braid_length_m = braid_length(length_m, y, workspace.shape);
-    // dL/dL_b = 1 + c dF/dL_b, the slope by central differences (step well above rounding).
-    const double h = 1e-7;
+    out.braid_length_m = braid_length(length_m, y, workspace);
+    // dL/dL_b = 1 + c dF/dL_b, the slope at the solution (braid_length leaves it).
     const double per_newton = x.fiber_compliance_per_N * geometry_.fiber_length() / geometry_.build().fiber_count;
-    const double slope = (elastic_force(out.braid_length_m + h, y, workspace.shape) -
-                          elastic_force(out.braid_length_m - h, y, workspace.shape)) /
-                         (2.0 * h);
-    out.braid_velocity_m_per_s = velocity_m_per_s / (1.0 + per_newton * slope);
+    out.braid_velocity_m_per_s = velocity_m_per_s / (1.0 + per_newton * workspace.force_slope_N_per_m);
   }
   out.shape = geometry_.shape_from(workspace.shape, out.braid_length_m, parts);
   complete_outputs(out, velocity_m_per_s, y);
