@@ -56,8 +56,7 @@ TEST_CASE("run_sensitivities: the pressure's sensitivity to the initial pressure
   const ElongationTrajectory trajectory = thesis_protocol(0.04, 2.5e-3, 2);
   const MuscleModel nominal = muscle();
   const double h = kStep * 236.63e3;  // per pascal of initial pressure
-  const SensitivityResult r =
-      simulator(1e-8).run_sensitivities(nominal, {muscle(1.0 + kStep)}, {h}, trajectory);
+  const SensitivityResult r = simulator(1e-8).run_sensitivities(nominal, {muscle(1.0 + kStep)}, {h}, trajectory);
   const double atmosphere = nominal.params().gas.atmospheric_pressure_Pa;
   const double initial_absolute = atmosphere + 236.63e3;
   std::vector<double> closed_form;
@@ -114,6 +113,5 @@ TEST_CASE("run_sensitivities: refuses mismatched sizes and zero steps", "[sim][s
   const ElongationTrajectory trajectory = thesis_protocol(0.04, 2.5e-3, 1);
   const Simulator s;
   CHECK_THROWS_AS(s.run_sensitivities(muscle(), {muscle(1.1)}, {}, trajectory), InvalidInput);
-  CHECK_THROWS_WITH(s.run_sensitivities(muscle(), {muscle(1.1)}, {0.0}, trajectory),
-                    Catch::Contains("step 0 is 0"));
+  CHECK_THROWS_WITH(s.run_sensitivities(muscle(), {muscle(1.1)}, {0.0}, trajectory), Catch::Contains("step 0 is 0"));
 }
