@@ -9,10 +9,11 @@ state (Simulator.run_sensitivities), on the run's own steps; the instruments, a 
 of the run's channels, are differenced at the first-order moved channels. A coordinate that only
 moves an instrument needs no sensitivity at all.
 
-Where no sensitivity run applies, the fit keeps SciPy's finite differences: a supplied-pressure
-test or a static table (no ODE: the model is evaluated sample by sample, without integrator
-noise), and an effect that moves the muscle off the crosshead's motion (its trajectory depends on
-the coordinates).
+A supplied-pressure test has no ODE: its model is evaluated sample by sample, each braid closure
+solved to ~1e-14, so it is differenced with the sensitivities' small step (static tables do the
+same in table_fit.py). Only an effect that moves a sealed muscle off the crosshead's motion (its
+trajectory depends on the coordinates, so no one run carries it) keeps differencing runs at
+DIFF_STEP.
 """
 
 from __future__ import annotations
@@ -106,11 +107,14 @@ def sensitivity_jacobian(problem: Problem, point: Point, u: np.ndarray) -> np.nd
     return jacobian
 
 
-def forward_differences(residual: Callable[[np.ndarray], np.ndarray], u: np.ndarray) -> np.ndarray:
-    """The fit's former Jacobian, SciPy's 2-point scheme at DIFF_STEP stepping into the box:
-    where a moved model leaves its range, so that the fit goes on as it did without sensitivities."""
+def forward_differences(
+    residual: Callable[[np.ndarray], np.ndarray], u: np.ndarray, step: float = DIFF_STEP
+) -> np.ndarray:
+    """SciPy's 2-point scheme stepping into the box: at DIFF_STEP, the fits' former Jacobian,
+    where a moved model leaves its range (the fit goes on as it did without sensitivities); at
+    SENSITIVITY_STEP for a model without an ODE."""
     r0 = residual(u)
-    steps = np.where(u + DIFF_STEP <= 1.0, DIFF_STEP, -DIFF_STEP)
+    steps = np.where(u + step <= 1.0, step, -step)
     return np.column_stack([(residual(u + h * np.eye(len(u))[j]) - r0) / h for j, h in enumerate(steps)])
 
 
@@ -121,9 +125,11 @@ def jacobian_for(
     effects: list[Effect],
     on_run: Callable[[], None] = lambda: None,
 ):
-    """The `jac` a fit hands least_squares: sensitivities where they apply (`applies`), SciPy's
-    2-point differences otherwise. `on_run` is called for each run with sensitivities (a fit
-    counts its model runs)."""
+    """The `jac` a fit hands least_squares: sensitivities where they apply (`applies`), small-step
+    differences without an ODE (a supplied test), SciPy's 2-point differences at DIFF_STEP
+    otherwise. `on_run` is called for each run with sensitivities (a fit counts its model runs)."""
+    if problem.predictor.mode != GasMode.sealed:
+        return lambda u: forward_differences(residual, u, SENSITIVITY_STEP)
     if not applies(problem, effects):
         return "2-point"
 

@@ -6,6 +6,7 @@ import dataclasses
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from pamkit._core import GasMode, SimulatorConfig
 from pamkit.diagnose import jacobian
@@ -73,12 +74,21 @@ def test_a_fit_with_sensitivities_reaches_the_finite_difference_fits_optimum(mon
         assert abs(exact.params[name] - differenced.params[name]) < 1e-3 * (high - low), name
 
 
-def test_supplied_tests_and_motion_effects_keep_scipys_differences():
+def test_motion_effects_keep_scipys_differences_and_supplied_tests_take_small_steps():
     sealed = build_problem(load_experiment(EXAMPLE))
     slack = catalog().make("fixture_slack")
     assert jacobian.jacobian_for(sealed, None, None, [slack]) == "2-point"
-    assert callable(jacobian.jacobian_for(sealed, None, None, [catalog().make("heat_transfer")]))
+    assert jacobian.applies(sealed, [catalog().make("heat_transfer")])
     supplied = dataclasses.replace(sealed)
     supplied.predictor = Predictor(sealed.experiment, sealed.channels)
     supplied.predictor.mode = GasMode.supplied  # its model is static: sample by sample, no ODE
-    assert jacobian.jacobian_for(supplied, None, None, []) == "2-point"
+    assert not jacobian.applies(supplied, [])
+    steps = []
+
+    def residual(u):
+        steps.append(u.copy())
+        return np.array([u[0] ** 2])
+
+    jac = jacobian.jacobian_for(supplied, None, residual, [slack])
+    assert jac(np.array([0.5])) == pytest.approx(1.0, abs=1e-5)  # d(u^2)/du at 0.5, step 1e-6
+    assert abs(steps[1][0] - steps[0][0]) == pytest.approx(jacobian.SENSITIVITY_STEP)
