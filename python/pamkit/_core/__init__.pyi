@@ -1127,9 +1127,9 @@ class SensitivityResult:
     A run and its forward sensitivities (Simulator.run_sensitivities).
     """
     @property
-    def derivatives(self) -> list[SimulationResult]:
+    def derivatives(self) -> list:
         """
-        per parameter, a SimulationResult whose output columns are the derivatives of run's (per unit of the parameter); elongation_m is zero, statistics empty
+        per parameter, a SimulationResult whose output columns are the derivatives of run's (per unit of the parameter); elongation_m is zero, statistics empty. Views into this result, which they keep alive.
         """
     @property
     def run(self) -> SimulationResult:
