@@ -118,7 +118,9 @@ class Simulator {
   /// Samples are reported at the trajectory's times; the friction at a sample uses the
   /// elongation rate of the segment that ends there (of the first segment at the start).
   /// Between corners CVODES takes its own steps and each sample is read off the polynomial of
-  /// the step that passed it (CVodeGetDky), so the samples do not steer the steps.
+  /// the step that passed it (CVodeGetDky; a step that passed more samples than its order + 1
+  /// reads that polynomial's Taylor coefficients once and each sample by a Horner sum, the same
+  /// values to rounding), so the samples do not steer the steps.
   /// With `shapes`, the samples' braid shapes are read from that table where it applies to this
   /// run (ShapeTable::applies_to: the same build, the same sample lengths, inextensible fibers)
   /// instead of solved, with the same numbers bit for bit; where it does not apply, they are
