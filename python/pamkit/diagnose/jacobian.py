@@ -79,8 +79,8 @@ def _read(problem: Problem, m: Measurement, effects: list[Effect], mask: np.ndar
 
 def sensitivity_jacobian(problem: Problem, point: Point, u: np.ndarray) -> np.ndarray:
     """d chi / du at u on the fitted units, from one run with the sensitivities of every
-    coordinate that moves the model. Each step is SENSITIVITY_STEP into the box.
-    \\raises ValueError or RuntimeError where a moved model leaves its range."""
+    coordinate that moves the model. Each step is SENSITIVITY_STEP into the box. Raises
+    ValueError or RuntimeError where a moved model leaves its range."""
     predictor = problem.predictor
     mask = problem.fit_mask
     steps = np.where(u + SENSITIVITY_STEP <= 1.0, SENSITIVITY_STEP, -SENSITIVITY_STEP)

@@ -166,11 +166,7 @@ def calibrate_jointly(
                 format="csr",
             )
 
-        sparsity = np.zeros((rows[-1], offsets[-1]), dtype=bool)
-        for k in range(len(problems)):
-            sparsity[rows[k] : rows[k + 1], columns[k]] = True
         effects = [make_effect()] if make_effect is not None else []
-        sensitivities = all(applies(p, effects) for p in problems)
         # Each shared coordinate starts at the median of the tests' own fits, each test's own at its own.
         fitted = [{**a.baseline_params, **{k: v for k, v in a.params.items() if not isinstance(v, str)}} for a in alone]
         median = np.array([np.median([c.of(f[c.name]) for f in fitted]) for c in shared])
@@ -178,9 +174,12 @@ def calibrate_jointly(
             [np.clip(x_to_unit(shared, median), 0, 1)]
             + [np.clip(x_to_unit(o, np.array([c.of(f[c.name]) for c in o])), 0, 1) for o, f in zip(own, fitted)]
         )
-        if sensitivities:
+        if all(applies(p, effects) for p in problems):
             result = least_squares_in_box(residual, u0, 20 * (len(shared) + 1), jac=jac, tr_solver="lsmr")
-        else:
+        else:  # SciPy's sparse differences, every test's own coordinates perturbed in one pass
+            sparsity = np.zeros((rows[-1], offsets[-1]), dtype=bool)
+            for k in range(len(problems)):
+                sparsity[rows[k] : rows[k + 1], columns[k]] = True
             result = least_squares_in_box(residual, u0, 20 * (len(shared) + 1), jac_sparsity=sparsity)
     u = result.x
     clusters = np.concatenate(
