@@ -30,10 +30,11 @@ State to_state(N_Vector v) {
 }
 
 /// The moved models of a run with sensitivities (Simulator::run_sensitivities), each with its
-/// own warm starts, and the counters of their evaluations.
+/// own motion and warm starts, and the counters of their evaluations.
 struct MovedModels {
   const std::vector<MuscleModel>& models;
   const std::vector<double>& steps;
+  std::vector<const ElongationTrajectory*> motions;  // per moved model: its own, or the run's trajectory
   std::vector<MuscleWorkspace> rhs;
   std::vector<MuscleWorkspace> output;
   std::vector<const ShapeTable*> shapes;  // per moved model: the table where it applies, else null
@@ -60,10 +61,10 @@ struct RunWorkspace {
     const std::size_t k = static_cast<std::size_t>(upper - time.begin());
     return std::clamp(k == 0 ? 0 : k - 1, piece_start, piece_end - 1);
   }
-  /// The length of `m` (the model or a moved one, each from its own initial length) at time t in segment k.
-  double length(const MuscleModel& m, double t, std::size_t k) const {
-    return m.initial_state().length_m + trajectory.elongation()[k] +
-           trajectory.segment_velocity(k) * (t - trajectory.time()[k]);
+  /// The length of `m` (the model or a moved one, each from its own initial length) along
+  /// `motion` (the trajectory or a moved motion on its times) at time t in segment k.
+  static double length(const MuscleModel& m, const ElongationTrajectory& motion, double t, std::size_t k) {
+    return m.initial_state().length_m + motion.elongation()[k] + motion.segment_velocity(k) * (t - motion.time()[k]);
   }
 };
 
@@ -78,8 +79,9 @@ int muscle_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto& w = *static_cast<RunWorkspace*>(user_data);
   try {
     const std::size_t k = w.segment(t);
-    const MuscleOutputs out = w.model.evaluate_with(w.rhs, w.length(w.model, t, k), w.trajectory.segment_velocity(k),
-                                                    to_state(y), ShapeParts::kinematics);
+    const MuscleOutputs out =
+        w.model.evaluate_with(w.rhs, RunWorkspace::length(w.model, w.trajectory, t, k),
+                              w.trajectory.segment_velocity(k), to_state(y), ShapeParts::kinematics);
     std::copy(out.rate.values.begin(), out.rate.values.end(), NV_DATA_S(ydot));
     return 0;
   } catch (...) {
@@ -101,8 +103,9 @@ int sensitivity_rhs(int count, sunrealtype t, N_Vector y, N_Vector ydot, N_Vecto
       const auto m = static_cast<std::size_t>(i);
       const double h = moved.steps[m];
       const MuscleModel& model = moved.models[m];
+      const ElongationTrajectory& motion = *moved.motions[m];
       const MuscleOutputs out =
-          model.evaluate_with(moved.rhs[m], w.length(model, t, k), w.trajectory.segment_velocity(k),
+          model.evaluate_with(moved.rhs[m], RunWorkspace::length(model, motion, t, k), motion.segment_velocity(k),
                               shifted(state, h, yS[i]), ShapeParts::kinematics);
       for (int j = 0; j < State::size; ++j) NV_Ith_S(ySdot[i], j) = (out.rate[j] - NV_Ith_S(ydot, j)) / h;
     }
@@ -214,7 +217,7 @@ class BlockRecorder {
 };
 
 /// Differentiates each sample's outputs into SensitivityResult::derivatives: output j of moved
-/// model i at y + h_i s_i less the nominal's, over h_i.
+/// model i (along its own motion) at y + h_i s_i less the nominal's, over h_i.
 class DerivativeRecorder {
  public:
   /// `nominal_length_m`: the nominal model's initial length, which a moved one may differ from.
@@ -222,20 +225,28 @@ class DerivativeRecorder {
                      std::vector<SimulationResult>& derivatives)
       : moved_(moved), nominal_length_(nominal_length_m), derivatives_(derivatives) {
     derivatives_.resize(moved.models.size());
-    for (SimulationResult& d : derivatives_) {
+    for (std::size_t i = 0; i < derivatives_.size(); ++i) {
+      SimulationResult& d = derivatives_[i];
       d.time_s = trajectory.time();
-      d.elongation_m.assign(trajectory.size(), 0.0);
+      d.elongation_m.resize(trajectory.size());
+      const std::vector<double>& motion = moved.motions[i]->elongation();
+      for (std::size_t k = 0; k < trajectory.size(); ++k) {
+        d.elongation_m[k] = (motion[k] - trajectory.elongation()[k]) / moved.steps[i];
+      }
       for (std::vector<double>* column : outputs(d)) column->resize(trajectory.size());
     }
   }
 
-  void record(std::size_t k, const ElongationTrajectory& trajectory, double velocity, const State& y, N_Vector* yS,
-              const MuscleOutputs& nominal, SolverStatistics& statistics) {
+  /// Sample k, whose friction reads the elongation rate of segment `segment` (k - 1, or 0 at the start).
+  void record(std::size_t k, std::size_t segment, const State& y, N_Vector* yS, const MuscleOutputs& nominal,
+              SolverStatistics& statistics) {
     for (std::size_t i = 0; i < derivatives_.size(); ++i) {
       const double h = moved_.steps[i];
       const MuscleModel& model = moved_.models[i];
+      const ElongationTrajectory& motion = *moved_.motions[i];
+      const double velocity = motion.segment_velocity(segment);
       const State y_moved = shifted(y, h, yS[i]);
-      const double length = model.initial_state().length_m + trajectory.elongation()[k];
+      const double length = model.initial_state().length_m + motion.elongation()[k];
       const MuscleOutputs out = moved_.shapes[i]
                                     ? model.evaluate_at_shape(moved_.shapes[i]->shape(k), velocity, y_moved)
                                     : model.evaluate_with(moved_.output[i], length, velocity, y_moved,
@@ -466,12 +477,13 @@ SolverStatistics integrate(const SimulatorConfig& config, const MuscleModel& mod
   BlockRecorder recorder(trajectory, block_size, sink, tabulated);
   std::optional<DerivativeRecorder> differentiator;
   if (moved) differentiator.emplace(*moved, trajectory, model.initial_state().length_m, *derivatives);
-  const auto record = [&](std::size_t sample, double velocity, const State& state, N_Vector* state_sensitivities) {
-    const MuscleOutputs out = recorder.record(sample, model, workspace.output, velocity, state, statistics);
-    if (differentiator)
-      differentiator->record(sample, trajectory, velocity, state, state_sensitivities, out, statistics);
+  // Sample k's friction reads the elongation rate of the segment that ends there (the first at the start).
+  const auto record = [&](std::size_t sample, std::size_t segment, const State& state, N_Vector* state_sensitivities) {
+    const MuscleOutputs out =
+        recorder.record(sample, model, workspace.output, trajectory.segment_velocity(segment), state, statistics);
+    if (differentiator) differentiator->record(sample, segment, state, state_sensitivities, out, statistics);
   };
-  record(0, trajectory.segment_velocity(0), initial, sensitivities.vectors);
+  record(0, 0, initial, sensitivities.vectors);
   StepPolynomial polynomial(count);
 
   // Integrate piece by piece between corners, where the elongation rate jumps: CVODES stops
@@ -530,8 +542,7 @@ SolverStatistics integrate(const SimulatorConfig& config, const MuscleModel& mod
                        time[sample]);
           }
         }
-        record(sample, trajectory.segment_velocity(sample - 1), to_state(sample_state.get()),
-               sample_sensitivities.vectors);
+        record(sample, sample - 1, to_state(sample_state.get()), sample_sensitivities.vectors);
         steps_since_sample = 0;
       }
     }
@@ -559,20 +570,31 @@ SolverStatistics Simulator::run_blocks(const MuscleModel& model, const Elongatio
 
 SensitivityResult Simulator::run_sensitivities(const MuscleModel& model, const std::vector<MuscleModel>& moved,
                                                const std::vector<double>& steps, const ElongationTrajectory& trajectory,
-                                               const ShapeTable* shapes) const {
+                                               const ShapeTable* shapes,
+                                               const std::vector<ElongationTrajectory>& moved_motions) const {
   if (moved.size() != steps.size()) {
     throw InvalidInput(
         detail::message("Simulator.run_sensitivities: ", moved.size(), " moved models for ", steps.size(), " steps"));
   }
+  if (!moved_motions.empty() && moved_motions.size() != moved.size()) {
+    throw InvalidInput(detail::message("Simulator.run_sensitivities: ", moved_motions.size(), " moved motions for ",
+                                       moved.size(), " moved models (give none, or one each)"));
+  }
   MovedModels moved_models{
-      moved, steps, std::vector<MuscleWorkspace>(moved.size()), std::vector<MuscleWorkspace>(moved.size()), {}, 0};
+      moved, steps, {}, std::vector<MuscleWorkspace>(moved.size()), std::vector<MuscleWorkspace>(moved.size()), {}, 0};
   for (std::size_t i = 0; i < moved.size(); ++i) {
     if (!(std::isfinite(steps[i]) && steps[i] != 0.0)) {
       throw InvalidInput(detail::message("Simulator.run_sensitivities: step ", i, " is ", steps[i],
                                          "; it must be finite and not zero"));
     }
-    check_lengths(moved[i], trajectory);
-    moved_models.shapes.push_back(shapes && shapes->applies_to(moved[i], trajectory) ? shapes : nullptr);
+    const ElongationTrajectory& motion = moved_motions.empty() ? trajectory : moved_motions[i];
+    if (motion.time() != trajectory.time()) {
+      throw InvalidInput(detail::message("Simulator.run_sensitivities: moved motion ", i,
+                                         " is not sampled at the trajectory's times"));
+    }
+    check_lengths(moved[i], motion);
+    moved_models.motions.push_back(&motion);
+    moved_models.shapes.push_back(shapes && shapes->applies_to(moved[i], motion) ? shapes : nullptr);
   }
   SensitivityResult out;
   out.run = sized_result(trajectory);

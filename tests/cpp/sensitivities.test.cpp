@@ -94,6 +94,38 @@ TEST_CASE("run_sensitivities: agree with central differences of tightly integrat
   CHECK(r.run.statistics.sensitivity_rhs_evaluations > 0);
 }
 
+/// `trajectory` with every elongation multiplied by `scale` (a crosshead whose travel reads off by a factor).
+ElongationTrajectory scaled(const ElongationTrajectory& trajectory, double scale) {
+  std::vector<double> elongation = trajectory.elongation();
+  for (double& e : elongation) e *= scale;
+  return ElongationTrajectory(trajectory.time(), elongation);
+}
+
+TEST_CASE("run_sensitivities: a parameter that moves the muscle's motion, against central differences",
+          "[sim][sensitivities]") {
+  // A travel scale moves the muscle off the trajectory (as a fixture's slack does), keeping its
+  // corners: the moved model is the nominal one along the scaled motion.
+  const ElongationTrajectory trajectory = thesis_protocol(0.04, 2.5e-3, 2);
+  const SensitivityResult r = simulator(1e-8).run_sensitivities(muscle(), {muscle()}, {kStep}, trajectory, nullptr,
+                                                                {scaled(trajectory, 1.0 + kStep)});
+  const Simulator tight = simulator(1e-11);
+  const double d = 1e-4;
+  const SimulationResult up = tight.run(muscle(), scaled(trajectory, 1.0 + d));
+  const SimulationResult down = tight.run(muscle(), scaled(trajectory, 1.0 - d));
+  const auto central = [d](const std::vector<double>& a, const std::vector<double>& b) {
+    std::vector<double> out(a.size());
+    for (std::size_t k = 0; k < a.size(); ++k) out[k] = (a[k] - b[k]) / (2.0 * d);
+    return out;
+  };
+  // As for the heat time constant above: the slope through the integrated gas state at rtol
+  // 1e-8, the sensitivities outside the error test.
+  CHECK(relative_gap(r.derivatives[0].force_N, central(up.force_N, down.force_N)) < 1e-4);
+  CHECK(relative_gap(r.derivatives[0].pressure_gauge_Pa, central(up.pressure_gauge_Pa, down.pressure_gauge_Pa)) < 1e-4);
+  CHECK(relative_gap(r.derivatives[0].temperature_K, central(up.temperature_K, down.temperature_K)) < 1e-4);
+  // The motion's own derivative is the elongation itself (d(s e)/ds), to the quotient's rounding.
+  CHECK(relative_gap(r.derivatives[0].elongation_m, trajectory.elongation()) < 1e-8);
+}
+
 TEST_CASE("run_sensitivities: the run beside the sensitivities is the plain run's, to its tolerance",
           "[sim][sensitivities]") {
   // The sensitivities ride on the state's steps, outside the error test: the run differs from a
@@ -114,4 +146,11 @@ TEST_CASE("run_sensitivities: refuses mismatched sizes and zero steps", "[sim][s
   const Simulator s;
   CHECK_THROWS_AS(s.run_sensitivities(muscle(), {muscle(1.1)}, {}, trajectory), InvalidInput);
   CHECK_THROWS_WITH(s.run_sensitivities(muscle(), {muscle(1.1)}, {0.0}, trajectory), Catch::Contains("step 0 is 0"));
+  CHECK_THROWS_WITH(s.run_sensitivities(muscle(), {muscle(1.1)}, {0.1}, trajectory, nullptr, {trajectory, trajectory}),
+                    Catch::Contains("2 moved motions for 1 moved models"));
+  std::vector<double> later = trajectory.time();
+  for (double& t : later) t += 1.0;
+  CHECK_THROWS_WITH(s.run_sensitivities(muscle(), {muscle(1.1)}, {0.1}, trajectory, nullptr,
+                                        {ElongationTrajectory(later, trajectory.elongation())}),
+                    Catch::Contains("moved motion 0 is not sampled at the trajectory's times"));
 }

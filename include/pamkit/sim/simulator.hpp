@@ -97,8 +97,9 @@ struct SimulationResult {
 struct SensitivityResult {
   SimulationResult run;  ///< the run at the nominal parameters (its statistics count the sensitivities' work too)
   /// One per parameter: the derivative of each output column of `run` with respect to it (per
-  /// unit of the parameter). time_s is the run's; elongation_m is zero (the trajectory is
-  /// prescribed); statistics are empty.
+  /// unit of the parameter). time_s is the run's; elongation_m is the muscle's motion's (zero
+  /// unless the parameter moves the motion: run_sensitivities' `moved_motions`); statistics are
+  /// empty.
   std::vector<SimulationResult> derivatives;
 };
 
@@ -161,11 +162,21 @@ class Simulator {
   /// fixed-point iteration has no sensitivity corrector here). `shapes` serves the nominal
   /// model and every moved one it applies to (a moved friction, bladder law, gas or pressure
   /// at a given initial length).
-  /// 	hrows InvalidInput if `moved` and `steps` differ in size, a step is zero or not finite,
-  ///         or a moved model's trajectory leaves its braid's range; as `run` otherwise.
+  ///
+  /// A parameter may also move the muscle's motion (an effect at EffectStage::motion, such as
+  /// a fixture's slack): `moved_motions[i]` is then moved model i's elongation along the same
+  /// sample times, and both its right-hand side and its outputs follow that motion (its
+  /// derivative's elongation_m is the motion's, (moved - nominal) / h_i). Empty: every moved
+  /// model follows `trajectory`. CVODES restarts at `trajectory`'s corners, so a moved motion
+  /// should keep them where they are (a step of 1e-6 moves a corner by less than a sample).
+  /// \throws InvalidInput if `moved` and `steps` differ in size, a step is zero or not finite,
+  ///         `moved_motions` is neither empty nor one per moved model, a moved motion's times are
+  ///         not `trajectory`'s, or a moved model's motion leaves its braid's range; as `run`
+  ///         otherwise.
   SensitivityResult run_sensitivities(const MuscleModel& model, const std::vector<MuscleModel>& moved,
                                       const std::vector<double>& steps, const ElongationTrajectory& trajectory,
-                                      const ShapeTable* shapes = nullptr) const;
+                                      const ShapeTable* shapes = nullptr,
+                                      const std::vector<ElongationTrajectory>& moved_motions = {}) const;
 
   const SimulatorConfig& config() const { return config_; }
 

@@ -1129,7 +1129,7 @@ class SensitivityResult:
     @property
     def derivatives(self) -> list:
         """
-        per parameter, a SimulationResult whose output columns are the derivatives of run's (per unit of the parameter); elongation_m is zero, statistics empty. Views into this result, which they keep alive.
+        per parameter, a SimulationResult whose output columns are the derivatives of run's (per unit of the parameter); elongation_m is the muscle's motion's (zero unless moved_motions moves it), statistics empty. Views into this result, which they keep alive.
         """
     @property
     def run(self) -> SimulationResult:
@@ -1146,9 +1146,9 @@ class Simulator:
         """
         Simulates the model along the trajectory; releases the GIL while it runs. shapes: a ShapeTable whose braid shapes the samples read where it applies to this run (statistics.tabulated_shapes counts them), with the same result bit for bit; None or a table that does not apply: the shapes are solved.
         """
-    def run_sensitivities(self, model: MuscleModel, moved: collections.abc.Sequence[MuscleModel], steps: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], trajectory: ElongationTrajectory, shapes: ShapeTable = None) -> SensitivityResult:
+    def run_sensitivities(self, model: MuscleModel, moved: collections.abc.Sequence[MuscleModel], steps: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], trajectory: ElongationTrajectory, shapes: ShapeTable = None, moved_motions: collections.abc.Sequence[ElongationTrajectory] = []) -> SensitivityResult:
         """
-        run, with the forward sensitivities of every output column to parameters integrated by CVODES beside the state (BDF, staggered corrector, on the state's own steps: outside the error test, so the run is the plain run's to rounding). Parameter i is given as moved[i], the model with it moved by steps[i] (signed; its own initial state follows); each sensitivity's right-hand side and output derivative is the directional difference quotient (f_i(y + h_i s_i) - f(y)) / h_i. Parameters should be of order one (the sensitivities share the state's absolute tolerances); steps near 1e-6 give derivatives to ~1e-6 relative. Returns a SensitivityResult; releases the GIL. ValueError for mismatched sizes, a zero step or a moved model whose trajectory leaves its braid's range.
+        run, with the forward sensitivities of every output column to parameters integrated by CVODES beside the state (BDF, staggered corrector, on the state's own steps: outside the error test, so the run is the plain run's to rounding). Parameter i is given as moved[i], the model with it moved by steps[i] (signed; its own initial state follows); each sensitivity's right-hand side and output derivative is the directional difference quotient (f_i(y + h_i s_i) - f(y)) / h_i. Parameters should be of order one (the sensitivities share the state's absolute tolerances); steps near 1e-6 give derivatives to ~1e-6 relative. moved_motions: where a parameter moves the muscle's motion (a fixture's slack), moved model i's elongation on the trajectory's times (its derivative's elongation_m is the motion's); empty: every moved model follows the trajectory. Returns a SensitivityResult; releases the GIL. ValueError for mismatched sizes, a zero step, a moved motion on other times or a moved model whose motion leaves its braid's range.
         """
     @property
     def config(self) -> SimulatorConfig:
