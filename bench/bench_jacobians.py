@@ -6,7 +6,7 @@ verdicts and gains agree.
 
 Each dataset is diagnosed twice, the order alternating from one dataset to the next so that a
 machine growing busier does not favour either. Finite differences are what the fits used before
-diagnose/jacobian.py: `applies` answering no everywhere. Runs are counted where they are made:
+diagnose/jacobian.py: runs differenced at DIFF_STEP. Runs are counted where they are made:
 plain runs (Predictor.simulate) and runs with sensitivities (one per Jacobian, each carrying a
 sensitivity per coordinate that moves the model).
 """
@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+import pamkit.diagnose.candidates as candidates
 import pamkit.diagnose.jacobian as jacobian
 import pamkit.diagnose.joint as joint
 from pamkit.diagnose import diagnose
@@ -62,13 +63,21 @@ def counted_runs():
 
 @contextmanager
 def finite_differences():
-    """The fits as before sensitivities: SciPy's 2-point differences for every Jacobian."""
-    applies = jacobian.applies
-    jacobian.applies = joint.applies = lambda problem, effects: False
+    """The fits as before sensitivities: every sealed Jacobian differences runs at DIFF_STEP (the
+    fallback a fit takes where a sensitivity run fails), and the instruments' fits their one run
+    at DIFF_STEP too."""
+    sensitivity_jacobian, step = jacobian.sensitivity_jacobian, candidates.SENSITIVITY_STEP
+
+    def refused(problem, point, u):
+        raise RuntimeError("finite differences")
+
+    jacobian.sensitivity_jacobian = joint.sensitivity_jacobian = refused
+    candidates.SENSITIVITY_STEP = jacobian.DIFF_STEP
     try:
         yield
     finally:
-        jacobian.applies = joint.applies = applies
+        jacobian.sensitivity_jacobian = joint.sensitivity_jacobian = sensitivity_jacobian
+        candidates.SENSITIVITY_STEP = step
 
 
 def one_diagnosis(experiment, method: str) -> dict:

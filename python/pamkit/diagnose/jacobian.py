@@ -7,13 +7,14 @@ differences a fit used before had to step a thousandth of the box (DIFF_STEP). H
 run integrates the sensitivities of the state to every coordinate that moves the model beside the
 state (Simulator.run_sensitivities), on the run's own steps; the instruments, a cheap post-process
 of the run's channels, are differenced at the first-order moved channels. A coordinate that only
-moves an instrument needs no sensitivity at all.
+moves an instrument needs no sensitivity at all. A coordinate that moves the muscle off the
+crosshead's motion (a fixture's slack) gives its moved model that moved motion: the run follows
+the nominal motion, and each sensitivity its own.
 
 A supplied-pressure test has no ODE: its model is evaluated sample by sample, each braid closure
 solved to ~1e-14, so it is differenced with the sensitivities' small step (static tables do the
-same in table_fit.py). Only an effect that moves a sealed muscle off the crosshead's motion (its
-trajectory depends on the coordinates, so no one run carries it) keeps differencing runs at
-DIFF_STEP.
+same in table_fit.py). Runs are differenced at DIFF_STEP only where a moved model leaves its
+range (the fit then goes on as it did before sensitivities).
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from pamkit._core import Effect, EffectStage, GasMode, Measurement
+from pamkit._core import Effect, EffectStage, ElongationTrajectory, GasMode, Measurement
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import muscle_signature
 from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
@@ -38,10 +39,23 @@ SENSITIVITY_STEP = 1e-6
 Point = Callable[[np.ndarray], tuple[np.ndarray, list[Effect]]]
 
 
-def applies(problem: Problem, effects: list[Effect]) -> bool:
-    """Whether a sensitivity run can give this fit's Jacobian: a sealed test (an ODE) whose
-    effects leave the muscle on the crosshead's motion."""
-    return problem.predictor.mode == GasMode.sealed and all(e.stage() != EffectStage.motion for e in effects)
+def applies(problem: Problem) -> bool:
+    """Whether a sensitivity run gives this fit's Jacobian: a sealed test (an ODE)."""
+    return problem.predictor.mode == GasMode.sealed
+
+
+def muscle_motion(problem: Problem, effects: list[Effect]) -> ElongationTrajectory:
+    """The muscle's elongation along the crosshead's motion, moved by every effect in order (the
+    pipeline's apply_to_elongation; the crosshead's own where no effect acts on the motion)."""
+    trajectory = problem.predictor.trajectory
+    motion = [e for e in effects if e.stage() == EffectStage.motion]
+    if not motion:
+        return trajectory
+    time_s = np.asarray(trajectory.time_s)
+    elongation = np.asarray(trajectory.elongation_m)
+    for effect in effects:
+        elongation = np.asarray(effect.apply_to_elongation(time_s, elongation))
+    return ElongationTrajectory(time_s, elongation)
 
 
 def _key(model) -> tuple:
@@ -54,9 +68,9 @@ def _key(model) -> tuple:
     )
 
 
-def _channels(run, derivative=None, step: float = 0.0) -> Measurement:
-    """The channels a sealed test's instruments read of `run` (simulate_measurement's), moved by
-    step x `derivative` when given."""
+def _channels(run, crosshead_m: np.ndarray, derivative=None, step: float = 0.0) -> Measurement:
+    """The channels a sealed test's instruments read of `run` (simulate_measurement's, the
+    elongation the crosshead's), moved by step x `derivative` when given."""
 
     def column(name):
         values = np.asarray(getattr(run, name))
@@ -64,7 +78,7 @@ def _channels(run, derivative=None, step: float = 0.0) -> Measurement:
 
     m = Measurement()
     m.time_s = np.asarray(run.time_s)
-    m.elongation_m = np.asarray(run.elongation_m)
+    m.elongation_m = crosshead_m
     m.force_N = column("force_N")
     m.pressure_kPa = column("pressure_gauge_Pa") / PASCAL_PER_KILOPASCAL
     m.temperature_C = column("temperature_K") - KELVIN_AT_ZERO_CELSIUS
@@ -86,23 +100,30 @@ def sensitivity_jacobian(problem: Problem, point: Point, u: np.ndarray) -> np.nd
     steps = np.where(u + SENSITIVITY_STEP <= 1.0, SENSITIVITY_STEP, -SENSITIVITY_STEP)
     base_x, effects = point(u)
     nominal = predictor.sealed_model(base_x, effects)
+    motion = muscle_motion(problem, effects)
     moved_points = [point(u + step * np.eye(len(u))[j]) for j, step in enumerate(steps)]
     moved_models = [predictor.sealed_model(x, e) for x, e in moved_points]
+    moved_motions = [muscle_motion(problem, e) for _, e in moved_points]
     nominal_key = _key(nominal)
-    moves_model = [_key(m) != nominal_key for m in moved_models]
-    shapes = predictor.shape_table(nominal.params, nominal.initial_state)
+    nominal_elongation = np.asarray(motion.elongation_m)
+    moves_motion = [m is not motion and not np.array_equal(m.elongation_m, nominal_elongation) for m in moved_motions]
+    moves_model = [_key(m) != nominal_key or on_motion for m, on_motion in zip(moved_models, moves_motion)]
+    # A table of the braid's shapes along the crosshead's motion serves only runs that follow it.
+    shapes = predictor.shape_table(nominal.params, nominal.initial_state) if motion is predictor.trajectory else None
     result = predictor.simulator.run_sensitivities(
         nominal,
         [m for m, moves in zip(moved_models, moves_model) if moves],
         [float(h) for h, moves in zip(steps, moves_model) if moves],
-        predictor.trajectory,
+        motion,
         shapes,
+        [m for m, moves in zip(moved_motions, moves_model) if moves] if any(moves_motion) else [],
     )
-    chi = _read(problem, _channels(result.run), effects, mask)
+    crosshead = np.asarray(predictor.trajectory.elongation_m)
+    chi = _read(problem, _channels(result.run, crosshead), effects, mask)
     derivatives = iter(result.derivatives)
     jacobian = np.empty((chi.size, len(u)))
     for j, ((_, moved_effects), h, moves) in enumerate(zip(moved_points, steps, moves_model)):
-        channels = _channels(result.run, next(derivatives), h) if moves else _channels(result.run)
+        channels = _channels(result.run, crosshead, next(derivatives), h) if moves else _channels(result.run, crosshead)
         jacobian[:, j] = (_read(problem, channels, moved_effects, mask) - chi) / h
     return jacobian
 
@@ -122,16 +143,14 @@ def jacobian_for(
     problem: Problem,
     point: Point,
     residual: Callable[[np.ndarray], np.ndarray],
-    effects: list[Effect],
     on_run: Callable[[], None] = lambda: None,
 ):
-    """The `jac` a fit hands least_squares: sensitivities where they apply (`applies`), small-step
-    differences without an ODE (a supplied test), SciPy's 2-point differences at DIFF_STEP
-    otherwise. `on_run` is called for each run with sensitivities (a fit counts its model runs)."""
-    if problem.predictor.mode != GasMode.sealed:
+    """The `jac` a fit hands least_squares: sensitivities for a sealed test (`applies`), small-step
+    differences without an ODE (a supplied test), differences of runs at DIFF_STEP where a moved
+    model leaves its range. `on_run` is called for each run with sensitivities (a fit counts its
+    model runs)."""
+    if not applies(problem):
         return lambda u: forward_differences(residual, u, SENSITIVITY_STEP)
-    if not applies(problem, effects):
-        return "2-point"
 
     def jac(u: np.ndarray) -> np.ndarray:
         try:

@@ -4,11 +4,12 @@
 Shared: the `[calibrate]` unknowns and the model's friction and bladder scales — one braid, one
 bladder. Each test's own: its inflation pressure within the transducer's tolerance (a nuisance of
 how that test was filled). The residual is every test's fitted units side by side; a test's own
-coordinate moves only its own rows, which SciPy's sparse finite differences exploit (all tests'
-own columns in one evaluation). Then each test is compared with its calibration alone: a muscle
-that fits each test by itself but not all of them together is a structural misfit the report
-names (a bladder that seems stiffer at one held length than at another). And each test is held
-out whole: the shared values refitted without it (leave_one_test_out) predict its held-out units.
+coordinate moves only its own rows, so the Jacobian is block-sparse: each test's block from its
+own run with sensitivities (jacobian.py), built on the pool. Then each test is compared with its
+calibration alone: a muscle that fits each test by itself but not all of them together is a
+structural misfit the report names (a bladder that seems stiffer at one held length than at
+another). And each test is held out whole: the shared values refitted without it
+(leave_one_test_out) predict its held-out units.
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from pamkit.diagnose.calibrate import (
     unit_to_x,
     x_to_unit,
 )
-from pamkit.diagnose.jacobian import applies, forward_differences, sensitivity_jacobian
+from pamkit.diagnose.jacobian import SENSITIVITY_STEP, applies, forward_differences, sensitivity_jacobian
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import Baseline, Coordinate, configure, effect_space, muscle_signature
 from pamkit.io.experiment import Experiment, ExperimentError
@@ -146,6 +147,8 @@ def calibrate_jointly(
                 out[columns[k]] = v
                 return out
 
+            if not applies(problems[k]):  # a supplied test: no ODE, the sensitivities' small step
+                return forward_differences(lambda v: chi(k, moved(v)), u[columns[k]], SENSITIVITY_STEP)
             try:
                 return sensitivity_jacobian(problems[k], lambda v: model(problems[k], moved(v), k), u[columns[k]])
             except (ValueError, RuntimeError):
@@ -166,7 +169,6 @@ def calibrate_jointly(
                 format="csr",
             )
 
-        effects = [make_effect()] if make_effect is not None else []
         # Each shared coordinate starts at the median of the tests' own fits, each test's own at its own.
         fitted = [{**a.baseline_params, **{k: v for k, v in a.params.items() if not isinstance(v, str)}} for a in alone]
         median = np.array([np.median([c.of(f[c.name]) for f in fitted]) for c in shared])
@@ -174,13 +176,7 @@ def calibrate_jointly(
             [np.clip(x_to_unit(shared, median), 0, 1)]
             + [np.clip(x_to_unit(o, np.array([c.of(f[c.name]) for c in o])), 0, 1) for o, f in zip(own, fitted)]
         )
-        if all(applies(p, effects) for p in problems):
-            result = least_squares_in_box(residual, u0, 20 * (len(shared) + 1), jac=jac, tr_solver="lsmr")
-        else:  # SciPy's sparse differences, every test's own coordinates perturbed in one pass
-            sparsity = np.zeros((rows[-1], offsets[-1]), dtype=bool)
-            for k in range(len(problems)):
-                sparsity[rows[k] : rows[k + 1], columns[k]] = True
-            result = least_squares_in_box(residual, u0, 20 * (len(shared) + 1), jac_sparsity=sparsity)
+        result = least_squares_in_box(residual, u0, 20 * (len(shared) + 1), jac=jac, tr_solver="lsmr")
     u = result.x
     clusters = np.concatenate(
         [np.tile(p.half_cycle[p.fit_mask], len(p.channels)) + 1_000_000 * k for k, p in enumerate(problems)]

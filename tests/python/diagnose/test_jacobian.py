@@ -42,12 +42,21 @@ def point_with(problem, names):
     return point, start
 
 
-def test_the_sensitivity_jacobian_is_central_differences_of_tight_runs():
+@pytest.mark.parametrize(
+    "names",
+    [
+        # The baseline (inflation pressure, which moves the free length, friction and bladder
+        # scales), a physical effect and an instrument.
+        ["heat_transfer", "sensor_lag"],
+        # An effect that moves the muscle off the crosshead's motion: its sensitivity follows
+        # its own moved motion.
+        ["fixture_slack"],
+    ],
+)
+def test_the_sensitivity_jacobian_is_central_differences_of_tight_runs(names):
     problem = tight_problem()
-    # The baseline (inflation pressure, which moves the free length, friction and bladder
-    # scales), a physical effect and an instrument, off their starts.
-    point, u = point_with(problem, ["heat_transfer", "sensor_lag"])
-    u = np.clip(u + 0.1, 0.0, 0.9)
+    point, u = point_with(problem, names)
+    u = np.clip(u + 0.1, 0.0, 0.9)  # off the starts
 
     def residual(v):
         x, effects = point(v)
@@ -74,21 +83,19 @@ def test_a_fit_with_sensitivities_reaches_the_finite_difference_fits_optimum(mon
         assert abs(exact.params[name] - differenced.params[name]) < 1e-3 * (high - low), name
 
 
-def test_motion_effects_keep_scipys_differences_and_supplied_tests_take_small_steps():
+def test_sealed_tests_take_sensitivities_and_supplied_tests_small_steps():
     sealed = build_problem(load_experiment(EXAMPLE))
-    slack = catalog().make("fixture_slack")
-    assert jacobian.jacobian_for(sealed, None, None, [slack]) == "2-point"
-    assert jacobian.applies(sealed, [catalog().make("heat_transfer")])
+    assert jacobian.applies(sealed)
     supplied = dataclasses.replace(sealed)
     supplied.predictor = Predictor(sealed.experiment, sealed.channels)
     supplied.predictor.mode = GasMode.supplied  # its model is static: sample by sample, no ODE
-    assert not jacobian.applies(supplied, [])
+    assert not jacobian.applies(supplied)
     steps = []
 
     def residual(u):
         steps.append(u.copy())
         return np.array([u[0] ** 2])
 
-    jac = jacobian.jacobian_for(supplied, None, residual, [slack])
+    jac = jacobian.jacobian_for(supplied, None, residual)
     assert jac(np.array([0.5])) == pytest.approx(1.0, abs=1e-5)  # d(u^2)/du at 0.5, step 1e-6
     assert abs(steps[1][0] - steps[0][0]) == pytest.approx(jacobian.SENSITIVITY_STEP)
