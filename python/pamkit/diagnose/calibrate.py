@@ -4,11 +4,12 @@ least-squares machinery every fit shares."""
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import OptimizeResult, least_squares
-from threadpoolctl import threadpool_limits
+from threadpoolctl import ThreadpoolController
 
 from pamkit._core import Effect
 from pamkit.diagnose.jacobian import DIFF_STEP, jacobian_for
@@ -49,7 +50,14 @@ def one_blas_thread():
     5 ms instead of 20 µs, the campaign's joint part 1.2-2x slower and the whole campaign use a
     fifth more CPU (bench/README.md, "A campaign of the thesis's tests"): the parallelism is the
     simulations'. The limit is the process's while the context lasts (threadpoolctl)."""
-    return threadpool_limits(limits=1, user_api="blas")
+    return _blas_libraries().limit(limits=1, user_api="blas")
+
+
+@functools.cache
+def _blas_libraries() -> ThreadpoolController:
+    """The process's BLAS libraries, found once: threadpoolctl reads the loaded libraries, 3-30 ms
+    a search (measured), every diagnosis otherwise. NumPy's and SciPy's are loaded by then."""
+    return ThreadpoolController()
 
 
 def unit_to_x(space: list[Coordinate], u: np.ndarray) -> np.ndarray:
@@ -149,7 +157,7 @@ def fit_baseline(problem: Problem) -> Fit:
         nonlocal evaluations
         evaluations += 1
 
-    jac = jacobian_for(problem, lambda u: (unit_to_x(space, u), []), residual, [], counted)
+    jac = jacobian_for(problem, lambda u: (unit_to_x(space, u), []), residual, counted)
     result = least_squares_in_box(residual, start_unit(space), 20 * (len(space) + 1), jac=jac)
     u, x = result.x, unit_to_x(space, result.x)
     bands = cluster_intervals(space, u, result.jac, result.fun, problem.residual_units())
