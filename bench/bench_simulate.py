@@ -26,6 +26,10 @@ It prints ratios only (absolute times go to --json):
                       evaluation timed cold and as the simulator makes it (warm-started braid
                       solve, no angles: MuscleModel::evaluate_with), the run's evaluation floor; these
                       three for each method
+  explicit RK         the same test by Dormand-Prince 5(4) with dense output (Boost.Odeint) on the
+                      same right-hand side and output path, restarted at the same corners
+                      (pamkit_bench_simulate --integrator dopri5): pamkit's C++ time over its time,
+                      its accuracy against SciPy at 1e-11 and its own evaluation floor
 
 Usage:
   PYTHONPATH=build/python .venv/bin/python bench/bench_simulate.py [--exe build/bench/pamkit_bench_simulate]
@@ -175,9 +179,12 @@ class Case:
         ]
 
 
-def run_exe(exe, case, tol, method, repeats):
+def run_exe(exe, case, tol, method, repeats, integrator="pamkit"):
     out = subprocess.run(
-        [exe, *case.exe_args(tol, method), "--repeats", str(repeats)], check=True, capture_output=True, text=True
+        [exe, *case.exe_args(tol, method), "--repeats", str(repeats), "--integrator", integrator],
+        check=True,
+        capture_output=True,
+        text=True,
     )
     return json.loads(out.stdout)
 
@@ -220,6 +227,7 @@ def measure(case, exe, rounds, repeats, methods):
     # Timing, alternating pamkit (Python, every method), pamkit (C++) and SciPy within every round.
     py = {run: float("inf") for run in runs}
     cxx = {run: None for run in runs}
+    dopri5 = {tol: None for tol in tols}
     sp = {(m, tol): float("inf") for m in methods for tol in tols}
     nfev = {}
     pamkit_repeats = max(5 * repeats, 10)  # pamkit runs are short: more of them for a stable best
@@ -235,6 +243,11 @@ def measure(case, exe, rounds, repeats, methods):
                             if key in c:
                                 c[key] = min(c[key], cxx[run][key])
                     cxx[run] = c
+            if exe:
+                d = run_exe(exe, case, tol, "bdf", pamkit_repeats, "dopri5")
+                if dopri5[tol] is not None:
+                    d["simulate_s"] = min(d["simulate_s"], dopri5[tol]["simulate_s"])
+                dopri5[tol] = d
             for m in methods:
                 repeats_m = repeats if m == "LSODA" else 1
                 sp[(m, tol)] = min(sp[(m, tol)], best_time(lambda tol=tol, m=m: case.scipy_run(tol, m), repeats_m))
@@ -287,6 +300,19 @@ def measure(case, exe, rounds, repeats, methods):
                 c["simulate_s"] / (all_evals * evaluate_warm_cxx) if evaluate_warm_cxx else None
             )
         res["per_evaluation_ratio"] = scipy_eval_s / evaluate_cxx
+        res["dopri5"] = {
+            f"{tol:g}": {
+                "simulate_s": d["simulate_s"],
+                "steps": d["steps"],
+                "rhs_evaluations": d["rhs_evaluations"],
+                "max_rel_diff": {k: rel_diff(d[k], ref_tight[k]) for k in TRACES},
+                # Its evaluate calls: seven stages a step, less the first same as the last (FSAL),
+                # counted by the right-hand side itself, and one per output sample.
+                "evaluation_floor": d["simulate_s"] / ((d["rhs_evaluations"] + d["samples"]) * evaluate_warm_cxx),
+            }
+            for tol, d in dopri5.items()
+        }
+        res["over_dopri5"] = {key(run): cxx[run]["simulate_s"] / dopri5[run[1]]["simulate_s"] for run in runs}
     return res
 
 
@@ -345,6 +371,14 @@ def report(results, methods, exe):
                 f"{'one evaluate: SciPy reference / C++':{w}}{fmt_ratio(res['per_evaluation_ratio']):>16}"
                 f"{'':>16}   (info)"
             )
+            row("wall, pamkit / DOPRI5 on the same RHS", res["over_dopri5"], times, "(info)")
+            explicit = res["dopri5"]
+            for label, cell in (
+                ("DOPRI5 max rel diff vs SciPy@1e-11 (F, p, T)", lambda e: f"{max(e['max_rel_diff'].values()):.1e}"),
+                ("DOPRI5 wall / (all evaluate calls x warm one)", lambda e: f"{e['evaluation_floor']:.2f}x"),
+                ("DOPRI5 steps / RHS evals", lambda e: f"{e['steps']} / {e['rhs_evaluations']}"),
+            ):
+                lines.append(f"{label:{w}}{cell(explicit[d]):>16}{cell(explicit[t]):>16}   (info)")
         st = res["statistics"]
         row("CVODE steps / RHS evals", st, lambda s: f"{s['steps']} / {s['rhs_evaluations']}")
         lines.append(
