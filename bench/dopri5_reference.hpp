@@ -32,8 +32,8 @@ struct Dopri5Run {
 /// does, it restarts at every corner of the trajectory (its elongation rate jumps there), reads
 /// each sample off the step that passed it, and evaluates the outputs with a workspace of their
 /// own. A scalar tolerance pair: relative `rtol`, absolute `atol` (the simulator's temperature one).
-inline Dopri5Run dopri5_run(const pamkit::MuscleModel& model, const pamkit::ElongationTrajectory& trajectory, double rtol,
-                     double atol, double corner_threshold) {
+inline Dopri5Run dopri5_run(const pamkit::MuscleModel& model, const pamkit::ElongationTrajectory& trajectory,
+                            double rtol, double atol, double corner_threshold) {
   namespace odeint = boost::numeric::odeint;
   using Vector = std::array<double, pamkit::State::size>;
   const auto& time = trajectory.time();

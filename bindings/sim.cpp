@@ -124,13 +124,15 @@ void bind_sim(py::module_& m) {
         "The bench protocol of section 3.2.1: triangular stretch cycles at constant speed.");
 
   py::enum_<IntegrationMethod>(m, "IntegrationMethod",
-                               "How CVODES integrates: bdf (dense Newton), adams (fixed-point iteration), or auto "
-                               "(adams where estimate_stiffness finds the run non-stiff, bdf otherwise).")
+                               "How a run is integrated: bdf (CVODES, dense Newton), adams (CVODES, fixed-point "
+                               "iteration), dopri5 (explicit Dormand-Prince 5(4) with dense output, Boost.Odeint), or "
+                               "auto (dopri5 where estimate_stiffness finds the run non-stiff, bdf otherwise).")
       .value("auto", IntegrationMethod::automatic)
       .value("bdf", IntegrationMethod::bdf)
-      .value("adams", IntegrationMethod::adams);
+      .value("adams", IntegrationMethod::adams)
+      .value("dopri5", IntegrationMethod::dopri5);
 
-  py::class_<SimulatorConfig> config(m, "SimulatorConfig", "CVODES settings.");
+  py::class_<SimulatorConfig> config(m, "SimulatorConfig", "Integrator settings.");
   bind_fields(config);
 
   py::class_<StiffnessEstimate>(m, "StiffnessEstimate",
@@ -155,8 +157,8 @@ void bind_sim(py::module_& m) {
         py::arg("config") = SimulatorConfig{},
         "The stiffness test SimulatorConfig(method=IntegrationMethod.auto) makes before a run.");
 
-  py::class_<SolverStatistics>(m, "SolverStatistics", "CVODES counters over one run.")
-      .def_readonly("method", &SolverStatistics::method, "the method that ran: bdf or adams")
+  py::class_<SolverStatistics>(m, "SolverStatistics", "The integrator's counters over one run.")
+      .def_readonly("method", &SolverStatistics::method, "the method that ran: bdf, adams or dopri5")
       .def_readonly("steps", &SolverStatistics::steps)
       .def_readonly("rhs_evaluations", &SolverStatistics::rhs_evaluations)
       .def_readonly("jacobian_evaluations", &SolverStatistics::jacobian_evaluations)

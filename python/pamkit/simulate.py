@@ -338,7 +338,7 @@ def simulate_frame(
         effects: catalog effects to extend the model with, as :class:`pamkit.Effect` objects
             or specs like ``"heat_transfer:time_constant_s=2"`` (``pamkit effects`` lists them).
         params: the model's parameters (default: the experiment file's).
-        config: CVODES settings for a sealed time series (default: SimulatorConfig()).
+        config: integrator settings for a sealed time series (default: SimulatorConfig()).
 
     Returns:
         A DataFrame of N rows (N samples of the experiment's data, or N table rows). A time
@@ -346,7 +346,7 @@ def simulate_frame(
         gauge], temperature_C [°C]; a static table its own (length_m [m], pressure_kPa,
         force_N, diameter_m). ``df.attrs`` holds "experiment", "data" (paths, str), "kind",
         "gas", "effects" (list of str), "units" (column -> unit) and "solver_statistics" (a
-        dict of CVODES counters and the method that ran, "bdf" or "adams", for a sealed time
+        dict of the integrator's counters and the method that ran, "bdf", "adams" or "dopri5", for a sealed time
         series; None where no ODE is integrated).
 
     Raises:
@@ -378,7 +378,7 @@ def simulate_frame(
         columns = _channels(experiment, measurement)
         if experiment.gas == "sealed":
             statistics = {name: int(getattr(measurement.statistics, name)) for name in STATISTICS_FIELDS}
-            statistics["method"] = measurement.statistics.method.name  # the method that ran: "bdf" or "adams"
+            statistics["method"] = measurement.statistics.method.name  # the method that ran: "bdf", "adams" or "dopri5"
     frame = pd.DataFrame(columns)
     frame.attrs.update(
         experiment=str(experiment.path),

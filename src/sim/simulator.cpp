@@ -15,6 +15,8 @@
 #include <type_traits>
 #include <vector>
 
+#include <boost/numeric/odeint.hpp>
+
 #include "cvodes_support.hpp"
 
 namespace pamkit {
@@ -407,11 +409,130 @@ struct VectorArray {
   }
 };
 
+/// Absolute tolerances by each state's scale: the temperature's, relative to the ambient
+/// temperature, carried over to the gas mass and to stresses of order 1 MPa; the energies'.
+State absolute_tolerances(const SimulatorConfig& config, const MuscleModel& model) {
+  const double relative = config.absolute_tolerance_K / model.initial_temperature();
+  State out;
+  out[State::temperature_K] = config.absolute_tolerance_K;
+  out[State::gas_mass_kg] = relative * model.gas_mass();
+  out[State::viscous_stress_l_Pa] = relative * 1e6;
+  out[State::viscous_stress_h_Pa] = relative * 1e6;
+  for (int i : {State::work_J, State::heat_lost_J, State::friction_dissipated_J}) out[i] = config.absolute_tolerance_J;
+  return out;
+}
+
+/// The run loop of IntegrationMethod::dopri5: Dormand-Prince 5(4), explicit, with its dense
+/// output (Boost.Odeint's controlled runge_kutta_dopri5), piece by piece between the corners as
+/// the CVODES loop goes, each sample read off the step that passed it. The state is integrated
+/// in units of each component's absolute tolerance over the temperature's, so odeint's one
+/// absolute tolerance is the CVODES path's per component (the relative one is scale-free). A
+/// piece's last step is shortened to end on its corner: the right-hand side is never evaluated
+/// past it.
+SolverStatistics integrate_explicit(const SimulatorConfig& config, const MuscleModel& model,
+                                    const ElongationTrajectory& trajectory, std::size_t block_size,
+                                    const SampleSink& sink, const ShapeTable* shapes) {
+  namespace odeint = boost::numeric::odeint;
+  using Vector = std::array<double, State::size>;
+  const auto& time = trajectory.time();
+  check_lengths(model, trajectory);
+
+  const State absolute = absolute_tolerances(config, model);
+  Vector unit;  // one unit of the integrated variable, per component
+  for (int j = 0; j < State::size; ++j) unit[static_cast<std::size_t>(j)] = absolute[j] / config.absolute_tolerance_K;
+  const auto to_state = [&unit](const Vector& z) {
+    State y;
+    for (int j = 0; j < State::size; ++j) y[j] = z[static_cast<std::size_t>(j)] * unit[static_cast<std::size_t>(j)];
+    return y;
+  };
+
+  SolverStatistics statistics;
+  statistics.method = IntegrationMethod::dopri5;
+  RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}, nullptr};
+  const auto rhs = [&](const Vector& z, Vector& dzdt, double t) {
+    const std::size_t k = workspace.segment(t);
+    const MuscleOutputs out = model.evaluate_with(workspace.rhs, RunWorkspace::length(model, trajectory, t, k),
+                                                  trajectory.segment_velocity(k), to_state(z), ShapeParts::kinematics);
+    for (int j = 0; j < State::size; ++j) {
+      dzdt[static_cast<std::size_t>(j)] = out.rate[j] / unit[static_cast<std::size_t>(j)];
+    }
+    ++statistics.rhs_evaluations;
+  };
+
+  const ShapeTable* tabulated = shapes && shapes->applies_to(model, trajectory) ? shapes : nullptr;
+  BlockRecorder recorder(trajectory, block_size, sink, tabulated);
+  const State initial = model.initial();
+  Vector z;
+  for (int j = 0; j < State::size; ++j) z[static_cast<std::size_t>(j)] = initial[j] / unit[static_cast<std::size_t>(j)];
+  recorder.record(0, model, workspace.output, trajectory.segment_velocity(0), initial, statistics);
+
+  auto stepper = odeint::make_dense_output(config.absolute_tolerance_K, config.relative_tolerance, config.max_step_s,
+                                           odeint::runge_kutta_dopri5<Vector>());
+  const double corner = corner_jump(trajectory, config);
+  double step = 0.0;  // the step size the last piece ended with: the next one starts with it
+  std::size_t k = 0;
+  try {
+    while (k + 1 < trajectory.size()) {
+      const std::size_t end = piece_end(trajectory, k, corner);
+      workspace.piece_start = k;
+      workspace.piece_end = end;
+      if (k > 0) ++statistics.restarts;
+      const double length = time[end] - time[k];
+      double t = time[k];
+      stepper.initialize(z, t, step > 0.0 ? std::min(step, length) : 1e-3 * (time[k + 1] - time[k]));
+      std::size_t sample = k + 1;
+      double steps_since_sample = 0;
+      while (sample <= end) {
+        if (++steps_since_sample > config.max_steps) {
+          throw SolverError(detail::message("dopri5 took more than ", config.max_steps,
+                                            " steps before the sample at t = ", time[sample],
+                                            " s (SimulatorConfig.max_steps)"));
+        }
+        // A step that would pass the corner restarts shortened to end on it (one more evaluation).
+        if (t + stepper.current_time_step() >= time[end]) {
+          z = stepper.current_state();
+          stepper.initialize(z, t, time[end] - t);
+        }
+        t = stepper.do_step(rhs).second;
+        ++statistics.steps;
+        // The shortened step ends on the corner to rounding.
+        const bool at_corner = time[end] - t <= 1e-14 * std::max(std::abs(time[end]), length);
+        for (const double value : stepper.current_state()) {
+          if (!std::isfinite(value)) {
+            throw SolverError(detail::message("dopri5: the state is not finite at t = ", t, " s"));
+          }
+        }
+        for (; sample <= end && (time[sample] <= t || (sample == end && at_corner)); ++sample) {
+          stepper.calc_state(time[sample], z);
+          recorder.record(sample, model, workspace.output, trajectory.segment_velocity(sample - 1), to_state(z),
+                          statistics);
+          steps_since_sample = 0;
+        }
+      }
+      step = stepper.current_time_step();
+      k = end;  // z holds the state at the corner
+    }
+  } catch (const odeint::odeint_error& error) {
+    throw SolverError(detail::message("dopri5 failed at t = ", time[k], " s or later: ", error.what()));
+  }
+  return statistics;
+}
+
 /// The run loop of Simulator::run_blocks and run_sensitivities: with `moved` (and `derivatives`
-/// to fill), the sensitivities to the moved models are integrated beside the state.
+/// to fill), the sensitivities to the moved models are integrated beside the state, by BDF. A
+/// run by dopri5 (asked for, or auto's pick where not stiff) goes to integrate_explicit.
 SolverStatistics integrate(const SimulatorConfig& config, const MuscleModel& model,
                            const ElongationTrajectory& trajectory, std::size_t block_size, const SampleSink& sink,
                            const ShapeTable* shapes, MovedModels* moved, std::vector<SimulationResult>* derivatives) {
+  IntegrationMethod method = config.method;
+  if (moved) {
+    method = IntegrationMethod::bdf;  // the sensitivities' corrector is Newton's
+  } else if (method == IntegrationMethod::automatic) {
+    method = estimate_stiffness(model, trajectory, config).stiff() ? IntegrationMethod::bdf : IntegrationMethod::dopri5;
+  }
+  if (method == IntegrationMethod::dopri5) {
+    return integrate_explicit(config, model, trajectory, block_size, sink, shapes);
+  }
   const auto& time = trajectory.time();
   check_lengths(model, trajectory);
 
@@ -423,25 +544,11 @@ SolverStatistics integrate(const SimulatorConfig& config, const MuscleModel& mod
   if (!y || !tolerances || !sample_state) throw SolverError("N_VNew_Serial failed");
   const State initial = model.initial();
   std::copy(initial.values.begin(), initial.values.end(), NV_DATA_S(y.get()));
-  // Absolute tolerances by each state's scale: the temperature's, relative to the ambient
-  // temperature, carried over to the gas mass and to stresses of order 1 MPa.
-  const double relative = config.absolute_tolerance_K / model.initial_temperature();
-  NV_Ith_S(tolerances.get(), State::temperature_K) = config.absolute_tolerance_K;
-  NV_Ith_S(tolerances.get(), State::gas_mass_kg) = relative * model.gas_mass();
-  NV_Ith_S(tolerances.get(), State::viscous_stress_l_Pa) = relative * 1e6;
-  NV_Ith_S(tolerances.get(), State::viscous_stress_h_Pa) = relative * 1e6;
-  for (int i : {State::work_J, State::heat_lost_J, State::friction_dissipated_J}) {
-    NV_Ith_S(tolerances.get(), i) = config.absolute_tolerance_J;
-  }
+  const State absolute = absolute_tolerances(config, model);
+  std::copy(absolute.values.begin(), absolute.values.end(), NV_DATA_S(tolerances.get()));
 
   RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}, moved};
   const double t0 = time.front();
-  IntegrationMethod method = config.method;
-  if (moved) {
-    method = IntegrationMethod::bdf;  // the sensitivities' corrector is Newton's
-  } else if (method == IntegrationMethod::automatic) {
-    method = estimate_stiffness(model, trajectory, config).stiff() ? IntegrationMethod::bdf : IntegrationMethod::adams;
-  }
   const cvodes::Solver solver =
       cvodes::make_solver(method, ctx, muscle_rhs, t0, y.get(), &workspace, config.relative_tolerance, tolerances.get(),
                           config.max_steps, config.max_step_s);

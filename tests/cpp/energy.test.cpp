@@ -24,7 +24,8 @@ struct Run {
   double mcv;  // m cv [J/K]
 };
 
-Run run_cycles(double time_constant_s, double sharpness_s_per_m, double friction_coefficient) {
+Run run_cycles(double time_constant_s, double sharpness_s_per_m, double friction_coefficient,
+               IntegrationMethod method = IntegrationMethod::bdf) {
   MuscleParams params;
   params.gas.process = GasProcess::heat_transfer;
   params.gas.heat_transfer_time_constant_s = time_constant_s;
@@ -36,6 +37,7 @@ Run run_cycles(double time_constant_s, double sharpness_s_per_m, double friction
   // The energy integrals under the error test too (by default they only follow the physics' steps).
   SimulatorConfig config;
   config.absolute_tolerance_J = 1e-8;
+  config.method = method;
   return {Simulator(config).run(model, thesis_protocol(0.05, 2.5e-3, 2)),
           model.gas_mass() * params.gas.specific_heat_cv()};
 }
@@ -54,8 +56,11 @@ double gross_work(const SimulationResult& r) {
 
 TEST_CASE("Energy: work = heat lost + friction + gas internal energy over whole cycles", "[energy][sim][physics]") {
   // tau = 2 s is comparable to the 20 s ramps, so heat flows both ways; Kf = 200 s/m gives
-  // tanh(200 * 2.5e-3) = 0.46 of the Coulomb level, so friction matters.
-  const Run run = run_cycles(2.0, 200.0, 0.2);
+  // tanh(200 * 2.5e-3) = 0.46 of the Coulomb level, so friction matters. By CVODES's BDF and
+  // by the explicit Dormand-Prince method alike.
+  const auto method = GENERATE(IntegrationMethod::bdf, IntegrationMethod::dopri5);
+  INFO(method);
+  const Run run = run_cycles(2.0, 200.0, 0.2, method);
   const SimulationResult& r = run.result;
   REQUIRE(r.elongation_m.back() == 0.0);
   const double work = r.work_J.back();
@@ -64,11 +69,11 @@ TEST_CASE("Energy: work = heat lost + friction + gas internal energy over whole 
   const double internal = run.mcv * (r.temperature_K.back() - r.temperature_K.front());
   const double residual = work - (heat + friction + internal);
   const double gross = gross_work(r);
-  std::cout << "[energy] W = " << work << " J, Q = " << heat << " J, W_friction = " << friction
+  std::cout << "[energy, " << method << "] W = " << work << " J, Q = " << heat << " J, W_friction = " << friction
             << " J, m cv dT = " << internal << " J, residual = " << residual << " J (gross work " << gross
             << " J, residual / gross = " << residual / gross << ")\n";
 
-  // Both sides are integrals of terms as large as the gross work, each held by CVODES to
+  // Both sides are integrals of terms as large as the gross work, each held by the integrator to
   // relative tolerance 1e-8 per step; 1e-6 of the gross work (1.6e-4 J here) is room for their
   // accumulation over 800 samples and 3 restarts. (Measured: ~1e-8 J, 1e-10 of the gross.)
   // Every term is far above that, so leaving any one out cannot pass.

@@ -220,21 +220,34 @@ TEST_CASE("Simulator: the samples do not steer the steps", "[sim][output]") {
   MuscleParams heat;
   heat.gas.process = GasProcess::heat_transfer;
   heat.gas.heat_transfer_time_constant_s = 2.0;
+  // The explicit method reads each sample off its dense output too, but its max-norm error test
+  // can turn on rounding: a step accepted on one path is rejected on the other (measured: one
+  // step more in 25 and in 184, the channels then 3.5 x rtol apart). It is held to the steps
+  // give or take two, and to the 10 x rtol its accuracy is held to below.
+  const auto method = GENERATE(IntegrationMethod::bdf, IntegrationMethod::dopri5);
+  INFO(method);
+  const bool cvodes = method == IntegrationMethod::bdf;
   for (const MuscleParams& params : {MuscleParams{}, heat}) {
     INFO("process " << static_cast<int>(params.gas.process));
     const MuscleModel model(params, InitialState{0.167, 236.63e3});
     const ElongationTrajectory coarse = thesis_protocol(0.05, 2.5e-3, 3, 0.1, 1.0);
-    const SimulatorConfig config;
+    SimulatorConfig config;
+    config.method = method;
     const SimulationResult a = Simulator(config).run(model, coarse);
     const SimulationResult b = Simulator(config).run(model, refined(coarse, 4));
-    CHECK(b.statistics.steps == a.statistics.steps);
-    CHECK(b.statistics.rhs_evaluations == a.statistics.rhs_evaluations);
+    if (cvodes) {
+      CHECK(b.statistics.steps == a.statistics.steps);
+      CHECK(b.statistics.rhs_evaluations == a.statistics.rhs_evaluations);
+    } else {
+      CHECK(std::abs(b.statistics.steps - a.statistics.steps) <= 2);
+    }
     CHECK(b.statistics.restarts == a.statistics.restarts);
     CHECK(b.statistics.output_evaluations == 4 * (a.statistics.output_evaluations - 1) + 1);
     CHECK(largest_difference(a.time_s, b.time_s, 4) <= 1e-12);
     for (auto trace : {&SimulationResult::force_N, &SimulationResult::pressure_gauge_Pa,
                        &SimulationResult::temperature_K, &SimulationResult::gas_volume_m3}) {
-      CHECK(largest_difference(a.*trace, b.*trace, 4) <= 0.1 * config.relative_tolerance * largest_magnitude(a.*trace));
+      const double bound = (cvodes ? 0.1 : 10.0) * config.relative_tolerance;
+      CHECK(largest_difference(a.*trace, b.*trace, 4) <= bound * largest_magnitude(a.*trace));
     }
   }
 }
@@ -254,6 +267,10 @@ TEST_CASE("Simulator: more steps than max_steps between two samples is an error"
   CHECK_THROWS_AS(Simulator(config).run(model, ramp), SolverError);
   CHECK_THROWS_WITH(Simulator(config).run(model, ramp),
                     Catch::Contains("CV_TOO_MUCH_WORK") && Catch::Contains("SimulatorConfig.max_steps"));
+  // The explicit method counts its own steps: on this stiff gas it needs hundreds too.
+  config.method = IntegrationMethod::dopri5;
+  CHECK_THROWS_WITH(Simulator(config).run(model, ramp),
+                    Catch::Contains("dopri5 took more than 20 steps") && Catch::Contains("SimulatorConfig.max_steps"));
 }
 
 namespace {
@@ -290,8 +307,9 @@ TEST_CASE("MuscleModel::fastest_rate_per_s: the rates at which states relax on t
   CHECK(MuscleModel(viscous, initial).fastest_rate_per_s() == Approx(100.0).epsilon(1e-15));
 }
 
-TEST_CASE("Simulator: BDF and Adams agree to the tolerance on a stiff and a non-stiff run", "[sim][stiffness]") {
-  // Both methods against the same run by BDF at rtol 1e-12: force, pressure and temperature
+TEST_CASE("Simulator: BDF, Adams and Dormand-Prince agree to the tolerance on a stiff and a non-stiff run",
+          "[sim][stiffness]") {
+  // Each method against the same run by BDF at rtol 1e-12: force, pressure and temperature
   // within 10 x rtol of each trace's largest value, the bound the dense-reference test above
   // holds BDF to (its global error a small multiple of the local tolerance it controls), on a
   // gas that exchanges heat in 5 s (non-stiff) and in 0.02 s (stiff: Adams pays in steps).
@@ -300,7 +318,7 @@ TEST_CASE("Simulator: BDF and Adams agree to the tolerance on a stiff and a non-
   for (double tau : {5.0, 0.02}) {
     const MuscleModel model = heat_exchanging(tau);
     const SimulationResult reference = Simulator(tolerance(1e-12)).run(model, trajectory);
-    for (IntegrationMethod method : {IntegrationMethod::bdf, IntegrationMethod::adams}) {
+    for (IntegrationMethod method : {IntegrationMethod::bdf, IntegrationMethod::adams, IntegrationMethod::dopri5}) {
       const SimulationResult run = Simulator(with_method(tolerance(rtol), method)).run(model, trajectory);
       CHECK(run.statistics.method == method);
       for (auto trace :
@@ -313,10 +331,10 @@ TEST_CASE("Simulator: BDF and Adams agree to the tolerance on a stiff and a non-
   }
 }
 
-TEST_CASE("Simulator: auto runs Adams on a non-stiff run and BDF on a stiff one", "[sim][stiffness]") {
+TEST_CASE("Simulator: auto runs Dormand-Prince on a non-stiff run and BDF on a stiff one", "[sim][stiffness]") {
   // The thesis's 10-cycle protocol: ramps of 0.0523 m / 2.5 mm/s = 20.9 s between corners, so
   // the step the tolerance allows is 20.9 s x rtol^(1/6) = 0.97 s at rtol 1e-8. A gas exchanging
-  // heat in 5 s relaxes at 0.2 /s (ratio 0.19: Adams); in 0.02 s at 50 /s (ratio 48: BDF).
+  // heat in 5 s relaxes at 0.2 /s (ratio 0.19: dopri5); in 0.02 s at 50 /s (ratio 48: BDF).
   const ElongationTrajectory trajectory = thesis_protocol(0.0523);
   const SimulatorConfig automatic = with_method(tolerance(1e-8), IntegrationMethod::automatic);
   const StiffnessEstimate slow = estimate_stiffness(heat_exchanging(5.0), trajectory, automatic);
@@ -330,7 +348,7 @@ TEST_CASE("Simulator: auto runs Adams on a non-stiff run and BDF on a stiff one"
   limited.max_step_s = 0.01;
   CHECK_FALSE(estimate_stiffness(heat_exchanging(0.02), trajectory, limited).stiff());
 
-  for (const auto& [tau, expected] : {std::pair{5.0, IntegrationMethod::adams}, {0.02, IntegrationMethod::bdf}}) {
+  for (const auto& [tau, expected] : {std::pair{5.0, IntegrationMethod::dopri5}, {0.02, IntegrationMethod::bdf}}) {
     const MuscleModel model = heat_exchanging(tau);
     const SimulationResult chosen = Simulator(automatic).run(model, trajectory);
     INFO("tau = " << tau << " s");
@@ -345,7 +363,9 @@ TEST_CASE("Simulator: auto runs Adams on a non-stiff run and BDF on a stiff one"
 TEST_CASE("Simulator: run_blocks hands run's samples over in blocks, bit for bit", "[sim][blocks]") {
   const Case c = four_cases()[1];  // heat transfer, holds: corners (restarts) fall inside blocks
   const MuscleModel model(c.params, c.initial);
-  const Simulator simulator;
+  const auto method = GENERATE(IntegrationMethod::bdf, IntegrationMethod::dopri5);
+  INFO(method);
+  const Simulator simulator(with_method(SimulatorConfig{}, method));
   const SimulationResult whole = simulator.run(model, c.trajectory);
   const std::size_t n = c.trajectory.size();
   for (const std::size_t block_size : {std::size_t{1}, std::size_t{7}, std::size_t{500}, n, n + 3}) {

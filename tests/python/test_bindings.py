@@ -70,5 +70,5 @@ def test_integration_method_is_a_field_and_the_statistics_name_the_method_that_r
     trajectory = pamkit.thesis_protocol(0.0523, cycles=1)
     estimate = pamkit.estimate_stiffness(model, trajectory, config)
     assert estimate.ratio == pytest.approx(0.2 * 20.92 * 1e-8 ** (1 / 6), rel=1e-12) and not estimate.stiff
-    assert pamkit.Simulator(config).run(model, trajectory).statistics.method == pamkit.IntegrationMethod.adams
+    assert pamkit.Simulator(config).run(model, trajectory).statistics.method == pamkit.IntegrationMethod.dopri5
     assert pamkit.Simulator().run(model, trajectory).statistics.method == pamkit.IntegrationMethod.bdf

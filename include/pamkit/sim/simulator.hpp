@@ -34,8 +34,8 @@ struct SimulatorConfig {
   double corner_threshold = 0.2;       ///< a jump of the elongation rate above this share of the largest rate
                                        ///< restarts the integrator (turning points, holds); smaller ones
                                        ///< (sampled curves, encoder noise) are integrated through [1]
-  IntegrationMethod method = IntegrationMethod::bdf;  ///< bdf, adams, or automatic: adams where
-                                                      ///< estimate_stiffness finds the run non-stiff
+  IntegrationMethod method = IntegrationMethod::bdf;  ///< bdf, adams, dopri5, or automatic: dopri5 where
+                                                      ///< estimate_stiffness finds the run non-stiff, bdf otherwise
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
@@ -50,16 +50,17 @@ struct SimulatorConfig {
     visit("corner_threshold", &SimulatorConfig::corner_threshold,
           FieldInfo{"1", 0.0, 2.0, "rate jump that restarts, share of the largest rate"});
     visit("method", &SimulatorConfig::method,
-          FieldInfo{"1", 0.0, 2.0, "integration method: bdf, adams or auto (adams where the run is not stiff)"});
+          FieldInfo{"1", 0.0, 3.0,
+                    "integration method: bdf, adams, dopri5 or auto (dopri5 where the run is not stiff, else bdf)"});
   }
   void validate() const { validate_fields(*this); }
 };
 
 /// The stiffness test behind IntegrationMethod::automatic, made before a run from the model's
 /// parameters and the trajectory's times alone (so the same on every machine and thread).
-/// A run is stiff where the model relaxes faster than the steps the tolerance allows: Adams's
-/// fixed-point iteration then stalls and its steps shrink to ~1 / rate, where BDF's Newton
-/// iteration keeps steps the tolerance sets.
+/// A run is stiff where the model relaxes faster than the steps the tolerance allows: an explicit
+/// method's steps (dopri5's) and Adams's fixed-point iteration then shrink to ~1 / rate, where
+/// BDF's Newton iteration keeps steps the tolerance sets.
 struct StiffnessEstimate {
   double fastest_rate_per_s;  ///< MuscleModel::fastest_rate_per_s [1/s]
   double longest_piece_s;     ///< longest stretch between corners of the trajectory [s]
@@ -121,7 +122,10 @@ class Simulator {
   /// Between corners CVODES takes its own steps and each sample is read off the polynomial of
   /// the step that passed it (CVodeGetDky; a step that passed more samples than its order + 1
   /// reads that polynomial's Taylor coefficients once and each sample by a Horner sum, the same
-  /// values to rounding), so the samples do not steer the steps.
+  /// values to rounding), so the samples do not steer the steps. With IntegrationMethod::dopri5
+  /// (or automatic on a run that is not stiff) an explicit Dormand-Prince 5(4) method takes the
+  /// steps instead, each piece's last one shortened to end on its corner, and each sample is
+  /// read off its dense output.
   /// With `shapes`, the samples' braid shapes are read from that table where it applies to this
   /// run (ShapeTable::applies_to: the same build, the same sample lengths, inextensible fibers)
   /// instead of solved, with the same numbers bit for bit; where it does not apply, they are

@@ -804,7 +804,7 @@ class ElongationTrajectory:
         ...
 class IntegrationMethod:
     """
-    How CVODES integrates: bdf (dense Newton), adams (fixed-point iteration), or auto (adams where estimate_stiffness finds the run non-stiff, bdf otherwise).
+    How a run is integrated: bdf (CVODES, dense Newton), adams (CVODES, fixed-point iteration), dopri5 (explicit Dormand-Prince 5(4) with dense output, Boost.Odeint), or auto (dopri5 where estimate_stiffness finds the run non-stiff, bdf otherwise).
     
     Members:
     
@@ -813,11 +813,14 @@ class IntegrationMethod:
       bdf
     
       adams
+    
+      dopri5
     """
     __members__: typing.ClassVar[dict[str, IntegrationMethod]]
     adams: typing.ClassVar[IntegrationMethod]
     auto: typing.ClassVar[IntegrationMethod]
     bdf: typing.ClassVar[IntegrationMethod]
+    dopri5: typing.ClassVar[IntegrationMethod]
     @typing.overload
     def __eq__(self, other: IntegrationMethod) -> bool:
         ...
@@ -854,7 +857,7 @@ class IntegrationMethod:
         ...
 class SimulatorConfig:
     """
-    CVODES settings.
+    Integrator settings.
     """
     @staticmethod
     def fields() -> dict:
@@ -916,7 +919,7 @@ class SimulatorConfig:
     @property
     def method(self) -> IntegrationMethod:
         """
-        integration method: bdf, adams or auto (adams where the run is not stiff)
+        integration method: bdf, adams, dopri5 or auto (dopri5 where the run is not stiff, else bdf)
         """
     @method.setter
     def method(self, arg0: IntegrationMethod) -> None:
@@ -962,7 +965,7 @@ class StiffnessEstimate:
         """
 class SolverStatistics:
     """
-    CVODES counters over one run.
+    The integrator's counters over one run.
     """
     def __repr__(self) -> str:
         ...
@@ -978,7 +981,7 @@ class SolverStatistics:
     @property
     def method(self) -> IntegrationMethod:
         """
-        the method that ran: bdf or adams
+        the method that ran: bdf, adams or dopri5
         """
     @property
     def nonlinear_convergence_failures(self) -> int:
