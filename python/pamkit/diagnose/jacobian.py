@@ -48,8 +48,7 @@ def muscle_motion(problem: Problem, effects: list[Effect]) -> ElongationTrajecto
     """The muscle's elongation along the crosshead's motion, moved by every effect in order (the
     pipeline's apply_to_elongation; the crosshead's own where no effect acts on the motion)."""
     trajectory = problem.predictor.trajectory
-    motion = [e for e in effects if e.stage() == EffectStage.motion]
-    if not motion:
+    if all(e.stage() != EffectStage.motion for e in effects):
         return trajectory
     time_s = np.asarray(trajectory.time_s)
     elongation = np.asarray(trajectory.elongation_m)
