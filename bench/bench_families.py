@@ -38,7 +38,7 @@ import tomllib
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from independent.families import FAMILIES, HONEST
+from independent.families import FAMILIES
 
 HONEST_CAUSES = ("none", "unexplained")
 
@@ -98,21 +98,33 @@ def classify(expected: str, outcome: dict, present: tuple[str, ...] = ()) -> dic
     report = outcome["report"]
     cause = report["cause"]
     rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
+    extended = report.get("extended", {}).get("rmse", {})
+    # Every cause a report names (its `causes` where it lists them), by effect name.
+    named = (
+        [c["effect"].split(":")[0] for c in report["causes"]]
+        if "causes" in report
+        else ([] if cause in HONEST_CAUSES else [cause.split(":")[0]])
+    )
     row = {
         "cause": cause,
+        "named": named,
         "effects": report.get("extended", {}).get("effects", []),
         "margin": margin_of(report),
         "verdict": report.get("verdict", ""),
         "baseline_rmse_over_noise": {c: rmse[c] / noise[c] for c in rmse if noise.get(c, 0) > 0},
+        "extended_rmse_over_noise": {c: extended[c] / noise[c] for c in extended if noise.get(c, 0) > 0},
+        "causes": report.get("causes", []),
     }
-    if cause in HONEST_CAUSES:
+    wrong = [n for n in named if n != expected and n not in present]
+    if wrong:
+        row["outcome"] = "wrong"
+        row["cause"] = wrong[0]  # the wrong name is what the table lists
+    elif expected in named or any(n in present for n in named):
+        row["outcome"] = "right"
+    else:
         row["outcome"] = "honest"
         if cause == "none":
             row["structure"] = structure_left(report)
-    elif (expected != HONEST and cause == expected) or cause in present:
-        row["outcome"] = "right"
-    else:
-        row["outcome"] = "wrong"
     return row
 
 

@@ -1,4 +1,4 @@
-"""Does the named cause survive the build's own uncertainty?
+"""Does each named cause keep its gain when the build is as uncertain as it is?
 
 A diagnosis takes the muscle's build as the experiment file declares it. The number a builder
 knows least well is the braid's wind: the fibers' turns over the braided length, counted by hand,
@@ -7,17 +7,19 @@ volume and the force follow the stretch, which a catalog effect can mimic in par
 another team's model, whose braid kinematics differ from pamkit's by about a 2.5 % wind, a 3.8 %
 crosshead scale was named a dead volume, and a 0.8-sample fixture slack a pressure offset.
 
-So a named cause is fitted again with the wind free within its tolerance (model.WIND_TOLERANCE),
-beside its leading rivals and against a baseline calibrated with the same freedom, and judged by
-the same rules (decide.py). A cause that no longer leads there — not significant, or another
-candidate explains more, or as much on the same bootstrap draws — cannot be told from a braid
-wound otherwise than declared: the diagnosis says so instead of naming it. A `[calibrate]` table
-that already declares the wind or the braid angle unknown needs no check (the baseline fits it).
+So the causes are fitted again with the wind free within its tolerance (model.WIND_TOLERANCE),
+beside the leading cause's rivals and against a baseline calibrated with the same freedom, and
+judged by the same rules (decide.py): each cause must keep a significant gain on the channels it
+changes over the model without it, and the leading cause must still beat every credible rival on
+the same bootstrap draws. A cause that fails either cannot be told from a braid wound otherwise
+than declared, and the diagnosis says so instead of naming it. A wind that the refit drives to its
+tolerance's end is the base model straining (reported), not a reason to refuse a cause that keeps
+its gain. A `[calibrate]` table that already declares the wind or the braid angle unknown needs no
+check (the baseline fits it).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -25,89 +27,89 @@ import numpy as np
 from pamkit._core import EffectStage
 from pamkit.diagnose.calibrate import Fit, fit_baseline
 from pamkit.diagnose.candidates import fit_candidate, fit_pair
-from pamkit.diagnose.decide import Judgement, attainable_gain, judge, score, significance_margin
+from pamkit.diagnose.decide import MIN_GAIN, Cause, Judgement, Score, judge, keeps_gain, score
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import WIND_TOLERANCE, Predictor, winds_declared
 
 WIND = "fiber_revolutions"
-# Significant candidates after the named cause refitted beside it: the ones that could take its place.
+# Significant candidates after the leading cause refitted beside it: the ones that could take its place.
 RIVALS = 3
 
 
 @dataclass
 class BuildCheck:
-    """The named cause and its leading rivals refitted with the braid's wind free, and whether
-    the cause still leads there."""
+    """The causes refitted with the braid's wind free, and how many of them keep their gain."""
 
-    named: str  # the label of the cause named with the build as declared
+    causes: list[str]  # the labels of the causes named with the build as declared, in order
     declared: float  # the declared fiber revolutions
     baseline: Fit  # the baseline calibrated with the wind free
-    there: list[Judgement]  # the refitted candidates, judged against that baseline, best first
-    mine: Judgement | None  # the named cause among them (None: its refit failed)
+    fits: list[Fit]  # the models up to each cause, refitted there (fewer when a refit failed)
+    own: list[Score]  # each cause's own gain there, over the model without it (credited)
+    declared_gains: list[float]  # each cause's own credited gain with the build as declared
+    kept: int  # the leading causes that keep a significant gain on their own channels there
+    ahead: Judgement | None  # a credible rival the leading cause does not beat there on the same draws
+    over_rival: float  # the lower end of the leading cause's paired gain over its closest credible rival there
 
     @property
     def wind(self) -> float:
         """The wind the baseline calibrates with it free."""
         return self.baseline.params[WIND]
 
-    @property
-    def best(self) -> Judgement | None:
-        """The best significant refit."""
-        return next((j for j in self.there if j.significant), None)
-
-    @property
-    def rival(self) -> Judgement | None:
-        """The best significant, credible refit other than the cause."""
-        return next((j for j in self.there if j is not self.mine and j.significant and j.credible), None)
-
-    def over_rival(self) -> float:
-        """The lower end of the 95 % interval of the cause's paired gain over the rival (decide.py,
-        rule 6); inf without a rival."""
-        if self.rival is None or self.mine is None:
-            return math.inf
-        return float(np.percentile(self.mine.score.combined_samples - self.rival.score.combined_samples, 2.5))
-
-    @property
-    def survives(self) -> bool:
-        """The cause still leads: the best significant candidate, ahead of every credible rival on
-        the same draws. Its own parameters' credibility is not asked again: the extra freedom may
-        move them, but that is no sign the wind explains the data instead."""
-        return self.mine is not None and self.best is self.mine and self.over_rival() > 0.0
+    def wind_at_bound(self) -> bool:
+        """The wind ends at an end of its tolerance, in the baseline or beside the causes."""
+        return any(
+            coordinate.at_bound(x) is not None
+            for fit in [self.baseline, *self.fits]
+            for name, (coordinate, x) in fit.coordinates.items()
+            if name == WIND
+        )
 
     def margin(self) -> float:
-        """The cause's significance margin with the wind free (decide.significance_margin, > 0
-        passes) or its margin over the rival there, the smaller; -1 where it does not survive."""
-        if not self.survives:
+        """How far the check is from refusing, with the wind free: the smallest of each cause's own
+        credited gain over MIN_GAIN, the lower end of its interval, and the leading cause's paired
+        margin over its closest credible rival (> 0 keeps them); -1 where a refit failed."""
+        if not self.own:
             return -1.0
-        return float(min(significance_margin(self.mine.score), self.over_rival()))
+        own = min(min(s.credited_gain - MIN_GAIN, s.credited_ci95[0]) for s in self.own)
+        return float(min(own, self.over_rival))
 
     def objection(self) -> str:
-        if self.mine is None:
+        label = self.causes[self.kept]
+        if self.ahead is not None:
+            why = (
+                f"{self.ahead.fit.name} explains the held-out units as well there (held-out gain "
+                f"{self.ahead.score.combined_gain:.3f})"
+            )
+        elif self.kept >= len(self.own):
             why = "its refit failed"
-        elif not self.mine.significant:
-            why = f"its held-out gain is {self.mine.score.combined_gain:.3f}"
-        elif self.best is not self.mine:
-            why = f"{self.best.fit.name} explains more (held-out gain {self.best.score.combined_gain:.3f})"
         else:
-            why = f"{self.rival.fit.name} explains as much (held-out gain {self.rival.score.combined_gain:.3f})"
+            s = self.own[self.kept]
+            why = (
+                f"its held-out gain on the channels it changes falls to {s.credited_gain:.3f} "
+                f"(95 % CI {s.credited_ci95[0]:.3f}–{s.credited_ci95[1]:.3f}), "
+                f"from {self.declared_gains[self.kept]:.3f} with the build as declared"
+            )
         return (
             f"with the braid's wind free within {100 * WIND_TOLERANCE:.0f} % of the declared {self.declared:g} "
-            f"revolutions (calibrated {self.wind:.4g}) it is no longer the cause ({why}): the data do not tell it "
+            f"revolutions (calibrated {self.wind:.4g}) {label} is no longer a cause ({why}): the data do not tell it "
             "from a braid wound otherwise than declared"
         )
 
     def to_json(self) -> dict:
-        j = self.mine
         return {
             "parameter": WIND,
             "declared": self.declared,
             "tolerance": WIND_TOLERANCE,
             "calibrated": self.wind,  # by the baseline alone
-            "calibrated_with_cause": j.fit.baseline_params.get(WIND) if j is not None else None,
-            "cause_gain_there": j.score.combined_gain if j is not None else None,
-            "best_there": self.best.fit.name if self.best is not None else None,
+            "calibrated_with_causes": self.fits[-1].baseline_params.get(WIND) if self.fits else None,
+            "at_bound": self.wind_at_bound(),
+            "causes": self.causes,
+            "own_gain_there": [s.credited_gain for s in self.own],
+            "own_gain_declared": self.declared_gains,
+            "kept": self.causes[: self.kept],
+            "ahead_there": self.ahead.fit.name if self.ahead is not None else None,
             "margin": self.margin(),
-            "survives": self.survives,
+            "survives": self.kept == len(self.causes),
         }
 
 
@@ -125,28 +127,65 @@ def _refit(problem: Problem, baseline: Fit, label: str, factory, seed: int) -> F
 
 
 def check_wind(
-    problem: Problem, named: Judgement, judged: list[Judgement], factories: dict, seed: int, pool
+    problem: Problem, causes: list[Cause], judged: list[Judgement], factories: dict, seed: int, pool
 ) -> BuildCheck | None:
-    """The named cause (a single effect or a pair, labelled as in `factories`) and the RIVALS
-    significant candidates that follow it in `judged` refitted with the braid's wind free and
-    judged by decide.py's rules; None where the experiment declares the wind unknown already.
-    `pool` runs the refits (a concurrent.futures executor)."""
+    """The `causes` (decide.Cause, the leading one first) refitted with the braid's wind free,
+    each beside those before it, and the RIVALS significant candidates that follow the leading
+    cause in `judged`, all judged by decide.py's rules against a baseline calibrated with the wind
+    free; None where the experiment declares the wind unknown already. `pool` runs the refits (a
+    concurrent.futures executor)."""
     if winds_declared(problem.experiment):
         return None
     windy = replace(problem, predictor=Predictor(problem.experiment, problem.channels, wind=True))
     baseline = fit_baseline(windy)
-    attainable = attainable_gain(windy, baseline)
-    labels = named.fit.name.split("+")
+    labels = [c.label for c in causes]
     rivals = [j.fit.name for j in judged if j.significant and j.fit.name not in labels][:RIVALS]
-    futures = [pool.submit(_refit, windy, baseline, label, factories[label], seed) for label in [labels[0], *rivals]]
-    fits = [f.result() for f in futures]
-    if len(labels) > 1 and fits[0].error is None:
-        fits[0] = fit_pair(windy, fits[0], factories[labels[0]], factories[labels[1]], named.fit.name)
+    singles = [pool.submit(_refit, windy, baseline, label, factories[label], seed) for label in [labels[0], *rivals]]
+    first, *others = [f.result() for f in singles]
+    fits: list[Fit] = []
+    own: list[Score] = []
+    previous = baseline
+    for k, label in enumerate(labels):
+        fit = (
+            first
+            if k == 0
+            else fit_pair(windy, previous, factories[labels[0]], factories[label], "+".join(labels[: k + 1]))
+        )
+        if fit.error is not None:
+            break
+        fits.append(fit)
+        own.append(score(windy, previous, fit, np.random.default_rng(seed), credit=fit.effects[k:]))
+        previous = fit
     there = [
-        judge(windy, f, score(windy, baseline, f, np.random.default_rng(seed)), attainable)
-        for f in fits
+        judge(windy, f, score(windy, baseline, f, np.random.default_rng(seed)), baseline)
+        for f in others
         if f.error is None
     ]
-    there.sort(key=lambda j: (-j.score.combined_gain, j.score.delta_bic, j.fit.name))
-    mine = next((j for j in there if j.fit.name == named.fit.name), None)
-    return BuildCheck(named.fit.name, float(problem.experiment.build.fiber_revolutions), baseline, there, mine)
+    # The leading cause against each credible rival there, on the same bootstrap draws (rule 6).
+    ahead, over_rival = None, np.inf
+    if own:
+        mine = score(windy, baseline, fits[0], np.random.default_rng(seed)).combined_samples
+        for j in sorted(there, key=lambda j: -j.score.combined_gain):
+            if j.significant and j.credible:
+                low = float(np.percentile(mine - j.score.combined_samples, 2.5))
+                over_rival = min(over_rival, low)
+                if low <= 0.0 and ahead is None:
+                    ahead = j
+    kept = 0
+    if ahead is None:
+        for gained in own:
+            if not keeps_gain(gained):
+                break
+            kept += 1
+    declared = [c.own.credited_gain for c in causes]
+    return BuildCheck(
+        labels,
+        float(problem.experiment.build.fiber_revolutions),
+        baseline,
+        fits,
+        own,
+        declared,
+        kept,
+        ahead,
+        over_rival,
+    )

@@ -97,7 +97,7 @@ def _campaign_of_series(diagnoses: list[Diagnosis], catalog, progress, threads: 
     progress(f"calibrating one muscle on all {len(diagnoses)} tests")
     joint = calibrate_jointly([d.problem for d in diagnoses], [d.baseline for d in diagnoses], names, threads)
     fits = [_single_effect_fits(d) for d in diagnoses]
-    named = {d.extended.name for d in diagnoses if d.decision.named is not None and len(d.extended.effects) == 1}
+    named = {cause.label for d in diagnoses for cause in d.decision.causes}
     transfers: dict[str, list[Transfer]] = {}
     for label in sorted(named):
         if not all(label in f for f in fits):

@@ -11,7 +11,14 @@ from pamkit._core import GasMode, InitialState, MuscleParams, write_muscle_param
 from pamkit.diagnose import campaign, evidence, table_report
 from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.campaign import SeriesCampaign
-from pamkit.diagnose.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Judgement, credited_channels
+from pamkit.diagnose.decide import (
+    MIN_BIC_DROP,
+    MIN_GAIN,
+    NONE_WITHIN_NOISE,
+    Judgement,
+    credited_channels,
+    noise_ratios,
+)
 from pamkit.diagnose.engine import CHANNEL_UNITS as UNITS
 from pamkit.diagnose.engine import Diagnosis
 from pamkit.diagnose.model import Baseline, muscle_signature
@@ -122,12 +129,70 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
                 else None
             ),
         },
+        "causes": causes_json(d),
+        "remainder": remainder_json(d),
         "discovered": d.discovered,
         "warnings": [f.to_json() for f in d.warnings] + d.data_notes,
         "verdict": verdict(d),
         "timing_s": d.seconds,
     }
     return report
+
+
+def _own(params: dict, effect, count: int) -> dict:
+    """One effect's entries of a fit's params or intervals (a pair's are prefixed by its name)."""
+    if count == 1:
+        return dict(params)
+    prefix = f"{effect.name()}."
+    return {k[len(prefix) :]: v for k, v in params.items() if k.startswith(prefix)}
+
+
+def causes_json(d: Diagnosis) -> list[dict]:
+    """Each cause present, the leading one first: its parameters and intervals (fitted with every
+    cause together), the channels it changes, and its own held-out gain there and on every
+    channel — over the calibrated baseline for the first, over the causes before it for the next."""
+    out = []
+    causes = d.decision.causes
+    if not causes:
+        return out
+    fit = causes[-1].judgement.fit
+    for position, cause in enumerate(causes):
+        effect = fit.effects[position]
+        own = cause.own
+        channels = credited_channels(d.problem, fit, [effect])
+        out.append(
+            {
+                "effect": cause.label,
+                "params": _own(fit.params, effect, len(fit.effects)),
+                "intervals": {k: list(v) for k, v in _own(fit.intervals, effect, len(fit.effects)).items()},
+                "channels": channels,
+                "gain_own_channels": own.credited_gain,
+                "gain_own_channels_ci95": own.credited_ci95,
+                "gain_all_channels": own.combined_gain,
+                "gain_all_channels_ci95": own.combined_ci95,
+                "gain": own.gain,
+                "gain_ci95": own.gain_ci95,
+                "over": "baseline" if position == 0 else "+".join(c.label for c in causes[:position]),
+                "base_model_strain": [f.to_json() for f in cause.judgement.strain],
+            }
+        )
+    return out
+
+
+def remainder_json(d: Diagnosis) -> dict | None:
+    """What is still above the noise after the causes: each such channel's held-out RMSE over its
+    noise, and the term sparse regression finds in the furthest one, with its held-out gain."""
+    if not d.decision.left_structure:
+        return None
+    ratios = noise_ratios(d.problem, d.extended)
+    found = d.discovered or {}
+    return {
+        "channels": {c: ratios[c] for c in d.decision.left_structure},
+        "over": "+".join(c.label for c in d.decision.causes) or "baseline",
+        "discovered": {
+            key: found[key] for key in ("channel", "equation", "terms", "gain", "gain_ci95", "error") if key in found
+        },
+    }
 
 
 def _phrase(j: Judgement, channel: str) -> str:
@@ -203,16 +268,39 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
             f"unexplained: structure is left in {left} (held-out RMSE {_sizes(d, d.baseline)}); "
             f"{looks}{discovered}{bounds}"
         )
-    j = d.extended_judgement
-    fit, s = j.fit, j.score
-    channel = max(credited_channels(p, fit), key=lambda c: s.gain[c])
-    numbers = ", ".join(f"{k} = {v:.3g}" for k, v in fit.params.items() if not isinstance(v, str))
-    lo, hi = s.gain_ci95[channel]
-    unit = UNITS.get(channel, "")
-    return (
-        f"{_phrase(j, channel)}: {fit.name}, {numbers}; held-out {channel} RMSE {baseline_rmse[channel]:.3g} → "
-        f"{s.rmse[channel]:.3g} {unit} (gain {s.gain[channel]:.2f}, 95 % CI {lo:.2f}–{hi:.2f}){bounds}"
+    causes = causes_json(d)
+    first, lead = causes[0], decision.causes[0]
+    channel = max(first["channels"], key=lambda c: first["gain"][c])
+    numbers = ", ".join(f"{k} = {v:.3g}" for k, v in first["params"].items() if not isinstance(v, str))
+    lo, hi = first["gain_ci95"][channel]
+    rmse = _heldout_rmse(d, lead.judgement.fit)[channel]
+    text = (
+        f"{_phrase(lead.judgement, channel)}: {first['effect']}, {numbers}; held-out {channel} RMSE "
+        f"{baseline_rmse[channel]:.3g} → {rmse:.3g} {UNITS.get(channel, '')} (gain {first['gain'][channel]:.2f}, "
+        f"95 % CI {lo:.2f}–{hi:.2f})"
     )
+    for more in causes[1:]:
+        numbers = ", ".join(f"{k} = {v:.3g}" for k, v in more["params"].items() if not isinstance(v, str))
+        text += (
+            f"; and {more['effect']}, {numbers} (its own held-out gain on {', '.join(more['channels'])} "
+            f"{more['gain_own_channels']:.2f}, 95 % CI {more['gain_own_channels_ci95'][0]:.2f}–"
+            f"{more['gain_own_channels_ci95'][1]:.2f})"
+        )
+    return text + _remainder_phrase(d) + bounds
+
+
+def _remainder_phrase(d: Diagnosis) -> str:
+    remainder = remainder_json(d)
+    if remainder is None:
+        return "; nothing is left above the noise"
+    left = ", ".join(f"{c} at {r:.1f}x its noise" for c, r in remainder["channels"].items())
+    found = remainder["discovered"]
+    if found.get("terms"):
+        return (
+            f"; still left: {left}, where sparse regression finds {found['equation']} (held-out gain "
+            f"{found['gain'][found['channel']]:.2f}), which resembles {found['terms'][0]['resembles']}"
+        )
+    return f"; still left: {left}, which no catalog effect explains"
 
 
 def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Path:

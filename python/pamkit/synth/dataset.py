@@ -53,6 +53,7 @@ from pamkit._core import (
     MuscleParams,
     Simulator,
     free_inflation,
+    inflated_and_sealed,
     simulate_measurement,
 )
 from pamkit.effects import catalog as builtin_catalog
@@ -343,6 +344,7 @@ def synthesize(
     effect_catalog: EffectCatalog | None = None,
     change_protocol: Callable[[Protocol], Protocol] | None = None,
     sample_rate_Hz: float | None = None,
+    true_muscle: Callable[[MuscleParams, Protocol], tuple[MuscleParams, dict]] | None = None,
 ) -> SynthFiles:
     """Writes a synthetic experiment with the effect `effect_spec` (``"none"``, ``"NAME"`` or
     ``"NAME:key=value,..."``) hidden in it: ``out_dir/experiment.toml``,
@@ -352,6 +354,12 @@ def synthesize(
     on the seed only, not on the effect. `change_protocol` makes the test's protocol from the
     drawn one, `sample_rate_Hz` replaces both instruments' drawn rates: a long test at 1 kHz,
     say; every draw is still made, so the others stay those of the seed.
+
+    `true_muscle(declared, protocol)` makes the muscle the data come from out of the one the file
+    declares, returning it and a description for the manifest (:mod:`pamkit.synth.mismatch`): a real muscle is never exactly its declared build (a
+    braid wound a few per cent otherwise, another end geometry, a sharper friction). The true
+    muscle is inflated freely to the test's pressure and sealed at its own free length; the
+    crosshead follows the protocol planned from the declared build, as a lab plans it.
 
     Raises:
         ValueError: for a bad effect spec (naming the effect, key or value), or an effect that
@@ -394,6 +402,11 @@ def synthesize(
     initial = InitialState(
         length_m=protocol.free_length_m, gauge_pressure_Pa=protocol.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL
     )
+    mismatch = {}
+    if true_muscle is not None:
+        params, mismatch = true_muscle(params, protocol)
+        params.validate()
+        initial = inflated_and_sealed(params, initial.gauge_pressure_Pa)
     baseline = simulate_measurement(params, initial, crosshead, [], Simulator())
 
     # A lag or skew of a channel that does not move cannot be seen (the temperature of the
@@ -438,6 +451,7 @@ def synthesize(
         "pamkit_version": pamkit.__version__,
         "seed": seed,
         "effect": effect_info,
+        "true_muscle": mismatch,
         "protocol": asdict(protocol),
         "muscle": build.to_dict(),
         "instruments": {
