@@ -12,6 +12,7 @@ from scipy.optimize import OptimizeResult, least_squares
 from threadpoolctl import ThreadpoolController
 
 from pamkit._core import Effect
+from pamkit.diagnose.identify import Z95, identify
 from pamkit.diagnose.jacobian import DIFF_STEP, jacobian_for
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import Coordinate
@@ -36,6 +37,8 @@ class Fit:
     coordinates: dict[str, tuple[Coordinate, float]] = field(default_factory=dict)
     # 95 % intervals of the fitted baseline values (cluster_intervals), where computed
     intervals: dict[str, tuple[float, float]] = field(default_factory=dict)
+    # the fitted values the data do not determine, each with those it trades against (identify.py)
+    undetermined: dict[str, list[str]] = field(default_factory=dict)
     # per coordinate at a bound: (value the fit would reach without the bound, fitted-RMSE drop
     # there), where computed (strain_at_bounds)
     strain: dict[str, tuple[float, float]] = field(default_factory=dict)
@@ -90,24 +93,30 @@ def least_squares_in_box(residual, u0: np.ndarray, max_evaluations: int, jac="2-
 
 def cluster_intervals(
     space: list[Coordinate], u: np.ndarray, jacobian: np.ndarray, residual: np.ndarray, clusters: np.ndarray
-) -> list[tuple[float, float]]:
+) -> tuple[list[tuple[float, float]], dict[str, list[str]]]:
     """95 % intervals of fitted values from the least-squares Jacobian at the solution, with the
     covariance clustered by unit (the sandwich (JᵀJ)⁻¹ (Σ_g J_gᵀ r_g r_gᵀ J_g) (JᵀJ)⁻¹ · G/(G−1)):
     residuals correlated within a half cycle do not shrink the interval as if independent.
-    `clusters` gives each residual's unit. One interval per coordinate of `space`, in its order."""
-    bread = np.linalg.pinv(jacobian.T @ jacobian)
+    `clusters` gives each residual's unit. One interval per coordinate of `space`, in its order,
+    and the coordinates the data do not determine (identify.py), each with those it trades
+    against: their interval is their whole search interval, never a zero width."""
     labels = np.unique(clusters)
     scores = np.array([jacobian[clusters == g].T @ residual[clusters == g] for g in labels])
     meat = scores.T @ scores * len(labels) / max(len(labels) - 1, 1)
-    sd_u = np.sqrt(np.clip(np.diag(bread @ meat @ bread), 0.0, None))
+    found = identify(jacobian, meat)
+    sd_u = np.sqrt(np.clip(np.diag(found.covariance), 0.0, None))
     out = []
-    for c, ui, sd in zip(space, u, sd_u):
+    for index, (c, ui, sd) in enumerate(zip(space, u, sd_u)):
         # Within the search interval: a scale cannot go below zero because its interval is wide.
-        ends = [
-            c.value(c.lower + np.clip(ui + sign * 1.96 * sd, 0.0, 1.0) * (c.upper - c.lower)) for sign in (-1.0, 1.0)
-        ]
+        ends = (
+            [c.value(c.lower), c.value(c.upper)]
+            if index in found.undetermined
+            else [
+                c.value(c.lower + np.clip(ui + sign * Z95 * sd, 0.0, 1.0) * (c.upper - c.lower)) for sign in (-1.0, 1.0)
+            ]
+        )
         out.append((float(min(ends)), float(max(ends))))
-    return out
+    return out, found.trades_against([c.name for c in space])
 
 
 def strain_at_bounds(
@@ -160,7 +169,7 @@ def fit_baseline(problem: Problem) -> Fit:
     jac = jacobian_for(problem, lambda u: (unit_to_x(space, u), []), residual, counted)
     result = least_squares_in_box(residual, start_unit(space), 20 * (len(space) + 1), jac=jac)
     u, x = result.x, unit_to_x(space, result.x)
-    bands = cluster_intervals(space, u, result.jac, result.fun, problem.residual_units())
+    bands, undetermined = cluster_intervals(space, u, result.jac, result.fun, problem.residual_units())
     intervals = {c.name: band for c, band in zip(space, bands)}
     strain = strain_at_bounds(space, u, result.jac, result.fun)
     predicted = problem.predictor.predict(x, [])
@@ -177,5 +186,6 @@ def fit_baseline(problem: Problem) -> Fit:
         baseline_params=values,
         coordinates=baseline_coordinates(problem, x),
         intervals=intervals,
+        undetermined=undetermined,
         strain=strain,
     )

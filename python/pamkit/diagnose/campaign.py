@@ -155,6 +155,7 @@ def _joint_json(j: JointFit) -> dict:
     return {
         "params": j.params,
         "intervals": {k: list(v) for k, v in j.intervals.items()},
+        "undetermined": {name: {"trades_against": partners} for name, partners in j.undetermined.items()},
         "per_test": [
             {
                 "test": s.test,
@@ -171,7 +172,9 @@ def _joint_json(j: JointFit) -> dict:
 
 def _shared(j: JointFit) -> str:
     return ", ".join(
-        f"{name} = {value:.4g} [{j.intervals[name][0]:.4g}, {j.intervals[name][1]:.4g}]"
+        f"{name} = {value:.4g} (not determined by the data)"
+        if name in j.undetermined
+        else f"{name} = {value:.4g} [{j.intervals[name][0]:.4g}, {j.intervals[name][1]:.4g}]"
         for name, value in j.params.items()
     )
 

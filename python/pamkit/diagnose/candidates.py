@@ -172,10 +172,10 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
         params.update(effect.options())
         coordinates = {} if measurement_only else baseline_coordinates(problem, base_x)
         coordinates.update(_effect_coordinates(effect, space, effect_x))
-        bands = (
+        bands, undetermined = (
             cluster_intervals(fitted_space, u, result.jac, result.fun, problem.residual_units())
             if result is not None
-            else []
+            else ([], {})
         )
         intervals = {c.name: band for c, band in zip(fitted_space, bands)}
         # A measurement effect keeps the calibrated baseline: counted as one model with it.
@@ -192,6 +192,7 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
             baseline_params=problem.predictor.baseline.values(base_x),
             coordinates=coordinates,
             intervals=intervals,
+            undetermined=undetermined,
         )
     except (ValueError, RuntimeError) as error:  # the effect drove the model out of its range
         return Fit(
@@ -272,8 +273,11 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
         params.update({f"{effect.name()}.{k}": v for k, v in effect.options().items()})
         coordinates.update(_effect_coordinates(effect, space, x, prefix=f"{effect.name()}."))
     names = [c.name for c in base_space] + [f"{e.name()}.{c.name}" for e, space in zip(effects, spaces) for c in space]
-    bands = cluster_intervals(base_space + spaces[0] + spaces[1], u, result.jac, result.fun, problem.residual_units())
+    bands, undetermined = cluster_intervals(
+        base_space + spaces[0] + spaces[1], u, result.jac, result.fun, problem.residual_units()
+    )
     intervals = dict(zip(names, bands))
+    rename = dict(zip([c.name for c in base_space + spaces[0] + spaces[1]], names))
     return Fit(
         label,
         effects,
@@ -286,4 +290,5 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
         baseline_params=problem.predictor.baseline.values(base_x),
         coordinates=coordinates,
         intervals=intervals,
+        undetermined={rename[k]: [rename[o] for o in v] for k, v in undetermined.items()},
     )

@@ -71,6 +71,8 @@ class JointFit:
     evaluations: int
     effect: str | None = None  # the shared effect's label, when there is one
     strain: dict[str, tuple[float, float]] = field(default_factory=dict)  # calibrate.strain_at_bounds
+    # the shared values the data do not determine, each with those it trades against (identify.py)
+    undetermined: dict[str, list[str]] = field(default_factory=dict)
 
 
 def check_one_muscle(experiments: list[Experiment]) -> None:
@@ -183,7 +185,7 @@ def calibrate_jointly(
     )
     jacobian = result.jac.toarray() if hasattr(result.jac, "toarray") else result.jac
     every = shared + [c for o in own for c in o]  # the shared coordinates come first
-    bands = cluster_intervals(every, u, jacobian, result.fun, clusters)
+    bands, undetermined = cluster_intervals(every, u, jacobian, result.fun, clusters)
     intervals = {c.name: band for c, band in zip(shared, bands)}
     x = unit_to_x(shared, u[: len(shared)])
     carried = leave_one_test_out(jacobian, result.fun, rows, u, len(shared))
@@ -214,6 +216,7 @@ def calibrate_jointly(
         evaluations,
         label,
         {name: v for name, v in strain_at_bounds(every, u, jacobian, result.fun).items() if name not in PER_TEST},
+        {name: v for name, v in undetermined.items() if name in intervals},
     )
 
 

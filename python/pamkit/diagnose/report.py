@@ -21,6 +21,7 @@ from pamkit.diagnose.decide import (
 )
 from pamkit.diagnose.engine import CHANNEL_UNITS as UNITS
 from pamkit.diagnose.engine import Diagnosis
+from pamkit.diagnose.identify import why_undetermined
 from pamkit.diagnose.model import Baseline, muscle_signature
 from pamkit.diagnose.table_fit import TableModel
 from pamkit.diagnose.tables import TableDiagnosis
@@ -68,6 +69,7 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
         "baseline": {
             "params": d.baseline.params,
             "intervals": {k: list(v) for k, v in d.baseline.intervals.items()},
+            "undetermined": undetermined_json(d.baseline),
             "rmse": baseline_rmse,
         },
         "candidates": [
@@ -91,6 +93,7 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
             "effects": [e.name() for e in d.extended.effects],
             "params": {**d.extended.baseline_params, **d.extended.params},
             "intervals": {k: list(v) for k, v in d.extended.intervals.items()},
+            "undetermined": undetermined_json(d.extended),
             "rmse": _heldout_rmse(d, d.extended),
         },
         "gain": named.score.gain if named else {c: 0.0 for c in p.channels},
@@ -137,6 +140,29 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
         "timing_s": d.seconds,
     }
     return report
+
+
+def undetermined_json(fit: Fit) -> dict:
+    """The fitted values the data do not determine (identify.py): each with the values it trades
+    against and why, in words. Their interval is their search interval."""
+    return {
+        name: {"trades_against": partners, "why": why_undetermined(partners, _at_bound(fit, name))}
+        for name, partners in fit.undetermined.items()
+    }
+
+
+def _at_bound(fit: Fit, name: str) -> bool:
+    coordinate, x = fit.coordinates.get(name, (None, None))
+    return coordinate is not None and coordinate.at_bound(x) is not None
+
+
+def interval_phrase(fit: Fit, name: str) -> str:
+    """`name = value (95 % CI lo–hi)`, or what the data cannot tell of it."""
+    value, interval = fit.params[name], fit.intervals[name]
+    if name in fit.undetermined:
+        why = why_undetermined(fit.undetermined[name], _at_bound(fit, name))
+        return f"{name} = {value:.4g} (not determined by the data: {why})"
+    return f"{name} = {value:.4g} (95 % CI {interval[0]:.4g}–{interval[1]:.4g})"
 
 
 def _own(params: dict, effect, count: int) -> dict:
@@ -222,11 +248,7 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     bounds = f"; the base model strains to fit: {'; '.join(baseline_findings)}" if baseline_findings else ""
     unknowns = [name for name in p.experiment.calibrate if name in d.baseline.intervals]
     if unknowns:
-        bounds += "; calibrated " + ", ".join(
-            f"{name} = {d.baseline.params[name]:.4g} (95 % CI {d.baseline.intervals[name][0]:.4g}–"
-            f"{d.baseline.intervals[name][1]:.4g})"
-            for name in unknowns
-        )
+        bounds += "; calibrated " + ", ".join(interval_phrase(d.baseline, name) for name in unknowns)
     if decision.cause == "none":
         best = d.candidates[0] if d.candidates else None
         if decision.rejected is not None:

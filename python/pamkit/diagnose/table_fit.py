@@ -5,12 +5,13 @@ held-out predictions and jackknife intervals (docs/diagnosis.md, "Static tables"
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import least_squares
 
 from pamkit._core import Effect, MuscleParams
+from pamkit.diagnose.identify import identify
 from pamkit.diagnose.model import Coordinate, configure, effect_space, unknown_coordinate, with_unknowns
 from pamkit.diagnose.table_kinds import Campaign, test_names
 from pamkit.io.experiment import Experiment, ExperimentError
@@ -24,6 +25,10 @@ PER_TEST = ("load_N",)
 # Local least squares from the declared values, then from these points of each unknown's
 # interval: the static force is not convex in a braid angle and a modulus together.
 STARTS = (0.25, 0.75)
+# Central differences at this share of each search interval tell whether the table depends on it.
+JACOBIAN_STEP = 1e-5
+# A jackknife spread below this share of the search interval is no spread: the refits did not move.
+SAME = 1e-6
 
 
 @dataclass
@@ -41,6 +46,8 @@ class TableFit:
     intervals: dict[str, tuple[float, float]]  # jackknife 95 % over held-out groups
     x: np.ndarray | None = None  # the fitted coordinates, to start a larger model from
     error: str | None = None
+    # the values the table does not determine, each with those it trades against (identify.py)
+    undetermined: dict[str, list[str]] = field(default_factory=dict)
 
 
 class TableModel:
@@ -150,6 +157,31 @@ class Fitter:
                 best = result
         return best.x
 
+    def undetermined(self, x: np.ndarray, rows: np.ndarray, folds: list[np.ndarray]) -> dict[str, list[str]]:
+        """The fitted values the table does not determine (identify.py), by name, each with those it
+        trades against: numerically null directions of the Jacobian at `x` (central differences at
+        JACOBIAN_STEP of each search interval), and any value that no held-out refit (`folds`)
+        moved, which a jackknife would report with a zero-width interval."""
+        lower = np.array([c.lower for c in self.space])
+        upper = np.array([c.upper for c in self.space])
+        at = self.residual(x, rows)
+        columns = []
+        for index, w in enumerate(upper - lower):
+            step = np.zeros_like(x)
+            step[index] = JACOBIAN_STEP * w
+            # One-sided at an end of the search interval: beyond it the model may not exist.
+            ahead = x[index] + step[index] <= upper[index]
+            behind = x[index] - step[index] >= lower[index]
+            high = self.residual(x + step, rows) if ahead else at
+            low = self.residual(x - step, rows) if behind else at
+            columns.append((high - low) / (JACOBIAN_STEP * (int(ahead) + int(behind))))
+        found = identify(np.column_stack(columns), widths=False).trades_against(self.names())
+        names = self.names()
+        for index, name in enumerate(names):
+            if folds and all(fold[index] == x[index] for fold in folds) and name not in found:
+                found[name] = []
+        return found
+
     def starts(self) -> list[np.ndarray]:
         declared = np.array([c.start for c in self.space])
         out = [declared]
@@ -191,14 +223,35 @@ def fit_table(
     names = fitter.names()
     coordinates = {key: (c, float(v)) for key, c, v in zip(names, fitter.space, x)}
     params = {key: float(c.value(v)) for key, c, v in zip(names, fitter.space, x)}
+    undetermined = fitter.undetermined(x, np.flatnonzero(used), [x_fold for _, x_fold, _ in folds])
     intervals = {}
     count = len(folds)
     for index, (key, c) in enumerate(zip(names, fitter.space)):
+        if names[index] in undetermined:  # its whole search interval, never a zero width
+            intervals[key] = tuple(sorted((float(c.value(c.lower)), float(c.value(c.upper)))))
+            continue
         values = np.array([float(c.value(x_fold[index])) for _, x_fold, _ in folds])
         spread = math.sqrt((count - 1) / count * float(np.sum((values - values.mean()) ** 2)))
+        box = abs(float(c.value(c.upper)) - float(c.value(c.lower)))
+        if 1.96 * spread < SAME * box:
+            # Every held-out refit ended where the whole fit did (a bound holds it there): the
+            # jackknife cannot tell how far the data would take it.
+            undetermined[key] = []
+            intervals[key] = tuple(sorted((float(c.value(c.lower)), float(c.value(c.upper)))))
+            continue
         intervals[key] = (params[key] - 1.96 * spread, params[key] + 1.96 * spread)
     every = np.arange(len(groups))
-    return TableFit(name, fitter.effects(x), params, coordinates, fitter.predict(x, every), heldout, intervals, x=x)
+    return TableFit(
+        name,
+        fitter.effects(x),
+        params,
+        coordinates,
+        fitter.predict(x, every),
+        heldout,
+        intervals,
+        x=x,
+        undetermined=undetermined,
+    )
 
 
 def heldout_rmse(fit: TableFit, measured, channel: str, rows=None) -> float:

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from pamkit.diagnose.identify import why_undetermined
 from pamkit.diagnose.table_kinds import test_names
 from pamkit.diagnose.tables import CHANNEL_UNITS, TableDiagnosis, TableFit, heldout_rmse
 from pamkit.plots import save_figure
@@ -39,6 +40,7 @@ def to_json(d: TableDiagnosis) -> dict:
         "baseline": {
             "params": d.baseline.params,
             "intervals": {k: list(v) for k, v in d.baseline.intervals.items()},
+            "undetermined": _undetermined_json(d.baseline),
             "rmse": rmse(d.baseline, False),
             "heldout_rmse": rmse(d.baseline, True),
             "heldout_rmse_by_group": per_group(d.baseline),
@@ -64,6 +66,7 @@ def to_json(d: TableDiagnosis) -> dict:
             "effects": [e.name() for e in d.extended.effects],
             "params": d.extended.params,
             "intervals": {k: list(v) for k, v in d.extended.intervals.items()},
+            "undetermined": _undetermined_json(d.extended),
             "rmse": rmse(d.extended, False),
             "heldout_rmse": rmse(d.extended, True),
             "heldout_rmse_by_group": per_group(d.extended),
@@ -71,6 +74,8 @@ def to_json(d: TableDiagnosis) -> dict:
         "gain": d.extended_candidate.gain if d.extended_candidate else {c: 0.0 for c in d.channels},
         "gain_ci95": ({c: list(v) for c, v in d.extended_candidate.gain_ci95.items()} if d.extended_candidate else {}),
         "added": d.added,
+        "causes": causes_json(d),
+        "remainder": ({"channels": d.remainder, "discovered": d.discovered_by_channel} if d.remainder else None),
         "discovered": d.discovered,
         "discovered_by_channel": d.discovered_by_channel,
         "decision": {"cause": d.cause, "reason": d.reason, "margins": d.margins},
@@ -79,10 +84,64 @@ def to_json(d: TableDiagnosis) -> dict:
     return report
 
 
+def _undetermined_json(fit: TableFit) -> dict:
+    out = {}
+    for name, partners in fit.undetermined.items():
+        coordinate, x = fit.coordinates[name]
+        out[name] = {"trades_against": partners, "why": why_undetermined(partners, coordinate.at_bound(x) is not None)}
+    return out
+
+
+def _effect_params(fit: TableFit, name: str) -> dict:
+    """One effect's fitted parameters (a pair's are prefixed with the effect's name)."""
+    if len(fit.effects) < 2:
+        names = {p.name for e in fit.effects for p in e.parameters()}
+        return {k: v for k, v in fit.params.items() if k in names}
+    return {k.split(".", 1)[1]: v for k, v in fit.params.items() if k.startswith(f"{name}.")}
+
+
+def causes_json(d: TableDiagnosis) -> list[dict]:
+    """Each cause present, the leading one first, with its own held-out gain: the first over the
+    calibrated baseline, one added beside it over the first alone; an effect between the
+    branches judged on what differs between them (`between`)."""
+    if d.extended_candidate is None:
+        return []
+    lead = next(j for j in d.candidates if j.fit.name == d.cause)
+    out = [
+        {
+            "effect": d.cause,
+            "params": _effect_params(d.extended, d.cause),
+            "gain": lead.gain,
+            "gain_ci95": {c: list(v) for c, v in lead.gain_ci95.items()},
+            "between_branches": lead.between,
+            "over": "baseline",
+            "base_model_strain": lead.strain,
+        }
+    ]
+    for more in d.added:
+        out.append(
+            {
+                "effect": more["effect"],
+                "params": _effect_params(d.extended, more["effect"]),
+                "gain": more["gain"],
+                "gain_ci95": more["gain_ci95"],
+                "between_branches": more.get("between"),
+                "over": d.cause,
+                "base_model_strain": [],
+            }
+        )
+    return out
+
+
 def _calibrated(fit: TableFit) -> str:
-    return ", ".join(
-        f"{k} = {v:.4g} [{fit.intervals[k][0]:.4g}, {fit.intervals[k][1]:.4g}]" for k, v in fit.params.items()
-    )
+    def one(k, v):
+        if k not in fit.undetermined:
+            return f"{k} = {v:.4g} [{fit.intervals[k][0]:.4g}, {fit.intervals[k][1]:.4g}]"
+        coordinate, x = fit.coordinates[k]
+        why = why_undetermined(fit.undetermined[k], coordinate.at_bound(x) is not None)
+        return f"{k} = {v:.4g} (not determined by the data: {why})"
+
+    return ", ".join(one(k, v) for k, v in fit.params.items())
 
 
 def verdict(d: TableDiagnosis) -> str:
@@ -107,15 +166,6 @@ def verdict(d: TableDiagnosis) -> str:
             lines.append(f"  calibrated (jackknife 95 %): {_calibrated(fit)}")
     if d.extended_candidate is None:
         lines.append(f"cause: {d.cause} — {d.reason}")
-        for channel, found in d.discovered_by_channel.items():
-            if found.get("terms"):
-                low, high = found["gain_ci95"][channel]
-                lines.append(
-                    f"discovered: {found['equation']} (held-out gain {found['gain'][channel]:.2f} "
-                    f"[{low:.2f}, {high:.2f}]); its largest term resembles {found['terms'][0]['resembles']}"
-                )
-            else:
-                lines.append(f"discovered in {channel}: no term beats zero on held-out groups {found.get('error', '')}")
     else:
         gain = ", ".join(
             f"{c} {d.extended_candidate.gain[c]:.2f} [{d.extended_candidate.gain_ci95[c][0]:.2f}, "
@@ -129,6 +179,31 @@ def verdict(d: TableDiagnosis) -> str:
                 for c in d.channels
             )
             lines.append(f"also: {added['effect']} — held-out gain over {d.cause} alone {more}")
+        lead = next(j for j in d.candidates if j.fit.name == d.cause)
+        if lead.between:
+            between = ", ".join(
+                f"{c} {lead.between['gain'][c]:.2f} [{lead.between['gain_ci95'][c][0]:.2f}, "
+                f"{lead.between['gain_ci95'][c][1]:.2f}]"
+                for c in d.channels
+            )
+            lines.append(f"  between the pressurising and venting branches, where it acts: held-out gain {between}")
+        if lead.strain:
+            strained = "; ".join(f"{f['parameter']} = {f['value']:.4g}" for f in lead.strain)
+            lines.append(f"  beside it the base model strains, as without it: {strained}")
+        if d.remainder:
+            left = ", ".join(f"{c} at {r:.1f}x its noise" for c, r in d.remainder.items())
+            lines.append(f"still left: {left}")
+        else:
+            lines.append("nothing is left above the noise")
+    for channel, found in d.discovered_by_channel.items():
+        if found.get("terms"):
+            low, high = found["gain_ci95"][channel]
+            lines.append(
+                f"discovered: {found['equation']} (held-out gain {found['gain'][channel]:.2f} "
+                f"[{low:.2f}, {high:.2f}]); its largest term resembles {found['terms'][0]['resembles']}"
+            )
+        else:
+            lines.append(f"discovered in {channel}: no term beats zero on held-out groups {found.get('error', '')}")
     for w in d.warnings:
         if "message" in w:  # the data against the declared test
             lines.append(f"warning: {w['message']}")

@@ -19,7 +19,7 @@ import hashlib
 import math
 import os
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
@@ -39,11 +39,14 @@ MIN_GROUPS = 3
 @dataclass
 class TableCandidate:
     fit: TableFit
-    gain: dict[str, float]
+    gain: dict[str, float]  # on the held-out rows
     gain_ci95: dict[str, tuple[float, float]]
-    score: float  # mean held-out gain over the predicted channels
+    score: float  # mean held-out gain over the predicted channels, where the effect acts
     significant: bool
-    findings: list[dict]  # parameters at a bound or implausible
+    findings: list[dict]  # its parameters at a bound or implausible (and those it moved there)
+    strain: list[dict] = field(default_factory=list)  # the calibrated baseline's findings it shares
+    # an effect between the branches: its gain on what differs between them, where it is judged
+    between: dict | None = None
 
     @property
     def credible(self) -> bool:
@@ -65,7 +68,8 @@ class TableDiagnosis:
     warnings: list[dict]
     margins: dict[str, float]
     added: list[dict]  # effects beside the cause, each with its held-out gain over the cause alone
-    discovered_by_channel: dict[str, dict]  # when unexplained: what is left, per channel beyond its noise
+    discovered_by_channel: dict[str, dict]  # what is left, per channel beyond its noise
+    remainder: dict[str, float]  # held-out RMSE over noise of each channel still above NONE_WITHIN_NOISE
 
     @property
     def discovered(self) -> dict:
@@ -90,24 +94,77 @@ def _seed(columns: dict[str, np.ndarray]) -> int:
     return int.from_bytes(digest.digest()[:8], "little")
 
 
+def branch_difference(residual: np.ndarray, pressure: np.ndarray, branch: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """What differs between a group's two branches: at each venting row, its residual less the
+    pressurising branch's interpolated at the same pressure (rows where the branches overlap). An
+    effect between the branches (a hysteresis) acts on this, not on the branches' mean."""
+    up, down = rows[branch[rows] > 0], rows[branch[rows] < 0]
+    if up.size < 2 or down.size < 1:
+        return np.zeros(0)
+    order = np.argsort(pressure[up])
+    p_up, r_up = pressure[up][order], residual[up][order]
+    inside = down[(pressure[down] >= p_up[0]) & (pressure[down] <= p_up[-1])]
+    return residual[inside] - np.interp(pressure[inside], p_up, r_up)
+
+
+def _gains(base: np.ndarray, ext: np.ndarray, draws: np.ndarray) -> tuple[float, tuple[float, float]]:
+    """Held-out gain from per-group sums of squares, and its bootstrap interval over groups."""
+    gain = 1.0 - math.sqrt(ext.sum() / base.sum()) if base.sum() > 0 else 0.0
+    samples = 1.0 - np.sqrt(ext[draws].sum(axis=1) / np.maximum(base[draws].sum(axis=1), 1e-300))
+    return gain, (float(np.quantile(samples, 0.025)), float(np.quantile(samples, 0.975)))
+
+
 def _judge(
-    fit: TableFit, baseline: TableFit, measured, channels, groups: np.ndarray, used: np.ndarray, seed: int
+    fit: TableFit,
+    baseline: TableFit,
+    measured,
+    channels,
+    groups: np.ndarray,
+    used: np.ndarray,
+    seed: int,
+    campaign: Campaign | None = None,
+    calibrated: list[dict] | None = None,
+    acting=None,
 ) -> TableCandidate:
+    """`fit` scored on held-out groups against `baseline`. An effect that shows only between the
+    pressurising and venting branches is judged on what differs between them (branch_difference),
+    where it acts; its gain on the rows themselves is reported beside. A finding the calibrated
+    baseline has too (`calibrated`: its parameters at a bound or implausible) is the base model's
+    strain, not held against the candidate, unless the candidate is an instrument that would then
+    correct the table it alone predicts. `acting` are the effects whose gain this is (by default all
+    of `fit`'s; a second effect judged beside a first: that one)."""
     labels = np.unique(groups[used])
     index = [np.flatnonzero((groups == label) & used) for label in labels]
     rng = np.random.default_rng(seed)
     draws = rng.integers(0, len(labels), size=(BOOTSTRAP_SAMPLES, len(labels)))
     gain, ci = {}, {}
     for c in channels:
-        base = [float(np.sum((baseline.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index]
-        ext = [float(np.sum((fit.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index]
-        base, ext = np.array(base), np.array(ext)
-        gain[c] = 1.0 - math.sqrt(ext.sum() / base.sum()) if base.sum() > 0 else 0.0
-        samples = 1.0 - np.sqrt(ext[draws].sum(axis=1) / np.maximum(base[draws].sum(axis=1), 1e-300))
-        ci[c] = (float(np.quantile(samples, 0.025)), float(np.quantile(samples, 0.975)))
-    score = float(np.mean([gain[c] for c in channels]))
-    significant = all(gain[c] >= MIN_GAIN and ci[c][0] > 0.0 for c in channels)
-    return TableCandidate(fit, gain, ci, score, significant, _findings(fit))
+        base = np.array([float(np.sum((baseline.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index])
+        ext = np.array([float(np.sum((fit.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index])
+        gain[c], ci[c] = _gains(base, ext, draws)
+    between = campaign is not None and any(e.shows_between_branches() for e in (acting or fit.effects))
+    judged_gain, judged_ci = gain, ci
+    if between:
+        pressure, branch = campaign.columns["pressure_kPa"], campaign.branch
+        judged_gain, judged_ci = {}, {}
+        for c in channels:
+            r_base, r_fit = baseline.heldout[c] - measured[c], fit.heldout[c] - measured[c]
+            base = np.array([float(np.sum(branch_difference(r_base, pressure, branch, rows) ** 2)) for rows in index])
+            ext = np.array([float(np.sum(branch_difference(r_fit, pressure, branch, rows) ** 2)) for rows in index])
+            judged_gain[c], judged_ci[c] = _gains(base, ext, draws)
+    score = float(np.mean([judged_gain[c] for c in channels]))
+    significant = all(judged_gain[c] >= MIN_GAIN and judged_ci[c][0] > 0.0 for c in channels)
+    own, strain = [], []
+    corrector = all(e.stage() != EffectStage.physics for e in fit.effects)
+    for finding in _findings(fit):
+        inherited = calibrated is not None and any(
+            finding["parameter"] == f["parameter"] and finding["bound"] == f["bound"] for f in calibrated
+        )
+        (strain if inherited and not corrector else own).append(finding)
+    candidate = TableCandidate(fit, gain, ci, score, significant, own, strain)
+    if between:
+        candidate.between = {"gain": judged_gain, "gain_ci95": {c: list(v) for c, v in judged_ci.items()}}
+    return candidate
 
 
 def static_candidates(catalog: EffectCatalog) -> tuple[list[str], dict[str, str]]:
@@ -189,7 +246,9 @@ def diagnose_table(
                 continue
             progress(f"fitting {name}")
             fit = fit_table(name, model, channels, scales, [make_effect], groups, used, pool)
-            candidates.append(_judge(fit, baseline, measured, channels, groups, used, seed))
+            candidates.append(
+                _judge(fit, baseline, measured, channels, groups, used, seed, campaign, _findings(baseline))
+            )
         candidates.sort(key=lambda j: -j.score)
         cause, reason, chosen, margins = _decide(candidates, baseline, measured, channels, noise)
         added = []
@@ -206,7 +265,9 @@ def diagnose_table(
     extended = chosen.fit if chosen else baseline
     warnings = beyond_reach(campaign) + _findings(baseline) + (chosen.findings if chosen else [])
     discovered: dict[str, dict] = {}
-    if cause == "unexplained":
+    ratios = {c: heldout_rmse(extended, measured, c) / noise[c] for c in channels if noise[c] > 0}
+    remainder = {c: r for c, r in ratios.items() if r > NONE_WITHIN_NOISE}
+    if cause == "unexplained" or remainder:
         progress("looking for what the catalog lacks in the residual (sparse regression)")
         discovered = discover_table(campaign, channels, noise, extended, seed)
     return TableDiagnosis(
@@ -224,6 +285,7 @@ def diagnose_table(
         margins,
         added,
         discovered,
+        remainder,
     )
 
 
@@ -249,16 +311,19 @@ def _second_effect(first, candidates, baseline, model, catalog, progress, pool, 
         start = np.concatenate([first.fit.x, [c.start for c in fitter.effect_spaces[1]]])
         progress(f"fitting {names[1]} beside {names[0]}")
         pair = fit_table(" + ".join(names), model, channels, scales, makes, campaign.groups, used, pool, [start])
-        over_cause = _judge(pair, first.fit, measured, channels, campaign.groups, used, seed)
+        over_cause = _judge(
+            pair, first.fit, measured, channels, campaign.groups, used, seed, campaign, acting=pair.effects[1:]
+        )
         if over_cause.significant and over_cause.credible and (best is None or over_cause.score > best.score):
             best = over_cause
     if best is None:
         return first, []
-    pair = _judge(best.fit, baseline, measured, channels, campaign.groups, used, seed)
+    pair = _judge(best.fit, baseline, measured, channels, campaign.groups, used, seed, campaign, _findings(baseline))
     if not (pair.significant and pair.credible):
         return first, []
     effect = best.fit.effects[1].name()
-    return pair, [{"effect": effect, "gain": best.gain, "gain_ci95": {c: list(v) for c, v in best.gain_ci95.items()}}]
+    gains = {"gain": best.gain, "gain_ci95": {c: list(v) for c, v in best.gain_ci95.items()}, "between": best.between}
+    return pair, [{"effect": effect, **gains}]
 
 
 def _decide(candidates, baseline, measured, channels, noise):
