@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "pamkit/io/params_file.hpp"
 
@@ -20,7 +21,10 @@ void bind_io(py::module_& m) {
                     "the muscle: [build], [bladder], [friction], [gas], [extensions]")
       .def_readonly("initial", &MuscleParamsFile::initial,
                     "[initial]: the state at zero elongation of the sealed test the parameters were calibrated on, "
-                    "or None");
+                    "or None")
+      .def_readonly("rig_effects", &MuscleParamsFile::rig_effects,
+                    "[rig] effects: what a diagnosis found in the test's fixture and instruments, as effect specs "
+                    "(\"NAME:key=value,...\"); empty if the file has none");
 
   m.def(
       "read_muscle_params_file",
@@ -34,10 +38,14 @@ void bind_io(py::module_& m) {
   m.def(
       "write_muscle_params",
       [](const std::filesystem::path& path, const MuscleParams& params, const std::optional<InitialState>& initial,
-         const std::string& comment) { write_muscle_params(path.string(), params, initial, comment); },
+         const std::string& comment, const std::vector<std::string>& rig_effects) {
+        write_muscle_params(path.string(), params, initial, comment, rig_effects);
+      },
       py::arg("path"), py::arg("params"), py::arg("initial") = py::none(), py::arg("comment") = "",
+      py::arg("rig_effects") = std::vector<std::string>{},
       "Writes params (validated first) and, if given, the initial state as a muscle-parameters TOML file under the "
-      "C++ field names, each key with its unit and meaning; `comment` goes at the top as TOML comments. "
+      "C++ field names, each key with its unit and meaning; `comment` goes at the top as TOML comments; "
+      "`rig_effects` (effect specs of the test's fixture and instruments) as [rig] effects. "
       "read_muscle_params gives back the same doubles.");
 }
 

@@ -39,6 +39,9 @@ constexpr const char* kFriction = "friction";
 constexpr const char* kGas = "gas";
 constexpr const char* kExtensions = "extensions";
 constexpr const char* kInitial = "initial";
+// [rig]: the test rig's effects, as catalog specs.
+constexpr const char* kRig = "rig";
+constexpr const char* kRigEffects = "effects";
 
 // [bladder]: BladderLaw's members.
 constexpr const char* kForm = "form";
@@ -251,6 +254,21 @@ class Reader {
     return initial;
   }
 
+  std::vector<std::string> rig_effects() const {
+    const toml::table* table = optional_section(kRig);
+    if (table == nullptr) return {};
+    check_keys(*table, kRig, {kRigEffects});
+    const toml::node& node = key(*table, kRig, kRigEffects, "a list of effect specs, \"NAME:key=value,...\"");
+    const toml::array* list = node.as_array();
+    if (list == nullptr) {
+      fail(node.source(), detail::message("[", kRig, "] ", kRigEffects, " must be a list of strings, not a ",
+                                          type_name(node)));
+    }
+    std::vector<std::string> specs;
+    for (const toml::node& item : *list) specs.push_back(text(item, kRig, kRigEffects));
+    return specs;
+  }
+
   const std::string& path() const { return path_; }
 
  private:
@@ -285,7 +303,7 @@ MuscleParamsFile read_muscle_params_file(const std::string& path) {
     throw InvalidInput(detail::message(path, ":", at.begin.line, ":", at.begin.column, ": ", error.description()));
   }
   const Reader reader(path, document);
-  reader.check_sections({kBuild, kBladder, kFriction, kGas, kExtensions, kInitial});
+  reader.check_sections({kBuild, kBladder, kFriction, kGas, kExtensions, kInitial, kRig});
   MuscleParamsFile file;
   file.params.build = reader.part<MuscleBuild>(kBuild);
   file.params.bladder = reader.bladder();
@@ -293,6 +311,7 @@ MuscleParamsFile read_muscle_params_file(const std::string& path) {
   file.params.gas = reader.gas();
   file.params.extensions = reader.part<ModelExtensions>(kExtensions);
   file.initial = reader.initial();
+  file.rig_effects = reader.rig_effects();
   try {
     file.params.validate();  // the relations between fields (the bladder inside the braid, ...)
   } catch (const InvalidParameter& error) {
@@ -304,7 +323,8 @@ MuscleParamsFile read_muscle_params_file(const std::string& path) {
 MuscleParams read_muscle_params(const std::string& path) { return read_muscle_params_file(path).params; }
 
 void write_muscle_params(const std::string& path, const MuscleParams& params,
-                         const std::optional<InitialState>& initial, const std::string& comment) {
+                         const std::optional<InitialState>& initial, const std::string& comment,
+                         const std::vector<std::string>& rig_effects) {
   params.validate();
   if (initial) initial->validate();
   std::ostringstream out;
@@ -330,6 +350,12 @@ void write_muscle_params(const std::string& path, const MuscleParams& params,
       << to_string(GasProcess::polytropic) << " or " << to_string(GasProcess::heat_transfer) << "\n";
   write_fields(out, kExtensions, params.extensions);
   if (initial) write_fields(out, kInitial, *initial);
+  if (!rig_effects.empty()) {
+    toml::array list;
+    for (const std::string& spec : rig_effects) list.push_back(spec);
+    out << "\n[" << kRig << "]  # the test rig's fixture and instruments, as the effect catalog parses them\n";
+    out << kRigEffects << " = " << list << "\n";
+  }
 
   std::ofstream file(path);
   file << out.str();

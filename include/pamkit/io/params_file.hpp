@@ -17,12 +17,17 @@
 ///     [extensions]   ModelExtensions' fields
 ///     [initial]      optional: InitialState's fields (length_m, gauge_pressure_Pa), the state at
 ///                    zero elongation of the sealed test the parameters were calibrated on
+///     [rig]          optional: effects = ["NAME:key=value,...", ...], what a diagnosis found in the
+///                    test's fixture and instruments (a time skew, a load cell's offset), as the
+///                    effect catalog parses them; not the muscle's, so a controller leaves them out
+///                    and `pamkit simulate --params` applies them to predict what the rig reads
 ///
-/// Every section but [initial] and every key of a section are required: a file states the whole
+/// Every section but [initial] and [rig] and every key of a section are required: a file states the whole
 /// muscle, so nothing is silently taken from a default. Unknown sections and keys are errors.
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "pamkit/sim/model.hpp"
 
@@ -32,6 +37,7 @@ namespace pamkit {
 struct MuscleParamsFile {
   MuscleParams params;                  ///< the muscle: [build], [bladder], [friction], [gas], [extensions]
   std::optional<InitialState> initial;  ///< [initial], if the file has it
+  std::vector<std::string> rig_effects;  ///< [rig] effects: the test rig's effect specs, if the file has them
 };
 
 /// Reads and validates a muscle-parameters file.
@@ -48,9 +54,11 @@ MuscleParams read_muscle_params(const std::string& path);
 /// Writes `params` (validated first) and, if given, `initial` to `path`, every key with its unit
 /// and meaning as a comment, numbers to the digits that read back to the same doubles.
 /// \param comment written at the top, each line as a TOML comment (where the parameters come from).
+/// \param rig_effects written as [rig] effects when not empty: effect specs ("NAME:key=value,...").
 /// \throws InvalidParameter for parameters out of range (nothing is written);
 ///         InvalidInput if the file cannot be written.
 void write_muscle_params(const std::string& path, const MuscleParams& params,
-                         const std::optional<InitialState>& initial = std::nullopt, const std::string& comment = "");
+                         const std::optional<InitialState>& initial = std::nullopt, const std::string& comment = "",
+                         const std::vector<std::string>& rig_effects = {});
 
 }  // namespace pamkit
