@@ -82,7 +82,8 @@ from pamkit._core import (
     thesis_protocol,
     write_muscle_params,
 )
-from pamkit.io.experiment import Experiment, ExperimentError, load_experiment
+from pamkit.io.experiment import Experiment, load_experiment
+from pamkit.io.guards import ExperimentError
 
 __version__ = "0.1.0"
 

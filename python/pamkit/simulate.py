@@ -49,7 +49,9 @@ from pamkit._core import (
     simulate_supplied_measurement,
     static_forces,
 )
-from pamkit.io.experiment import SERIES_COLUMNS, Experiment, ExperimentError, load_experiment
+from pamkit.io.columns import SERIES_COLUMNS
+from pamkit.io.experiment import Experiment, load_experiment
+from pamkit.io.guards import ExperimentError
 from pamkit.units import PASCAL_PER_KILOPASCAL
 
 

@@ -54,14 +54,11 @@ from pamkit._core import (
 )
 from pamkit.cluster import check_output, run_all, work_key
 from pamkit.diagnose.cycles import cycle_starts
-from pamkit.io.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, calibratable_fields, load_experiment
+from pamkit.io.experiment import Experiment, load_experiment
+from pamkit.io.guards import fail, named_file, number, read_toml
+from pamkit.io.sections import BRAID_ANGLE_KEY, calibratable_fields
 from pamkit.simulate import simulate_experiment
 from pamkit.units import KELVIN_AT_ZERO_CELSIUS
-
-try:
-    import tomllib
-except ModuleNotFoundError:  # Python < 3.11
-    import tomli as tomllib
 
 #: The base experiment when a spec names none: PAM 2 of the thesis at 207 kPa, stretched to 80 %.
 DEFAULT_EXPERIMENT = "pam2_207kPa_80pct.toml"
@@ -161,16 +158,6 @@ class SweepSpec:
         )
 
 
-def _fail(path: Path, message: str) -> ExperimentError:
-    return ExperimentError(f"{path}: {message}")
-
-
-def _number(path: Path, where: str, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise _fail(path, f"{where} = {value!r} must be a finite number")
-    return float(value)
-
-
 def _flatten(table: dict) -> dict[str, dict]:
     """[parameters] with its dotted names joined (a `[parameters.bladder]` table, or `bladder.x = {...}`)."""
     flat = {}
@@ -187,38 +174,38 @@ def _grid_values(path: Path, name: str, table: dict, low: float, high: float, un
     if set(table) == {"values"}:
         values = table["values"]
         if not isinstance(values, list) or not values:
-            raise _fail(path, f"{where}.values = {values!r} must be a list of numbers")
-        values = [_number(path, f"{where}.values", v) for v in values]
+            raise fail(path, f"{where}.values = {values!r} must be a list of numbers")
+        values = [number(path, f"{where}.values", v) for v in values]
     elif set(table) == {"linspace"}:
         spec = table["linspace"]
         if not isinstance(spec, list) or len(spec) != 3 or isinstance(spec[2], bool) or not isinstance(spec[2], int):
-            raise _fail(path, f"{where}.linspace = {spec!r} must be [lo, hi, count]")
+            raise fail(path, f"{where}.linspace = {spec!r} must be [lo, hi, count]")
         if spec[2] < 1:
-            raise _fail(path, f"{where}.linspace count {spec[2]} must be at least 1")
-        values = np.linspace(_number(path, where, spec[0]), _number(path, where, spec[1]), spec[2]).tolist()
+            raise fail(path, f"{where}.linspace count {spec[2]} must be at least 1")
+        values = np.linspace(number(path, where, spec[0]), number(path, where, spec[1]), spec[2]).tolist()
     else:
-        raise _fail(path, f"{where} = {table!r}: a grid takes {{ values = [...] }} or {{ linspace = [lo, hi, n] }}")
+        raise fail(path, f"{where} = {table!r}: a grid takes {{ values = [...] }} or {{ linspace = [lo, hi, n] }}")
     for value in values:
         if not low <= value <= high:
-            raise _fail(path, f"{where}: {value:g} {unit} leaves the allowed [{low:g}, {high:g}]")
+            raise fail(path, f"{where}: {value:g} {unit} leaves the allowed [{low:g}, {high:g}]")
     return values
 
 
 def _bounds(path: Path, name: str, table: dict, low: float, high: float, unit: str) -> tuple[float, float]:
     where = f"[parameters] {name}"
     if set(table) != {"range"} or not isinstance(table["range"], list) or len(table["range"]) != 2:
-        raise _fail(path, f"{where} = {table!r}: a latin_hypercube takes {{ range = [lo, hi] }}")
-    lower, upper = (_number(path, f"{where}.range", v) for v in table["range"])
+        raise fail(path, f"{where} = {table!r}: a latin_hypercube takes {{ range = [lo, hi] }}")
+    lower, upper = (number(path, f"{where}.range", v) for v in table["range"])
     if not lower < upper:
-        raise _fail(path, f"{where}.range = [{lower:g}, {upper:g}] needs lo < hi")
+        raise fail(path, f"{where}.range = [{lower:g}, {upper:g}] needs lo < hi")
     if lower < low or upper > high:
-        raise _fail(path, f"{where}.range = [{lower:g}, {upper:g}] {unit} leaves the allowed [{low:g}, {high:g}]")
+        raise fail(path, f"{where}.range = [{lower:g}, {upper:g}] {unit} leaves the allowed [{low:g}, {high:g}]")
     return lower, upper
 
 
 def _positive_int(path: Path, key: str, value) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-        raise _fail(path, f"[sweep] {key} = {value!r} must be a whole number >= 1")
+        raise fail(path, f"[sweep] {key} = {value!r} must be a whole number >= 1")
     return value
 
 
@@ -229,53 +216,46 @@ def load_spec(path: str | Path) -> SweepSpec:
         ExperimentError: naming the spec file, section and key of the first problem.
     """
     path = Path(path)
-    try:
-        document = tomllib.loads(path.read_text())
-    except OSError as error:
-        raise _fail(path, f"cannot read the sweep spec: {error.strerror or error}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
-        raise _fail(path, f"not valid TOML: {error}") from None
+    document = read_toml(path, "sweep spec")
     for section in document:
         if section not in ("sweep", "parameters"):
-            raise _fail(path, f"unknown section [{section}] (known: parameters, sweep)")
+            raise fail(path, f"unknown section [{section}] (known: parameters, sweep)")
     sweep = document.get("sweep", {})
     known = ("experiment", "cycles", "design", "samples", "seed", "device")
     for key in sweep:
         if key not in known:
-            raise _fail(path, f"unknown key [sweep] {key} (known: {', '.join(known)})")
+            raise fail(path, f"unknown key [sweep] {key} (known: {', '.join(known)})")
     device = sweep.get("device", "muscle")
     if device not in DEVICES:
-        raise _fail(path, f"[sweep] device = {device!r} must be one of {', '.join(DEVICES)}")
+        raise fail(path, f"[sweep] device = {device!r} must be one of {', '.join(DEVICES)}")
     if device == "exoskeleton":
         for key in ("experiment", "cycles"):
             if key in sweep:
-                raise _fail(path, f"[sweep] {key}: the exoskeleton runs on Winter's gait, not on an experiment")
+                raise fail(path, f"[sweep] {key}: the exoskeleton runs on Winter's gait, not on an experiment")
     if device == "exoskeleton":
         experiment = None
     elif "experiment" in sweep:
-        if not isinstance(sweep["experiment"], str):
-            raise _fail(path, f"[sweep] experiment = {sweep['experiment']!r} must be a file name")
-        experiment = (path.parent / sweep["experiment"]).resolve()
+        experiment = named_file(path, "[sweep] experiment", sweep["experiment"])
     else:
         experiment = thesis_directory() / DEFAULT_EXPERIMENT
     cycles = _positive_int(path, "cycles", sweep["cycles"]) if "cycles" in sweep else None
     design = sweep.get("design", "grid")
     if design not in DESIGNS:
-        raise _fail(path, f"[sweep] design = {design!r} must be one of {', '.join(DESIGNS)}")
+        raise fail(path, f"[sweep] design = {design!r} must be one of {', '.join(DESIGNS)}")
     for key in ("samples", "seed"):
         if (key in sweep) != (design == "latin_hypercube"):
-            raise _fail(path, f"[sweep] {key}: {'needed by' if key not in sweep else 'belongs to'} a latin_hypercube")
+            raise fail(path, f"[sweep] {key}: {'needed by' if key not in sweep else 'belongs to'} a latin_hypercube")
     table = _flatten(document.get("parameters", {}))
     if not table:
-        raise _fail(path, "[parameters] is empty: name at least one parameter to sweep")
+        raise fail(path, "[parameters] is empty: name at least one parameter to sweep")
     allowed = EXO_PARAMETERS if device == "exoskeleton" else sweepable_parameters()
     for name, value in table.items():
         if name not in allowed:
-            raise _fail(path, f"[parameters] {name}: not a parameter a sweep can set (known: {', '.join(allowed)})")
+            raise fail(path, f"[parameters] {name}: not a parameter a sweep can set (known: {', '.join(allowed)})")
         if not isinstance(value, dict):
-            raise _fail(path, f"[parameters] {name} = {value!r} must be a table such as {{ values = [...] }}")
+            raise fail(path, f"[parameters] {name} = {value!r} must be a table such as {{ values = [...] }}")
     if BRAID_ANGLE_KEY in table and "fiber_revolutions" in table:
-        raise _fail(path, f"[parameters] names both fiber_revolutions and {BRAID_ANGLE_KEY}: they say the same")
+        raise fail(path, f"[parameters] names both fiber_revolutions and {BRAID_ANGLE_KEY}: they say the same")
     names = tuple(table)
     if design == "grid":
         axes = [_grid_values(path, name, table[name], *allowed[name]) for name in names]
@@ -285,7 +265,7 @@ def load_spec(path: str | Path) -> SweepSpec:
         samples = _positive_int(path, "samples", sweep["samples"])
         seed = sweep["seed"]
         if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-            raise _fail(path, f"[sweep] seed = {seed!r} must be a whole number >= 0")
+            raise fail(path, f"[sweep] seed = {seed!r} must be a whole number >= 0")
         bounds = np.array([_bounds(path, name, table[name], *allowed[name]) for name in names])
         unit = qmc.LatinHypercube(d=len(names), rng=seed).random(samples)
         runs = tuple(tuple(row) for row in qmc.scale(unit, bounds[:, 0], bounds[:, 1]).tolist())
@@ -298,14 +278,14 @@ def base_experiment(path: Path, cycles: int | None) -> Experiment:
     to its first `cycles` cycles when given."""
     experiment = load_experiment(path)
     if experiment.is_table:
-        raise _fail(path, f"a {experiment.kind} table: a sweep simulates a time series")
+        raise fail(path, f"a {experiment.kind} table: a sweep simulates a time series")
     if cycles is not None:
         try:
             starts = cycle_starts(experiment.elongation_m)
         except ValueError as error:
-            raise _fail(experiment.data_path, f"[sweep] cycles: {error}") from None
+            raise fail(experiment.data_path, f"[sweep] cycles: {error}") from None
         if len(starts) - 1 < cycles:
-            raise _fail(experiment.data_path, f"[sweep] cycles = {cycles}: the test has {len(starts) - 1} cycles")
+            raise fail(experiment.data_path, f"[sweep] cycles = {cycles}: the test has {len(starts) - 1} cycles")
         end = starts[cycles] + 1
         experiment.columns = {name: values[:end] for name, values in experiment.columns.items()}
     return experiment

@@ -12,7 +12,7 @@ import pytest
 
 import pamkit
 from pamkit.effects import parse_effects
-from pamkit.io.experiment import ExperimentError
+from pamkit.io.guards import ExperimentError
 from pamkit.simulate import simulate_experiment
 
 SERIES_COLUMNS = ["time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C"]

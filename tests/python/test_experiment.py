@@ -10,7 +10,10 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 import pamkit
-from pamkit.io.experiment import ExperimentError, ExperimentWarning, load_experiment, read_series, write_experiment
+from pamkit.io.experiment import load_experiment
+from pamkit.io.guards import ExperimentError, ExperimentWarning
+from pamkit.io.series import read_series
+from pamkit.io.writers import write_experiment
 
 
 def test_reads_build_test_and_series(write_experiment):
@@ -304,14 +307,14 @@ def test_the_writer_refuses_what_the_reader_would_and_names_it(tmp_path, section
 def test_a_series_written_in_blocks_is_every_row_once_in_csvs_format(tmp_path, monkeypatch):
     # write_series formats WRITE_BLOCK_ROWS rows at a time (a 2-million-row simulation's text never
     # whole in memory); across block ends the file is the csv module's: CRLF, "%.10g", each row once.
-    import pamkit.io.experiment as experiment
+    import pamkit.io.writers as writers
 
-    monkeypatch.setattr(experiment, "WRITE_BLOCK_ROWS", 4)
+    monkeypatch.setattr(writers, "WRITE_BLOCK_ROWS", 4)
     time = np.arange(10) * 0.1
     elongation = np.linspace(0.0, 0.05, 10)
     force = np.pi * np.arange(10) - 7.0
     path = tmp_path / "series.csv"
-    experiment.write_series(path, {"time_s": time, "elongation_m": elongation, "force_N": force})
+    writers.write_series(path, {"time_s": time, "elongation_m": elongation, "force_N": force})
     expected = "time_s,elongation_m,force_N\r\n" + "".join(
         f"{t:.10g},{x:.10g},{f:.10g}\r\n" for t, x, f in zip(time, elongation, force)
     )

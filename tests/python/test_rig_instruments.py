@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from pamkit import static_forces
-from pamkit.io.experiment import ExperimentError, ExperimentWarning, load_experiment
+from pamkit.io.experiment import load_experiment
+from pamkit.io.guards import ExperimentError, ExperimentWarning
 from pamkit.simulate import initial_length, muscle_params, simulate_experiment
 
 MUSCLE = """[muscle]

@@ -12,7 +12,7 @@ import pytest
 
 from pamkit import cli
 from pamkit.cluster import ScaleUnavailable, client, read_rows, require
-from pamkit.io.experiment import ExperimentError
+from pamkit.io.guards import ExperimentError
 from pamkit.sweep import METRICS, load_spec, run_in_process, run_one, sweep
 
 # One cycle of the thesis's PAM 2 test at 207 kPa (table C.2): a short run, about 300 samples.

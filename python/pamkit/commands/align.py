@@ -7,7 +7,7 @@ import warnings
 
 import numpy as np
 
-from pamkit.io.experiment import LOGGER_CHANNELS
+from pamkit.io.columns import LOGGER_CHANNELS
 
 
 def register(subparsers) -> None:
@@ -73,7 +73,6 @@ def register(subparsers) -> None:
 
 
 def run(arguments: argparse.Namespace) -> int:
-    from pamkit.io.experiment import write_experiment
     from pamkit.io.logger import (
         LoggerError,
         LoggerWarning,
@@ -82,6 +81,7 @@ def run(arguments: argparse.Namespace) -> int:
         read_machine_csv,
         read_muscle_source,
     )
+    from pamkit.io.writers import write_experiment
 
     with warnings.catch_warnings(record=True) as dropped:
         warnings.simplefilter("always", LoggerWarning)

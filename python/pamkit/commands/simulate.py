@@ -6,7 +6,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from pamkit.io.experiment import SERIES_COLUMNS, SeriesWriter, load_experiment, write_series
+from pamkit.io.columns import SERIES_COLUMNS
+from pamkit.io.experiment import load_experiment
+from pamkit.io.writers import SeriesWriter, write_series
 from pamkit.units import PASCAL_PER_KILOPASCAL
 
 

@@ -31,7 +31,7 @@ from pamkit.diagnose.calibrate import (
 from pamkit.diagnose.jacobian import SENSITIVITY_STEP, forward_differences, jacobian_for
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import configure, effect_space
-from pamkit.io.experiment import SERIES_COLUMNS
+from pamkit.io.columns import SERIES_COLUMNS
 
 SCAN_POINTS = 5  # simulations per physical effect's first parameter
 SCAN_POINTS_MEASUREMENT = 41  # no simulation needed: scan finely (a skew has one minimum per cycle)

@@ -40,7 +40,9 @@ from pamkit.diagnose.decide import (
 from pamkit.diagnose.kinds import Problem, build_problem
 from pamkit.diagnose.tables import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.experiment import OPTIONAL_COLUMNS, Experiment, ExperimentError, load_tests
+from pamkit.io.columns import OPTIONAL_COLUMNS
+from pamkit.io.experiment import Experiment, load_tests
+from pamkit.io.guards import ExperimentError
 
 __all__ = ["MIN_GAIN", "MAX_DIAGNOSED_ROWS", "Diagnosis", "ThinningWarning", "diagnose", "data_seed"]
 

@@ -32,7 +32,8 @@ from pamkit.diagnose.calibrate import (
 from pamkit.diagnose.jacobian import SENSITIVITY_STEP, applies, forward_differences, sensitivity_jacobian
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import Baseline, Coordinate, configure, effect_space, muscle_signature
-from pamkit.io.experiment import Experiment, ExperimentError
+from pamkit.io.experiment import Experiment
+from pamkit.io.guards import ExperimentError
 from pamkit.simulate import muscle_params
 
 # Each test's own coordinates; every other baseline coordinate is shared.

@@ -19,7 +19,8 @@ from pamkit._core import deflated_braid_angle_deg
 from pamkit.diagnose import evidence
 from pamkit.diagnose.cycles import Cycles, find_cycles, split_cycles
 from pamkit.diagnose.model import Predictor
-from pamkit.io.experiment import Experiment, ExperimentError
+from pamkit.io.experiment import Experiment
+from pamkit.io.guards import ExperimentError
 
 # A plateau of a stepped sweep starts where the pressure leaves the last one's level by more
 # than this many noise sigmas, or this share of the sweep's span, whichever is larger; pieces

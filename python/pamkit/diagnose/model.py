@@ -42,7 +42,9 @@ from pamkit._core import (
     simulate_supplied_measurement,
 )
 from pamkit.diagnose.motion import measured_motion, programmed_motion
-from pamkit.io.experiment import BRAID_ANGLE_KEY, SERIES_COLUMNS, Experiment, declared_value
+from pamkit.io.columns import SERIES_COLUMNS
+from pamkit.io.experiment import Experiment
+from pamkit.io.sections import BRAID_ANGLE_KEY, declared_value
 from pamkit.simulate import initial_length, muscle_params
 from pamkit.units import PASCAL_PER_KILOPASCAL
 

@@ -29,7 +29,8 @@ from pamkit.diagnose.table_discover import discover_table
 from pamkit.diagnose.table_fit import PREDICTED, Fitter, TableFit, TableModel, fit_table, heldout_rmse
 from pamkit.diagnose.table_kinds import Campaign, beyond_reach, campaign_of, noise_of
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.experiment import Experiment, ExperimentError
+from pamkit.io.experiment import Experiment
+from pamkit.io.guards import ExperimentError
 
 CHANNEL_UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
 # Fewer held-out groups than this cannot say whether a model carries beyond its fitted rows.

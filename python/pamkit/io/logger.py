@@ -1,5 +1,5 @@
 """The Arduino logger's files: its calibration file, its CSV, the tensile machine's export, and
-the join of the two into an experiment (DESIGN.md, "A measured dataset").
+the join of the two into an experiment file.
 
 The serial reading itself is C++ (``pamkit._core.logger.Reader``); this module holds what is
 file handling and signal processing.
@@ -25,6 +25,8 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 from pamkit._core.logger import LoggerCalibration, fit_pressure
+from pamkit.io.guards import ExperimentError
+from pamkit.io.machine import read_machine_export
 
 _DEFAULTS = LoggerCalibration()  # the host's defaults: a 5 V reference, the TMP36's datasheet line
 
@@ -144,9 +146,6 @@ def read_machine_csv(path: str | Path, specimen: str | None = None) -> dict[str,
         LoggerError: naming the file, line and column of the first problem; naming the
             specimens when there are several and none (or another) is chosen.
     """
-    from pamkit.io.experiment import ExperimentError
-    from pamkit.io.machine import read_machine_export
-
     try:
         return read_machine_export(path, specimen).columns
     except ExperimentError as error:

@@ -56,7 +56,8 @@ from pamkit._core import (
     simulate_measurement,
 )
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.experiment import LOGGER_CHANNELS, OPTIONAL_COLUMNS, write_experiment
+from pamkit.io.columns import LOGGER_CHANNELS, OPTIONAL_COLUMNS
+from pamkit.io.writers import write_experiment
 from pamkit.synth.instruments import (
     ArduinoLogger,
     ArduinoLoggerSettings,

@@ -22,7 +22,8 @@ from pamkit.diagnose.campaign import campaign_of_series  # noqa: E402
 from pamkit.diagnose.joint import DISAGREES, calibrate_jointly  # noqa: E402
 from pamkit.diagnose.report import write, write_params  # noqa: E402
 from pamkit.effects import catalog  # noqa: E402
-from pamkit.io.experiment import ExperimentError, load_tests  # noqa: E402
+from pamkit.io.experiment import load_tests  # noqa: E402
+from pamkit.io.guards import ExperimentError  # noqa: E402
 
 HEAT_TIME_CONSTANT_S = 3.0  # one muscle, one wall: the same heat exchange in every test
 

@@ -12,7 +12,7 @@ import pytest
 from pamkit.diagnose import diagnose, to_json, verdict
 from pamkit.diagnose.cycles import find_cycles, split_cycles
 from pamkit.diagnose.evidence import ljung_box_p, noise_scale
-from pamkit.io.experiment import ExperimentError
+from pamkit.io.guards import ExperimentError
 from pamkit.synth.dataset import synthesize
 
 DESIGN_KEYS = {"baseline", "candidates", "cause", "extended", "gain", "gain_ci95", "residuals"}

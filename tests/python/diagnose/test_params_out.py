@@ -7,7 +7,8 @@ import pytest
 import pamkit.diagnose
 from pamkit._core import inflated_and_sealed, read_muscle_params_file
 from pamkit.cli import main
-from pamkit.io.experiment import load_experiment, write_series
+from pamkit.io.experiment import load_experiment
+from pamkit.io.writers import write_series
 from pamkit.simulate import muscle_params, simulate_experiment
 from pamkit.units import PASCAL_PER_KILOPASCAL
 

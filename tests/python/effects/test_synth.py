@@ -23,7 +23,9 @@ import pamkit
 from pamkit._core.logger import ADC_FULL_SCALE, LoggerCalibration
 from pamkit.cli import main as pamkit_main
 from pamkit.effects import catalog
-from pamkit.io.experiment import LOGGER_CHANNELS, load_experiment, read_series
+from pamkit.io.columns import LOGGER_CHANNELS
+from pamkit.io.experiment import load_experiment
+from pamkit.io.series import read_series
 from pamkit.simulate import simulate_experiment
 from pamkit.synth.dataset import configure_effect, hideable_effects, synthesize
 from pamkit.synth.instruments import (

@@ -14,7 +14,8 @@ import pytest
 import pamkit
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.effects import parse_effects
-from pamkit.io.experiment import ExperimentError, load_experiment
+from pamkit.io.experiment import load_experiment
+from pamkit.io.guards import ExperimentError
 from pamkit.simulate import simulate_experiment
 
 CHANNELS = ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
