@@ -258,6 +258,8 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
           "adds a factory (e.g. a pamkit.Effect subclass) called with no arguments for each new effect")
       .def("make", &EffectCatalog::make, py::arg("name"))
       .def("parse", &EffectCatalog::parse, py::arg("spec"), "'NAME' or 'NAME:key=value,...'")
+      .def_static("split", &EffectCatalog::split, py::arg("spec"),
+                  "the name and the (key, value) settings of a spec, as parse reads them, without making the effect")
       .def("names", &EffectCatalog::names);
 
   m.def("simulate_measurement", &simulate_measurement, py::arg("params"), py::arg("initial"), py::arg("crosshead"),

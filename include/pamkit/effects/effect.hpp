@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pamkit/fields.hpp"
@@ -189,13 +190,14 @@ class Effect {
 
 using EffectPtr = std::shared_ptr<Effect>;
 
-/// Effect names mapped to factories; `builtin()` holds the catalog of DESIGN.md. An ordinary
+/// Effect names mapped to factories; `builtin()` holds pamkit's own catalog. An ordinary
 /// object, not a global: make one, add your own effects, pass it where effects are parsed.
 class EffectCatalog {
  public:
   using Factory = std::function<EffectPtr()>;
 
-  /// The effects of DESIGN.md's catalog, and what real muscles add (braid_slack, pressure_hysteresis).
+  /// pamkit's effects: the model's physical extensions, what real muscles add (braid_slack,
+  /// pressure_hysteresis) and the instruments' errors (include/pamkit/effects/catalog.hpp).
   static EffectCatalog builtin();
 
   /// Adds or replaces an effect. \throws InvalidParameter for an empty name.
@@ -205,6 +207,11 @@ class EffectCatalog {
   /// Parses "NAME" or "NAME:key=value,key=value" into a configured effect.
   /// \throws InvalidParameter naming the bad part of the text.
   EffectPtr parse(const std::string& spec) const;
+  /// The grammar `parse` reads, without making the effect: the name, and the settings in the
+  /// order written (key, value), as text. A caller that fills in what a spec leaves out (a
+  /// synthetic bench drawing the other parameters) reads the given keys here.
+  /// \throws InvalidParameter naming an item that is not key=value.
+  static std::pair<std::string, std::vector<std::pair<std::string, std::string>>> split(const std::string& spec);
   std::vector<std::string> names() const;
 
  private:

@@ -270,7 +270,7 @@ struct IsotonicLengths {
 /// the muscle pulls more than the load. Where a light load has several equilibria, the muscle
 /// stays on the branch it is on, as a real one does. The search spans half the deflated length
 /// to 1.2 times it, within the braid's range.
-/// 	hrows InvalidParameter for an effect that cannot act on a static table.
+/// \throws InvalidParameter for an effect that cannot act on a static table.
 inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::vector<double>& gauge_pressures_kPa,
                                         double load_N, double start_length_m,
                                         const std::vector<EffectPtr>& effects = {}) {

@@ -1569,6 +1569,11 @@ class EffectCatalog:
         """
         the nine effects of the catalog
         """
+    @staticmethod
+    def split(spec: str) -> tuple[str, list[tuple[str, str]]]:
+        """
+        the name and the (key, value) settings of a spec, as parse reads them, without making the effect
+        """
     def __init__(self) -> None:
         ...
     def add(self, name: str, factory: collections.abc.Callable) -> None:

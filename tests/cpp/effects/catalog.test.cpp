@@ -76,13 +76,13 @@ ElongationTrajectory bench() { return thesis_protocol(0.05, 2.5e-3, 2, 0.1, 2.0)
 
 }  // namespace
 
-TEST_CASE("catalog: holds DESIGN.md's nine effects, the two real muscles add and the instruments' errors",
+TEST_CASE("catalog: holds the documented effects, what real muscles add and the instruments' errors",
           "[effects][catalog]") {
-  // DESIGN.md's effect catalog table names nine, and its "Real muscles add at least" two more: a
-  // braid that goes slack, and rate-independent pressurise/vent hysteresis; issues #9 and #17 add
-  // the load cell's tare and nonlinearity and the thermometer's offset. This list checks the
-  // catalog against that design, not against itself; what each effect must do is checked for
-  // every entry of the catalog, whatever its name, in every_effect.test.cpp.
+  // The effects docs/effects.md promises: the model's physical extensions, what real muscles add
+  // (a braid that goes slack, rate-independent pressurise/vent hysteresis) and the instruments'
+  // errors (the load cell's tare and nonlinearity, the thermometer's offset). This list checks
+  // the catalog against that promise, not against itself; what each effect must do is checked
+  // for every entry of the catalog, whatever its name, in every_effect.test.cpp.
   const std::vector<std::string> expected{
       "bladder_viscoelasticity", "braid_slack", "dead_volume", "fiber_compliance",    "fixture_slack",
       "heat_transfer",           "leak",        "load_cell",   "pressure_hysteresis", "sensor_lag",

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `thermometer` (issue #9, "offset and gain of the load cell and the TMP36").
+/// The catalog effect `thermometer`: the temperature reading's offset.
 
 #include "pamkit/effects/parametric.hpp"
 
