@@ -1,4 +1,4 @@
-"""Diagnosis over many synthetic datasets (DESIGN.md, "Tests that hide an effect"): a confusion
+"""Diagnosis over many synthetic datasets, each with one effect hidden in it: a confusion
 matrix of hidden effect against named cause, the detection and false-alarm rates, the median
 held-out gain, and the time per diagnosis with its breakdown.
 

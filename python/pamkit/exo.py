@@ -28,7 +28,6 @@ from pamkit._core import (
     GasParams,
     GasProcess,
     IdealSpring,
-    InitialState,
     Jig,
     JigParams,
     JigSample,
@@ -47,8 +46,8 @@ from pamkit._core import (
     ThesisPolynomialSpring,
     detect_gait_events,
     fit_clutch,
-    free_inflation,
     ideal_spring,
+    inflated_and_sealed,
     reproduce_g3_script,
     resample_cycle,
     run_device,
@@ -177,15 +176,16 @@ def pam_spring(
 ) -> tuple[PamStaticSpring, float]:
     """The muscle (PAM 2 of table 3.4 unless given) inflated to pressure_kPa at its free length,
     sealed, isothermal (n = 1, the thesis's best fit): the static spring and that free length."""
-    build = build if build is not None else MuscleBuild()
-    gas = gas if gas is not None else GasParams()
-    free = free_inflation(
-        BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure_kPa * PASCAL_PER_KILOPASCAL
+    params = MuscleParams(
+        build=build if build is not None else MuscleBuild(),
+        bladder=BladderLaw.thesis(),
+        gas=gas if gas is not None else GasParams(),
     )
+    start = inflated_and_sealed(params, pressure_kPa * PASCAL_PER_KILOPASCAL)
     spring = PamStaticSpring(
-        build, BladderLaw.thesis(), gas, free.length_m, pressure_kPa * PASCAL_PER_KILOPASCAL, pretension_m, 1.0
+        params.build, params.bladder, params.gas, start.length_m, start.gauge_pressure_Pa, pretension_m, 1.0
     )
-    return spring, free.length_m
+    return spring, start.length_m
 
 
 def walking_cadence_run(
@@ -209,12 +209,8 @@ def walking_cadence_run(
     gas.process = GasProcess.heat_transfer
     if time_constant_s is not None:
         gas.heat_transfer_time_constant_s = time_constant_s
-    build = MuscleBuild()
-    _, free_length = pam_spring(pressure_kPa, build, gas)
-    model = MuscleModel(
-        MuscleParams(build=build, gas=gas),
-        InitialState(length_m=free_length, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL),
-    )
+    params = MuscleParams(build=MuscleBuild(), bladder=BladderLaw.thesis(), gas=gas)
+    model = MuscleModel(params, inflated_and_sealed(params, pressure_kPa * PASCAL_PER_KILOPASCAL))
     stride_s = 120.0 / cadence_steps_per_min  # two steps per stride
     gait = walking_trajectory(run, stride_s, strides, pretension_m)
     peak = float(np.max(gait.elongation_m))

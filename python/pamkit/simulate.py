@@ -67,7 +67,7 @@ def muscle_params(experiment: Experiment, bladder: BladderLaw | None = None) -> 
 
 def initial_length(experiment: Experiment, params: MuscleParams) -> float:
     """Length at zero elongation: as given, else the free inflated length (sealed test) or the
-    deflated length (supplied test), as DESIGN.md specifies; a supplied test mounted with a
+    deflated length (supplied test); a supplied test mounted with a
     preload starts where the deflated muscle carries it.
 
     Raises:
@@ -85,7 +85,20 @@ def initial_length(experiment: Experiment, params: MuscleParams) -> float:
         return mounted.length_m[0]
     if experiment.gas == "supplied":
         return experiment.build.length_m
-    return inflated_and_sealed(params, experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL).length_m
+    return sealed_start(experiment, params).length_m
+
+
+def sealed_start(experiment: Experiment, params: MuscleParams, gauge_pressure_Pa: float | None = None) -> InitialState:
+    """A sealed test's state at zero elongation: its gas at `gauge_pressure_Pa` (the file's
+    inflation pressure unless given, as a calibration moves it), at the file's initial length if
+    it gives one, else inflated freely to that pressure and sealed at the length it takes
+    (inflated_and_sealed, as the thesis's protocol does). The one place a sealed test's start is
+    made: a simulation, a diagnosis, a synthetic dataset and a sweep all start here."""
+    if gauge_pressure_Pa is None:
+        gauge_pressure_Pa = experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL
+    if experiment.initial_length_m is not None:
+        return InitialState(length_m=experiment.initial_length_m, gauge_pressure_Pa=gauge_pressure_Pa)
+    return inflated_and_sealed(params, gauge_pressure_Pa)
 
 
 def simulate_experiment(
@@ -129,8 +142,8 @@ def _measurement(
     mode = _checked_mode(experiment, effects)
     if mode == GasMode.supplied:
         length0 = initial_length(experiment, params)
-    else:
-        initial = _initial_state(experiment, params, initial)
+    elif initial is None:
+        initial = sealed_start(experiment, params)
     crosshead = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
     try:
         if mode == GasMode.supplied:
@@ -158,16 +171,6 @@ def _checked_mode(experiment: Experiment, effects: Sequence[Effect]) -> GasMode:
         if not acts:
             raise ExperimentError(f"{experiment.path}: effect {effect.name()} cannot act here: {why_not}")
     return mode
-
-
-def _initial_state(experiment: Experiment, params: MuscleParams, initial: InitialState | None) -> InitialState:
-    """A sealed test's state at its start: `initial` when given, else the file's inflation."""
-    if initial is not None:
-        return initial
-    return InitialState(
-        length_m=initial_length(experiment, params),
-        gauge_pressure_Pa=experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL,
-    )
 
 
 #: Samples simulated (and handed on) at a time when a simulation streams its output.
@@ -219,7 +222,7 @@ def simulate_streamed(
     if why_not is not None:
         raise ExperimentError(f"{experiment.path}: cannot stream the simulation: {why_not}; simulate it whole")
     _checked_mode(experiment, effects)
-    initial = _initial_state(experiment, params, initial)
+    initial = initial if initial is not None else sealed_start(experiment, params)
     crosshead = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
     simulator = Simulator(config if config is not None else SimulatorConfig())
 

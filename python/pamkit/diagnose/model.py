@@ -37,7 +37,6 @@ from pamkit._core import (
     Simulator,
     SimulatorConfig,
     fiber_revolutions_for_braid_angle,
-    inflated_and_sealed,
     simulate_measurement,
     simulate_supplied_measurement,
 )
@@ -45,7 +44,7 @@ from pamkit.diagnose.motion import measured_motion, programmed_motion
 from pamkit.io.columns import SERIES_COLUMNS
 from pamkit.io.experiment import Experiment
 from pamkit.io.sections import BRAID_ANGLE_KEY, declared_value
-from pamkit.simulate import initial_length, muscle_params
+from pamkit.simulate import initial_length, muscle_params, sealed_start
 from pamkit.units import PASCAL_PER_KILOPASCAL
 
 PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
@@ -137,7 +136,7 @@ def effect_space(effect: Effect) -> list[Coordinate]:
 
 
 def unknown_coordinate(name: str, bounds: tuple[float, float], experiment: Experiment) -> Coordinate:
-    """The fit coordinate of a `[calibrate]` field (DESIGN.md, "Unknown builds"): its declared
+    """The fit coordinate of a `[calibrate]` field (an unknown of the build): its declared
     bounds are both its search interval and its plausible range; it starts at the declared value
     when that lies inside, else mid-interval. `name` may carry a test's suffix (`load_N[a]`)."""
     lower, upper = bounds
@@ -400,13 +399,8 @@ class Predictor:
         return shapes
 
     def initial_state(self, params: MuscleParams, pressure_kPa: float) -> InitialState:
-        """A sealed test's state at zero elongation at inflation pressure `pressure_kPa`: at the
-        file's initial length, or inflated freely and sealed."""
-        if self.experiment.initial_length_m is not None:
-            return InitialState(
-                length_m=self.experiment.initial_length_m, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL
-            )
-        return inflated_and_sealed(params, pressure_kPa * PASCAL_PER_KILOPASCAL)
+        """This test's sealed start (simulate.sealed_start) at inflation pressure `pressure_kPa`."""
+        return sealed_start(self.experiment, params, pressure_kPa * PASCAL_PER_KILOPASCAL)
 
     def select(self, m: Measurement) -> dict[str, np.ndarray]:
         """The measured channels of a simulated measurement, at the data's samples."""

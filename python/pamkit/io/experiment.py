@@ -11,6 +11,7 @@ that names the file, and for CSV data the line and column.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -177,14 +178,6 @@ def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
         ExperimentError: naming the file (and line and column for CSV data) of the first problem.
     """
     path = Path(path)
-    document = _document(path, shared)
-    experiment = _experiment_of(path, document)
-    _read_data(experiment, document["test"])
-    return experiment
-
-
-def _document(path: Path, shared: dict | None) -> dict:
-    """The file's sections with a campaign's `shared` ones, each a table of a known name."""
     document = read_toml(path, "experiment")
     if "campaign" in document:
         raise fail(path, "a campaign file, not one experiment: diagnose it, or load its tests with load_tests")
@@ -192,6 +185,27 @@ def _document(path: Path, shared: dict | None) -> dict:
         if section in document:
             raise fail(path, f"gives [{section}], which its campaign shares: give it in one place")
         document[section] = table
+    experiment = _experiment_of(path, _checked_sections(path, document))
+    _read_data(experiment, document["test"])
+    return experiment
+
+
+def experiment_of(path: str | Path, sections: Mapping[str, Mapping[str, object]]) -> Experiment:
+    """The experiment that a file at `path` holding `sections` (section name -> {key: value}, as
+    write_experiment takes them) describes, without its data: what load_experiment makes of the
+    file before it reads the data. A writer that simulates what it writes (pamkit synth) reads
+    its sections here, so that it runs the model a reader of the file will run.
+
+    Raises:
+        ExperimentError: naming `path` and the section and key of the first problem.
+    """
+    path = Path(path)
+    document = _checked_sections(path, {name: dict(table) for name, table in sections.items()})
+    return _experiment_of(path, document)
+
+
+def _checked_sections(path: Path, document: dict) -> dict:
+    """`document`, once each of its sections is a table of a known name, [muscle] and [test] there."""
     for section in document:
         if section not in EXPERIMENT_SECTIONS:
             raise fail(path, f"unknown section [{section}] (known: {', '.join(sorted(EXPERIMENT_SECTIONS))})")

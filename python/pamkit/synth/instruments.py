@@ -13,7 +13,7 @@ own sample rate, with its own noise and resolution (thesis section 3.2 and appen
   the clocks.
 - :func:`merge_logs`: the hand synchronisation of the two logs after the test (thesis appendix
   G.2 aligns them by hand) and the merge onto the machine's time base by linear
-  interpolation, into the columns of DESIGN.md's measured dataset.
+  interpolation, into the columns of a measured time series (pamkit.io.columns).
 
 Every random draw takes a ``numpy.random.Generator``; nothing here holds global state. The
 "truth" an instrument reads is a dense record on the machine's clock (``time_s`` and the true
@@ -377,7 +377,7 @@ class ArduinoLogger:
 
 
 def merge_logs(machine: MachineLog, logger: LoggerLog, logger_clock_at_machine_zero_s: float) -> dict[str, np.ndarray]:
-    """The two logs on the machine's time base, as DESIGN.md's measured dataset columns:
+    """The two logs on the machine's time base, as a measured time series' columns:
     time_s, elongation_m, force_N, pressure_kPa (gauge), temperature_C.
 
     The synchronisation is the one done by hand after the test: the logger's time stamps are
