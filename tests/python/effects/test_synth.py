@@ -12,8 +12,6 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -391,45 +389,15 @@ def test_bad_effect_text_is_a_clear_error(tmp_path, capsys, spec, named):
     assert not out.exists()  # nothing written
 
 
-def test_cli_writes_the_three_files_and_exits_2_on_a_bad_spec(tmp_path):
-    ok = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "pamkit",
-            "synth",
-            "--effect",
-            "dead_volume:volume_fraction=0.1",
-            "--seed",
-            "3",
-            "-o",
-            str(tmp_path / "dv"),
-        ],
-        capture_output=True,
-        text=True,
-    )
+def test_cli_writes_the_three_files_and_exits_2_on_a_bad_spec(tmp_path, run_pamkit):
+    ok = run_pamkit("synth", "--effect", "dead_volume:volume_fraction=0.1", "--seed", 3, "-o", tmp_path / "dv")
     assert ok.returncode == 0, ok.stderr
     assert sorted(p.name for p in (tmp_path / "dv").iterdir()) == ["experiment.csv", "experiment.toml", "manifest.json"]
     assert json.loads((tmp_path / "dv" / "manifest.json").read_text())["effect"]["parameters"] == {
         "volume_fraction": 0.1
     }
     assert "volume_fraction" not in ok.stdout  # the truth is not printed
-    bad = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "pamkit",
-            "synth",
-            "--effect",
-            "dead_volume:fraction=0.1",
-            "--seed",
-            "3",
-            "-o",
-            str(tmp_path / "bad"),
-        ],
-        capture_output=True,
-        text=True,
-    )
+    bad = run_pamkit("synth", "--effect", "dead_volume:fraction=0.1", "--seed", 3, "-o", tmp_path / "bad")
     assert bad.returncode == 2
     assert "fraction" in bad.stderr and "volume_fraction" in bad.stderr
 
