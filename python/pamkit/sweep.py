@@ -18,8 +18,9 @@ A spec is a TOML file::
 A parameter is any name `[calibrate]` accepts (MuscleBuild's fields, braid_angle_deg,
 bladder.shear_modulus_Pa: a neo-Hookean bladder of that modulus), a `[test]` condition
 (inflation_pressure_kPa, ambient_temperature_C, initial_length_m) or a `friction.` or `gas.`
-field, each within the range experiment files allow. Every other setting is the base
-experiment's, as written.
+field, each within the range and in the unit experiment files give it (a spec is written by a
+person, as an experiment file is, and read as one: pamkit.io.experiment.test_condition converts
+the test's conditions to SI). Every other setting is the base experiment's, as written.
 
 Each run gives the parameters and the metrics of METRICS; a run the model cannot follow (or a
 combination the muscle's own checks reject) gives its message in `error` and NaN metrics.
@@ -47,6 +48,7 @@ from pamkit._core import (
     BladderLaw,
     Error,
     FrictionParams,
+    GasMode,
     GasParams,
     MuscleBuild,
     SolverError,
@@ -54,11 +56,11 @@ from pamkit._core import (
 )
 from pamkit.cluster import check_output, run_all, work_key
 from pamkit.diagnose.cycles import cycle_starts
-from pamkit.io.experiment import Experiment, load_experiment
+from pamkit.io.columns import value_to_si
+from pamkit.io.experiment import TEST_CONDITIONS, Experiment, load_experiment, test_condition
 from pamkit.io.guards import fail, named_file, number, read_toml
 from pamkit.io.sections import BRAID_ANGLE_KEY, calibratable_fields
 from pamkit.simulate import simulate_experiment
-from pamkit.units import KELVIN_AT_ZERO_CELSIUS
 
 #: The base experiment when a spec names none: PAM 2 of the thesis at 207 kPa, stretched to 80 %.
 DEFAULT_EXPERIMENT = "pam2_207kPa_80pct.toml"
@@ -90,13 +92,12 @@ METRICS = {
     "peak_force_N": "largest force over the run [N]",
     "force_range_N": "largest minus smallest force [N]",
     "stored_energy_J": "work done on the muscle over the first stretch, the integral of F dx [J]",
-    "pressure_range_kPa": "highest minus lowest gauge pressure, sealed tests (NaN when supplied) [kPa]",
-    "temperature_swing_C": "highest minus lowest gas temperature, sealed tests (NaN when supplied) [°C]",
+    "pressure_range_Pa": "highest minus lowest gauge pressure, sealed tests (NaN when supplied) [Pa]",
+    "temperature_swing_K": "highest minus lowest gas temperature, sealed tests (NaN when supplied) [K]",
 }
-# [test] conditions a sweep may set, with the range experiment.py allows them.
+# [test] conditions a sweep may set, with the range an experiment file allows them in.
 TEST_PARAMETERS = {
-    "inflation_pressure_kPa": (0.0, 2000.0, "kPa"),
-    "ambient_temperature_C": (-50.0, 150.0, "°C"),
+    **{key: (lowest, highest, unit) for key, (lowest, highest, unit, _) in TEST_CONDITIONS.items()},
     "initial_length_m": (1e-9, 5.0, "m"),
 }
 DEVICES = ("muscle", "exoskeleton")
@@ -104,7 +105,7 @@ DEVICES = ("muscle", "exoskeleton")
 #: device's own checks (LinkageParams, the gait) may reject more, as a failed run.
 EXO_PARAMETERS = {
     "exo.mass_kg": (1.0, 300.0, "kg"),
-    "exo.pressure_kPa": (0.0, 2000.0, "kPa"),
+    "exo.pressure_kPa": (0.0, 2000.0, "kPa"),  # gauge, as `pamkit exo --pressure` takes it
     "exo.play_deg": (0.0, 90.0, "deg"),
     "exo.compliance_deg_per_Nm": (0.0, 10.0, "deg/(N m)"),
     "exo.ankle_range_deg": (0.1, 90.0, "deg"),
@@ -118,7 +119,7 @@ EXO_METRICS = {
     "release_pct": "where in the stride the clutch releases [% of the cycle] (NaN: it never does)",
     "engaged_share_of_stride": "share of the stride the clutch holds the spring",
 }
-# Set through ambient_temperature_C, as an experiment file sets it.
+# Set through ambient_temperature_C, as an experiment file sets it: the room is one fact.
 GAS_FIELDS_SET_ELSEWHERE = ("ambient_temperature_K",)
 DISTRIBUTIONS = ("values", "linspace", "range")
 
@@ -319,6 +320,7 @@ def with_parameters(base: Experiment, parameters: dict[str, float]) -> Experimen
     gas = _copy_struct(base.gas_params)
     gas.process = base.gas_params.process
     bladder, test = base.bladder, {}
+    pressure = base.inflation_gauge_pressure_Pa
     for name, value in parameters.items():
         if name in MuscleBuild.fields():
             setattr(build, name, value)
@@ -328,15 +330,25 @@ def with_parameters(base: Experiment, parameters: dict[str, float]) -> Experimen
             setattr(gas, name.removeprefix("gas."), value)
         elif name == "bladder.shear_modulus_Pa":
             bladder = BladderLaw.neo_hookean(value)
+        elif name == "inflation_pressure_kPa":
+            pressure = test_condition(base.path, name, value)
+        elif name == "ambient_temperature_C":
+            gas.ambient_temperature_K = test_condition(base.path, name, value)
         elif name in TEST_PARAMETERS:
             test[name] = value
     if BRAID_ANGLE_KEY in parameters:  # converts through the other dimensions, set above
         build.fiber_revolutions = fiber_revolutions_for_braid_angle(build, parameters[BRAID_ANGLE_KEY])
-    if "ambient_temperature_C" in test:
-        gas.ambient_temperature_K = test["ambient_temperature_C"] + KELVIN_AT_ZERO_CELSIUS
     for struct in (build, friction, gas):
         struct.validate()
-    return dataclasses.replace(base, build=build, friction=friction, gas_params=gas, bladder=bladder, **test)
+    return dataclasses.replace(
+        base,
+        build=build,
+        friction=friction,
+        gas_params=gas,
+        bladder=bladder,
+        inflation_gauge_pressure_Pa=pressure,
+        **test,
+    )
 
 
 def first_stretch_end(elongation_m: np.ndarray) -> int:
@@ -354,13 +366,13 @@ def summarize(experiment: Experiment, predicted: dict[str, np.ndarray]) -> dict[
     """METRICS of one simulated run."""
     force, elongation = predicted["force_N"], predicted["elongation_m"]
     end = first_stretch_end(elongation) + 1
-    sealed = experiment.gas == "sealed"
+    sealed = experiment.gas == GasMode.sealed
     return {
         "peak_force_N": float(np.max(force)),
         "force_range_N": float(np.ptp(force)),
         "stored_energy_J": float(trapezoid(force[:end], elongation[:end])),
-        "pressure_range_kPa": float(np.ptp(predicted["pressure_kPa"])) if sealed else math.nan,
-        "temperature_swing_C": float(np.ptp(predicted["temperature_C"])) if sealed else math.nan,
+        "pressure_range_Pa": float(np.ptp(predicted["gauge_pressure_Pa"])) if sealed else math.nan,
+        "temperature_swing_K": float(np.ptp(predicted["temperature_K"])) if sealed else math.nan,
     }
 
 
@@ -369,6 +381,8 @@ def exo_metrics(parameters: dict[str, float]) -> dict[str, float]:
     from pamkit.exo import exo_study
 
     arguments = {name.removeprefix("exo."): value for name, value in parameters.items()}
+    if "pressure_kPa" in arguments:
+        arguments["gauge_pressure_Pa"] = value_to_si("pressure_kPa", arguments.pop("pressure_kPa"))
     report = exo_study(**arguments, cadence_steps_per_min=None).report
     clutch = report["clutch"]
     return {

@@ -122,7 +122,7 @@ def test_rows_read_at_once_equal_rows_read_one_by_one(tmp_path, delimiter, decim
         slow = read_series(quoted)
     assert [str(w.message).replace("plain", "quoted") for w in at_once] == [str(w.message) for w in one_by_one]
     assert "row(s) repeat the time stamp" in str(at_once[0].message)
-    for name in names:
+    for name in fast:
         # A merged sample is a mean: a running mean row by row, one sum at once; they differ
         # by rounding only (a few units in the last place of values up to ~200).
         np.testing.assert_allclose(fast[name], slow[name], rtol=1e-13, atol=0)

@@ -7,9 +7,9 @@ namespace pamkit {
 
 inline std::vector<double>& Measurement::channel(const std::string& name) {
   if (name == "force_N") return force_N;
-  if (name == "pressure_kPa") return pressure_kPa;
-  if (name == "temperature_C") return temperature_C;
-  throw InvalidInput(detail::message("no measured channel '", name, "' (force_N, pressure_kPa, temperature_C)"));
+  if (name == "gauge_pressure_Pa") return gauge_pressure_Pa;
+  if (name == "temperature_K") return temperature_K;
+  throw InvalidInput(detail::message("no measured channel '", name, "' (force_N, gauge_pressure_Pa, temperature_K)"));
 }
 
 inline bool Effect::acts_in(GasMode, std::string*) const { return true; }

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from pamkit._core import Resolution
+from pamkit._core import GasMode, Resolution
 from pamkit.diagnose import evidence
 from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.kinds import Problem
@@ -86,7 +86,7 @@ def credited_channels(problem: Problem, fit: Fit) -> list[str]:
     for effect in fit.effects:
         named = effect.channels_changed()
         changed.update(named if named else problem.channels)
-        if problem.experiment.gas == "supplied" and effect.reads_supplied_pressure():
+        if problem.experiment.gas == GasMode.supplied and effect.reads_supplied_pressure():
             changed.add("force_N")  # its reading drives the model, so it acts on the force
     return [c for c in problem.channels if c in changed] if fit.effects else list(problem.channels)
 

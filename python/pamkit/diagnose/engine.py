@@ -187,7 +187,7 @@ def _check_the_build(problem: Problem, baseline: Fit, decision: Decision, judged
     )
 
 
-CHANNEL_UNITS = {"force_N": "N", "pressure_kPa": "kPa", "temperature_C": "°C"}  # as the report prints them
+CHANNEL_UNITS = {"force_N": "N", "gauge_pressure_Pa": "Pa", "temperature_K": "K"}  # as the report prints them
 
 
 def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
@@ -213,9 +213,9 @@ def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
         features = feature_library(
             experiment.time_s,
             experiment.elongation_m,
-            pressure_kPa=column("pressure_kPa"),
-            temperature_C=column("temperature_C"),
-            ambient_C=experiment.ambient_temperature_C if "temperature_C" in experiment.columns else None,
+            gauge_pressure_Pa=column("gauge_pressure_Pa"),
+            temperature_K=column("temperature_K"),
+            ambient_K=experiment.gas_params.ambient_temperature_K if "temperature_K" in experiment.columns else None,
             cycle=problem.cycle.astype(float),
             force_N=fit.predicted.get("force_N"),
         )

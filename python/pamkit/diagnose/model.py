@@ -45,7 +45,6 @@ from pamkit.io.columns import SERIES_COLUMNS
 from pamkit.io.experiment import Experiment
 from pamkit.io.sections import BRAID_ANGLE_KEY, declared_value
 from pamkit.simulate import initial_length, muscle_params, sealed_start
-from pamkit.units import PASCAL_PER_KILOPASCAL
 
 PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
 # relative: the fibers' turns over the braided length, counted by hand on the built muscle (a
@@ -195,12 +194,12 @@ class Baseline:
     @staticmethod
     def coordinates(experiment: Experiment, wind: bool = False) -> list[Coordinate]:
         """Every coordinate a test's baseline may calibrate (with `wind`, the braid's wind)."""
-        p0 = experiment.inflation_pressure_kPa
+        p0 = experiment.inflation_gauge_pressure_Pa
         space = []
-        if experiment.gas == "sealed":
+        if experiment.gas == GasMode.sealed:
             space.append(
                 _linear(
-                    "inflation_pressure_kPa",
+                    "inflation_gauge_pressure_Pa",
                     p0 * (1 - PRESSURE_TOLERANCE),
                     p0 * (1 + PRESSURE_TOLERANCE),
                     p0,
@@ -252,7 +251,7 @@ class Baseline:
         return self.fixed | {c.name: float(c.value(v)) for c, v in zip(self.space, x)}
 
     def model_params(self, x: np.ndarray) -> tuple[MuscleParams, float]:
-        """Model parameters and inflation pressure [kPa] at baseline coordinates x."""
+        """Model parameters and inflation gauge pressure [Pa] at baseline coordinates x."""
         values = self.values(x)
         params = with_unknowns(muscle_params(self.experiment), values)
         friction = params.friction
@@ -260,7 +259,7 @@ class Baseline:
         friction.fiber_bladder_coefficient *= values["friction_scale"]
         params.friction = friction
         params.bladder = scaled_law(params.bladder, values.get("bladder_scale", 1.0))
-        return params, values.get("inflation_pressure_kPa", self.experiment.inflation_pressure_kPa)
+        return params, values.get("inflation_gauge_pressure_Pa", self.experiment.inflation_gauge_pressure_Pa)
 
 
 def winds_declared(experiment: Experiment) -> bool:
@@ -303,7 +302,7 @@ class Predictor:
         self.experiment = experiment
         self.channels = channels
         self.baseline = Baseline(experiment, wind=wind)
-        self.mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
+        self.mode = experiment.gas
         self.motion = (
             programmed_motion(experiment.time_s, experiment.elongation_m)
             if self.mode == GasMode.sealed
@@ -350,18 +349,17 @@ class Predictor:
         """One run of the model with `effects` at baseline coordinates x. A sealed run whose
         effects leave the muscle's motion and fibres alone reads the braid's shapes from a table
         solved once per build and initial length (the same numbers, bit for bit, as solving them)."""
-        params, pressure_kPa = self.baseline.model_params(x)
+        params, pressure_Pa = self.baseline.model_params(x)
         if self.mode == GasMode.supplied:
             # The measured motion (not the programmed one): samples and pressures line up.
             return simulate_supplied_measurement(
                 params,
                 initial_length(self.experiment, params),
                 self.trajectory,
-                self.experiment.columns["pressure_kPa"],
-                self.experiment.ambient_temperature_C,
+                self.experiment.columns["gauge_pressure_Pa"],
                 effects,
             )
-        initial = self.initial_state(params, pressure_kPa)
+        initial = self.initial_state(params, pressure_Pa)
         extended = params
         for effect in effects:
             extended = effect.apply_to_params(extended)
@@ -373,8 +371,8 @@ class Predictor:
 
     def sealed_model(self, x: np.ndarray, effects: list[Effect]) -> MuscleModel:
         """The sealed test's model at baseline coordinates x, extended by `effects`' parameters."""
-        params, pressure_kPa = self.baseline.model_params(x)
-        initial = self.initial_state(params, pressure_kPa)
+        params, pressure_Pa = self.baseline.model_params(x)
+        initial = self.initial_state(params, pressure_Pa)
         for effect in effects:
             params = effect.apply_to_params(params)
         return MuscleModel(params, initial)
@@ -398,9 +396,9 @@ class Predictor:
                     del self._shape_tables[next(iter(self._shape_tables))]
         return shapes
 
-    def initial_state(self, params: MuscleParams, pressure_kPa: float) -> InitialState:
-        """This test's sealed start (simulate.sealed_start) at inflation pressure `pressure_kPa`."""
-        return sealed_start(self.experiment, params, pressure_kPa * PASCAL_PER_KILOPASCAL)
+    def initial_state(self, params: MuscleParams, gauge_pressure_Pa: float) -> InitialState:
+        """This test's sealed start (simulate.sealed_start) at inflation gauge pressure [Pa]."""
+        return sealed_start(self.experiment, params, gauge_pressure_Pa)
 
     def select(self, m: Measurement) -> dict[str, np.ndarray]:
         """The measured channels of a simulated measurement, at the data's samples."""

@@ -319,8 +319,8 @@ def calibrated_params(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> tuple[M
                 )
         return muscles[0], None
     predictor = d.problem.predictor
-    params, pressure_kPa = predictor.baseline.model_params(d.baseline.baseline_x)
-    initial = predictor.initial_state(params, pressure_kPa) if predictor.mode == GasMode.sealed else None
+    params, pressure_Pa = predictor.baseline.model_params(d.baseline.baseline_x)
+    initial = predictor.initial_state(params, pressure_Pa) if predictor.mode == GasMode.sealed else None
     return params, initial
 
 

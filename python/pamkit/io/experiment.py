@@ -4,6 +4,9 @@ of experiment), the :class:`Experiment` they are read into, and the loading: the
 the guards (:mod:`pamkit.io.guards`), the muscle's sections into structs
 (:mod:`pamkit.io.sections`), the data by kind (:mod:`pamkit.io.series`).
 
+A file is written for people (the inflation pressure in kPa, the room in degC, columns in kPa
+and degC); an :class:`Experiment` is SI throughout, converted once, here and in the CSV readers.
+
 Every problem is reported as an :class:`~pamkit.io.guards.ExperimentError` (a ``ValueError``)
 that names the file, and for CSV data the line and column.
 """
@@ -17,17 +20,17 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit._core import BladderLaw, FrictionParams, GasParams, MuscleBuild
-from pamkit.io.columns import OPTIONAL_COLUMNS
+from pamkit._core import BladderLaw, FrictionParams, GasMode, GasParams, MuscleBuild
+from pamkit.io.columns import OPTIONAL_COLUMNS, file_name, si_name, value_to_si
 from pamkit.io.guards import fail, named_file, number, read_toml
 from pamkit.io.sections import read_bladder, read_build, read_calibrate, read_friction, read_gas
 from pamkit.io.series import read_isotonic, read_series, read_table
-from pamkit.units import KELVIN_AT_ZERO_CELSIUS
 
-GAS_MODES = ("sealed", "supplied")
+# [test] gas: how the muscle's gas is held, by the name a file gives it.
+GAS_MODES = dict(GasMode.__members__)
 
-# Experiment kinds: a time series, or a static table of settled rows whose columns are all
-# required.
+# Experiment kinds: a time series, or a static table of settled rows whose columns (as a file
+# names them) are all required.
 SERIES_KIND = "series"
 TABLE_COLUMNS = {
     "isometric_map": ("length_m", "pressure_kPa", "force_N"),
@@ -53,8 +56,13 @@ TEST_KEYS = {
     "pressure_range_kPa": (False, "[lowest, highest] gauge pressure the transducer reads; it clips beyond [kPa]"),
     "specimen": (False, "a tensile machine's export of several specimens: the one this test is (its Specimen Number)"),
 }
-# [test] ranges of the instruments, by the channel they read.
+# [test] ranges of the instruments, by the channel they read (its file column's unit).
 RANGE_KEYS = {"force_N": "force_range_N", "pressure_kPa": "pressure_range_kPa"}
+# [test] conditions: the range a file may give each in, its unit, and the column of that unit.
+TEST_CONDITIONS = {
+    "inflation_pressure_kPa": (0.0, 2000.0, "kPa (gauge)", "pressure_kPa"),
+    "ambient_temperature_C": (-50.0, 150.0, "°C", "temperature_C"),
+}
 TABLE_DEFAULTS = {"inflation_pressure_kPa": 0.0, "ambient_temperature_C": 20.0}
 # The sections of an experiment file.
 EXPERIMENT_SECTIONS = ("muscle", "bladder", "friction", "gas", "calibrate", "test")
@@ -64,15 +72,14 @@ CAMPAIGN_SECTIONS = ("campaign", "muscle", "bladder", "friction", "gas", "calibr
 
 @dataclass
 class Experiment:
-    """One experiment: the muscle, the test conditions and the measured series (SI units,
-    except where a name carries its unit)."""
+    """One experiment: the muscle, the test conditions and the measured series, in SI. The
+    room's temperature is the gas's (``gas_params.ambient_temperature_K``): one fact, kept there."""
 
     path: Path
     build: MuscleBuild
-    inflation_pressure_kPa: float
-    ambient_temperature_C: float
+    inflation_gauge_pressure_Pa: float  # gas pressure above the atmosphere after inflation [Pa]
     data_path: Path
-    gas: str = "sealed"
+    gas: GasMode = GasMode.sealed
     initial_length_m: float | None = None
     description: str = ""
     friction: FrictionParams = field(default_factory=FrictionParams)
@@ -85,7 +92,7 @@ class Experiment:
     zeroed: dict[str, float] = field(default_factory=dict)  # offsets the zero run took off each channel
     preload_N: float | None = None
     ranges: dict[str, tuple[float, float]] = field(default_factory=dict)  # what each instrument reads
-    columns: dict[str, np.ndarray] = field(default_factory=dict)
+    columns: dict[str, np.ndarray] = field(default_factory=dict)  # SI: time_s, elongation_m, gauge_pressure_Pa, ...
 
     @property
     def is_table(self) -> bool:
@@ -121,10 +128,24 @@ class Experiment:
         that drove the muscle there is unknown (a reading of 0 kPa may be any pressure below the
         transducer's offset), so they are predicted but never fitted or scored."""
         rows = len(next(iter(self.columns.values())))
-        if self.gas != "supplied" or "pressure_kPa" not in self.ranges:
+        if self.gas != GasMode.supplied or "gauge_pressure_Pa" not in self.ranges:
             return np.zeros(rows, dtype=bool)
-        lowest, highest = self.reading_range("pressure_kPa")
-        return (self.columns["pressure_kPa"] <= lowest) | (self.columns["pressure_kPa"] >= highest)
+        lowest, highest = self.reading_range("gauge_pressure_Pa")
+        return (self.columns["gauge_pressure_Pa"] <= lowest) | (self.columns["gauge_pressure_Pa"] >= highest)
+
+
+def test_condition(path: Path, key: str, value) -> float:
+    """A [test] condition of TEST_CONDITIONS, checked against the range a file may give it in and
+    converted to SI: the inflation pressure to Pa (gauge), the room's temperature to K.
+
+    Raises:
+        ExperimentError: naming the file, the key and the range it leaves.
+    """
+    given = number(path, f"[test] {key}", value)
+    lowest, highest, unit, column = TEST_CONDITIONS[key]
+    if not lowest <= given <= highest:
+        raise fail(path, f"[test] {key} = {given} is outside [{lowest:g}, {highest:g}] {unit}")
+    return value_to_si(column, given)
 
 
 def _range(path: Path, key: str, value) -> tuple[float, float]:
@@ -168,11 +189,12 @@ def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
     sections (a campaign's) are added to it.
 
     Returns:
-        An :class:`Experiment`: the muscle (``build``, SI units), the test conditions
-        (``inflation_pressure_kPa`` gauge, ``ambient_temperature_C``, ``gas``) and ``columns``,
-        a dict of 1-D float arrays of one length N (rows of the CSV), units in their names:
-        time_s [s], elongation_m [m], and as measured force_N [N], pressure_kPa [kPa, gauge],
-        temperature_C [°C]; a static table has its own (length_m [m], diameter_m [m], ...).
+        An :class:`Experiment`, SI throughout: the muscle (``build``), the test conditions
+        (``inflation_gauge_pressure_Pa``, the room in ``gas_params.ambient_temperature_K``,
+        ``gas`` a GasMode) and ``columns``, a dict of 1-D float arrays of one length N (rows of
+        the CSV), units in their names: time_s [s], elongation_m [m], and as measured
+        force_N [N], gauge_pressure_Pa [Pa] (the file's pressure_kPa), temperature_K [K] (its
+        temperature_C); a static table has its own (length_m [m], diameter_m [m], ...).
 
     Raises:
         ExperimentError: naming the file (and line and column for CSV data) of the first problem.
@@ -226,16 +248,12 @@ def _experiment_of(path: Path, document: dict) -> Experiment:
     gas_params = read_gas(path, document.get("gas", {}))
     test = _test_table(path, document["test"])
     kind = test.get("kind", SERIES_KIND)
-    pressure = number(path, "[test] inflation_pressure_kPa", test["inflation_pressure_kPa"])
-    if pressure < 0 or pressure > 2000:
-        raise fail(path, f"[test] inflation_pressure_kPa = {pressure} is outside [0, 2000] kPa (gauge)")
-    ambient = number(path, "[test] ambient_temperature_C", test["ambient_temperature_C"])
-    if ambient < -50 or ambient > 150:
-        raise fail(path, f"[test] ambient_temperature_C = {ambient} is outside [-50, 150] °C")
-    gas_params.ambient_temperature_K = ambient + KELVIN_AT_ZERO_CELSIUS
-    gas = test.get("gas", "sealed")
-    if gas not in GAS_MODES:
-        raise fail(path, f"[test] gas = {gas!r} must be one of {', '.join(GAS_MODES)}")
+    pressure = test_condition(path, "inflation_pressure_kPa", test["inflation_pressure_kPa"])
+    gas_params.ambient_temperature_K = test_condition(path, "ambient_temperature_C", test["ambient_temperature_C"])
+    gas_name = test.get("gas", "sealed")
+    if not isinstance(gas_name, str) or gas_name not in GAS_MODES:
+        raise fail(path, f"[test] gas = {gas_name!r} must be one of {', '.join(GAS_MODES)}")
+    gas = GAS_MODES[gas_name]
     initial_length = _given(path, test, "initial_length_m")
     if initial_length is not None and not 0 < initial_length <= 5:
         raise fail(path, f"[test] initial_length_m = {initial_length} is outside (0, 5] m")
@@ -252,18 +270,21 @@ def _experiment_of(path: Path, document: dict) -> Experiment:
         raise fail(path, f'[calibrate] load_N belongs to kind = "isotonic", not {kind!r}')
     preload = _given(path, test, "preload_N")
     if preload is not None:
-        if gas != "supplied" or kind != SERIES_KIND:
+        if gas != GasMode.supplied or kind != SERIES_KIND:
             raise fail(path, "[test] preload_N belongs to a supplied time series: a rig that holds the mounted length")
         if initial_length is not None:
             raise fail(path, "[test] gives both preload_N and initial_length_m: the preload sets the length")
         if not 0 < preload <= 1e5:
             raise fail(path, f"[test] preload_N = {preload} is outside (0, 1e5] N")
-    ranges = {channel: _range(path, key, test[key]) for channel, key in RANGE_KEYS.items() if key in test}
+    ranges = {
+        si_name(column): tuple(value_to_si(column, end) for end in _range(path, key, test[key]))
+        for column, key in RANGE_KEYS.items()
+        if key in test
+    }
     return Experiment(
         path=path,
         build=build,
-        inflation_pressure_kPa=pressure,
-        ambient_temperature_C=ambient,
+        inflation_gauge_pressure_Pa=pressure,
         data_path=named_file(path, "[test] data", test["data"]),
         gas=gas,
         initial_length_m=initial_length,
@@ -336,11 +357,11 @@ def _read_data(experiment: Experiment, test: dict) -> None:
     experiment.columns = read_series(data_path, None if specimen is None else str(specimen))
     if "zero" in test:
         _zero(experiment, path, test["zero"])
-    if experiment.gas == "supplied" and "pressure_kPa" not in experiment.columns:
+    if experiment.gas == GasMode.supplied and "gauge_pressure_Pa" not in experiment.columns:
         raise fail(data_path, 'a "supplied" test drives the model with pressure_kPa: the column is missing')
 
 
-ZEROED_CHANNELS = ("force_N", "pressure_kPa")  # not temperature: with no air, the TMP36 reads the room
+ZEROED_CHANNELS = ("force_N", "gauge_pressure_Pa")  # not temperature: with no air, the TMP36 reads the room
 
 
 def _zero(experiment: Experiment, path: Path, name) -> None:
@@ -352,7 +373,9 @@ def _zero(experiment: Experiment, path: Path, name) -> None:
     shared = [c for c in ZEROED_CHANNELS if c in run and c in experiment.columns]
     if not shared:
         raise fail(
-            path, f"[test] zero = {name!r} has none of the channels it could zero ({', '.join(ZEROED_CHANNELS)})"
+            path,
+            f"[test] zero = {name!r} has none of the channels it could zero "
+            f"({', '.join(file_name(channel) for channel in ZEROED_CHANNELS)})",
         )
     for channel in shared:
         offset = float(np.mean(run[channel]))

@@ -25,6 +25,7 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 from pamkit._core.logger import LoggerCalibration, fit_pressure
+from pamkit.io.columns import to_si
 from pamkit.io.guards import ExperimentError
 from pamkit.io.machine import read_machine_export
 
@@ -153,7 +154,9 @@ def read_machine_csv(path: str | Path, specimen: str | None = None) -> dict[str,
 
 
 def read_logger_csv(path: str | Path) -> dict[str, np.ndarray]:
-    """Reads a `pamkit log` CSV (time_s, pressure_kPa, temperature_C, ...).
+    """Reads a `pamkit log` CSV (time_s, pressure_kPa, temperature_C, ...), its channels in SI
+    (gauge_pressure_Pa, temperature_K: pamkit.io.columns), the raw ones (pressure_V, boot, ...)
+    as they are.
 
     A last line without a line end is a row the logger was writing when it was stopped (killed,
     or the machine lost power, docs/logger.md): it is dropped with a :class:`LoggerWarning`
@@ -201,7 +204,7 @@ def read_logger_csv(path: str | Path) -> dict[str, np.ndarray]:
     data = np.asarray(table)
     out = {name: data[:, i].copy() for i, name in enumerate(header)}
     _check_time(path, out["time_s"])
-    return out
+    return to_si(out)
 
 
 def _check_time(path: Path, time: np.ndarray) -> None:
@@ -316,7 +319,7 @@ def _pearson_at(logger_time, logger_values, machine_time, machine_values, offset
 def align(
     logger: dict[str, np.ndarray],
     machine: dict[str, np.ndarray],
-    logger_signal: str = "pressure_kPa",
+    logger_signal: str = "gauge_pressure_Pa",
     machine_signal: str = "extension_m",
     max_offset_s: float | None = None,
 ) -> Alignment:

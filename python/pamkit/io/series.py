@@ -1,5 +1,7 @@
 """The CSV readers: a measured time series (pamkit's CSV, a spreadsheet's with ";" and decimal
 commas, or a tensile machine's export), a static table of settled rows, an isotonic test's rows.
+Each returns its columns in SI (:func:`pamkit.io.columns.to_si`): a file's pressure_kPa is read
+as gauge_pressure_Pa, its temperature_C as temperature_K.
 
 A plain file is read in blocks by numpy; anything else, or a file with an error to name, row by
 row with the csv module. Every problem is an :class:`~pamkit.io.guards.ExperimentError` naming
@@ -18,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.io.columns import OPTIONAL_COLUMNS, REQUIRED_COLUMNS
+from pamkit.io.columns import FILE_OPTIONAL_COLUMNS, REQUIRED_COLUMNS, to_si
 from pamkit.io.guards import (
     MAX_LINE_BYTES,
     ExperimentError,
@@ -33,7 +35,8 @@ from pamkit.io.machine import looks_like_export, read_machine_export
 
 def read_series(path: str | Path, specimen: str | None = None) -> dict[str, np.ndarray]:
     """Reads a measured-data CSV: a header row, then numbers. Requires time_s and elongation_m,
-    accepts force_N, pressure_kPa, temperature_C; time must increase.
+    accepts force_N, pressure_kPa, temperature_C; time must increase. Returns the columns in SI
+    (time_s, elongation_m, and as present force_N, gauge_pressure_Pa, temperature_K).
 
     A tensile machine's export (Instron Bluehill, ZwickRoell testXpert: pamkit.io.machine) is
     recognised by its header and read as time_s, elongation_m (the crosshead's extension, which
@@ -53,7 +56,7 @@ def read_series(path: str | Path, specimen: str | None = None) -> dict[str, np.n
             f"{path}: [test] specimen = {specimen!r} chooses among a tensile machine's specimens; this is pamkit's CSV "
             "of one test: leave it out"
         )
-    return _read_csv(path, REQUIRED_COLUMNS, OPTIONAL_COLUMNS, increasing="time_s")
+    return to_si(_read_csv(path, REQUIRED_COLUMNS, FILE_OPTIONAL_COLUMNS, increasing="time_s"))
 
 
 def _is_machine_export(path: Path) -> bool:
@@ -67,7 +70,7 @@ def _is_machine_export(path: Path) -> bool:
         with path.open("rb") as handle:
             first_line = _first_line(handle.readline(MAX_LINE_BYTES).decode("utf-8-sig", errors="replace"))
         names = [name.strip() for name in next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])]
-        if any(name in REQUIRED_COLUMNS + OPTIONAL_COLUMNS for name in names):
+        if any(name in REQUIRED_COLUMNS + FILE_OPTIONAL_COLUMNS for name in names):
             return False  # pamkit's CSV, right or wrong: its errors name what to fix, no column is dropped
         return looks_like_export(path)
     except OSError:
@@ -75,9 +78,10 @@ def _is_machine_export(path: Path) -> bool:
 
 
 def read_isotonic(path: str | Path, deflated_length_m: float, dynamic: bool = False) -> dict[str, np.ndarray]:
-    """An isotonic test's rows: pressure_kPa and the muscle's length_m, or its contraction_m
-    from the deflated length (converted to length_m); time_s when there is one, and always,
-    increasing, for a `dynamic` test (a load whose motion is integrated in time)."""
+    """An isotonic test's rows, in SI: the file's pressure_kPa (as gauge_pressure_Pa) and the
+    muscle's length_m, or its contraction_m from the deflated length (converted to length_m);
+    time_s when there is one, and always, increasing, for a `dynamic` test (a load whose motion
+    is integrated in time)."""
     path = Path(path)
     header = _header(path)
     measures = [name for name in ("length_m", "contraction_m") if name in header]
@@ -96,7 +100,7 @@ def read_isotonic(path: str | Path, deflated_length_m: float, dynamic: bool = Fa
     )
     if "contraction_m" in columns:
         columns["length_m"] = deflated_length_m - columns.pop("contraction_m")
-    return columns
+    return to_si(columns)
 
 
 def _header(path: Path) -> list[str]:
@@ -119,12 +123,13 @@ def _delimiter(first_line: str) -> str:
 
 
 def read_table(path: str | Path, columns: tuple[str, ...]) -> dict[str, np.ndarray]:
-    """Reads a static table (one settled row per line): exactly `columns`, in any order.
+    """Reads a static table (one settled row per line): exactly `columns` (as the file names
+    them), in any order; returns them in SI.
 
     Raises:
         ExperimentError: naming the file, line and column of the first bad value.
     """
-    return _read_csv(Path(path), columns, (), increasing=None)
+    return to_si(_read_csv(Path(path), columns, (), increasing=None))
 
 
 def _read_csv(

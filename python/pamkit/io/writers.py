@@ -1,5 +1,7 @@
 """The writers: a measured series to CSV (at once, or block by block as it is computed) and an
-experiment to its TOML and CSV, in the format the readers read back."""
+experiment to its TOML and CSV, in the format the readers read back. Columns come in SI and are
+written in their file's units (:func:`pamkit.io.columns.to_file`): gauge_pressure_Pa as
+pressure_kPa, temperature_K as temperature_C."""
 
 from __future__ import annotations
 
@@ -13,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from pamkit.io.columns import file_name, value_from_si
 from pamkit.io.experiment import EXPERIMENT_SECTIONS, TEST_KEYS
 
 #: Rows formatted at a time by write_series.
@@ -20,7 +23,8 @@ WRITE_BLOCK_ROWS = 1 << 16
 
 
 def write_series(path: str | Path, columns: dict[str, np.ndarray], digits: int = 10) -> None:
-    """Writes columns of equal length to CSV with a header row, `digits` significant digits."""
+    """Writes SI columns of equal length to CSV, in their file units, with a header row of their
+    file names, `digits` significant digits."""
     series = {name: np.asarray(column, dtype=float) for name, column in columns.items()}
     rows = len(next(iter(series.values()))) if series else 0
     with SeriesWriter(path, list(series), digits) as writer:
@@ -31,12 +35,13 @@ def write_series(path: str | Path, columns: dict[str, np.ndarray], digits: int =
 
 class SeriesWriter:
     """Writes a CSV block of rows by block, as they are computed, in write_series's format (the
-    same bytes): a header row of `names`, then `digits` significant digits ("%g"), csv's line
-    ends (CRLF). A context manager; a failure inside it removes the partial file, so that a
-    simulation that stops half-way leaves no CSV to mistake for its result.
+    same bytes): a header row of the file names of `names` (SI column names), then their values
+    in the file's units, `digits` significant digits ("%g"), csv's line ends (CRLF). A context
+    manager; a failure inside it removes the partial file, so that a simulation that stops
+    half-way leaves no CSV to mistake for its result.
 
-        with SeriesWriter("out.csv", ["time_s", "force_N"]) as writer:
-            writer.write({"time_s": t, "force_N": f})  # as often as there are blocks
+        with SeriesWriter("out.csv", ["time_s", "gauge_pressure_Pa"]) as writer:
+            writer.write({"time_s": t, "gauge_pressure_Pa": p})  # as often as there are blocks
     """
 
     def __init__(self, path: str | Path, names: Sequence[str], digits: int = 10):
@@ -49,12 +54,12 @@ class SeriesWriter:
     def __enter__(self) -> SeriesWriter:
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._handle = self.path.open("w", newline="")
-        csv.writer(self._handle).writerow(self.names)
+        csv.writer(self._handle).writerow([file_name(name) for name in self.names])
         return self
 
     def write(self, columns: Mapping[str, np.ndarray]) -> None:
-        """Appends rows: `columns` holds each name's values for them, all of one length."""
-        block = np.column_stack([np.asarray(columns[name], dtype=float) for name in self.names])
+        """Appends rows: `columns` holds each name's values for them (SI), all of one length."""
+        block = np.column_stack([value_from_si(name, np.asarray(columns[name], dtype=float)) for name in self.names])
         np.savetxt(self._handle, block, fmt=f"%.{self.digits}g", delimiter=",", newline="\r\n")
         self.rows += block.shape[0]
 
@@ -79,7 +84,7 @@ def write_experiment(
         sections: section name -> {key: value}, written in the order given; each section one of
             :data:`EXPERIMENT_SECTIONS`, and ``[test]``'s keys those :data:`TEST_KEYS` names.
             Values: bool, int, float (finite), str, or a list of those.
-        columns: the measured series; without them ``[test] data`` must be given.
+        columns: the measured series, SI (write_series); without them ``[test] data`` must be given.
         comments: lines written as ``# ...`` at the top.
 
     Returns:

@@ -21,7 +21,7 @@ that the same seed gives the same protocol, build and instrument noise whatever 
   two thirds keep the thesis's hold-free protocol so that diagnosis cannot rely on holds);
 - effect strength: each parameter not given uniformly in the effect's realistic range,
   log-uniformly where that range spans more than a decade (the time constants); for effects
-  acting on a channel, the channel at random among pressure_kPa and temperature_C (the
+  acting on a channel, the channel at random among gauge_pressure_Pa and temperature_K (the
   Arduino's), and the sign at random where the effect declares `either_sign` (time_skew),
   unless given. Only channels that move by more than one ADC count in the test are drawn:
   the baseline's gas is isothermal (polytropic n = 1), so its temperature is constant, and a
@@ -53,7 +53,7 @@ from pamkit._core import (
     simulate_measurement,
 )
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.columns import LOGGER_CHANNELS, OPTIONAL_COLUMNS
+from pamkit.io.columns import LOGGER_CHANNELS, OPTIONAL_COLUMNS, value_to_si
 from pamkit.io.experiment import experiment_of
 from pamkit.io.writers import write_experiment
 from pamkit.simulate import muscle_params, sealed_start
@@ -66,7 +66,6 @@ from pamkit.synth.instruments import (
     TensileMachineSettings,
     merge_logs,
 )
-from pamkit.units import PASCAL_PER_KILOPASCAL
 
 NONE = "none"
 LOG_DRAW_SPAN = 10.0  # a realistic range wider than this ratio is drawn log-uniformly
@@ -97,10 +96,12 @@ LOGGER_MARGIN_S = 1.0
 
 @dataclass(frozen=True)
 class Protocol:
-    """A bench test's plan: inflation, and triangle cycles of the crosshead."""
+    """A bench test's plan: inflation, and triangle cycles of the crosshead. The inflation and
+    the room are as the experiment file states them, to the digits a person writes there; the
+    model reads them from the file (pamkit.io.experiment), as a diagnosis will."""
 
-    inflation_pressure_kPa: float  #: gauge, after inflation [kPa]
-    ambient_temperature_C: float  #: [°C]
+    inflation_pressure_kPa: float  #: gauge, after inflation, as the file states it [kPa]
+    ambient_temperature_C: float  #: the room, as the file states it [°C]
     free_length_m: float  #: free inflated length, where the test starts [m]
     free_contraction_m: float  #: deflated length minus free inflated length [m]
     stretch_fraction: float  #: of the free contraction [1]
@@ -189,7 +190,7 @@ def draw_protocol(rng: np.random.Generator, build: MuscleBuild) -> Protocol:
     rest = rng.uniform(*REST_BEFORE_S)
     gas = GasParams()
     free = free_inflation(
-        BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure * PASCAL_PER_KILOPASCAL
+        BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, value_to_si("pressure_kPa", pressure)
     )
     contraction = build.length_m - free.length_m
     return Protocol(
@@ -398,7 +399,7 @@ def synthesize(
     # A lag or skew of a channel that does not move cannot be seen (the temperature of the
     # isothermal baseline, polytropic n = 1): the channel is drawn among those that move by
     # more than one ADC count over the test.
-    step = {"pressure_kPa": logger.pressure_step_kPa(), "temperature_C": logger.temperature_step_C()}
+    step = {"gauge_pressure_Pa": logger.pressure_step_Pa(), "temperature_K": logger.temperature_step_K()}
     moving = [name for name in LOGGER_CHANNELS if np.ptp(getattr(baseline, name)) > step[name]]
     effect, effect_info = configure_effect(effect_spec, effect_rng, effect_catalog, moving or LOGGER_CHANNELS)
     effects = [effect] if effect is not None else []
@@ -434,8 +435,8 @@ def synthesize(
             "tensile_machine": asdict(instruments["machine"]),
             "arduino_logger": asdict(instruments["logger"]),
             "pressure_calibration": calibration.to_dict(),
-            "pressure_step_kPa": logger.pressure_step_kPa(),
-            "temperature_step_C": logger.temperature_step_C(),
+            "pressure_step_Pa": logger.pressure_step_Pa(),
+            "temperature_step_K": logger.temperature_step_K(),
             "logger_clock_at_machine_zero_s": {"true": instruments["logger"].clock_offset_s, "used_to_merge": sync},
         },
         "samples": {

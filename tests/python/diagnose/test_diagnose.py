@@ -32,7 +32,7 @@ def test_report_has_the_design_keys_and_names_the_leak(leak_dataset, tmp_path, r
     assert report["cause"] == "leak"
     assert report["extended"]["effects"] == ["leak"]
     channels = set(report["baseline"]["rmse"])
-    assert channels == {"force_N", "pressure_kPa", "temperature_C"}
+    assert channels == {"force_N", "gauge_pressure_Pa", "temperature_K"}
     assert set(report["gain"]) == channels and set(report["gain_ci95"]) == channels
     for candidate in report["candidates"]:
         assert {"effect", "params", "heldout_rmse", "gain", "score"} <= set(candidate)
