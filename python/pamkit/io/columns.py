@@ -26,11 +26,12 @@ LOGGER_CHANNELS = ("gauge_pressure_Pa", "temperature_K")
 
 @dataclass(frozen=True)
 class FileUnit:
-    """A column whose file unit is not SI: its name in a file, its name in SI, and the value in
-    each unit of a value in the other."""
+    """A column whose file unit is not SI: its name in a file, its name in SI, the file's unit
+    as a person reads it, and the value in each unit of a value in the other."""
 
     file_name: str
     si_name: str
+    unit: str
     to_si: Callable
     from_si: Callable
 
@@ -39,12 +40,14 @@ FILE_UNITS = (
     FileUnit(
         "pressure_kPa",
         "gauge_pressure_Pa",
+        "kPa",
         lambda kilopascals: kilopascals * PASCAL_PER_KILOPASCAL,
         lambda pascals: pascals / PASCAL_PER_KILOPASCAL,
     ),
     FileUnit(
         "temperature_C",
         "temperature_K",
+        "°C",
         lambda celsius: celsius + KELVIN_AT_ZERO_CELSIUS,
         lambda kelvin: kelvin - KELVIN_AT_ZERO_CELSIUS,
     ),
@@ -56,6 +59,12 @@ _BY_SI_NAME = {unit.si_name: unit for unit in FILE_UNITS}
 def file_name(name: str) -> str:
     """A column's name in a file (pressure_kPa for gauge_pressure_Pa; time_s for time_s)."""
     return _BY_SI_NAME[name].file_name if name in _BY_SI_NAME else name
+
+
+def file_unit(name: str) -> str | None:
+    """The unit a file (and a figure) gives the SI column `name` in, where it is not SI ("kPa"
+    for gauge_pressure_Pa); None for a column a file keeps in SI."""
+    return _BY_SI_NAME[name].unit if name in _BY_SI_NAME else None
 
 
 def si_name(name: str) -> str:
