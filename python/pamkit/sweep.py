@@ -58,7 +58,7 @@ from pamkit.cluster import check_output, run_all, work_key
 from pamkit.diagnose.cycles import cycle_starts
 from pamkit.io.columns import value_to_si
 from pamkit.io.experiment import TEST_CONDITIONS, Experiment, load_experiment, test_condition
-from pamkit.io.guards import fail, named_file, number, read_toml
+from pamkit.io.guards import check_keys, fail, named_file, number, read_toml
 from pamkit.io.sections import BRAID_ANGLE_KEY, calibratable_fields
 from pamkit.simulate import simulate_experiment
 
@@ -222,10 +222,7 @@ def load_spec(path: str | Path) -> SweepSpec:
         if section not in ("sweep", "parameters"):
             raise fail(path, f"unknown section [{section}] (known: parameters, sweep)")
     sweep = document.get("sweep", {})
-    known = ("experiment", "cycles", "design", "samples", "seed", "device")
-    for key in sweep:
-        if key not in known:
-            raise fail(path, f"unknown key [sweep] {key} (known: {', '.join(known)})")
+    check_keys(path, "sweep", sweep, ("experiment", "cycles", "design", "samples", "seed", "device"))
     device = sweep.get("device", "muscle")
     if device not in DEVICES:
         raise fail(path, f"[sweep] device = {device!r} must be one of {', '.join(DEVICES)}")

@@ -22,7 +22,7 @@ import numpy as np
 
 from pamkit._core import BladderLaw, FrictionParams, GasMode, GasParams, MuscleBuild
 from pamkit.io.columns import OPTIONAL_COLUMNS, file_name, si_name, value_to_si
-from pamkit.io.guards import fail, named_file, number, read_toml
+from pamkit.io.guards import check_keys, fail, named_file, number, read_toml
 from pamkit.io.sections import read_bladder, read_build, read_calibrate, read_friction, read_gas
 from pamkit.io.series import read_isotonic, read_series, read_table
 
@@ -174,9 +174,7 @@ def load_tests(path: str | Path) -> list[Experiment]:
         if section not in CAMPAIGN_SECTIONS:
             raise fail(path, f"unknown section [{section}] in a campaign (known: {', '.join(CAMPAIGN_SECTIONS)})")
     campaign = document.pop("campaign")
-    for key in campaign:
-        if key != "tests":
-            raise fail(path, f"unknown key [campaign] {key} (known: tests)")
+    check_keys(path, "campaign", campaign, ("tests",))
     tests = campaign.get("tests")
     if not isinstance(tests, list) or not tests or not all(isinstance(t, str) for t in tests):
         raise fail(path, f"[campaign] tests = {tests!r} must be a list of experiment files")
@@ -304,9 +302,7 @@ def _experiment_of(path: Path, document: dict) -> Experiment:
 def _test_table(path: Path, table: dict) -> dict:
     """[test] with its keys known, its kind known, and a static table's defaults filled in."""
     test = dict(table)
-    for key in test:
-        if key not in TEST_KEYS:
-            raise fail(path, f"unknown key [test] {key} (known: {', '.join(TEST_KEYS)})")
+    check_keys(path, "test", test, TEST_KEYS)
     kind = test.get("kind", SERIES_KIND)
     if kind not in KINDS:
         raise fail(path, f"[test] kind = {kind!r} must be one of {', '.join(KINDS)}")

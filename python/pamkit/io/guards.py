@@ -61,6 +61,14 @@ def number(path: Path, where: str, value) -> float:
     return float(value)
 
 
+def check_keys(path: Path, section: str, table, known) -> None:
+    """Raises an ExperimentError naming the file, the first key of [section] `table` not in
+    `known`, and the keys known (in `known`'s order)."""
+    for key in table:
+        if key not in known:
+            raise fail(path, f"unknown key [{section}] {key} (known: {', '.join(known)})")
+
+
 def read_toml(path: Path, what: str) -> dict:
     """The document of a TOML file, read through :func:`read_text` (MAX_FILE_BYTES[what]).
 

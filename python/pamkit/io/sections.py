@@ -18,7 +18,7 @@ from pamkit._core import (
     deflated_braid_angle_deg,
     fiber_revolutions_for_braid_angle,
 )
-from pamkit.io.guards import fail, number
+from pamkit.io.guards import check_keys, fail, number
 
 # [gas] keys beyond GasParams' fields: the process by name.
 GAS_PROCESS_KEY = "process"
@@ -40,13 +40,10 @@ def fill_struct(path: Path, section: str, table: dict, struct, extra_keys=()):
     """Sets the fields of a bound parameter struct from a TOML table, by the struct's own field
     list, rejecting unknown keys and validating the result."""
     fields = type(struct).fields()
+    check_keys(path, section, table, sorted(list(fields) + list(extra_keys)))
     for key, value in table.items():
-        if key in extra_keys:
-            continue
-        if key not in fields:
-            known = ", ".join(sorted(list(fields) + list(extra_keys)))
-            raise fail(path, f"unknown key [{section}] {key} (known: {known})")
-        setattr(struct, key, number(path, f"[{section}] {key}", value))
+        if key not in extra_keys:
+            setattr(struct, key, number(path, f"[{section}] {key}", value))
     try:
         struct.validate()
     except ValueError as error:
@@ -90,10 +87,7 @@ def read_build(path: Path, table: dict) -> MuscleBuild:
 
 def read_bladder(path: Path, table: dict) -> BladderLaw:
     """[bladder]: law = "thesis" (default), "neo_hookean" (with shear_modulus_Pa) or "none"."""
-    known = {"law", "shear_modulus_Pa"}
-    for key in table:
-        if key not in known:
-            raise fail(path, f"unknown key [bladder] {key} (known: {', '.join(sorted(known))})")
+    check_keys(path, "bladder", table, ("law", "shear_modulus_Pa"))
     law = table.get("law", "thesis")
     if law not in BLADDER_LAWS:
         raise fail(path, f"[bladder] law = {law!r} must be one of {', '.join(BLADDER_LAWS)}")
