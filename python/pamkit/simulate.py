@@ -49,6 +49,7 @@ from pamkit._core import (
     simulate_supplied_measurement,
     static_forces,
 )
+from pamkit.effects import parse_effects
 from pamkit.io.columns import SERIES_COLUMNS
 from pamkit.io.experiment import Experiment, load_experiment
 from pamkit.io.guards import ExperimentError
@@ -360,8 +361,6 @@ def simulate_frame(
         effects = [effects]
     specs = [effect for effect in effects if isinstance(effect, str)]
     if specs:
-        from pamkit.effects import parse_effects
-
         try:
             parsed = iter(parse_effects(specs))
         except ValueError as error:

@@ -56,6 +56,7 @@ from pamkit._core import (
 )
 from pamkit.cluster import check_output, run_all, work_key
 from pamkit.diagnose.cycles import cycle_starts
+from pamkit.exo import exo_study
 from pamkit.io.columns import value_to_si
 from pamkit.io.experiment import TEST_CONDITIONS, Experiment, load_experiment, test_condition
 from pamkit.io.guards import check_keys, fail, named_file, number, read_toml
@@ -375,8 +376,6 @@ def summarize(experiment: Experiment, predicted: dict[str, np.ndarray]) -> dict[
 
 def exo_metrics(parameters: dict[str, float]) -> dict[str, float]:
     """EXO_METRICS of the device with `parameters` (exo_study's, without the walking-cadence run)."""
-    from pamkit.exo import exo_study
-
     arguments = {name.removeprefix("exo."): value for name, value in parameters.items()}
     if "pressure_kPa" in arguments:
         arguments["gauge_pressure_Pa"] = value_to_si("pressure_kPa", arguments.pop("pressure_kPa"))
