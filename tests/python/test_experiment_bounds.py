@@ -1,4 +1,4 @@
-"""Input that is not a bounded text file (issue #14): devices, pipes, over-long lines, huge files
+"""Input that is not a bounded text file: devices, pipes, over-long lines, huge files
 are refused with a message naming the file (and line), without hanging or filling memory; and
 the rows numpy reads at once equal those the csv module reads one by one."""
 
@@ -16,7 +16,7 @@ from pamkit.io.guards import MAX_FILE_BYTES, MAX_LINE_BYTES, ExperimentError, Ex
 from pamkit.io.series import read_series
 
 # A child that reads more than this has not refused the input: it fails instead of filling the
-# machine's memory (the audit's /dev/zero grew to 23 GB). Importing numpy, scipy and pamkit
+# machine's memory (data = "/dev/zero" would grow without bound). Importing numpy, scipy and pamkit
 # reserves well under it.
 CHILD_ADDRESS_SPACE = 3 << 30
 CHILD_TIMEOUT_S = 60  # a refused input takes well under a second; a pipe read would block forever

@@ -1,4 +1,4 @@
-"""Large experiment files (issue #12): a plain CSV is read block by block into memory smaller than
+"""Large experiment files: a plain CSV is read block by block into memory smaller than
 the file, and the blocks join into exactly what one reading of the whole file gives."""
 
 import tracemalloc
@@ -29,8 +29,8 @@ def test_a_plain_file_reads_in_less_memory_than_its_size(tmp_path, monkeypatch):
     # 200 000 rows of five channels in 10-digit text (about 11 MB, ~57 bytes a row) are 8 MB of
     # numbers (40 bytes a row): read block by block, the peak is the numbers and what one block
     # takes (its bytes, its text, that text with decimal points, numpy's rows: a few copies of
-    # it, 16 is generous). The reader before held the file's bytes and text at once: twice its
-    # size, before any number.
+    # it, 16 is generous). A reader holding the file's bytes and text at once would take twice
+    # its size before any number.
     block = 1 << 18
     monkeypatch.setattr(series, "READ_BLOCK_BYTES", block)
     rng = np.random.default_rng(12)
