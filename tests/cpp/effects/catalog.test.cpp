@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -148,6 +149,22 @@ TEST_CASE("catalog: bad text throws InvalidParameter naming the bad part", "[eff
                     Catch::Matchers::Contains("has no parameter 'tau'"));
   CHECK_THROWS_WITH(EffectCatalog::builtin().make("leak")->set_value("time_constant_s", -1.0),
                     Catch::Matchers::Contains("outside the allowed range"));
+}
+
+TEST_CASE("catalog: split reads the grammar parse reads, settings in the order written", "[effects][catalog]") {
+  using Settings = std::vector<std::pair<std::string, std::string>>;
+  const auto [name, settings] = EffectCatalog::split("sensor_lag:time_constant_s=2,channel=force_N,time_constant_s=3");
+  CHECK(name == "sensor_lag");
+  CHECK(settings == Settings{{"time_constant_s", "2"}, {"channel", "force_N"}, {"time_constant_s", "3"}});
+  CHECK(EffectCatalog::split("leak") == std::make_pair(std::string("leak"), Settings{}));
+  // An unknown name is the catalog's to refuse, not the grammar's; a bad item is the grammar's.
+  CHECK(EffectCatalog::split("no_such_effect:x=1").first == "no_such_effect");
+  CHECK_THROWS_WITH(EffectCatalog::split("leak:time_constant_s"), Catch::Matchers::Contains("is not key=value"));
+  // parse is make and set over split's settings: the last of a repeated key wins.
+  const EffectPtr lag =
+      EffectCatalog::builtin().parse("sensor_lag:time_constant_s=2,channel=force_N,time_constant_s=3");
+  CHECK(parameter(*lag, "time_constant_s") == 3.0);
+  CHECK(lag->options().at("channel") == "force_N");
 }
 
 TEST_CASE("catalog: effects that cannot act in a test say why", "[effects][catalog]") {
