@@ -1,4 +1,4 @@
-"""Diagnosis over many synthetic datasets (DESIGN.md, "Tests that hide an effect"): a confusion
+"""Diagnosis over many synthetic datasets, each with one effect hidden in it: a confusion
 matrix of hidden effect against named cause, the detection and false-alarm rates, the median
 held-out gain, and the time per diagnosis with its breakdown.
 
@@ -180,7 +180,7 @@ def print_summary(rows: list[dict], names: list[str]) -> None:
         {c: r["baseline_rmse"][c] / r["noise"][c] for c in r.get("noise", {}) if r["noise"][c] > 0} for r in null_rows
     ]
     if any(ratios):
-        for channel in ("force_N", "pressure_kPa"):
+        for channel in ("force_N", "gauge_pressure_Pa"):
             values = [x[channel] for x in ratios if channel in x]
             if values:
                 print(f"nulls' baseline {channel} RMSE / noise: median {np.median(values):.2f}, max {max(values):.2f}")

@@ -235,7 +235,7 @@ def main() -> int:
         margin = "-" if s["median_margin"] is None else f"{s['median_margin']:.3f}"
         notes = ", ".join(f"{k}×{v}" for k, v in s["wrong_names"].items())
         ratio = s["median_baseline_rmse_over_noise"]
-        force, pressure = (f"{ratio[c]:5.1f}" if c in ratio else "    -" for c in ("force_N", "pressure_kPa"))
+        force, pressure = (f"{ratio[c]:5.1f}" if c in ratio else "    -" for c in ("force_N", "gauge_pressure_Pa"))
         if s["error_messages"]:
             notes += ("; " if notes else "") + " | ".join(m[:120] for m in s["error_messages"])
         print(

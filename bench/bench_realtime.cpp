@@ -16,23 +16,12 @@
 #include <new>
 #include <vector>
 
+#include "allocation_counter.hpp"
 #include "pamkit/muscle/realtime.hpp"
 
 namespace {
-std::atomic<long> allocations{0};
-}  // namespace
 
-// Counts every allocation of the program (the array, nothrow and sized forms call this one).
-void* operator new(std::size_t size) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
-  std::fputs("pamkit_bench_realtime: out of memory\n", stderr);
-  std::abort();
-}
-void operator delete(void* memory) noexcept { std::free(memory); }
-void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
-
-namespace {
+using allocation_counter::allocations;
 
 struct Options {
   long calls = 200000;  ///< calls per timed batch

@@ -29,7 +29,7 @@ import numpy as np
 
 import pamkit._core as core
 
-CHANNELS = ("force_N", "pressure_kPa", "temperature_C")
+CHANNELS = ("force_N", "gauge_pressure_Pa", "temperature_K")
 
 
 def main() -> None:

@@ -155,7 +155,7 @@ int main(int argc, char** argv) try {
         best, run.force_N.size(), run.steps, run.rhs_evaluations, o.rtol, o.repeats);
     print_array("force_N", run.force_N);
     std::printf(", ");
-    print_array("pressure_gauge_Pa", run.pressure_gauge_Pa);
+    print_array("gauge_pressure_Pa", run.gauge_pressure_Pa);
     std::printf(", ");
     print_array("temperature_K", run.temperature_K);
     std::printf("}\n");

@@ -71,7 +71,7 @@ TARGETS = {
 TIGHT = 1e-11
 DEFAULT = pamkit.SimulatorConfig().relative_tolerance  # 1e-8
 METHODS = ("bdf", "adams", "dopri5", "auto")  # pamkit.IntegrationMethod's names; bdf is the default
-TRACES = ("force_N", "pressure_gauge_Pa", "temperature_K")
+TRACES = ("force_N", "gauge_pressure_Pa", "temperature_K")
 INITIAL = {"length_m": 0.167, "gauge_pressure_Pa": 236.63e3}
 MAX_ELONGATION_M = 0.0523
 

@@ -113,7 +113,7 @@ def jax_side_by_side(spec, rows: list[dict], repeats: int, tau_s: float | None) 
     muscle = JaxMuscle(
         base.build.to_dict(), base.friction.to_dict(), gas, base.initial_length_m, base.time_s, base.elongation_m
     )
-    pressures = np.array([e.inflation_pressure_kPa * 1e3 for e in experiments])
+    pressures = np.array([e.inflation_gauge_pressure_Pa for e in experiments])
     revolutions = np.array([e.build.fiber_revolutions for e in experiments])
 
     # pamkit: each run's model along the same crosshead, the sweep's own configuration.

@@ -21,7 +21,7 @@ namespace pamkit_bench {
 
 /// The channels of a run by the explicit method, and its counters.
 struct Dopri5Run {
-  std::vector<double> force_N, pressure_gauge_Pa, temperature_K;
+  std::vector<double> force_N, gauge_pressure_Pa, temperature_K;
   long steps = 0;
   long rhs_evaluations = 0;
 };
@@ -72,7 +72,7 @@ inline Dopri5Run dopri5_run(const pamkit::MuscleModel& model, const pamkit::Elon
     const pamkit::MuscleOutputs out = model.evaluate_with(output_workspace, initial_length + elongation[k], velocity,
                                                           state, pamkit::ShapeParts::kinematics_and_braid_angle);
     run.force_N.push_back(out.forces.total);
-    run.pressure_gauge_Pa.push_back(out.gauge_pressure_Pa);
+    run.gauge_pressure_Pa.push_back(out.gauge_pressure_Pa);
     run.temperature_K.push_back(state[pamkit::State::temperature_K]);
   };
 

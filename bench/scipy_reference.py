@@ -33,7 +33,7 @@ Usage::
     ref = ReferenceMuscle(build=dict(...), initial_length_m=0.167, initial_gauge_pressure_Pa=236.63e3,
                           gas=dict(process="heat_transfer", heat_transfer_time_constant_s=5.0))
     out = ref.simulate(time_s, elongation_m, rtol=1e-11, atol_K=1e-11, atol_J=1e-11)
-    out["force_N"], out["pressure_gauge_Pa"], out["temperature_K"], ...
+    out["force_N"], out["gauge_pressure_Pa"], out["temperature_K"], ...
 """
 
 from __future__ import annotations
@@ -300,7 +300,7 @@ class ReferenceMuscle:
                 "length_m",
                 "force_N",
                 "friction_force_N",
-                "pressure_gauge_Pa",
+                "gauge_pressure_Pa",
                 "temperature_K",
                 "gas_volume_m3",
                 "braid_angle_rad",
@@ -317,7 +317,7 @@ class ReferenceMuscle:
             columns["length_m"][i] = L
             columns["force_N"][i] = out["force_N"]
             columns["friction_force_N"][i] = out["friction_force_N"]
-            columns["pressure_gauge_Pa"][i] = out["gauge_pressure_Pa"]
+            columns["gauge_pressure_Pa"][i] = out["gauge_pressure_Pa"]
             columns["temperature_K"][i] = y[0]
             columns["gas_volume_m3"][i] = out["shape"]["gas_volume"]
             columns["braid_angle_rad"][i] = out["shape"]["braid_angle"]

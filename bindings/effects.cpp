@@ -99,8 +99,8 @@ void bind_effects(py::module_& m) {
       .PAMKIT_CHANNEL(time_s, "sample times [s]")
       .PAMKIT_CHANNEL(elongation_m, "the crosshead's elongation [m]")
       .PAMKIT_CHANNEL(force_N, "load cell [N]")
-      .PAMKIT_CHANNEL(pressure_kPa, "pressure transducer, gauge [kPa]")
-      .PAMKIT_CHANNEL(temperature_C, "gas temperature sensor [degC]")
+      .PAMKIT_CHANNEL(gauge_pressure_Pa, "pressure transducer: above the atmosphere [Pa]")
+      .PAMKIT_CHANNEL(temperature_K, "gas temperature sensor [K]")
       .def_readonly("statistics", &Measurement::statistics,
                     "CVODES counters of the run behind a sealed test; all zero for a supplied test (no ODE)");
 #undef PAMKIT_CHANNEL
@@ -198,12 +198,12 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
            "whether it is an error of the transducer whose reading drives a supplied test")
       .def(
           "apply_to_supplied_pressure",
-          [](const Effect& e, const std::vector<double>& time_s, std::vector<double> pressure_kPa) {
-            e.apply_to_supplied_pressure(time_s, pressure_kPa);
-            return pressure_kPa;
+          [](const Effect& e, const std::vector<double>& time_s, std::vector<double> gauge_pressure_Pa) {
+            e.apply_to_supplied_pressure(time_s, gauge_pressure_Pa);
+            return gauge_pressure_Pa;
           },
-          py::arg("time_s"), py::arg("pressure_kPa"),
-          "the pressure [kPa] that drives a supplied test, from the reading (time_s empty: settled rows)")
+          py::arg("time_s"), py::arg("gauge_pressure_Pa"),
+          "the gauge pressure [Pa] that drives a supplied test, from the reading (time_s empty: settled rows)")
       .def("apply_to_params",
            [](const Effect& e, MuscleParams params) {
              e.apply_to_params(params);
@@ -258,6 +258,8 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
           "adds a factory (e.g. a pamkit.Effect subclass) called with no arguments for each new effect")
       .def("make", &EffectCatalog::make, py::arg("name"))
       .def("parse", &EffectCatalog::parse, py::arg("spec"), "'NAME' or 'NAME:key=value,...'")
+      .def_static("split", &EffectCatalog::split, py::arg("spec"),
+                  "the name and the (key, value) settings of a spec, as parse reads them, without making the effect")
       .def("names", &EffectCatalog::names);
 
   m.def("simulate_measurement", &simulate_measurement, py::arg("params"), py::arg("initial"), py::arg("crosshead"),
@@ -283,8 +285,8 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
               channels["time_s"] = copy(block.time_s);
               channels["elongation_m"] = copy(block.elongation_m);
               channels["force_N"] = copy(block.force_N);
-              channels["pressure_kPa"] = copy(block.pressure_kPa);
-              channels["temperature_C"] = copy(block.temperature_C);
+              channels["gauge_pressure_Pa"] = copy(block.gauge_pressure_Pa);
+              channels["temperature_K"] = copy(block.temperature_K);
               sink(first, channels);
             },
             shapes);
@@ -293,30 +295,30 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
       py::arg("block_rows"), py::arg("sink"), py::arg("shapes") = nullptr,
       "simulate_measurement, its samples handed to sink(first, channels) as they are integrated, block_rows at a "
       "time: first is the index of the block's first sample, channels a dict of numpy arrays (time_s [s], "
-      "elongation_m [m], force_N [N], pressure_kPa [kPa gauge], temperature_C [degC]). The samples equal "
+      "elongation_m [m], force_N [N], gauge_pressure_Pa [Pa], temperature_K [K]). The samples equal "
       "simulate_measurement's bit for bit; only one block is held. Effects on the measured channels read the whole "
       "series and are refused (ValueError). Returns the SolverStatistics. Releases the GIL but for the sink's calls. "
       "shapes: as for simulate_measurement.");
   m.def(
       "simulate_supplied_measurement",
       [](const MuscleParams& params, double length_m, const ElongationTrajectory& crosshead,
-         const py::array_t<double, py::array::c_style | py::array::forcecast>& pressure_kPa,
-         double ambient_temperature_C, const std::vector<EffectPtr>& effects) {
-        const std::vector<double> pressure = vector(pressure_kPa);
+         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressure_Pa,
+         const std::vector<EffectPtr>& effects) {
+        const std::vector<double> pressure = vector(gauge_pressure_Pa);
         py::gil_scoped_release release;
-        return simulate_supplied_measurement(params, length_m, crosshead, pressure, ambient_temperature_C, effects);
+        return simulate_supplied_measurement(params, length_m, crosshead, pressure, effects);
       },
-      py::arg("params"), py::arg("length_m"), py::arg("crosshead"), py::arg("pressure_kPa"),
-      py::arg("ambient_temperature_C"), py::arg("effects"),
-      "Simulates a supplied-pressure test: the measured gauge pressure [kPa] drives the static model at each "
-      "sample of crosshead (lengths from length_m [m]); force is predicted. Releases the GIL.");
+      py::arg("params"), py::arg("length_m"), py::arg("crosshead"), py::arg("gauge_pressure_Pa"), py::arg("effects"),
+      "Simulates a supplied-pressure test: the measured gauge pressure [Pa] drives the static model at each "
+      "sample of crosshead (lengths from length_m [m]), the gas at params.gas.ambient_temperature_K; force is "
+      "predicted. Releases the GIL.");
   m.def(
       "static_forces",
       [](const MuscleParams& params, const py::array_t<double, py::array::c_style | py::array::forcecast>& lengths_m,
-         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_kPa,
+         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_Pa,
          const std::vector<EffectPtr>& effects) {
         const std::vector<double> lengths = vector(lengths_m);
-        const std::vector<double> pressures = vector(gauge_pressures_kPa);
+        const std::vector<double> pressures = vector(gauge_pressures_Pa);
         std::vector<double> force;
         {
           py::gil_scoped_release release;
@@ -324,9 +326,9 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
         }
         return py::array_t<double>(static_cast<py::ssize_t>(force.size()), force.data());
       },
-      py::arg("params"), py::arg("lengths_m"), py::arg("gauge_pressures_kPa"),
+      py::arg("params"), py::arg("lengths_m"), py::arg("gauge_pressures_Pa"),
       py::arg("effects") = std::vector<EffectPtr>{},
-      "The muscle's force at rest [N] at each row of a static table (length [m], supplied gauge pressure [kPa]), "
+      "The muscle's force at rest [N] at each row of a static table (length [m], supplied gauge pressure [Pa]), "
       "with physical effects applied. Releases the GIL.");
   py::class_<IsotonicLengths>(m, "IsotonicLengths", "Where an isotonic test's muscle settles at each row.")
       .def_property_readonly(
@@ -341,15 +343,15 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
   m.def(
       "isotonic_lengths",
       [](const MuscleParams& params,
-         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_kPa, double load_N,
+         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_Pa, double load_N,
          double start_length_m, const std::vector<EffectPtr>& effects) {
-        const std::vector<double> pressures = vector(gauge_pressures_kPa);
+        const std::vector<double> pressures = vector(gauge_pressures_Pa);
         py::gil_scoped_release release;
         return isotonic_lengths(params, pressures, load_N, start_length_m, effects);
       },
-      py::arg("params"), py::arg("gauge_pressures_kPa"), py::arg("load_N"), py::arg("start_length_m"),
+      py::arg("params"), py::arg("gauge_pressures_Pa"), py::arg("load_N"), py::arg("start_length_m"),
       py::arg("effects") = std::vector<EffectPtr>{},
-      "The length [m] at which the muscle carries load_N at each supplied gauge pressure [kPa], rows in the order "
+      "The length [m] at which the muscle carries load_N at each supplied gauge pressure [Pa], rows in the order "
       "measured, following the quasi-static path from start_length_m. Releases the GIL.");
   py::class_<IsotonicMotionConfig> motion_config(m, "IsotonicMotionConfig", "CVODES settings of isotonic_motion.");
   bind_fields(motion_config);
@@ -366,35 +368,36 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
   PAMKIT_MOTION_COLUMN(length_m, "muscle length [m]");
   PAMKIT_MOTION_COLUMN(velocity_m_per_s, "lengthening rate [m/s], > 0 while the load wins");
   PAMKIT_MOTION_COLUMN(force_N, "the muscle's tension, friction included [N]");
-  PAMKIT_MOTION_COLUMN(gauge_pressure_kPa, "gauge pressure that drove the model, effects applied [kPa]");
+  PAMKIT_MOTION_COLUMN(gauge_pressure_Pa, "gauge pressure that drove the model, effects applied [Pa]");
 #undef PAMKIT_MOTION_COLUMN
   motion.def_readonly("statistics", &IsotonicMotion::statistics);
   m.def(
       "isotonic_motion",
       [](const MuscleParams& params, const py::array_t<double, py::array::c_style | py::array::forcecast>& time_s,
-         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_kPa, double load_N,
+         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_Pa, double load_N,
          double mass_kg, std::optional<double> start_length_m, const std::vector<EffectPtr>& effects,
          const IsotonicMotionConfig& config) {
         const std::vector<double> time = vector(time_s);
-        const std::vector<double> pressures = vector(gauge_pressures_kPa);
+        const std::vector<double> pressures = vector(gauge_pressures_Pa);
         py::gil_scoped_release release;
         return isotonic_motion(params, time, pressures, load_N, mass_kg, start_length_m, effects, config);
       },
-      py::arg("params"), py::arg("time_s"), py::arg("gauge_pressures_kPa"), py::arg("load_N"), py::arg("mass_kg"),
+      py::arg("params"), py::arg("time_s"), py::arg("gauge_pressures_Pa"), py::arg("load_N"), py::arg("mass_kg"),
       py::arg("start_length_m") = py::none(), py::arg("effects") = std::vector<EffectPtr>{},
       py::arg("config") = IsotonicMotionConfig{},
       "Integrates a mass mass_kg [kg] under a constant load load_N [N] hanging on the muscle while the supplied "
-      "gauge pressure [kPa] moves through its samples at time_s [s] (linear between them): m dv/dt = load - "
+      "gauge pressure [Pa] moves through its samples at time_s [s] (linear between them): m dv/dt = load - "
       "F(L, p, v), friction and effects included, starting at rest at start_length_m [m] (None: the quasi-static "
       "equilibrium of the first sample). Length and velocity at each sample. Releases the GIL.");
   m.def(
       "pressure_branches",
-      [](const py::array_t<double, py::array::c_style | py::array::forcecast>& pressure_kPa, double play_kPa) {
-        const std::vector<double> branch = pressure_branches(vector(pressure_kPa), play_kPa);
+      [](const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressure_Pa, double play_Pa) {
+        const std::vector<double> branch = pressure_branches(vector(gauge_pressure_Pa), play_Pa);
         return py::array_t<double>(static_cast<py::ssize_t>(branch.size()), branch.data());
       },
-      py::arg("pressure_kPa"), py::arg("play_kPa") = 2.0,
-      "+1 where a supplied pressure is being raised, -1 where lowered (a play operator of half-width play_kPa).");
+      py::arg("gauge_pressure_Pa"), py::arg("play_Pa") = 2e3,
+      "+1 where a supplied gauge pressure [Pa] is being raised, -1 where lowered (a play operator of half-width "
+      "play_Pa [Pa]).");
 }
 
 }  // namespace pamkit::python

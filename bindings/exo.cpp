@@ -233,7 +233,7 @@ void bind_exo(py::module_& m) {
       .def_property_readonly("linkage", &Jig::linkage)
       .def_property_readonly("params", &Jig::params);
   py::class_<Table42Row>(m, "Table42Row", "A row of table 4.2.")
-      .def_readonly("pressure_kPa", &Table42Row::pressure_kPa)
+      .def_readonly("gauge_pressure_Pa", &Table42Row::gauge_pressure_Pa)
       .def_readonly("muscle_length_m", &Table42Row::muscle_length_m)
       .def_readonly("angle_deg", &Table42Row::angle_deg)
       .def_readonly("vertical_displacement_m", &Table42Row::vertical_displacement_m);

@@ -191,7 +191,7 @@ void bind_sim(py::module_& m) {
   PAMKIT_RESULT_COLUMN(length_m, "muscle length [m]");
   PAMKIT_RESULT_COLUMN(force_N, "axial force, tension > 0, friction included [N]");
   PAMKIT_RESULT_COLUMN(friction_force_N, "friction part of the force [N]");
-  PAMKIT_RESULT_COLUMN(pressure_gauge_Pa, "gas pressure above ambient [Pa]");
+  PAMKIT_RESULT_COLUMN(gauge_pressure_Pa, "gas pressure above ambient [Pa]");
   PAMKIT_RESULT_COLUMN(temperature_K, "gas temperature [K]");
   PAMKIT_RESULT_COLUMN(gas_volume_m3, "gas volume, dead volume included [m^3]");
   PAMKIT_RESULT_COLUMN(gas_mass_kg, "mass of air inside [kg]");

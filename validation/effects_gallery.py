@@ -1,6 +1,6 @@
 """Writes the effect gallery of docs/effects.md: one PNG per catalog effect in docs/effects/,
 the baseline model against the model with the effect at a clearly visible strength from its
-realistic range, drawn to show what gives the effect away (DESIGN.md, "The effect catalog").
+realistic range, drawn to show what gives the effect away.
 The effects are the catalog's; one without a figure of its own (`FIGURES`) is drawn by
 `generic`, at its defaults, on the channels it declares.
 
@@ -23,6 +23,7 @@ import numpy as np
 
 import pamkit
 from pamkit.effects import catalog, parse_effects
+from pamkit.io.columns import SERIES_COLUMNS, file_name, to_file, value_to_si
 from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
 
 HERE = Path(__file__).resolve().parents[1] / "docs" / "effects"  # where docs/effects.md shows them
@@ -68,7 +69,8 @@ def corners(max_elongation_m: float, speed_m_per_s: float, cycles: int, hold_s: 
 
 def simulate(pressure_kPa: float, path, specs=(), rate_Hz: float = SAMPLE_RATE_HZ) -> dict[str, np.ndarray]:
     """The model's channels along the crosshead path `path` (corners), with effects `specs`
-    (`--effect` texts or configured effects)."""
+    (`--effect` texts or configured effects), in the units the figures show (a file's:
+    pressure_kPa, temperature_C)."""
     t_corner, e_corner = path
     time = np.unique(np.concatenate([np.arange(0.0, t_corner[-1], 1.0 / rate_Hz), t_corner]))
     crosshead = pamkit.ElongationTrajectory(time, np.interp(time, t_corner, e_corner))
@@ -77,10 +79,7 @@ def simulate(pressure_kPa: float, path, specs=(), rate_Hz: float = SAMPLE_RATE_H
     )
     effects = [spec if isinstance(spec, pamkit.Effect) else parse_effects([spec])[0] for spec in specs]
     m = pamkit.simulate_measurement(params(), initial, crosshead, effects, pamkit.Simulator())
-    return {
-        name: np.asarray(getattr(m, name))
-        for name in ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
-    }
+    return to_file({name: np.asarray(getattr(m, name)) for name in SERIES_COLUMNS})
 
 
 def last_cycle(run: dict[str, np.ndarray], path) -> np.ndarray:
@@ -128,7 +127,7 @@ def generic(name: str, effect_catalog: pamkit.EffectCatalog | None = None, out_d
         + [f"{p.name}={p.value:g}" for p in effect.parameters()]
     )
     if effect.acts_in(pamkit.GasMode.sealed)[0]:
-        channels = list(effect.channels_changed()) or ["force_N", "pressure_kPa"]
+        channels = [file_name(c) for c in effect.channels_changed()] or ["force_N", "pressure_kPa"]
         p, e = 207.0, stretch(207.0, 0.9)
         path = corners(e, 10e-3, 2)
         base, run = simulate(p, path), simulate(p, path, [effect])
@@ -142,8 +141,9 @@ def generic(name: str, effect_catalog: pamkit.EffectCatalog | None = None, out_d
         pressures = np.concatenate([up, up[::-1]])
         lengths = np.full_like(pressures, 0.19)
         fig, (axis,) = figure(f"{name}: {settings} (PAM 2 held at 190 mm, supplied pressure)", panels=1)
-        axis.plot(pressures, pamkit.static_forces(params(), lengths, pressures), **BASE, label="baseline")
-        axis.plot(pressures, pamkit.static_forces(params(), lengths, pressures, [effect]), color=COLORS[0], label=name)
+        supplied = value_to_si("pressure_kPa", pressures)
+        axis.plot(pressures, pamkit.static_forces(params(), lengths, supplied), **BASE, label="baseline")
+        axis.plot(pressures, pamkit.static_forces(params(), lengths, supplied, [effect]), color=COLORS[0], label=name)
         label(axis, "supplied pressure [kPa]", "force [N]")
     return save(fig, name, out_dir)
 
@@ -282,22 +282,22 @@ def sensor_lag() -> Path:
         "sensor_lag: the lagged channel trails its prediction and its swings shrink (PAM 2, 207 kPa, 90 %, 25 mm/s)"
     )
     path = corners(e, 25e-3, 3)
-    spec = "sensor_lag:channel=pressure_kPa,time_constant_s=1"
+    spec = "sensor_lag:channel=gauge_pressure_Pa,time_constant_s=1"
     base, run = simulate(p, path), simulate(p, path, [spec])
     pressure.plot(base["time_s"], base["pressure_kPa"], **BASE, label="baseline")
-    pressure.plot(run["time_s"], run["pressure_kPa"], color=COLORS[0], label="channel=pressure_kPa, 1 s")
+    pressure.plot(run["time_s"], run["pressure_kPa"], color=COLORS[0], label="channel=gauge_pressure_Pa, 1 s")
     label(pressure, "time [s]", "gauge pressure [kPa]")
     heat = "heat_transfer:time_constant_s=2"
-    spec = "sensor_lag:channel=temperature_C,time_constant_s=10"
+    spec = "sensor_lag:channel=temperature_K,time_constant_s=10"
     base, run = simulate(p, path, [heat]), simulate(p, path, [heat, spec])
     temperature.plot(base["time_s"], base["temperature_C"], **BASE, label="gas (with heat_transfer, 2 s)")
-    temperature.plot(run["time_s"], run["temperature_C"], color=COLORS[1], label="TMP36: channel=temperature_C, 10 s")
+    temperature.plot(run["time_s"], run["temperature_C"], color=COLORS[1], label="TMP36: channel=temperature_K, 10 s")
     label(temperature, "time [s]", "temperature [°C]")
     return save(fig, "sensor_lag")
 
 
 def time_skew() -> Path:
-    spec = "time_skew:channel=pressure_kPa,offset_s=1.5"
+    spec = "time_skew:channel=gauge_pressure_Pa,offset_s=1.5"
     p, e = 207.0, stretch(207.0, 0.9)
     path = corners(e, 10e-3, 3)
     base, run = simulate(p, path), simulate(p, path, [spec])
@@ -323,7 +323,7 @@ def time_skew() -> Path:
 
 
 def sensor_offset() -> Path:
-    spec = "sensor_offset:offset_kPa=8,gain=1.05"
+    spec = "sensor_offset:offset_Pa=8e3,gain=1.05"
     p, e = 207.0, stretch(207.0, 0.9)
     path = corners(e, 10e-3, 2)
     base, run = simulate(p, path), simulate(p, path, [spec])
@@ -359,7 +359,7 @@ def braid_slack() -> Path:
     fig, axes = figure(f"{spec} (PAM 2 held at fixed lengths, supplied pressure): no push below the free length")
     for axis, pressure_kPa in zip(axes, (138.0, 276.0)):
         lengths = np.linspace(free_length(pressure_kPa) - 0.015, free_length(pressure_kPa) + 0.02, 120)
-        pressures = np.full_like(lengths, pressure_kPa)
+        pressures = np.full_like(lengths, value_to_si("pressure_kPa", pressure_kPa))
         base = pamkit.static_forces(params(), lengths, pressures)
         slack = pamkit.static_forces(params(), lengths, pressures, parse_effects([spec]))
         axis.plot(lengths * 1e3, base, **BASE, label="baseline (the braid pushes)")
@@ -376,10 +376,11 @@ def pressure_hysteresis() -> Path:
     pressures = np.concatenate([up, up[::-1]])
     fig, (held, loaded) = figure(f"{spec} (PAM 2, supplied pressure raised and lowered)")
     lengths = np.full_like(pressures, 0.19)
+    supplied = value_to_si("pressure_kPa", pressures)
     for specs, style in (((), BASE), ([spec], {"color": COLORS[0]})):
-        force = pamkit.static_forces(params(), lengths, pressures, parse_effects(list(specs)))
+        force = pamkit.static_forces(params(), lengths, supplied, parse_effects(list(specs)))
         held.plot(pressures, force, **style, label=specs[0].split(":")[0] if specs else "baseline")
-        path = pamkit.isotonic_lengths(params(), pressures, 60.0, params().build.length_m, parse_effects(list(specs)))
+        path = pamkit.isotonic_lengths(params(), supplied, 60.0, params().build.length_m, parse_effects(list(specs)))
         loaded.plot(pressures, path.length_m * 1e3, **style)
     held.set_title("held at 190 mm", fontsize=9)
     loaded.set_title("under a 60 N load", fontsize=9)

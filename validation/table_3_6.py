@@ -8,7 +8,7 @@ C.2-C.3) are simulated with two catalog effects:
 
 - ``heat_transfer:time_constant_s=TAU_GAS`` — the gas exchanges heat with the wall,
   m cv dT/dt = -p dV/dt - m cv (T - T_ambient) / TAU_GAS;
-- ``sensor_lag:channel=temperature_C,time_constant_s=TAU_SENSOR`` — the TMP36 (appendix B)
+- ``sensor_lag:channel=temperature_K,time_constant_s=TAU_SENSOR`` — the TMP36 (appendix B)
   follows the gas temperature with a first-order lag.
 
 **The swing** of a simulated test is the steady peak-to-trough amplitude: the run is cut into
@@ -122,16 +122,16 @@ def load_row(row: Table36Row, directory: str | Path | None = None) -> Experiment
     return load_experiment(thesis_directory(directory) / f"{row.experiment}.toml")
 
 
-def cycle_swings(elongation_m: np.ndarray, temperature_C: np.ndarray) -> np.ndarray:
-    """Peak-to-trough temperature within each complete cycle [°C]."""
+def cycle_swings(elongation_m: np.ndarray, temperature: np.ndarray) -> np.ndarray:
+    """Peak-to-trough temperature within each complete cycle [K, or °C: a difference]."""
     starts = cycle_starts(np.asarray(elongation_m))
-    temperature_C = np.asarray(temperature_C)
-    return np.array([np.ptp(temperature_C[a : b + 1]) for a, b in zip(starts[:-1], starts[1:])])
+    temperature = np.asarray(temperature)
+    return np.array([np.ptp(temperature[a : b + 1]) for a, b in zip(starts[:-1], starts[1:])])
 
 
-def steady_swing(elongation_m: np.ndarray, temperature_C: np.ndarray, cycles: int = STEADY_CYCLES) -> float:
+def steady_swing(elongation_m: np.ndarray, temperature: np.ndarray, cycles: int = STEADY_CYCLES) -> float:
     """The swing as table 3.6 is compared here: mean peak-to-trough over the last `cycles`."""
-    swings = cycle_swings(elongation_m, temperature_C)
+    swings = cycle_swings(elongation_m, temperature)
     if swings.size < cycles:
         raise ValueError(f"the run has {swings.size} complete cycles; the steady swing needs {cycles}")
     return float(np.mean(swings[-cycles:]))
@@ -142,7 +142,7 @@ def effects(gas_time_constant_s: float, sensor_time_constant_s: float) -> list:
     effect_catalog = catalog()
     return [
         effect_catalog.parse(f"heat_transfer:time_constant_s={gas_time_constant_s!r}"),
-        effect_catalog.parse(f"sensor_lag:channel=temperature_C,time_constant_s={sensor_time_constant_s!r}"),
+        effect_catalog.parse(f"sensor_lag:channel=temperature_K,time_constant_s={sensor_time_constant_s!r}"),
     ]
 
 
@@ -158,7 +158,7 @@ def predict_swing(
 ) -> float:
     """The swing the TMP36 would read in the row's test [°C] (see :func:`steady_swing`)."""
     run = simulate_row(row, gas_time_constant_s, sensor_time_constant_s, directory)
-    return steady_swing(run["elongation_m"], run["temperature_C"])
+    return steady_swing(run["elongation_m"], run["temperature_K"])
 
 
 def polytropic_swing(
@@ -170,9 +170,9 @@ def polytropic_swing(
     params = muscle_params(experiment)
     params.gas.process = GasProcess.polytropic
     params.gas.polytropic_index = index
-    lag = [catalog().parse(f"sensor_lag:channel=temperature_C,time_constant_s={sensor_time_constant_s!r}")]
+    lag = [catalog().parse(f"sensor_lag:channel=temperature_K,time_constant_s={sensor_time_constant_s!r}")]
     run = simulate_experiment(experiment, params=params, effects=lag)
-    return steady_swing(run["elongation_m"], run["temperature_C"])
+    return steady_swing(run["elongation_m"], run["temperature_K"])
 
 
 @dataclass
@@ -227,7 +227,7 @@ def gas_wall_time_constant(experiment: Experiment, heat_transfer_W_per_m2K: floa
     geometry = BraidGeometry(params.build)
     shape = geometry.shape(initial_length(experiment, params))
     gas = params.gas
-    pressure = gas.atmospheric_pressure_Pa + experiment.inflation_pressure_kPa * 1e3
+    pressure = gas.atmospheric_pressure_Pa + experiment.inflation_gauge_pressure_Pa
     mass = pressure * shape.gas_volume / (gas.gas_constant_J_per_kgK * gas.ambient_temperature_K)
     cv = gas.gas_constant_J_per_kgK / (gas.heat_capacity_ratio - 1.0)
     end = params.build.end_diameter_m
@@ -311,7 +311,7 @@ def format_markdown(result: Table36Report) -> str:
         "|---|---|---|",
         f"| gas-wall exchange (heat_transfer) | {c.gas_time_constant_s:.2f} s (fitted to {c.row.label}) | "
         f"{gas_lo:.1f}-{gas_hi:.1f} s (m cv / (h A), h = {h_hi:.0f}-{h_lo:.0f} W/(m² K)) |",
-        f"| TMP36 (sensor_lag on temperature_C) | {c.sensor_time_constant_s:.1f} s (fixed) | "
+        f"| TMP36 (sensor_lag on temperature_K) | {c.sensor_time_constant_s:.1f} s (fixed) | "
         f"{s_lo:.0f}-{s_hi:.0f} s (θJA x C from the data sheet, still air) |",
         "",
         "Refit with the sensor's time constant at the ends of its range (the rows cannot tell them apart):",

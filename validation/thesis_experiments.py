@@ -20,7 +20,7 @@ import argparse
 from pathlib import Path
 
 import pamkit
-from pamkit.io.experiment import write_experiment
+from pamkit.io.writers import write_experiment
 
 DATA_DIR = Path(__file__).resolve().parents[1] / "data" / "experiments" / "thesis"
 AMBIENT_C = 296.0 - 273.15

@@ -1,13 +1,14 @@
 """pamkit: simulate and diagnose pneumatic artificial muscles used as passive air springs.
 
 The compiled core (`pamkit._core`) holds the thesis's muscle model and its CVODES simulator;
-this package adds experiment files, the command line and plots. SI units throughout, except
-where a name carries its unit (``pressure_kPa``).
+this package adds experiment files, the command line and plots. SI units throughout, each in the
+name (``gauge_pressure_Pa``, ``temperature_K``); files and plots are in the units a person reads
+(a CSV's ``pressure_kPa`` and ``temperature_C``), converted by the readers and writers.
 
 A notebook's three calls:
 
     experiment = pamkit.load_experiment("experiment.toml")  # the muscle, the test, the measured columns
-    df = pamkit.simulate(experiment)  # DataFrame: time_s, elongation_m, force_N, pressure_kPa, temperature_C
+    df = pamkit.simulate(experiment)  # DataFrame: time_s, elongation_m, force_N, gauge_pressure_Pa, temperature_K
     report = pamkit.diagnose("experiment.toml")  # .verdict(), .to_json(path), .plot(path)
 
 ``pamkit.simulate`` and ``pamkit.diagnose`` are modules too (``from pamkit.simulate import
@@ -82,7 +83,8 @@ from pamkit._core import (
     thesis_protocol,
     write_muscle_params,
 )
-from pamkit.io.experiment import Experiment, ExperimentError, load_experiment
+from pamkit.io.experiment import Experiment, load_experiment
+from pamkit.io.guards import ExperimentError
 
 __version__ = "0.1.0"
 

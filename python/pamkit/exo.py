@@ -3,7 +3,7 @@
 The compiled core holds the gait data, linkage, clutch, springs and jig (``include/pamkit/exo``);
 this module puts them together the way a designer uses them: the chapter-4 kinematics beside the
 thesis's figures, the device over a gait cycle, and the muscle's ODE at walking cadence next to
-the slow bench test. SI units, except where a name carries its unit.
+the slow bench test. SI throughout; `pamkit exo` and the figure show kPa and degC.
 """
 
 from __future__ import annotations
@@ -28,7 +28,6 @@ from pamkit._core import (
     GasParams,
     GasProcess,
     IdealSpring,
-    InitialState,
     Jig,
     JigParams,
     JigSample,
@@ -47,8 +46,8 @@ from pamkit._core import (
     ThesisPolynomialSpring,
     detect_gait_events,
     fit_clutch,
-    free_inflation,
     ideal_spring,
+    inflated_and_sealed,
     reproduce_g3_script,
     resample_cycle,
     run_device,
@@ -58,8 +57,9 @@ from pamkit._core import (
     winter_appendix_g3,
     with_ankle_range,
 )
+from pamkit.io.columns import value_from_si
 from pamkit.plots import save_figure
-from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
+from pamkit.units import MILLIMETRE_PER_METRE
 
 GAIT_COLUMNS = ("frame", "hip_deg", "leg_deg", "foot_deg", "ankle_moment_Nm")
 
@@ -173,34 +173,37 @@ class ExoStudy:
 
 
 def pam_spring(
-    pressure_kPa: float, build: MuscleBuild | None = None, gas: GasParams | None = None, pretension_m: float = 0.0
+    gauge_pressure_Pa: float, build: MuscleBuild | None = None, gas: GasParams | None = None, pretension_m: float = 0.0
 ) -> tuple[PamStaticSpring, float]:
-    """The muscle (PAM 2 of table 3.4 unless given) inflated to pressure_kPa at its free length,
-    sealed, isothermal (n = 1, the thesis's best fit): the static spring and that free length."""
-    build = build if build is not None else MuscleBuild()
-    gas = gas if gas is not None else GasParams()
-    free = free_inflation(
-        BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure_kPa * PASCAL_PER_KILOPASCAL
+    """The muscle (PAM 2 of table 3.4 unless given) inflated to `gauge_pressure_Pa` [Pa] at its
+    free length, sealed, isothermal (n = 1, the thesis's best fit): the static spring and that
+    free length [m]."""
+    params = MuscleParams(
+        build=build if build is not None else MuscleBuild(),
+        bladder=BladderLaw.thesis(),
+        gas=gas if gas is not None else GasParams(),
     )
+    start = inflated_and_sealed(params, gauge_pressure_Pa)
     spring = PamStaticSpring(
-        build, BladderLaw.thesis(), gas, free.length_m, pressure_kPa * PASCAL_PER_KILOPASCAL, pretension_m, 1.0
+        params.build, params.bladder, params.gas, start.length_m, start.gauge_pressure_Pa, pretension_m, 1.0
     )
-    return spring, free.length_m
+    return spring, start.length_m
 
 
 def walking_cadence_run(
     run: DeviceRun,
-    pressure_kPa: float,
+    gauge_pressure_Pa: float,
     cadence_steps_per_min: float = WALKING_CADENCE_STEPS_PER_MIN,
     strides: int = 10,
     bench_cycles: int = 2,
     time_constant_s: float | None = None,
     pretension_m: float = 0.0,
 ) -> dict:
-    """The muscle's ODE with gas-wall heat transfer, driven by the device's elongation over
-    `strides` strides at the cadence, and the same muscle stretched to the same peak on the
-    bench (triangular cycles at 2.5 mm/s, section 3.2.1). Returns both runs' series, and a
-    summary of each run's last stride (cycle). The time constant defaults to GasParams's.
+    """The muscle's ODE with gas-wall heat transfer, inflated to `gauge_pressure_Pa` [Pa] and
+    sealed, driven by the device's elongation over `strides` strides at the cadence, and the same
+    muscle stretched to the same peak on the bench (triangular cycles at 2.5 mm/s, section
+    3.2.1). Returns both runs' series (SI), and a summary of each run's last stride (cycle). The
+    time constant defaults to GasParams's.
 
     Friction is the thesis's law (eqs. 3.1.19-3.1.24) with its Kf = 1 s/m, which is nearly
     linear-viscous: fitted at 2.5 mm/s, it grows with the ~0.1 m/s of walking, so the elastic
@@ -209,12 +212,8 @@ def walking_cadence_run(
     gas.process = GasProcess.heat_transfer
     if time_constant_s is not None:
         gas.heat_transfer_time_constant_s = time_constant_s
-    build = MuscleBuild()
-    _, free_length = pam_spring(pressure_kPa, build, gas)
-    model = MuscleModel(
-        MuscleParams(build=build, gas=gas),
-        InitialState(length_m=free_length, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL),
-    )
+    params = MuscleParams(build=MuscleBuild(), bladder=BladderLaw.thesis(), gas=gas)
+    model = MuscleModel(params, inflated_and_sealed(params, gauge_pressure_Pa))
     stride_s = 120.0 / cadence_steps_per_min  # two steps per stride
     gait = walking_trajectory(run, stride_s, strides, pretension_m)
     peak = float(np.max(gait.elongation_m))
@@ -237,8 +236,8 @@ def walking_cadence_run(
             "elongation_m": np.array(result.elongation_m),
             "force_N": np.array(result.force_N),
             "elastic_force_N": np.array(result.force_N) - np.array(result.friction_force_N),
-            "pressure_kPa": np.array(result.pressure_gauge_Pa) / PASCAL_PER_KILOPASCAL,
-            "temperature_C": np.array(result.temperature_K) - KELVIN_AT_ZERO_CELSIUS,
+            "gauge_pressure_Pa": np.array(result.gauge_pressure_Pa),
+            "temperature_K": np.array(result.temperature_K),
         }
         out[name] = series
         # The last stride (cycle) once the first ones have settled the gas's mean temperature.
@@ -247,16 +246,16 @@ def walking_cadence_run(
             "peak_force_N": float(series["force_N"][last].max()),
             "peak_elastic_force_N": float(series["elastic_force_N"][last].max()),
             "min_force_N": float(series["force_N"][last].min()),
-            "pressure_kPa": _span(series["pressure_kPa"][last]),
-            "temperature_C": _span(series["temperature_C"][last]),
-            "temperature_swing_C": float(np.ptp(series["temperature_C"][last])),
+            "gauge_pressure_Pa": _span(series["gauge_pressure_Pa"][last]),
+            "temperature_K": _span(series["temperature_K"][last]),
+            "temperature_swing_K": float(np.ptp(series["temperature_K"][last])),
         }
     return out
 
 
 def exo_study(
     mass_kg: float = THESIS_BODY_MASS_KG,
-    pressure_kPa: float = 70.0,
+    gauge_pressure_Pa: float = 70e3,
     play_deg: float = 0.0,
     ankle_range_deg: float | None = None,
     block_angle_deg: float | None = None,
@@ -269,7 +268,7 @@ def exo_study(
     gait_csv: str | Path | None = None,
 ) -> ExoStudy:
     """The device of appendix G.3 on Winter's gait scaled to mass_kg, with the muscle inflated
-    to pressure_kPa as its spring (70 kPa: the walking trials, section 4.7), the clutch's
+    to gauge_pressure_Pa as its spring (70 kPa: the walking trials, section 4.7), the clutch's
     screws fitted to the normal gait unless given, and optionally play between leg and device
     and a reduced ankle range (chapter 5). cadence None skips the walking-cadence ODE run."""
     data = load_winter(gait_csv)
@@ -279,7 +278,7 @@ def exo_study(
     params = LinkageParams() if block_angle_deg is None else LinkageParams(block_angle_deg=block_angle_deg)
     linkage = Linkage(params)
     play = PlayParams(dead_zone_deg=play_deg, compliance_deg_per_Nm=compliance_deg_per_Nm)
-    spring, free_length = pam_spring(pressure_kPa)
+    spring, free_length = pam_spring(gauge_pressure_Pa)
     run = run_device(cycle, linkage, clutch, play, spring, 3)
     # The ideal spring is a property of the geometry on the normal gait, as in figure 4.7.
     normal_run = run_device(normal, linkage, clutch, PlayParams(), LinearSpring(), 3)
@@ -287,7 +286,7 @@ def exo_study(
     walking = None
     if cadence_steps_per_min is not None and float(np.max(run.elongation_m)) > 0.0:
         walking = walking_cadence_run(
-            run, pressure_kPa, cadence_steps_per_min, strides, time_constant_s=time_constant_s
+            run, gauge_pressure_Pa, cadence_steps_per_min, strides, time_constant_s=time_constant_s
         )
     modes = np.asarray(run.mode)
     torque = np.asarray(run.torque_Nm)
@@ -296,7 +295,7 @@ def exo_study(
     report = {
         "inputs": {
             "mass_kg": mass_kg,
-            "pressure_kPa": pressure_kPa,
+            "gauge_pressure_Pa": gauge_pressure_Pa,
             "play_deg": play_deg,
             "compliance_deg_per_Nm": compliance_deg_per_Nm,
             "ankle_range_deg": ankle_range_deg,
@@ -396,8 +395,8 @@ def plot_exo(path: str | Path, study: ExoStudy, title: str = "") -> Path:
             axes[1],
             (
                 ("force_N", "force [N]"),
-                ("pressure_kPa", "gauge pressure [kPa]"),
-                ("temperature_C", "gas temperature [°C]"),
+                ("gauge_pressure_Pa", "gauge pressure [kPa]"),
+                ("temperature_K", "gas temperature [°C]"),
             ),
         ):
             for run_name, colour, text in (
@@ -405,10 +404,11 @@ def plot_exo(path: str | Path, study: ExoStudy, title: str = "") -> Path:
                 ("walking", "C0", f"walking, {walking['cadence_steps_per_min']:.0f} steps/min"),
             ):
                 series = walking[run_name]
-                axis.plot(series["elongation_m"] * 1e3, series[name], color=colour, lw=1.0, label=text)
+                elongation_mm = series["elongation_m"] * MILLIMETRE_PER_METRE
+                axis.plot(elongation_mm, value_from_si(name, series[name]), color=colour, lw=1.0, label=text)
                 if name == "force_N":
                     axis.plot(
-                        series["elongation_m"] * 1e3,
+                        elongation_mm,
                         series["elastic_force_N"],
                         color=colour,
                         lw=0.8,

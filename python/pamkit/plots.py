@@ -1,10 +1,14 @@
-"""Plots people would rather look at than read."""
+"""Plots people would rather look at than read: SI columns in, drawn in the units a person
+reads (gauge pressure in kPa, temperature in degC, lengths in mm)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
+
+from pamkit.io.columns import value_from_si
+from pamkit.units import MILLIMETRE_PER_METRE
 
 
 def save_figure(figure, path: str | Path, dpi: int = 110) -> Path:
@@ -18,10 +22,11 @@ def save_figure(figure, path: str | Path, dpi: int = 110) -> Path:
     return path
 
 
+# Each channel with its axis label, in the unit value_from_si gives it in.
 CHANNELS = (
     ("force_N", "force [N]"),
-    ("pressure_kPa", "gauge pressure [kPa]"),
-    ("temperature_C", "gas temperature [°C]"),
+    ("gauge_pressure_Pa", "gauge pressure [kPa]"),
+    ("temperature_K", "gas temperature [°C]"),
 )
 
 
@@ -41,8 +46,8 @@ def plot_simulation(
     time = predicted["time_s"]
     for axis, (name, label) in zip(axes.flat[:3], CHANNELS):
         if name in measured:
-            axis.plot(measured["time_s"], measured[name], color="0.6", lw=1.2, label="measured")
-        axis.plot(time, predicted[name], color="C0", lw=1.0, label="pamkit")
+            axis.plot(measured["time_s"], value_from_si(name, measured[name]), color="0.6", lw=1.2, label="measured")
+        axis.plot(time, value_from_si(name, predicted[name]), color="C0", lw=1.0, label="pamkit")
         axis.set_xlabel("time [s]")
         axis.set_ylabel(label)
         axis.grid(alpha=0.3)
@@ -50,8 +55,12 @@ def plot_simulation(
             axis.legend(loc="best", fontsize="small")
     loop = axes.flat[3]
     if "force_N" in measured:
-        loop.plot(measured["elongation_m"] * 1e3, measured["force_N"], color="0.6", lw=1.2, label="measured")
-    loop.plot(predicted["elongation_m"] * 1e3, predicted["force_N"], color="C0", lw=1.0, label="pamkit")
+        loop.plot(
+            measured["elongation_m"] * MILLIMETRE_PER_METRE, measured["force_N"], color="0.6", lw=1.2, label="measured"
+        )
+    loop.plot(
+        predicted["elongation_m"] * MILLIMETRE_PER_METRE, predicted["force_N"], color="C0", lw=1.0, label="pamkit"
+    )
     loop.set_xlabel("elongation [mm]")
     loop.set_ylabel("force [N]")
     loop.grid(alpha=0.3)
@@ -76,7 +85,7 @@ def plot_supplied(
     measured = measured or {}
     moved = np.ptp(predicted["elongation_m"]) > 0
     figure, axes = plt.subplots(1, 4 if moved else 3, figsize=(17 if moved else 13.5, 4.6), constrained_layout=True)
-    time, pressure = predicted["time_s"], predicted["pressure_kPa"]
+    time, pressure = predicted["time_s"], value_from_si("gauge_pressure_Pa", predicted["gauge_pressure_Pa"])
     force_time, input_time, force_pressure = axes[:3]
     if "force_N" in measured:
         force_time.plot(measured["time_s"], measured["force_N"], color="0.6", lw=1.2, label="measured")
@@ -84,7 +93,7 @@ def plot_supplied(
     force_time.set(xlabel="time [s]", ylabel="force [N]")
     input_time.plot(time, pressure, color="k", lw=1.0)
     input_time.set(xlabel="time [s]", ylabel="supplied gauge pressure [kPa]", title="the model's input")
-    branch = np.asarray(pressure_branches(pressure))
+    branch = np.asarray(pressure_branches(predicted["gauge_pressure_Pa"]))
     for sign, name, color in ((1.0, "pressurising", "C3"), (-1.0, "venting", "C0")):
         on = np.where(branch == sign, 1.0, np.nan)  # gaps where the other branch runs
         if "force_N" in measured:
@@ -96,8 +105,16 @@ def plot_supplied(
     if moved:
         loop = axes[3]
         if "force_N" in measured:
-            loop.plot(measured["elongation_m"] * 1e3, measured["force_N"], color="0.6", lw=1.2, label="measured")
-        loop.plot(predicted["elongation_m"] * 1e3, predicted["force_N"], color="C0", lw=1.0, label="pamkit")
+            loop.plot(
+                measured["elongation_m"] * MILLIMETRE_PER_METRE,
+                measured["force_N"],
+                color="0.6",
+                lw=1.2,
+                label="measured",
+            )
+        loop.plot(
+            predicted["elongation_m"] * MILLIMETRE_PER_METRE, predicted["force_N"], color="C0", lw=1.0, label="pamkit"
+        )
         loop.set(xlabel="elongation [mm]", ylabel="force [N]")
     for axis in axes:
         axis.grid(alpha=0.3)
@@ -119,18 +136,18 @@ def plot_table(path: str | Path, experiment, predicted: dict[str, np.ndarray], t
     import matplotlib.pyplot as plt
 
     channels = {"isometric_map": ["force_N"], "isotonic": ["length_m"]}.get(experiment.kind, ["length_m", "diameter_m"])
-    pressure = experiment.columns["pressure_kPa"]
+    pressure = value_from_si("gauge_pressure_Pa", experiment.columns["gauge_pressure_Pa"])
     curves = (
         np.round(experiment.columns["length_m"], 9) if experiment.kind == "isometric_map" else np.zeros(len(pressure))
     )
     figure, axes = plt.subplots(1, len(channels), figsize=(6.5 * len(channels), 4.8), squeeze=False)
     for axis, channel in zip(axes[0], channels):
-        scale, unit = (1e3, "mm") if channel.endswith("_m") else (1.0, "N")
+        scale, unit = (MILLIMETRE_PER_METRE, "mm") if channel.endswith("_m") else (1.0, "N")
         for curve, color in zip(np.unique(curves), plt.cm.viridis(np.linspace(0, 0.9, len(np.unique(curves))))):
             rows = np.flatnonzero(curves == curve)
             if experiment.kind != "isotonic":
                 rows = rows[np.argsort(pressure[rows])]
-            name = f"L = {curve * 1e3:.0f} mm" if experiment.kind == "isometric_map" else "measured"
+            name = f"L = {curve * MILLIMETRE_PER_METRE:.0f} mm" if experiment.kind == "isometric_map" else "measured"
             axis.plot(pressure[rows], scale * experiment.columns[channel][rows], "o", color=color, ms=4, label=name)
             axis.plot(pressure[rows], scale * predicted[channel][rows], "-", color=color, lw=1.2)
         axis.set_xlabel("supplied pressure [kPa]")

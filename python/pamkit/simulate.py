@@ -3,10 +3,10 @@ predict force, pressure and temperature.
 
 Called as a function, ``pamkit.simulate(experiment_or_path, effects=(), params=None,
 config=None)`` returns a pandas DataFrame (:func:`simulate_frame`), one row per sample (or per
-table row), units in the column names:
+table row), SI, units in the column names:
 
-    time_s [s], elongation_m [m], force_N [N], pressure_kPa [kPa, gauge], temperature_C [°C]
-    (a static table: its own columns, e.g. length_m, pressure_kPa, force_N)
+    time_s [s], elongation_m [m], force_N [N], gauge_pressure_Pa [Pa], temperature_K [K]
+    (a static table: its own columns, e.g. length_m, gauge_pressure_Pa, force_N)
 
 with ``df.attrs``: "experiment" (the TOML's path), "data" (its CSV's path), "kind", "gas",
 "effects" (each effect's repr), "solver_statistics" (CVODES counters of a sealed time series and
@@ -49,8 +49,10 @@ from pamkit._core import (
     simulate_supplied_measurement,
     static_forces,
 )
-from pamkit.io.experiment import SERIES_COLUMNS, Experiment, ExperimentError, load_experiment
-from pamkit.units import PASCAL_PER_KILOPASCAL
+from pamkit.effects import parse_effects
+from pamkit.io.columns import SERIES_COLUMNS
+from pamkit.io.experiment import Experiment, load_experiment
+from pamkit.io.guards import ExperimentError
 
 
 def muscle_params(experiment: Experiment, bladder: BladderLaw | None = None) -> MuscleParams:
@@ -65,7 +67,7 @@ def muscle_params(experiment: Experiment, bladder: BladderLaw | None = None) -> 
 
 def initial_length(experiment: Experiment, params: MuscleParams) -> float:
     """Length at zero elongation: as given, else the free inflated length (sealed test) or the
-    deflated length (supplied test), as DESIGN.md specifies; a supplied test mounted with a
+    deflated length (supplied test); a supplied test mounted with a
     preload starts where the deflated muscle carries it.
 
     Raises:
@@ -81,9 +83,22 @@ def initial_length(experiment: Experiment, params: MuscleParams) -> float:
                 "carry it within the braid's range (a membrane law with stiffness, or initial_length_m, sets it)"
             )
         return mounted.length_m[0]
-    if experiment.gas == "supplied":
+    if experiment.gas == GasMode.supplied:
         return experiment.build.length_m
-    return inflated_and_sealed(params, experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL).length_m
+    return sealed_start(experiment, params).length_m
+
+
+def sealed_start(experiment: Experiment, params: MuscleParams, gauge_pressure_Pa: float | None = None) -> InitialState:
+    """A sealed test's state at zero elongation: its gas at `gauge_pressure_Pa` (the file's
+    inflation pressure unless given, as a calibration moves it), at the file's initial length if
+    it gives one, else inflated freely to that pressure and sealed at the length it takes
+    (inflated_and_sealed, as the thesis's protocol does). The one place a sealed test's start is
+    made: a simulation, a diagnosis, a synthetic dataset and a sweep all start here."""
+    if gauge_pressure_Pa is None:
+        gauge_pressure_Pa = experiment.inflation_gauge_pressure_Pa
+    if experiment.initial_length_m is not None:
+        return InitialState(length_m=experiment.initial_length_m, gauge_pressure_Pa=gauge_pressure_Pa)
+    return inflated_and_sealed(params, gauge_pressure_Pa)
 
 
 def simulate_experiment(
@@ -95,7 +110,7 @@ def simulate_experiment(
 ) -> dict[str, np.ndarray]:
     """Predicts the experiment's channels at its sample times, with `effects` applied.
 
-    Returns the columns time_s, elongation_m, force_N, pressure_kPa (gauge), temperature_C. In
+    Returns the columns time_s, elongation_m, force_N, gauge_pressure_Pa, temperature_K. In
     a sealed test the gas is a closed mass integrated by CVODES, from `initial` if given (a
     calibrated state: read_muscle_params_file's [initial]), else from the file's inflation; in a
     supplied test the measured pressure drives the model and the gas stays at ambient temperature.
@@ -127,18 +142,13 @@ def _measurement(
     mode = _checked_mode(experiment, effects)
     if mode == GasMode.supplied:
         length0 = initial_length(experiment, params)
-    else:
-        initial = _initial_state(experiment, params, initial)
+    elif initial is None:
+        initial = sealed_start(experiment, params)
     crosshead = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
     try:
         if mode == GasMode.supplied:
             measurement = simulate_supplied_measurement(
-                params,
-                length0,
-                crosshead,
-                experiment.columns["pressure_kPa"],
-                experiment.ambient_temperature_C,
-                list(effects),
+                params, length0, crosshead, experiment.columns["gauge_pressure_Pa"], list(effects)
             )
         else:
             simulator = Simulator(config if config is not None else SimulatorConfig())
@@ -150,22 +160,11 @@ def _measurement(
 
 def _checked_mode(experiment: Experiment, effects: Sequence[Effect]) -> GasMode:
     """The test's gas mode, once every effect can act in it."""
-    mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
     for effect in effects:
-        acts, why_not = effect.acts_in(mode)
+        acts, why_not = effect.acts_in(experiment.gas)
         if not acts:
             raise ExperimentError(f"{experiment.path}: effect {effect.name()} cannot act here: {why_not}")
-    return mode
-
-
-def _initial_state(experiment: Experiment, params: MuscleParams, initial: InitialState | None) -> InitialState:
-    """A sealed test's state at its start: `initial` when given, else the file's inflation."""
-    if initial is not None:
-        return initial
-    return InitialState(
-        length_m=initial_length(experiment, params),
-        gauge_pressure_Pa=experiment.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL,
-    )
+    return experiment.gas
 
 
 #: Samples simulated (and handed on) at a time when a simulation streams its output.
@@ -180,7 +179,7 @@ def why_not_streamed(experiment: Experiment, effects: Sequence[Effect] = ()) -> 
     sample."""
     if experiment.is_table:
         return f"a {experiment.kind} table is predicted row by row, not integrated in time"
-    if experiment.gas != "sealed":
+    if experiment.gas != GasMode.sealed:
         return "a supplied test's pressure branches and transducer read the whole record"
     whole = [effect.name() for effect in effects if effect.stage() == EffectStage.measurement]
     if whole:
@@ -202,7 +201,7 @@ def simulate_streamed(
     memory whole (the C++ simulator hands each block over as it fills, as SUNDIALS's and
     Drake's hand output to a monitor), so a test of 10^7 samples needs memory for its input
     only. Each block is a dict of 1-D arrays, SERIES_COLUMNS in order (time_s [s],
-    elongation_m [m], force_N [N], pressure_kPa [kPa gauge], temperature_C [°C]), as the
+    elongation_m [m], force_N [N], gauge_pressure_Pa [Pa], temperature_K [K]), as the
     instruments read them; the blocks joined equal simulate_experiment's columns bit for bit.
 
     Returns:
@@ -217,7 +216,7 @@ def simulate_streamed(
     if why_not is not None:
         raise ExperimentError(f"{experiment.path}: cannot stream the simulation: {why_not}; simulate it whole")
     _checked_mode(experiment, effects)
-    initial = _initial_state(experiment, params, initial)
+    initial = initial if initial is not None else sealed_start(experiment, params)
     crosshead = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
     simulator = Simulator(config if config is not None else SimulatorConfig())
 
@@ -251,8 +250,8 @@ def simulate_table(
             cannot reach (naming the file and row).
     """
     params = params if params is not None else muscle_params(experiment)
-    rows = np.arange(len(experiment.columns["pressure_kPa"])) if rows is None else rows
-    pressure = experiment.columns["pressure_kPa"][rows]
+    rows = np.arange(len(experiment.columns["gauge_pressure_Pa"])) if rows is None else rows
+    pressure = experiment.columns["gauge_pressure_Pa"][rows]
     try:
         if experiment.kind == "isometric_map":
             # Each held length is its own record: its rows, in the order measured, give the
@@ -262,7 +261,7 @@ def simulate_table(
             for held in np.unique(np.round(length, 9)):
                 at = np.flatnonzero(np.round(length, 9) == held)
                 force[at] = static_forces(params, length[at], pressure[at], list(effects))
-            return {"length_m": length, "pressure_kPa": pressure, "force_N": experiment.read("force_N", force)}
+            return {"length_m": length, "gauge_pressure_Pa": pressure, "force_N": experiment.read("force_N", force)}
         if experiment.kind == "isotonic":
             load = experiment.load_N if load_N is None else load_N
             if load is None:
@@ -274,7 +273,7 @@ def simulate_table(
                 path = isotonic_motion(
                     params,
                     experiment.columns["time_s"],
-                    experiment.columns["pressure_kPa"],
+                    experiment.columns["gauge_pressure_Pa"],
                     load,
                     experiment.load_mass_kg,
                     None,
@@ -282,20 +281,20 @@ def simulate_table(
                 )
             else:
                 path = isotonic_lengths(
-                    params, experiment.columns["pressure_kPa"], load, params.build.length_m, list(effects)
+                    params, experiment.columns["gauge_pressure_Pa"], load, params.build.length_m, list(effects)
                 )
-            return {"pressure_kPa": pressure, "length_m": np.asarray(path.length_m)[rows]}
+            return {"gauge_pressure_Pa": pressure, "length_m": np.asarray(path.length_m)[rows]}
         if effects:
             raise ExperimentError(f"{experiment.path}: a free-inflation table is predicted without effects")
         geometry = BraidGeometry(params.build)
         atmosphere = params.gas.atmospheric_pressure_Pa
-        states = [free_inflation(geometry, params.bladder, atmosphere, p * PASCAL_PER_KILOPASCAL) for p in pressure]
+        states = [free_inflation(geometry, params.bladder, atmosphere, p) for p in pressure]
     except ExperimentError:
         raise
     except ValueError as error:
         raise ExperimentError(f"{experiment.data_path}: {error}") from None
     return {
-        "pressure_kPa": pressure,
+        "gauge_pressure_Pa": pressure,
         "length_m": np.array([s.length_m for s in states]),
         "diameter_m": np.array([s.diameter_m for s in states]),
     }
@@ -308,8 +307,8 @@ COLUMN_UNITS = {
     "length_m": "m",
     "diameter_m": "m",
     "force_N": "N",
-    "pressure_kPa": "kPa (gauge)",
-    "temperature_C": "°C",
+    "gauge_pressure_Pa": "Pa",
+    "temperature_K": "K",
 }
 STATISTICS_FIELDS = (
     "steps",
@@ -341,11 +340,11 @@ def simulate_frame(
         config: integrator settings for a sealed time series (default: SimulatorConfig()).
 
     Returns:
-        A DataFrame of N rows (N samples of the experiment's data, or N table rows). A time
-        series has columns time_s [s], elongation_m [m], force_N [N], pressure_kPa [kPa,
-        gauge], temperature_C [°C]; a static table its own (length_m [m], pressure_kPa,
-        force_N, diameter_m). ``df.attrs`` holds "experiment", "data" (paths, str), "kind",
-        "gas", "effects" (list of str), "units" (column -> unit) and "solver_statistics" (a
+        A DataFrame of N rows (N samples of the experiment's data, or N table rows), SI. A time
+        series has columns time_s [s], elongation_m [m], force_N [N], gauge_pressure_Pa [Pa],
+        temperature_K [K]; a static table its own (length_m [m], gauge_pressure_Pa, force_N,
+        diameter_m). ``df.attrs`` holds "experiment", "data" (paths, str), "kind", "gas" (its
+        name), "effects" (list of str), "units" (column -> unit) and "solver_statistics" (a
         dict of the integrator's counters and the method that ran, "bdf", "adams" or "dopri5", for a sealed time
         series; None where no ODE is integrated).
 
@@ -362,8 +361,6 @@ def simulate_frame(
         effects = [effects]
     specs = [effect for effect in effects if isinstance(effect, str)]
     if specs:
-        from pamkit.effects import parse_effects
-
         try:
             parsed = iter(parse_effects(specs))
         except ValueError as error:
@@ -376,7 +373,7 @@ def simulate_frame(
     else:
         measurement = _measurement(experiment, params, config, effects)
         columns = _channels(experiment, measurement)
-        if experiment.gas == "sealed":
+        if experiment.gas == GasMode.sealed:
             statistics = {name: int(getattr(measurement.statistics, name)) for name in STATISTICS_FIELDS}
             statistics["method"] = measurement.statistics.method.name  # the method that ran: "bdf", "adams" or "dopri5"
     frame = pd.DataFrame(columns)
@@ -384,7 +381,7 @@ def simulate_frame(
         experiment=str(experiment.path),
         data=str(experiment.data_path),
         kind=experiment.kind,
-        gas=experiment.gas,
+        gas=experiment.gas.name,
         effects=[repr(effect) for effect in effects],
         units={name: COLUMN_UNITS[name] for name in frame.columns},
         solver_statistics=statistics,

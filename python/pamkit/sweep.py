@@ -18,8 +18,9 @@ A spec is a TOML file::
 A parameter is any name `[calibrate]` accepts (MuscleBuild's fields, braid_angle_deg,
 bladder.shear_modulus_Pa: a neo-Hookean bladder of that modulus), a `[test]` condition
 (inflation_pressure_kPa, ambient_temperature_C, initial_length_m) or a `friction.` or `gas.`
-field, each within the range experiment files allow. Every other setting is the base
-experiment's, as written.
+field, each within the range and in the unit experiment files give it (a spec is written by a
+person, as an experiment file is, and read as one: pamkit.io.experiment.test_condition converts
+the test's conditions to SI). Every other setting is the base experiment's, as written.
 
 Each run gives the parameters and the metrics of METRICS; a run the model cannot follow (or a
 combination the muscle's own checks reject) gives its message in `error` and NaN metrics.
@@ -47,6 +48,7 @@ from pamkit._core import (
     BladderLaw,
     Error,
     FrictionParams,
+    GasMode,
     GasParams,
     MuscleBuild,
     SolverError,
@@ -54,14 +56,12 @@ from pamkit._core import (
 )
 from pamkit.cluster import check_output, run_all, work_key
 from pamkit.diagnose.cycles import cycle_starts
-from pamkit.io.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError, calibratable_fields, load_experiment
+from pamkit.exo import exo_study
+from pamkit.io.columns import value_to_si
+from pamkit.io.experiment import TEST_CONDITIONS, Experiment, load_experiment, test_condition
+from pamkit.io.guards import check_keys, fail, named_file, number, read_toml
+from pamkit.io.sections import BRAID_ANGLE_KEY, calibratable_fields
 from pamkit.simulate import simulate_experiment
-from pamkit.units import KELVIN_AT_ZERO_CELSIUS
-
-try:
-    import tomllib
-except ModuleNotFoundError:  # Python < 3.11
-    import tomli as tomllib
 
 #: The base experiment when a spec names none: PAM 2 of the thesis at 207 kPa, stretched to 80 %.
 DEFAULT_EXPERIMENT = "pam2_207kPa_80pct.toml"
@@ -93,13 +93,12 @@ METRICS = {
     "peak_force_N": "largest force over the run [N]",
     "force_range_N": "largest minus smallest force [N]",
     "stored_energy_J": "work done on the muscle over the first stretch, the integral of F dx [J]",
-    "pressure_range_kPa": "highest minus lowest gauge pressure, sealed tests (NaN when supplied) [kPa]",
-    "temperature_swing_C": "highest minus lowest gas temperature, sealed tests (NaN when supplied) [°C]",
+    "pressure_range_Pa": "highest minus lowest gauge pressure, sealed tests (NaN when supplied) [Pa]",
+    "temperature_swing_K": "highest minus lowest gas temperature, sealed tests (NaN when supplied) [K]",
 }
-# [test] conditions a sweep may set, with the range experiment.py allows them.
+# [test] conditions a sweep may set, with the range an experiment file allows them in.
 TEST_PARAMETERS = {
-    "inflation_pressure_kPa": (0.0, 2000.0, "kPa"),
-    "ambient_temperature_C": (-50.0, 150.0, "°C"),
+    **{key: (lowest, highest, unit) for key, (lowest, highest, unit, _) in TEST_CONDITIONS.items()},
     "initial_length_m": (1e-9, 5.0, "m"),
 }
 DEVICES = ("muscle", "exoskeleton")
@@ -107,7 +106,7 @@ DEVICES = ("muscle", "exoskeleton")
 #: device's own checks (LinkageParams, the gait) may reject more, as a failed run.
 EXO_PARAMETERS = {
     "exo.mass_kg": (1.0, 300.0, "kg"),
-    "exo.pressure_kPa": (0.0, 2000.0, "kPa"),
+    "exo.pressure_kPa": (0.0, 2000.0, "kPa"),  # gauge, as `pamkit exo --pressure` takes it
     "exo.play_deg": (0.0, 90.0, "deg"),
     "exo.compliance_deg_per_Nm": (0.0, 10.0, "deg/(N m)"),
     "exo.ankle_range_deg": (0.1, 90.0, "deg"),
@@ -121,7 +120,7 @@ EXO_METRICS = {
     "release_pct": "where in the stride the clutch releases [% of the cycle] (NaN: it never does)",
     "engaged_share_of_stride": "share of the stride the clutch holds the spring",
 }
-# Set through ambient_temperature_C, as an experiment file sets it.
+# Set through ambient_temperature_C, as an experiment file sets it: the room is one fact.
 GAS_FIELDS_SET_ELSEWHERE = ("ambient_temperature_K",)
 DISTRIBUTIONS = ("values", "linspace", "range")
 
@@ -161,16 +160,6 @@ class SweepSpec:
         )
 
 
-def _fail(path: Path, message: str) -> ExperimentError:
-    return ExperimentError(f"{path}: {message}")
-
-
-def _number(path: Path, where: str, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise _fail(path, f"{where} = {value!r} must be a finite number")
-    return float(value)
-
-
 def _flatten(table: dict) -> dict[str, dict]:
     """[parameters] with its dotted names joined (a `[parameters.bladder]` table, or `bladder.x = {...}`)."""
     flat = {}
@@ -187,38 +176,38 @@ def _grid_values(path: Path, name: str, table: dict, low: float, high: float, un
     if set(table) == {"values"}:
         values = table["values"]
         if not isinstance(values, list) or not values:
-            raise _fail(path, f"{where}.values = {values!r} must be a list of numbers")
-        values = [_number(path, f"{where}.values", v) for v in values]
+            raise fail(path, f"{where}.values = {values!r} must be a list of numbers")
+        values = [number(path, f"{where}.values", v) for v in values]
     elif set(table) == {"linspace"}:
         spec = table["linspace"]
         if not isinstance(spec, list) or len(spec) != 3 or isinstance(spec[2], bool) or not isinstance(spec[2], int):
-            raise _fail(path, f"{where}.linspace = {spec!r} must be [lo, hi, count]")
+            raise fail(path, f"{where}.linspace = {spec!r} must be [lo, hi, count]")
         if spec[2] < 1:
-            raise _fail(path, f"{where}.linspace count {spec[2]} must be at least 1")
-        values = np.linspace(_number(path, where, spec[0]), _number(path, where, spec[1]), spec[2]).tolist()
+            raise fail(path, f"{where}.linspace count {spec[2]} must be at least 1")
+        values = np.linspace(number(path, where, spec[0]), number(path, where, spec[1]), spec[2]).tolist()
     else:
-        raise _fail(path, f"{where} = {table!r}: a grid takes {{ values = [...] }} or {{ linspace = [lo, hi, n] }}")
+        raise fail(path, f"{where} = {table!r}: a grid takes {{ values = [...] }} or {{ linspace = [lo, hi, n] }}")
     for value in values:
         if not low <= value <= high:
-            raise _fail(path, f"{where}: {value:g} {unit} leaves the allowed [{low:g}, {high:g}]")
+            raise fail(path, f"{where}: {value:g} {unit} leaves the allowed [{low:g}, {high:g}]")
     return values
 
 
 def _bounds(path: Path, name: str, table: dict, low: float, high: float, unit: str) -> tuple[float, float]:
     where = f"[parameters] {name}"
     if set(table) != {"range"} or not isinstance(table["range"], list) or len(table["range"]) != 2:
-        raise _fail(path, f"{where} = {table!r}: a latin_hypercube takes {{ range = [lo, hi] }}")
-    lower, upper = (_number(path, f"{where}.range", v) for v in table["range"])
+        raise fail(path, f"{where} = {table!r}: a latin_hypercube takes {{ range = [lo, hi] }}")
+    lower, upper = (number(path, f"{where}.range", v) for v in table["range"])
     if not lower < upper:
-        raise _fail(path, f"{where}.range = [{lower:g}, {upper:g}] needs lo < hi")
+        raise fail(path, f"{where}.range = [{lower:g}, {upper:g}] needs lo < hi")
     if lower < low or upper > high:
-        raise _fail(path, f"{where}.range = [{lower:g}, {upper:g}] {unit} leaves the allowed [{low:g}, {high:g}]")
+        raise fail(path, f"{where}.range = [{lower:g}, {upper:g}] {unit} leaves the allowed [{low:g}, {high:g}]")
     return lower, upper
 
 
 def _positive_int(path: Path, key: str, value) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-        raise _fail(path, f"[sweep] {key} = {value!r} must be a whole number >= 1")
+        raise fail(path, f"[sweep] {key} = {value!r} must be a whole number >= 1")
     return value
 
 
@@ -229,53 +218,43 @@ def load_spec(path: str | Path) -> SweepSpec:
         ExperimentError: naming the spec file, section and key of the first problem.
     """
     path = Path(path)
-    try:
-        document = tomllib.loads(path.read_text())
-    except OSError as error:
-        raise _fail(path, f"cannot read the sweep spec: {error.strerror or error}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
-        raise _fail(path, f"not valid TOML: {error}") from None
+    document = read_toml(path, "sweep spec")
     for section in document:
         if section not in ("sweep", "parameters"):
-            raise _fail(path, f"unknown section [{section}] (known: parameters, sweep)")
+            raise fail(path, f"unknown section [{section}] (known: parameters, sweep)")
     sweep = document.get("sweep", {})
-    known = ("experiment", "cycles", "design", "samples", "seed", "device")
-    for key in sweep:
-        if key not in known:
-            raise _fail(path, f"unknown key [sweep] {key} (known: {', '.join(known)})")
+    check_keys(path, "sweep", sweep, ("experiment", "cycles", "design", "samples", "seed", "device"))
     device = sweep.get("device", "muscle")
     if device not in DEVICES:
-        raise _fail(path, f"[sweep] device = {device!r} must be one of {', '.join(DEVICES)}")
+        raise fail(path, f"[sweep] device = {device!r} must be one of {', '.join(DEVICES)}")
     if device == "exoskeleton":
         for key in ("experiment", "cycles"):
             if key in sweep:
-                raise _fail(path, f"[sweep] {key}: the exoskeleton runs on Winter's gait, not on an experiment")
+                raise fail(path, f"[sweep] {key}: the exoskeleton runs on Winter's gait, not on an experiment")
     if device == "exoskeleton":
         experiment = None
     elif "experiment" in sweep:
-        if not isinstance(sweep["experiment"], str):
-            raise _fail(path, f"[sweep] experiment = {sweep['experiment']!r} must be a file name")
-        experiment = (path.parent / sweep["experiment"]).resolve()
+        experiment = named_file(path, "[sweep] experiment", sweep["experiment"])
     else:
         experiment = thesis_directory() / DEFAULT_EXPERIMENT
     cycles = _positive_int(path, "cycles", sweep["cycles"]) if "cycles" in sweep else None
     design = sweep.get("design", "grid")
     if design not in DESIGNS:
-        raise _fail(path, f"[sweep] design = {design!r} must be one of {', '.join(DESIGNS)}")
+        raise fail(path, f"[sweep] design = {design!r} must be one of {', '.join(DESIGNS)}")
     for key in ("samples", "seed"):
         if (key in sweep) != (design == "latin_hypercube"):
-            raise _fail(path, f"[sweep] {key}: {'needed by' if key not in sweep else 'belongs to'} a latin_hypercube")
+            raise fail(path, f"[sweep] {key}: {'needed by' if key not in sweep else 'belongs to'} a latin_hypercube")
     table = _flatten(document.get("parameters", {}))
     if not table:
-        raise _fail(path, "[parameters] is empty: name at least one parameter to sweep")
+        raise fail(path, "[parameters] is empty: name at least one parameter to sweep")
     allowed = EXO_PARAMETERS if device == "exoskeleton" else sweepable_parameters()
     for name, value in table.items():
         if name not in allowed:
-            raise _fail(path, f"[parameters] {name}: not a parameter a sweep can set (known: {', '.join(allowed)})")
+            raise fail(path, f"[parameters] {name}: not a parameter a sweep can set (known: {', '.join(allowed)})")
         if not isinstance(value, dict):
-            raise _fail(path, f"[parameters] {name} = {value!r} must be a table such as {{ values = [...] }}")
+            raise fail(path, f"[parameters] {name} = {value!r} must be a table such as {{ values = [...] }}")
     if BRAID_ANGLE_KEY in table and "fiber_revolutions" in table:
-        raise _fail(path, f"[parameters] names both fiber_revolutions and {BRAID_ANGLE_KEY}: they say the same")
+        raise fail(path, f"[parameters] names both fiber_revolutions and {BRAID_ANGLE_KEY}: they say the same")
     names = tuple(table)
     if design == "grid":
         axes = [_grid_values(path, name, table[name], *allowed[name]) for name in names]
@@ -285,7 +264,7 @@ def load_spec(path: str | Path) -> SweepSpec:
         samples = _positive_int(path, "samples", sweep["samples"])
         seed = sweep["seed"]
         if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-            raise _fail(path, f"[sweep] seed = {seed!r} must be a whole number >= 0")
+            raise fail(path, f"[sweep] seed = {seed!r} must be a whole number >= 0")
         bounds = np.array([_bounds(path, name, table[name], *allowed[name]) for name in names])
         unit = qmc.LatinHypercube(d=len(names), rng=seed).random(samples)
         runs = tuple(tuple(row) for row in qmc.scale(unit, bounds[:, 0], bounds[:, 1]).tolist())
@@ -298,14 +277,14 @@ def base_experiment(path: Path, cycles: int | None) -> Experiment:
     to its first `cycles` cycles when given."""
     experiment = load_experiment(path)
     if experiment.is_table:
-        raise _fail(path, f"a {experiment.kind} table: a sweep simulates a time series")
+        raise fail(path, f"a {experiment.kind} table: a sweep simulates a time series")
     if cycles is not None:
         try:
             starts = cycle_starts(experiment.elongation_m)
         except ValueError as error:
-            raise _fail(experiment.data_path, f"[sweep] cycles: {error}") from None
+            raise fail(experiment.data_path, f"[sweep] cycles: {error}") from None
         if len(starts) - 1 < cycles:
-            raise _fail(experiment.data_path, f"[sweep] cycles = {cycles}: the test has {len(starts) - 1} cycles")
+            raise fail(experiment.data_path, f"[sweep] cycles = {cycles}: the test has {len(starts) - 1} cycles")
         end = starts[cycles] + 1
         experiment.columns = {name: values[:end] for name, values in experiment.columns.items()}
     return experiment
@@ -339,6 +318,7 @@ def with_parameters(base: Experiment, parameters: dict[str, float]) -> Experimen
     gas = _copy_struct(base.gas_params)
     gas.process = base.gas_params.process
     bladder, test = base.bladder, {}
+    pressure = base.inflation_gauge_pressure_Pa
     for name, value in parameters.items():
         if name in MuscleBuild.fields():
             setattr(build, name, value)
@@ -348,15 +328,25 @@ def with_parameters(base: Experiment, parameters: dict[str, float]) -> Experimen
             setattr(gas, name.removeprefix("gas."), value)
         elif name == "bladder.shear_modulus_Pa":
             bladder = BladderLaw.neo_hookean(value)
+        elif name == "inflation_pressure_kPa":
+            pressure = test_condition(base.path, name, value)
+        elif name == "ambient_temperature_C":
+            gas.ambient_temperature_K = test_condition(base.path, name, value)
         elif name in TEST_PARAMETERS:
             test[name] = value
     if BRAID_ANGLE_KEY in parameters:  # converts through the other dimensions, set above
         build.fiber_revolutions = fiber_revolutions_for_braid_angle(build, parameters[BRAID_ANGLE_KEY])
-    if "ambient_temperature_C" in test:
-        gas.ambient_temperature_K = test["ambient_temperature_C"] + KELVIN_AT_ZERO_CELSIUS
     for struct in (build, friction, gas):
         struct.validate()
-    return dataclasses.replace(base, build=build, friction=friction, gas_params=gas, bladder=bladder, **test)
+    return dataclasses.replace(
+        base,
+        build=build,
+        friction=friction,
+        gas_params=gas,
+        bladder=bladder,
+        inflation_gauge_pressure_Pa=pressure,
+        **test,
+    )
 
 
 def first_stretch_end(elongation_m: np.ndarray) -> int:
@@ -374,21 +364,21 @@ def summarize(experiment: Experiment, predicted: dict[str, np.ndarray]) -> dict[
     """METRICS of one simulated run."""
     force, elongation = predicted["force_N"], predicted["elongation_m"]
     end = first_stretch_end(elongation) + 1
-    sealed = experiment.gas == "sealed"
+    sealed = experiment.gas == GasMode.sealed
     return {
         "peak_force_N": float(np.max(force)),
         "force_range_N": float(np.ptp(force)),
         "stored_energy_J": float(trapezoid(force[:end], elongation[:end])),
-        "pressure_range_kPa": float(np.ptp(predicted["pressure_kPa"])) if sealed else math.nan,
-        "temperature_swing_C": float(np.ptp(predicted["temperature_C"])) if sealed else math.nan,
+        "pressure_range_Pa": float(np.ptp(predicted["gauge_pressure_Pa"])) if sealed else math.nan,
+        "temperature_swing_K": float(np.ptp(predicted["temperature_K"])) if sealed else math.nan,
     }
 
 
 def exo_metrics(parameters: dict[str, float]) -> dict[str, float]:
     """EXO_METRICS of the device with `parameters` (exo_study's, without the walking-cadence run)."""
-    from pamkit.exo import exo_study
-
     arguments = {name.removeprefix("exo."): value for name, value in parameters.items()}
+    if "pressure_kPa" in arguments:
+        arguments["gauge_pressure_Pa"] = value_to_si("pressure_kPa", arguments.pop("pressure_kPa"))
     report = exo_study(**arguments, cadence_steps_per_min=None).report
     clutch = report["clutch"]
     return {

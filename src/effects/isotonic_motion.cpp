@@ -24,7 +24,7 @@ struct MotionWorkspace {
   const BraidGeometry& geometry;
   const MuscleParams& extended;
   const std::vector<double>& time;
-  const std::vector<double>& driving_kPa;
+  const std::vector<double>& driving_Pa;
   double load_N;
   double mass_kg;
   double branch;            // pressurise (+1) or vent (-1) along the piece being integrated
@@ -45,7 +45,7 @@ struct MotionWorkspace {
   double gauge_Pa(double t) const {
     const std::size_t k = segment(t);
     const double share = (t - time[k]) / (time[k + 1] - time[k]);
-    return units::pascal_from_kilopascal(driving_kPa[k] + share * (driving_kPa[k + 1] - driving_kPa[k]));
+    return driving_Pa[k] + share * (driving_Pa[k + 1] - driving_Pa[k]);
   }
 };
 
@@ -76,16 +76,16 @@ int motion_limits(sunrealtype, N_Vector y, sunrealtype* g, void* user_data) {
   return 0;
 }
 
-void check_inputs(const std::vector<double>& time_s, const std::vector<double>& gauge_pressures_kPa, double load_N,
+void check_inputs(const std::vector<double>& time_s, const std::vector<double>& gauge_pressures_Pa, double load_N,
                   double mass_kg) {
   if (!(mass_kg > 0.0 && std::isfinite(mass_kg))) {
     throw InvalidParameter(detail::message("isotonic_motion: mass_kg = ", mass_kg,
                                            " kg must be finite and > 0 (a massless load follows isotonic_lengths)"));
   }
   if (!std::isfinite(load_N)) throw InvalidInput(detail::message("isotonic_motion: load_N = ", load_N, " N"));
-  if (gauge_pressures_kPa.size() != time_s.size()) {
+  if (gauge_pressures_Pa.size() != time_s.size()) {
     throw InvalidInput(
-        detail::message("isotonic_motion: ", gauge_pressures_kPa.size(), " pressures for ", time_s.size(), " times"));
+        detail::message("isotonic_motion: ", gauge_pressures_Pa.size(), " pressures for ", time_s.size(), " times"));
   }
   if (time_s.size() < 2) {
     throw InvalidInput(detail::message("isotonic_motion: ", time_s.size(), " samples; a motion needs two or more"));
@@ -95,35 +95,35 @@ void check_inputs(const std::vector<double>& time_s, const std::vector<double>& 
       throw InvalidInput(detail::message("isotonic_motion: sample ", k + 1, " has time ", time_s[k],
                                          " s; times must be finite and strictly increasing"));
     }
-    if (!std::isfinite(gauge_pressures_kPa[k])) {
+    if (!std::isfinite(gauge_pressures_Pa[k])) {
       throw InvalidInput(
-          detail::message("isotonic_motion: sample ", k + 1, " has pressure ", gauge_pressures_kPa[k], " kPa"));
+          detail::message("isotonic_motion: sample ", k + 1, " has pressure ", gauge_pressures_Pa[k], " Pa"));
     }
   }
 }
 
 void record(IsotonicMotion& r, const MotionWorkspace& w, std::size_t sample, double length, double velocity,
             double branch) {
-  const double gauge = units::pascal_from_kilopascal(w.driving_kPa[sample]);
+  const double gauge = w.driving_Pa[sample];
   r.time_s.push_back(w.time[sample]);
   r.length_m.push_back(length);
   r.velocity_m_per_s.push_back(velocity);
   r.force_N.push_back(
       detail::supplied_force(w.geometry, w.extended, w.geometry.shape(length), gauge, velocity, branch));
-  r.gauge_pressure_kPa.push_back(w.driving_kPa[sample]);
+  r.gauge_pressure_Pa.push_back(gauge);
   ++r.statistics.output_evaluations;
 }
 
 }  // namespace
 
 IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<double>& time_s,
-                               const std::vector<double>& gauge_pressures_kPa, double load_N, double mass_kg,
+                               const std::vector<double>& gauge_pressures_Pa, double load_N, double mass_kg,
                                std::optional<double> start_length_m, const std::vector<EffectPtr>& effects,
                                const IsotonicMotionConfig& config) {
   config.validate();
-  check_inputs(time_s, gauge_pressures_kPa, load_N, mass_kg);
+  check_inputs(time_s, gauge_pressures_Pa, load_N, mass_kg);
   MuscleParams extended = params;
-  std::vector<double> driving = gauge_pressures_kPa;
+  std::vector<double> driving = gauge_pressures_Pa;
   detail::apply_static_effects(effects, extended, driving);
   const BraidGeometry geometry(extended.build);
   const std::vector<double> branch = pressure_branches(driving);
@@ -143,7 +143,7 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
                             nullptr};
   const double start =
       start_length_m ? *start_length_m
-                     : isotonic_lengths(params, {gauge_pressures_kPa.front()}, load_N, params.build.length_m, effects)
+                     : isotonic_lengths(params, {gauge_pressures_Pa.front()}, load_N, params.build.length_m, effects)
                            .length_m.front();
   if (!(start > workspace.shortest && start < workspace.longest)) {
     throw InvalidInput(detail::message("isotonic_motion: start_length_m = ", start, " m is outside the braid's range (",
@@ -200,9 +200,9 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
         const bool too_long = length > 0.5 * (workspace.shortest + workspace.longest);
         throw InvalidInput(detail::message(
             "isotonic_motion: at t = ", t, " s (between samples ", sample, " and ", sample + 1, ", gauge ",
-            units::kilopascal_from_pascal(workspace.gauge_Pa(t)), " kPa) the length reached ", length, " m, the ",
-            too_long ? "longest" : "shortest", " the braid allows (", geometry.min_length(), ", ",
-            geometry.max_length(), ") m: the load of ", load_N, " N ",
+            workspace.gauge_Pa(t), " Pa) the length reached ", length, " m, the ", too_long ? "longest" : "shortest",
+            " the braid allows (", geometry.min_length(), ", ", geometry.max_length(), ") m: the load of ", load_N,
+            " N ",
             too_long ? "outruns what the muscle can carry there" : "is too light to hold the muscle back there"));
       }
       record(result, workspace, sample, NV_Ith_S(y.get(), length_index), NV_Ith_S(y.get(), velocity_index),

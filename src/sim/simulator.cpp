@@ -151,7 +151,7 @@ std::size_t piece_end(const ElongationTrajectory& trajectory, std::size_t k, dou
 template <class Result>
 auto outputs(Result& r) {
   using Column = std::conditional_t<std::is_const_v<Result>, const std::vector<double>, std::vector<double>>;
-  return std::array<Column*, 12>{&r.length_m,      &r.force_N,       &r.friction_force_N, &r.pressure_gauge_Pa,
+  return std::array<Column*, 12>{&r.length_m,      &r.force_N,       &r.friction_force_N, &r.gauge_pressure_Pa,
                                  &r.temperature_K, &r.gas_volume_m3, &r.gas_mass_kg,      &r.braid_angle_rad,
                                  &r.diameter_m,    &r.work_J,        &r.heat_lost_J,      &r.friction_dissipated_J};
 }
@@ -182,7 +182,7 @@ class BlockRecorder {
     block_.length_m[i] = length;
     block_.force_N[i] = out.forces.total;
     block_.friction_force_N[i] = out.forces.friction;
-    block_.pressure_gauge_Pa[i] = out.gauge_pressure_Pa;
+    block_.gauge_pressure_Pa[i] = out.gauge_pressure_Pa;
     block_.temperature_K[i] = y[State::temperature_K];
     block_.gas_volume_m3[i] = out.gas_volume_m3;
     block_.gas_mass_kg[i] = y[State::gas_mass_kg];
@@ -260,7 +260,7 @@ class DerivativeRecorder {
       d.length_m[k] = slope(model.initial_state().length_m, nominal_length_);
       d.force_N[k] = slope(out.forces.total, nominal.forces.total);
       d.friction_force_N[k] = slope(out.forces.friction, nominal.forces.friction);
-      d.pressure_gauge_Pa[k] = slope(out.gauge_pressure_Pa, nominal.gauge_pressure_Pa);
+      d.gauge_pressure_Pa[k] = slope(out.gauge_pressure_Pa, nominal.gauge_pressure_Pa);
       d.temperature_K[k] = NV_Ith_S(yS[i], State::temperature_K);
       d.gas_volume_m3[k] = slope(out.gas_volume_m3, nominal.gas_volume_m3);
       d.gas_mass_kg[k] = NV_Ith_S(yS[i], State::gas_mass_kg);

@@ -138,11 +138,11 @@ TEST_CASE("Held below its free length a slack muscle carries nothing; above it, 
   const EffectPtr slack = EffectCatalog::builtin().make("braid_slack");
   slack->set_value("band_N", band);
   const BraidGeometry geometry(params.build);
-  for (double gauge_kPa : {150.0, 400.0}) {
-    const double free = free_inflation(geometry, params.bladder, kAtmosphere, gauge_kPa * 1e3).length_m;
-    INFO("p = " << gauge_kPa << " kPa, free length " << free << " m");
+  for (double gauge_Pa : {150e3, 400e3}) {
+    const double free = free_inflation(geometry, params.bladder, kAtmosphere, gauge_Pa).length_m;
+    INFO("p = " << gauge_Pa << " Pa, free length " << free << " m");
     const std::vector<double> lengths{free - 0.02, free - 0.005, free + 0.005, free + 0.02};
-    const std::vector<double> pressures(lengths.size(), gauge_kPa);
+    const std::vector<double> pressures(lengths.size(), gauge_Pa);
     const std::vector<double> pushing = static_forces(params, lengths, pressures);
     const std::vector<double> slackened = static_forces(params, lengths, pressures, {slack});
     REQUIRE(pushing[0] < -band);  // the thesis's braid pushes there
@@ -160,14 +160,13 @@ TEST_CASE("static_forces is the supplied test's force at rest", "[slack][supplie
   params.bladder = BladderLaw::neo_hookean(kShearModulus);
   const std::vector<double> time{0.0, 1.0, 2.0, 3.0};
   const std::vector<double> held(time.size(), 0.0);
-  const std::vector<double> pressure{100.0, 250.0, 400.0, 550.0};
+  const std::vector<double> pressure{100e3, 250e3, 400e3, 550e3};
   const double length = 0.23;
-  const Measurement m =
-      simulate_supplied_measurement(params, length, ElongationTrajectory(time, held), pressure, 20.0, {});
+  const Measurement m = simulate_supplied_measurement(params, length, ElongationTrajectory(time, held), pressure, {});
   const std::vector<double> forces = static_forces(params, std::vector<double>(time.size(), length), pressure);
   for (std::size_t k = 0; k < time.size(); ++k) CHECK(forces[k] == m.force_N[k]);
-  CHECK_THROWS_AS(static_forces(params, {0.23}, {100.0, 200.0}), InvalidInput);
-  CHECK_THROWS_AS(static_forces(params, {0.23}, {100.0}, {EffectCatalog::builtin().make("sensor_lag")}),
+  CHECK_THROWS_AS(static_forces(params, {0.23}, {100e3, 200e3}), InvalidInput);
+  CHECK_THROWS_AS(static_forces(params, {0.23}, {100e3}, {EffectCatalog::builtin().make("sensor_lag")}),
                   InvalidParameter);
 }
 
@@ -184,11 +183,11 @@ TEST_CASE("An isotonic muscle settles where Gaylord's force equals its load", "[
   const double fiber = params.build.length_m / std::cos(theta0);
   const double d0 = params.build.diameter_m;
   const double load = 80.0;
-  const std::vector<double> pressures{200.0, 400.0, 600.0, 400.0, 200.0};
+  const std::vector<double> pressures{200e3, 400e3, 600e3, 400e3, 200e3};
   const IsotonicLengths path = isotonic_lengths(params, pressures, load, params.build.length_m);
   for (std::size_t k = 0; k < pressures.size(); ++k) {
-    INFO("p = " << pressures[k] << " kPa");
-    const double p = pressures[k] * 1e3;
+    INFO("p = " << pressures[k] << " Pa");
+    const double p = pressures[k];
     const double cos2 = (1.0 + 4.0 * load * std::sin(theta0) * std::sin(theta0) / (p * kPi * d0 * d0)) / 3.0;
     CHECK_REL(path.length_m[k], fiber * std::sqrt(cos2), 1e-8);
     CHECK_FALSE(path.at_limit[k]);
@@ -203,7 +202,7 @@ TEST_CASE("Pressurise/vent friction makes the muscle shorter on venting than on 
   params.bladder = BladderLaw::neo_hookean(kShearModulus);
   const EffectPtr hysteresis = EffectCatalog::builtin().make("pressure_hysteresis");
   hysteresis->set_value("coefficient", 0.1);
-  const std::vector<double> pressures{200.0, 400.0, 600.0, 400.0, 200.0};
+  const std::vector<double> pressures{200e3, 400e3, 600e3, 400e3, 200e3};
   const std::vector<double> branch = pressure_branches(pressures);
   CHECK(branch == std::vector<double>{1.0, 1.0, 1.0, -1.0, -1.0});
   const IsotonicLengths path = isotonic_lengths(params, pressures, 100.0, params.build.length_m, {hysteresis});
@@ -215,8 +214,8 @@ TEST_CASE("Pressurise/vent friction makes the muscle shorter on venting than on 
   const double pressure_force =
       0.1 * 400e3 * 0.25 * kPi * std::pow(BraidGeometry(params.build).shape(0.23).diameter, 2);
   CHECK_REL(force[3] - force[1], 2.0 * pressure_force, 1e-9);
-  // Noise within the play does not flip the branch.
-  CHECK(pressure_branches({100.0, 101.0, 100.5, 101.5, 100.8}) == std::vector<double>(5, 1.0));
+  // Noise within the play (2 kPa) does not flip the branch.
+  CHECK(pressure_branches({100e3, 101e3, 100.5e3, 101.5e3, 100.8e3}) == std::vector<double>(5, 1.0));
 }
 
 TEST_CASE("Free inflation is the isotonic solve with no load", "[isotonic][free_inflation]") {
@@ -224,12 +223,12 @@ TEST_CASE("Free inflation is the isotonic solve with no load", "[isotonic][free_
   // the force is zero, whichever solve finds it.
   MuscleParams params;  // PAM 2, the thesis bladder
   const BraidGeometry geometry(params.build);
-  const std::vector<double> pressures{138.0, 207.0, 276.0};
+  const std::vector<double> pressures{138e3, 207e3, 276e3};
   const IsotonicLengths path = isotonic_lengths(params, pressures, 0.0, params.build.length_m);
   for (std::size_t k = 0; k < pressures.size(); ++k) {
-    INFO("p = " << pressures[k] << " kPa");
+    INFO("p = " << pressures[k] << " Pa");
     const double free =
-        free_inflation(geometry, params.bladder, params.gas.atmospheric_pressure_Pa, pressures[k] * 1e3).length_m;
+        free_inflation(geometry, params.bladder, params.gas.atmospheric_pressure_Pa, pressures[k]).length_m;
     CHECK_REL(path.length_m[k], free, 1e-9);
   }
 }
@@ -243,17 +242,17 @@ TEST_CASE("A transducer error in a supplied test acts on the pressure that drive
   params.bladder = BladderLaw::neo_hookean(kShearModulus);
   const EffectPtr transducer = EffectCatalog::builtin().make("sensor_offset");
   transducer->set_value("gain", 0.96);
-  transducer->set_value("offset_kPa", -10.0);
-  const std::vector<double> truth{150.0, 300.0, 450.0, 300.0};
+  transducer->set_value("offset_Pa", -10e3);
+  const std::vector<double> truth{150e3, 300e3, 450e3, 300e3};
   std::vector<double> reading;
-  for (double p : truth) reading.push_back(0.96 * p - 10.0);
+  for (double p : truth) reading.push_back(0.96 * p - 10e3);
   const std::vector<double> time{0.0, 1.0, 2.0, 3.0};
   const ElongationTrajectory held(time, std::vector<double>(time.size(), 0.0));
-  const Measurement m = simulate_supplied_measurement(params, 0.23, held, reading, 20.0, {transducer});
-  const Measurement exact = simulate_supplied_measurement(params, 0.23, held, truth, 20.0, {});
+  const Measurement m = simulate_supplied_measurement(params, 0.23, held, reading, {transducer});
+  const Measurement exact = simulate_supplied_measurement(params, 0.23, held, truth, {});
   for (std::size_t k = 0; k < time.size(); ++k) {
     CHECK_REL(m.force_N[k], exact.force_N[k], 1e-12);
-    CHECK_REL(m.pressure_kPa[k], reading[k], 1e-12);
+    CHECK_REL(m.gauge_pressure_Pa[k], reading[k], 1e-12);
   }
   const std::vector<double> lengths(truth.size(), 0.23);
   const std::vector<double> table = static_forces(params, lengths, reading, {transducer});
@@ -268,9 +267,9 @@ TEST_CASE("A hose's lag in a supplied test drives the muscle with the ramp's clo
   MuscleParams params;
   params.build = commercial_build();
   params.bladder = BladderLaw::neo_hookean(kShearModulus);
-  const double slope = 100.0;  // kPa/s
+  const double slope = 100e3;  // Pa/s
   const double tau = 0.4;      // s
-  const EffectPtr hose = EffectCatalog::builtin().parse("sensor_lag:channel=pressure_kPa,time_constant_s=0.4");
+  const EffectPtr hose = EffectCatalog::builtin().parse("sensor_lag:channel=gauge_pressure_Pa,time_constant_s=0.4");
   REQUIRE(hose->reads_supplied_pressure());
   std::vector<double> time, reading, lagged;
   for (int k = 0; k <= 50; ++k) {
@@ -280,11 +279,11 @@ TEST_CASE("A hose's lag in a supplied test drives the muscle with the ramp's clo
     lagged.push_back(slope * (t - tau * (1.0 - std::exp(-t / tau))));
   }
   const ElongationTrajectory held(time, std::vector<double>(time.size(), 0.0));
-  const Measurement m = simulate_supplied_measurement(params, 0.23, held, reading, 20.0, {hose});
-  const Measurement exact = simulate_supplied_measurement(params, 0.23, held, lagged, 20.0, {});
+  const Measurement m = simulate_supplied_measurement(params, 0.23, held, reading, {hose});
+  const Measurement exact = simulate_supplied_measurement(params, 0.23, held, lagged, {});
   for (std::size_t k = 0; k < time.size(); ++k) {
     CHECK(m.force_N[k] == Approx(exact.force_N[k]).epsilon(1e-9).margin(1e-9));
-    CHECK(m.pressure_kPa[k] == reading[k]);
+    CHECK(m.gauge_pressure_Pa[k] == reading[k]);
   }
   const std::vector<double> lengths(time.size(), 0.23);
   const std::vector<double> settled = static_forces(params, lengths, reading, {hose});

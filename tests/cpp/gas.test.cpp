@@ -41,7 +41,7 @@ void check_polytropic(const SimulationResult& r, double n, double tolerance) {
   REQUIRE(r.time_s.size() > 100);
   for (std::size_t k = 0; k < r.time_s.size(); ++k) {
     INFO("sample " << k << ", t = " << r.time_s[k] << " s, n = " << n);
-    CHECK_REL(r.pressure_gauge_Pa[k] + gas.atmospheric_pressure_Pa, polytropic_pressure(p0, v0, r.gas_volume_m3[k], n),
+    CHECK_REL(r.gauge_pressure_Pa[k] + gas.atmospheric_pressure_Pa, polytropic_pressure(p0, v0, r.gas_volume_m3[k], n),
               tolerance);  // eq. 3.1.16
     CHECK_REL(r.temperature_K[k], polytropic_temperature(gas.ambient_temperature_K, v0, r.gas_volume_m3[k], n),
               tolerance);  // eq. 3.1.18
@@ -87,7 +87,7 @@ TEST_CASE("Gas: instantaneous heat exchange (tau = 1e-4 s) is isothermal, n = 1"
     largest_lag = std::max(largest_lag, std::abs(lag));
     const double p_iso = polytropic_pressure(p0, v0, r.gas_volume_m3[k], 1.0);  // eq. 3.1.16, n = 1
     const double t_iso = polytropic_temperature(gas.ambient_temperature_K, v0, r.gas_volume_m3[k], 1.0);
-    CHECK(std::abs((r.pressure_gauge_Pa[k] + gas.atmospheric_pressure_Pa) / p_iso - 1.0 - lag) <= 1e-7);
+    CHECK(std::abs((r.gauge_pressure_Pa[k] + gas.atmospheric_pressure_Pa) / p_iso - 1.0 - lag) <= 1e-7);
     CHECK(std::abs(r.temperature_K[k] / t_iso - 1.0 - lag) <= 1e-7);
   }
   // The lag itself is small: the run is isothermal to ~1e-6.

@@ -60,8 +60,8 @@ TEST_CASE("run_sensitivities: the pressure's sensitivity to the initial pressure
   const double atmosphere = nominal.params().gas.atmospheric_pressure_Pa;
   const double initial_absolute = atmosphere + 236.63e3;
   std::vector<double> closed_form;
-  for (double gauge : r.run.pressure_gauge_Pa) closed_form.push_back((gauge + atmosphere) / initial_absolute);
-  CHECK(relative_gap(r.derivatives[0].pressure_gauge_Pa, closed_form) < 1e-6);
+  for (double gauge : r.run.gauge_pressure_Pa) closed_form.push_back((gauge + atmosphere) / initial_absolute);
+  CHECK(relative_gap(r.derivatives[0].gauge_pressure_Pa, closed_form) < 1e-6);
   // The temperature does not depend on it: its sensitivity stays at the noise of the quotient.
   CHECK(largest(r.derivatives[0].temperature_K) < 1e-6);
 }
@@ -86,10 +86,10 @@ TEST_CASE("run_sensitivities: agree with central differences of tightly integrat
   // Tolerances: measured 2e-7 (friction, which the gas does not feel) and 3e-5 (tau, through the
   // integrated temperature at rtol 1e-8, the sensitivities outside the error test).
   CHECK(relative_gap(r.derivatives[0].force_N, central(friction_up.force_N, friction_down.force_N)) < 1e-6);
-  CHECK(largest(r.derivatives[0].pressure_gauge_Pa) == 0.0);
+  CHECK(largest(r.derivatives[0].gauge_pressure_Pa) == 0.0);
   CHECK(relative_gap(r.derivatives[1].force_N, central(tau_up.force_N, tau_down.force_N)) < 1e-4);
-  CHECK(relative_gap(r.derivatives[1].pressure_gauge_Pa,
-                     central(tau_up.pressure_gauge_Pa, tau_down.pressure_gauge_Pa)) < 1e-4);
+  CHECK(relative_gap(r.derivatives[1].gauge_pressure_Pa,
+                     central(tau_up.gauge_pressure_Pa, tau_down.gauge_pressure_Pa)) < 1e-4);
   CHECK(relative_gap(r.derivatives[1].temperature_K, central(tau_up.temperature_K, tau_down.temperature_K)) < 1e-4);
   CHECK(r.run.statistics.sensitivity_rhs_evaluations > 0);
 }
@@ -120,7 +120,7 @@ TEST_CASE("run_sensitivities: a parameter that moves the muscle's motion, agains
   // As for the heat time constant above: the slope through the integrated gas state at rtol
   // 1e-8, the sensitivities outside the error test.
   CHECK(relative_gap(r.derivatives[0].force_N, central(up.force_N, down.force_N)) < 1e-4);
-  CHECK(relative_gap(r.derivatives[0].pressure_gauge_Pa, central(up.pressure_gauge_Pa, down.pressure_gauge_Pa)) < 1e-4);
+  CHECK(relative_gap(r.derivatives[0].gauge_pressure_Pa, central(up.gauge_pressure_Pa, down.gauge_pressure_Pa)) < 1e-4);
   CHECK(relative_gap(r.derivatives[0].temperature_K, central(up.temperature_K, down.temperature_K)) < 1e-4);
   // The motion's own derivative is the elongation itself (d(s e)/ds), to the quotient's rounding.
   CHECK(relative_gap(r.derivatives[0].elongation_m, trajectory.elongation()) < 1e-8);
@@ -136,7 +136,7 @@ TEST_CASE("run_sensitivities: the run beside the sensitivities is the plain run'
   const SimulationResult plain = s.run(muscle(), trajectory);
   const SensitivityResult r = s.run_sensitivities(muscle(), {muscle(1.0 + kStep)}, {kStep}, trajectory);
   CHECK(relative_gap(r.run.force_N, plain.force_N) < 1e-12);
-  CHECK(relative_gap(r.run.pressure_gauge_Pa, plain.pressure_gauge_Pa) < 1e-12);
+  CHECK(relative_gap(r.run.gauge_pressure_Pa, plain.gauge_pressure_Pa) < 1e-12);
   CHECK(relative_gap(r.run.temperature_K, plain.temperature_K) < 1e-12);
   CHECK(r.run.statistics.steps == plain.statistics.steps);
 }

@@ -27,7 +27,7 @@ void check_identical(const SimulationResult& a, const SimulationResult& b) {
   CHECK(identical(a.length_m, b.length_m));
   CHECK(identical(a.force_N, b.force_N));
   CHECK(identical(a.friction_force_N, b.friction_force_N));
-  CHECK(identical(a.pressure_gauge_Pa, b.pressure_gauge_Pa));
+  CHECK(identical(a.gauge_pressure_Pa, b.gauge_pressure_Pa));
   CHECK(identical(a.temperature_K, b.temperature_K));
   CHECK(identical(a.gas_volume_m3, b.gas_volume_m3));
   CHECK(identical(a.gas_mass_kg, b.gas_mass_kg));

@@ -51,7 +51,7 @@ void check_identical(const SimulationResult& a, const SimulationResult& b) {
   CHECK(a.length_m == b.length_m);
   CHECK(a.force_N == b.force_N);
   CHECK(a.friction_force_N == b.friction_force_N);
-  CHECK(a.pressure_gauge_Pa == b.pressure_gauge_Pa);
+  CHECK(a.gauge_pressure_Pa == b.gauge_pressure_Pa);
   CHECK(a.temperature_K == b.temperature_K);
   CHECK(a.gas_volume_m3 == b.gas_volume_m3);
   CHECK(a.work_J == b.work_J);
@@ -203,7 +203,7 @@ TEST_CASE("Simulator: samples read off CVODES's steps agree with a dense referen
   CHECK(run.statistics.output_evaluations == static_cast<long>(trajectory.size()));
   const std::pair<const char*, std::vector<double> SimulationResult::*> traces[] = {
       {"force_N", &SimulationResult::force_N},
-      {"pressure_gauge_Pa", &SimulationResult::pressure_gauge_Pa},
+      {"gauge_pressure_Pa", &SimulationResult::gauge_pressure_Pa},
       {"temperature_K", &SimulationResult::temperature_K}};
   for (const auto& [name, trace] : traces) {
     const double error = largest_difference(run.*trace, reference.*trace, 1) / largest_magnitude(reference.*trace);
@@ -244,7 +244,7 @@ TEST_CASE("Simulator: the samples do not steer the steps", "[sim][output]") {
     CHECK(b.statistics.restarts == a.statistics.restarts);
     CHECK(b.statistics.output_evaluations == 4 * (a.statistics.output_evaluations - 1) + 1);
     CHECK(largest_difference(a.time_s, b.time_s, 4) <= 1e-12);
-    for (auto trace : {&SimulationResult::force_N, &SimulationResult::pressure_gauge_Pa,
+    for (auto trace : {&SimulationResult::force_N, &SimulationResult::gauge_pressure_Pa,
                        &SimulationResult::temperature_K, &SimulationResult::gas_volume_m3}) {
       const double bound = (cvodes ? 0.1 : 10.0) * config.relative_tolerance;
       CHECK(largest_difference(a.*trace, b.*trace, 4) <= bound * largest_magnitude(a.*trace));
@@ -322,7 +322,7 @@ TEST_CASE("Simulator: BDF, Adams and Dormand-Prince agree to the tolerance on a 
       const SimulationResult run = Simulator(with_method(tolerance(rtol), method)).run(model, trajectory);
       CHECK(run.statistics.method == method);
       for (auto trace :
-           {&SimulationResult::force_N, &SimulationResult::pressure_gauge_Pa, &SimulationResult::temperature_K}) {
+           {&SimulationResult::force_N, &SimulationResult::gauge_pressure_Pa, &SimulationResult::temperature_K}) {
         const double error = largest_difference(run.*trace, reference.*trace, 1) / largest_magnitude(reference.*trace);
         INFO("tau = " << tau << " s, " << method << ": largest difference / largest value = " << error);
         CHECK(error <= 10.0 * rtol);
@@ -382,7 +382,7 @@ TEST_CASE("Simulator: run_blocks hands run's samples over in blocks, bit for bit
       add(joined.length_m, block.length_m);
       add(joined.force_N, block.force_N);
       add(joined.friction_force_N, block.friction_force_N);
-      add(joined.pressure_gauge_Pa, block.pressure_gauge_Pa);
+      add(joined.gauge_pressure_Pa, block.gauge_pressure_Pa);
       add(joined.temperature_K, block.temperature_K);
       add(joined.gas_volume_m3, block.gas_volume_m3);
       add(joined.work_J, block.work_J);

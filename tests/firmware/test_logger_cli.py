@@ -287,9 +287,10 @@ def synthetic_logs(tmp_path: Path, offset_s: float, seed: int) -> tuple[Path, Pa
     # negative offset), 100 Hz, on its own clock
     machine_time = np.arange(-20.0, t[-1] + 10.0, 0.01)
     step_kPa = 5.0 / 1024 / 0.05 * 6.894757293168361 / 16  # one count of 16x oversampling
-    pressure = np.interp(machine_time, t, truth["pressure_kPa"]) + rng.normal(0, 0.3, machine_time.size)
+    # the logger writes kPa and °C: the truth's Pa and K, as it reads them
+    pressure = np.interp(machine_time, t, truth["gauge_pressure_Pa"] / 1e3) + rng.normal(0, 0.3, machine_time.size)
     pressure = np.round(pressure / step_kPa) * step_kPa
-    temperature = np.interp(machine_time, t, truth["temperature_C"]) + rng.normal(0, 0.05, machine_time.size)
+    temperature = np.interp(machine_time, t, truth["temperature_K"] - 273.15) + rng.normal(0, 0.05, machine_time.size)
     logger_time = machine_time + offset_s
     keep = logger_time >= 0
     logger = tmp_path / "logger.csv"
@@ -313,11 +314,11 @@ def test_align_recovers_a_known_offset_within_one_sample(tmp_path, capsys, offse
     assert "r = 0.9" in printed
 
     experiment = load_experiment(output)
-    assert set(experiment.measured()) == {"force_N", "pressure_kPa", "temperature_C"}
+    assert set(experiment.measured()) == {"force_N", "gauge_pressure_Pa", "temperature_K"}
     # the thesis test was inflated to 35 kPa; the logger's second before the first stretch says so
     # (100 samples with 0.3 kPa noise: the mean is good to 0.1 kPa)
-    assert experiment.inflation_pressure_kPa == pytest.approx(35.0, abs=0.1)
-    assert experiment.ambient_temperature_C == pytest.approx(22.85, abs=0.05)
+    assert experiment.inflation_gauge_pressure_Pa == pytest.approx(35e3, abs=100.0)
+    assert experiment.gas_params.ambient_temperature_K == pytest.approx(22.85 + 273.15, abs=0.05)
     assert experiment.elongation_m[0] == 0.0
     assert "before the first stretch" in output.read_text()
 

@@ -1,4 +1,6 @@
 import os
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -32,3 +34,21 @@ def write_experiment(tmp_path):
         return path
 
     return write
+
+
+@pytest.fixture
+def run_pamkit():
+    """`python -m pamkit ARGUMENTS...` as a user runs it: a real process with this test's
+    environment, its output captured as text; returns the CompletedProcess. `timeout` [s] bounds
+    a command that hangs."""
+
+    def run(*arguments, timeout=300):
+        return subprocess.run(
+            [sys.executable, "-m", "pamkit", *map(str, arguments)],
+            capture_output=True,
+            text=True,
+            env=os.environ.copy(),
+            timeout=timeout,
+        )
+
+    return run

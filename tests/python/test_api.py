@@ -12,10 +12,10 @@ import pytest
 
 import pamkit
 from pamkit.effects import parse_effects
-from pamkit.io.experiment import ExperimentError
+from pamkit.io.guards import ExperimentError
 from pamkit.simulate import simulate_experiment
 
-SERIES_COLUMNS = ["time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C"]
+SERIES_COLUMNS = ["time_s", "elongation_m", "force_N", "gauge_pressure_Pa", "temperature_K"]
 
 
 @pytest.fixture
@@ -36,8 +36,8 @@ def test_simulate_returns_the_prediction_as_a_frame(machines_dir):
         "time_s": "s",
         "elongation_m": "m",
         "force_N": "N",
-        "pressure_kPa": "kPa (gauge)",
-        "temperature_C": "°C",
+        "gauge_pressure_Pa": "Pa",
+        "temperature_K": "K",
     }
     assert frame.attrs["experiment"] == str(toml) and frame.attrs["data"].endswith("zwick_testxpert.csv")
     assert frame.attrs["kind"] == "series" and frame.attrs["gas"] == "sealed" and frame.attrs["effects"] == []
@@ -62,7 +62,7 @@ def test_a_supplied_test_integrates_no_ode(write_experiment):
     )
     frame = pamkit.simulate(pamkit.load_experiment(path))
     assert frame.attrs["solver_statistics"] is None
-    np.testing.assert_array_equal(frame["pressure_kPa"], [100, 110, 120])  # the measured pressure drove it
+    np.testing.assert_array_equal(frame["gauge_pressure_Pa"], [100e3, 110e3, 120e3])  # the measured pressure drove it
 
 
 def test_effects_are_objects_or_specs(machines_dir):
@@ -74,7 +74,7 @@ def test_effects_are_objects_or_specs(machines_dir):
     pd.testing.assert_frame_equal(by_spec, by_object)
     assert by_spec.attrs["effects"] == [repr(effect)]
     # The effect changes the prediction: heat flows through the wall over the 8 s test.
-    assert not np.array_equal(by_spec["temperature_C"], pamkit.simulate(toml)["temperature_C"])
+    assert not np.array_equal(by_spec["temperature_K"], pamkit.simulate(toml)["temperature_K"])
     with pytest.raises(ExperimentError, match=r"instron_bluehill.toml: .*no_such_effect"):
         pamkit.simulate(toml, effects=["no_such_effect"])
 
@@ -83,7 +83,7 @@ def test_a_static_table_comes_back_with_its_own_columns(thesis_dir):
     festo = thesis_dir.parent / "festo" / "DMSP-10-250.toml"
     frame = pamkit.simulate(festo)
     experiment = pamkit.load_experiment(festo)
-    assert list(frame.columns) == ["length_m", "pressure_kPa", "force_N"]
+    assert list(frame.columns) == ["length_m", "gauge_pressure_Pa", "force_N"]
     assert len(frame) == len(experiment.columns["force_N"]) and frame.attrs["solver_statistics"] is None
 
 
@@ -115,7 +115,7 @@ def test_the_modules_stay_importable_beside_the_calls():
     "name, says",
     [
         ("load_experiment", ["time_s [s]", "elongation_m [m]", "force_N [N]", "N (rows"]),
-        ("simulate", ["time_s [s]", "force_N [N]", "pressure_kPa [kPa, gauge]", "N rows", "solver_statistics"]),
+        ("simulate", ["time_s [s]", "force_N [N]", "gauge_pressure_Pa [Pa]", "N rows", "solver_statistics"]),
         ("diagnose", ["verdict()", "to_json", "plot(path)"]),
     ],
 )

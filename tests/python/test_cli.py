@@ -1,9 +1,6 @@
 """The command line as a user runs it: a real process, real files."""
 
 import csv
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -12,23 +9,13 @@ import pytest
 import pamkit
 
 
-def run_pamkit(*arguments):
-    return subprocess.run(
-        [sys.executable, "-m", "pamkit", *map(str, arguments)],
-        capture_output=True,
-        text=True,
-        env=os.environ.copy(),
-        timeout=120,
-    )
-
-
 def read_csv(path):
     with open(path, newline="") as handle:
         rows = list(csv.reader(handle))
     return rows[0], np.array(rows[1:], dtype=float)
 
 
-def test_simulate_thesis_test_writes_csv_and_plot(thesis_dir, tmp_path):
+def test_simulate_thesis_test_writes_csv_and_plot(thesis_dir, tmp_path, run_pamkit):
     output = tmp_path / "out.csv"
     plot = tmp_path / "out.png"
     done = run_pamkit("simulate", thesis_dir / "pam2_207kPa_90pct.toml", "-o", output, "--plot", plot)
@@ -47,7 +34,7 @@ def test_simulate_thesis_test_writes_csv_and_plot(thesis_dir, tmp_path):
     assert plot.stat().st_size > 10_000 and plot.read_bytes()[:4] == b"\x89PNG"
 
 
-def test_simulate_supplied_uses_measured_pressure(write_experiment, tmp_path):
+def test_simulate_supplied_uses_measured_pressure(write_experiment, tmp_path, run_pamkit):
     path = write_experiment(
         csv_text="time_s,elongation_m,pressure_kPa\n0,0,200\n1,0,300\n2,0,400\n", toml_test_extra='gas = "supplied"'
     )
@@ -60,7 +47,7 @@ def test_simulate_supplied_uses_measured_pressure(write_experiment, tmp_path):
     assert np.all(np.diff(table[:, 2]) > 0)
 
 
-def test_simulate_reports_bad_input_without_traceback(write_experiment, tmp_path):
+def test_simulate_reports_bad_input_without_traceback(write_experiment, tmp_path, run_pamkit):
     path = write_experiment(csv_text="time_s,elongation_m\n0,0\n1,oops\n")
     done = run_pamkit("simulate", path, "-o", tmp_path / "x.csv")
     assert done.returncode == 2
@@ -68,7 +55,7 @@ def test_simulate_reports_bad_input_without_traceback(write_experiment, tmp_path
     assert "Traceback" not in done.stderr
 
 
-def test_simulate_names_the_row_that_leaves_the_braid_range(write_experiment, tmp_path):
+def test_simulate_names_the_row_that_leaves_the_braid_range(write_experiment, tmp_path, run_pamkit):
     path = write_experiment(csv_text="time_s,elongation_m\n0,0\n1,0.01\n2,0.5\n")
     done = run_pamkit("simulate", path, "-o", tmp_path / "x.csv")
     assert done.returncode == 2

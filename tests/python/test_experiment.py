@@ -10,15 +10,18 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 import pamkit
-from pamkit.io.experiment import ExperimentError, ExperimentWarning, load_experiment, read_series, write_experiment
+from pamkit.io.experiment import load_experiment
+from pamkit.io.guards import ExperimentError, ExperimentWarning
+from pamkit.io.series import read_series
+from pamkit.io.writers import write_experiment
 
 
 def test_reads_build_test_and_series(write_experiment):
     experiment = load_experiment(write_experiment())
     assert experiment.build.length_m == 0.225
-    assert experiment.inflation_pressure_kPa == 236.63
+    assert experiment.inflation_gauge_pressure_Pa == 236.63e3  # the file's 236.63 kPa, in Pa
     assert experiment.gas_params.ambient_temperature_K == pytest.approx(296.0)  # 22.85 °C, table C.4
-    assert experiment.gas == "sealed"
+    assert experiment.gas == pamkit.GasMode.sealed
     np.testing.assert_array_equal(experiment.elongation_m, [0, 0.0025, 0.005])
     assert experiment.measured() == []
 
@@ -110,7 +113,10 @@ def test_read_series_keeps_measured_channels(tmp_path):
     path = tmp_path / "m.csv"
     path.write_text("time_s,elongation_m,force_N,pressure_kPa,temperature_C\n0,0,1,2,3\n1,0.1,4,5,6\n")
     columns = read_series(path)
-    np.testing.assert_array_equal(columns["temperature_C"], [3, 6])
+    # The file's units are a person's; what is read is SI, each channel converted once here.
+    assert list(columns) == ["time_s", "elongation_m", "force_N", "gauge_pressure_Pa", "temperature_K"]
+    np.testing.assert_array_equal(columns["gauge_pressure_Pa"], [2e3, 5e3])
+    np.testing.assert_array_equal(columns["temperature_K"], [3 + 273.15, 6 + 273.15])
 
 
 def _commercial(tmp_path, muscle="", sections="", test_extra=""):
@@ -131,7 +137,7 @@ def test_a_datasheet_braid_angle_becomes_fiber_revolutions(tmp_path):
     # Flat ends: tan(theta) = pi n D / L over the whole deflated length.
     assert experiment.build.fiber_revolutions == pytest.approx(0.25 * math.tan(math.radians(21)) / (math.pi * 0.01))
     assert experiment.is_table and experiment.kind == "isometric_map"
-    assert set(experiment.columns) == {"length_m", "pressure_kPa", "force_N"}
+    assert set(experiment.columns) == {"length_m", "gauge_pressure_Pa", "force_N"}
     with pytest.raises(ExperimentError, match="both braid_angle_deg and fiber_revolutions"):
         load_experiment(_commercial(tmp_path, "braid_angle_deg = 21.0\nfiber_revolutions = 1.0"))
     with pytest.raises(ExperimentError, match="between 0 and 90"):
@@ -234,7 +240,7 @@ def test_a_datasheet_build_gets_its_other_dimensions_scaled_with_its_diameter(tm
 
 
 def test_an_offset_run_zeroes_the_load_cell_and_the_transducer(write_experiment, tmp_path):
-    # DESIGN.md: [test] zero = "offset.csv", a run with no air whose means zero the sensors.
+    # [test] zero = "offset.csv": a run with no air whose means zero the sensors.
     path = write_experiment(
         csv_text="time_s,elongation_m,force_N,pressure_kPa,temperature_C\n0,0,25,245,23\n1,0.001,30,250,23\n",
         toml_test_extra='zero = "offset.csv"',
@@ -244,9 +250,10 @@ def test_an_offset_run_zeroes_the_load_cell_and_the_transducer(write_experiment,
     )
     experiment = load_experiment(path)
     assert list(experiment.columns["force_N"]) == [5.0, 10.0]  # 20 N of preload and tare taken off
-    assert list(experiment.columns["pressure_kPa"]) == [236.0, 241.0]  # the transducer's 9 kPa at atmosphere
-    assert list(experiment.columns["temperature_C"]) == [23.0, 23.0]
-    assert experiment.zeroed == {"force_N": 20.0, "pressure_kPa": 9.0}
+    # The transducer's 9 kPa at atmosphere taken off the file's 245 and 250 kPa, in Pa.
+    assert list(experiment.columns["gauge_pressure_Pa"]) == [236e3, 241e3]
+    assert list(experiment.columns["temperature_K"]) == [23.0 + 273.15, 23.0 + 273.15]
+    assert experiment.zeroed == {"force_N": 20.0, "gauge_pressure_Pa": 9e3}
     (tmp_path / "offset.csv").write_text("time_s,elongation_m\n0,0\n1,0\n")
     with pytest.raises(ExperimentError, match="has none of the channels it could zero"):
         load_experiment(path)
@@ -263,10 +270,12 @@ def test_a_written_experiment_reads_back_as_written(tmp_path):
     assert data == tmp_path / "run.csv"
     experiment = load_experiment(tmp_path / "run.toml")
     assert experiment.build.to_dict() == build.to_dict()  # every field, bit for bit (repr round-trips)
-    assert (experiment.inflation_pressure_kPa, experiment.ambient_temperature_C) == (150.82, 20.3)
+    # In SI, as the reader converts them: 150.82 kPa and 20.3 °C.
+    assert experiment.inflation_gauge_pressure_Pa == 150.82e3
+    assert experiment.gas_params.ambient_temperature_K == 20.3 + 273.15
     np.testing.assert_array_equal(experiment.elongation_m, columns["elongation_m"])
     text = (tmp_path / "run.toml").read_text()
-    # DESIGN.md's layout: comments, [muscle], [test] ending with the data line; whole numbers as integers.
+    # The layout: comments, [muscle], [test] ending with the data line; whole numbers as integers.
     assert text.startswith("# made here\n\n[muscle]\nlength_m = 0.2256\n")
     assert "fiber_count = 216\n" in text
     assert text.endswith('ambient_temperature_C = 20.3\ndata = "run.csv"\n')
@@ -304,14 +313,14 @@ def test_the_writer_refuses_what_the_reader_would_and_names_it(tmp_path, section
 def test_a_series_written_in_blocks_is_every_row_once_in_csvs_format(tmp_path, monkeypatch):
     # write_series formats WRITE_BLOCK_ROWS rows at a time (a 2-million-row simulation's text never
     # whole in memory); across block ends the file is the csv module's: CRLF, "%.10g", each row once.
-    import pamkit.io.experiment as experiment
+    import pamkit.io.writers as writers
 
-    monkeypatch.setattr(experiment, "WRITE_BLOCK_ROWS", 4)
+    monkeypatch.setattr(writers, "WRITE_BLOCK_ROWS", 4)
     time = np.arange(10) * 0.1
     elongation = np.linspace(0.0, 0.05, 10)
     force = np.pi * np.arange(10) - 7.0
     path = tmp_path / "series.csv"
-    experiment.write_series(path, {"time_s": time, "elongation_m": elongation, "force_N": force})
+    writers.write_series(path, {"time_s": time, "elongation_m": elongation, "force_N": force})
     expected = "time_s,elongation_m,force_N\r\n" + "".join(
         f"{t:.10g},{x:.10g},{f:.10g}\r\n" for t, x, f in zip(time, elongation, force)
     )

@@ -1,4 +1,4 @@
-"""Input that is not a bounded text file (issue #14): devices, pipes, over-long lines, huge files
+"""Input that is not a bounded text file: devices, pipes, over-long lines, huge files
 are refused with a message naming the file (and line), without hanging or filling memory; and
 the rows numpy reads at once equal those the csv module reads one by one."""
 
@@ -11,17 +11,12 @@ import textwrap
 import numpy as np
 import pytest
 
-from pamkit.io.experiment import (
-    MAX_FILE_BYTES,
-    MAX_LINE_BYTES,
-    ExperimentError,
-    ExperimentWarning,
-    load_experiment,
-    read_series,
-)
+from pamkit.io.experiment import load_experiment
+from pamkit.io.guards import MAX_FILE_BYTES, MAX_LINE_BYTES, ExperimentError, ExperimentWarning
+from pamkit.io.series import read_series
 
 # A child that reads more than this has not refused the input: it fails instead of filling the
-# machine's memory (the audit's /dev/zero grew to 23 GB). Importing numpy, scipy and pamkit
+# machine's memory (data = "/dev/zero" would grow without bound). Importing numpy, scipy and pamkit
 # reserves well under it.
 CHILD_ADDRESS_SPACE = 3 << 30
 CHILD_TIMEOUT_S = 60  # a refused input takes well under a second; a pipe read would block forever
@@ -37,7 +32,8 @@ def load_in_child(path):
     code = textwrap.dedent(
         f"""
         import sys
-        from pamkit.io.experiment import ExperimentError, load_experiment
+        from pamkit.io.experiment import load_experiment
+        from pamkit.io.guards import ExperimentError
         try:
             load_experiment({str(path)!r})
         except ExperimentError as error:
@@ -126,7 +122,7 @@ def test_rows_read_at_once_equal_rows_read_one_by_one(tmp_path, delimiter, decim
         slow = read_series(quoted)
     assert [str(w.message).replace("plain", "quoted") for w in at_once] == [str(w.message) for w in one_by_one]
     assert "row(s) repeat the time stamp" in str(at_once[0].message)
-    for name in names:
+    for name in fast:
         # A merged sample is a mean: a running mean row by row, one sum at once; they differ
         # by rounding only (a few units in the last place of values up to ~200).
         np.testing.assert_allclose(fast[name], slow[name], rtol=1e-13, atol=0)
@@ -136,11 +132,11 @@ def test_rows_read_at_once_equal_rows_read_one_by_one(tmp_path, delimiter, decim
 def test_plain_rows_never_go_row_by_row(tmp_path, monkeypatch):
     # The row-by-row parser is what made 10^6 rows take tens of seconds: a plain file, CRLF or
     # not, must not use it, but for the last line when that has no line end (it may be cut).
-    import pamkit.io.experiment as experiment
+    import pamkit.io.series as series
 
     parsed_alone = []
-    parse_row = experiment._parse_row
-    monkeypatch.setattr(experiment, "_parse_row", lambda *a: parsed_alone.append(a[1]) or parse_row(*a))
+    parse_row = series._parse_row
+    monkeypatch.setattr(series, "_parse_row", lambda *a: parsed_alone.append(a[1]) or parse_row(*a))
     path = tmp_path / "run.csv"
     rows = "".join(f"{i * 1e-3:.3f},{i * 1e-6:.6f}\n" for i in range(1000))
     for text, alone in ((rows, []), (rows.replace("\n", "\r\n"), []), (rows.rstrip("\n"), [1001])):

@@ -20,7 +20,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import pamkit
-from pamkit.io.experiment import TEST_KEYS, ExperimentError, ExperimentWarning
+from pamkit.io.experiment import TEST_KEYS
+from pamkit.io.guards import ExperimentError, ExperimentWarning
 
 MAX_EXAMPLES = 150
 DEADLINE_MS = 5000

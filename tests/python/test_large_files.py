@@ -1,4 +1,4 @@
-"""Large experiment files (issue #12): a plain CSV is read block by block into memory smaller than
+"""Large experiment files: a plain CSV is read block by block into memory smaller than
 the file, and the blocks join into exactly what one reading of the whole file gives."""
 
 import tracemalloc
@@ -6,8 +6,10 @@ import tracemalloc
 import numpy as np
 import pytest
 
-import pamkit.io.experiment as experiment
-from pamkit.io.experiment import ExperimentWarning, read_series
+import pamkit.io.series as series
+from pamkit.io.columns import si_name
+from pamkit.io.guards import ExperimentWarning
+from pamkit.io.series import read_series
 
 NAMES = ["time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C"]
 
@@ -27,10 +29,10 @@ def test_a_plain_file_reads_in_less_memory_than_its_size(tmp_path, monkeypatch):
     # 200 000 rows of five channels in 10-digit text (about 11 MB, ~57 bytes a row) are 8 MB of
     # numbers (40 bytes a row): read block by block, the peak is the numbers and what one block
     # takes (its bytes, its text, that text with decimal points, numpy's rows: a few copies of
-    # it, 16 is generous). The reader before held the file's bytes and text at once: twice its
-    # size, before any number.
+    # it, 16 is generous). A reader holding the file's bytes and text at once would take twice
+    # its size before any number.
     block = 1 << 18
-    monkeypatch.setattr(experiment, "READ_BLOCK_BYTES", block)
+    monkeypatch.setattr(series, "READ_BLOCK_BYTES", block)
     rng = np.random.default_rng(12)
     count = 200_000
     table = np.column_stack([np.arange(count) * 1e-3, rng.uniform(0, 0.05, count), rng.normal(100, 30, (count, 3))])
@@ -69,13 +71,13 @@ def test_small_blocks_read_as_the_whole_file_does(tmp_path, monkeypatch, delimit
     quoted.write_text(bom + delimiter.join(f'"{n}"' for n in NAMES) + text[text.index(line_end) :], newline="")
     with pytest.warns(ExperimentWarning) as whole:
         reference = read_series(quoted)
-    monkeypatch.setattr(experiment, "READ_BLOCK_BYTES", 100)
+    monkeypatch.setattr(series, "READ_BLOCK_BYTES", 100)
     with pytest.warns(ExperimentWarning) as in_blocks:
         blocks = read_series(plain)
     assert [str(w.message).replace("plain", "quoted") for w in in_blocks] == [str(w.message) for w in whole]
     assert len(in_blocks) == (2 if len(tail) == 2 else 1)  # the merged stamps, and the cut line
-    assert list(blocks) == NAMES
-    for name in NAMES:
+    assert list(blocks) == [si_name(name) for name in NAMES]
+    for name in blocks:
         # Merged samples are means: a running mean row by row, one sum in blocks (rounding only).
         np.testing.assert_allclose(blocks[name], reference[name], rtol=1e-13, atol=0)
     assert blocks["time_s"][-1] == (9.999 if len(tail) == 5 else table[-1, 0])

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from pamkit.cli import main
-from pamkit.io.experiment import ExperimentError, load_experiment
+from pamkit.io.experiment import load_experiment
+from pamkit.io.guards import ExperimentError
 from pamkit.io.logger import LoggerError, read_machine_csv
 from pamkit.io.machine import read_machine_export
 

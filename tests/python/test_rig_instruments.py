@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from pamkit import static_forces
-from pamkit.io.experiment import ExperimentError, ExperimentWarning, load_experiment
+from pamkit.io.experiment import load_experiment
+from pamkit.io.guards import ExperimentError, ExperimentWarning
 from pamkit.simulate import initial_length, muscle_params, simulate_experiment
 
 MUSCLE = """[muscle]
@@ -68,7 +69,7 @@ def test_the_offset_run_of_a_preloaded_mount_keeps_the_preload_in_the_force(tmp_
     path = write_rig(tmp_path, 'preload_N = 20.0\nzero = "offset.csv"')
     (tmp_path / "offset.csv").write_text("time_s,elongation_m,force_N,pressure_kPa\n0,0,22,9\n1,0,24,9\n")
     experiment = load_experiment(path)
-    assert experiment.zeroed == {"force_N": 3.0, "pressure_kPa": 9.0}
+    assert experiment.zeroed == {"force_N": 3.0, "gauge_pressure_Pa": 9e3}  # the file's 9 kPa, in Pa
     assert experiment.columns["force_N"][0] == pytest.approx(0.5 * 0 - 3.0)
 
 
@@ -85,8 +86,8 @@ def test_a_load_cell_reads_only_its_range(tmp_path):
 
 def test_rows_at_the_transducers_range_end_are_censored(tmp_path):
     experiment = load_experiment(write_rig(tmp_path, "pressure_range_kPa = [0.0, 450.0]"))
-    pressure = experiment.columns["pressure_kPa"]
-    np.testing.assert_array_equal(experiment.censored, (pressure <= 0.0) | (pressure >= 450.0))
+    pressure = experiment.columns["gauge_pressure_Pa"]
+    np.testing.assert_array_equal(experiment.censored, (pressure <= 0.0) | (pressure >= 450e3))
     assert experiment.censored.sum() == 5  # 0 kPa twice, 450 twice and 500 once
     assert not load_experiment(write_rig(tmp_path)).censored.any()
 
@@ -120,13 +121,13 @@ def test_simulate_plots_a_supplied_test_against_its_pressure_and_an_isotonic_tes
 
 
 def test_a_lab_log_with_an_offset_run_a_repeated_stamp_and_a_preloaded_mount_loads_as_is(tmp_path):
-    # Issue "Commercial muscles on real rigs", done when: such a log loads without hand editing.
+    # A lab's log as its rig writes it loads without hand editing.
     log = "time_s,elongation_m,pressure_kPa,force_N\n0.000,0,9,23\n0.001,0,59,48\n0.001,0,61,50\n0.002,0,109,73\n"
     path = write_rig(tmp_path, 'preload_N = 20.0\nzero = "offset.csv"\nforce_range_N = [-5.0, 1500.0]', csv_text=log)
     (tmp_path / "offset.csv").write_text("time_s,elongation_m,pressure_kPa,force_N\n0,0,9,23\n1,0,9,23\n")
     with pytest.warns(ExperimentWarning, match=r"rig.csv:4: 1 row\(s\) repeat the time stamp"):
         experiment = load_experiment(path)
-    np.testing.assert_allclose(experiment.columns["pressure_kPa"], [0.0, 51.0, 100.0])  # merged, zeroed
+    np.testing.assert_allclose(experiment.columns["gauge_pressure_Pa"], [0.0, 51e3, 100e3])  # merged, zeroed
     np.testing.assert_allclose(experiment.columns["force_N"], [20.0, 46.0, 70.0])  # the 3 N tare taken off
     assert experiment.reading_range("force_N") == (-8.0, 1497.0)
     assert simulate_experiment(experiment)["force_N"][0] == pytest.approx(20.0, rel=1e-6)

@@ -74,7 +74,7 @@ def test_simulation_matches_scipy_reference(process, polytropic_index):
     assert ref.mass == pytest.approx(model.gas_mass, rel=1e-14)
     for name in (
         "force_N",
-        "pressure_gauge_Pa",
+        "gauge_pressure_Pa",
         "temperature_K",
         "friction_force_N",
         "work_J",

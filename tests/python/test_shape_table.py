@@ -11,7 +11,7 @@ from pamkit.diagnose.model import Predictor
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import synthesize
 
-CHANNELS = ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
+CHANNELS = ("time_s", "elongation_m", "force_N", "gauge_pressure_Pa", "temperature_K")
 INITIAL = core.InitialState(length_m=0.167, gauge_pressure_Pa=236.63e3)  # table C.2, 90 %
 
 
@@ -84,8 +84,8 @@ def test_predictor_reads_cached_tables_for_sealed_runs(tmp_path):
     predictor.simulate(x_friction, [])
     assert len(predictor._shape_tables) == 1
     # The run is the one without a table, bit for bit.
-    params, pressure_kPa = predictor.baseline.model_params(x)
-    initial = predictor.initial_state(params, pressure_kPa)
+    params, pressure_Pa = predictor.baseline.model_params(x)
+    initial = predictor.initial_state(params, pressure_Pa)
     plain = core.simulate_measurement(params, initial, predictor.trajectory, [], predictor.simulator)
     assert same_bits(first, plain)
     # A motion effect: no table is built or read.

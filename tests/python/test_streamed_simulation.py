@@ -6,7 +6,10 @@ import pytest
 
 from pamkit._core import EffectCatalog
 from pamkit.cli import main
-from pamkit.io.experiment import SERIES_COLUMNS, ExperimentError, load_experiment, write_series
+from pamkit.io.columns import SERIES_COLUMNS
+from pamkit.io.experiment import load_experiment
+from pamkit.io.guards import ExperimentError
+from pamkit.io.writers import write_series
 from pamkit.simulate import simulate_experiment, simulate_streamed, why_not_streamed
 
 EFFECTS = EffectCatalog.builtin()

@@ -12,7 +12,7 @@ import pytest
 
 from pamkit import cli
 from pamkit.cluster import ScaleUnavailable, client, read_rows, require
-from pamkit.io.experiment import ExperimentError
+from pamkit.io.guards import ExperimentError
 from pamkit.sweep import METRICS, load_spec, run_in_process, run_one, sweep
 
 # One cycle of the thesis's PAM 2 test at 207 kPa (table C.2): a short run, about 300 samples.
@@ -60,8 +60,8 @@ def test_a_two_worker_cluster_gives_the_rows_of_a_plain_loop(cluster, write_spec
         )
         assert high["peak_force_N"] > low["peak_force_N"] > 0
         assert high["stored_energy_J"] > low["stored_energy_J"] > 0
-        assert low["pressure_range_kPa"] > 0  # a sealed test: the volume changes, so does the pressure
-        assert low["temperature_swing_C"] == 0  # the files' gas is isothermal (polytropic, n = 1)
+        assert low["pressure_range_Pa"] > 0  # a sealed test: the volume changes, so does the pressure
+        assert low["temperature_swing_K"] == 0  # the files' gas is isothermal (polytropic, n = 1)
 
 
 def test_a_run_the_model_cannot_follow_keeps_its_message_and_the_others_run(cluster, write_spec, tmp_path):
@@ -148,8 +148,8 @@ def test_the_command_line_writes_the_table_on_a_running_cluster(cluster, write_s
     assert cli.main(["sweep", str(spec), "-o", str(output), "--scheduler", address, "--quiet"]) == 0
     assert capsys.readouterr().out == f"wrote {output} (2 runs, 0 failed)\n"
     isothermal, adiabatic = read_rows(output)
-    assert float(isothermal["temperature_swing_C"]) == 0  # n = 1: the gas keeps its temperature
-    assert float(adiabatic["temperature_swing_C"]) > 1  # n = 1.4: a few percent of volume change, degrees
+    assert float(isothermal["temperature_swing_K"]) == 0  # n = 1: the gas keeps its temperature
+    assert float(adiabatic["temperature_swing_K"]) > 1  # n = 1.4: a few percent of volume change, degrees
 
 
 def test_without_dask_the_command_says_what_to_install(write_spec, tmp_path, capsys, monkeypatch):

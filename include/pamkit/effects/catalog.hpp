@@ -1,9 +1,10 @@
 #pragma once
 /// \file
-/// The effect catalog of DESIGN.md: its nine named model extensions, the two real muscles add
-/// and the load cell's and thermometer's errors (issues #9 and #17), one header each in `builtin/`, each with physical
-/// parameters, their realistic and plausible ranges, and what gives it away in the data. `EffectCatalog::builtin()`
-/// below is the one place that names them: a new effect is its header, an include and a line here.
+/// The effect catalog: the model's physical extensions, what real muscles add (a braid that goes
+/// slack, pressurise/vent hysteresis) and the instruments' errors, one header each in `builtin/`,
+/// each with physical parameters, their realistic and plausible ranges, and what gives it away in
+/// the data. `EffectCatalog::builtin()` below is the one place that names them: a new effect is
+/// its header, an include and a line here.
 
 #include "pamkit/effects/builtin/bladder_viscoelasticity.hpp"
 #include "pamkit/effects/builtin/braid_slack.hpp"

@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pamkit/fields.hpp"
@@ -24,23 +25,23 @@ namespace pamkit {
 
 /// The channels a bench test measures, on one time base.
 struct Measurement {
-  std::vector<double> time_s;         ///< sample times [s]
-  std::vector<double> elongation_m;   ///< the crosshead's elongation [m]
-  std::vector<double> force_N;        ///< load cell [N]
-  std::vector<double> pressure_kPa;   ///< pressure transducer, gauge [kPa]
-  std::vector<double> temperature_C;  ///< gas temperature sensor [degC]
+  std::vector<double> time_s;             ///< sample times [s]
+  std::vector<double> elongation_m;       ///< the crosshead's elongation [m]
+  std::vector<double> force_N;            ///< load cell [N]
+  std::vector<double> gauge_pressure_Pa;  ///< pressure transducer: above the atmosphere [Pa]
+  std::vector<double> temperature_K;      ///< gas temperature sensor [K]
   /// CVODES counters of the run behind a sealed test; all zero where no ODE is integrated (a
   /// supplied test is static at each sample).
   SolverStatistics statistics;
 
-  /// The channel called `name` (force_N, pressure_kPa or temperature_C).
+  /// The channel called `name` (force_N, gauge_pressure_Pa or temperature_K).
   /// \throws InvalidInput for any other name.
   std::vector<double>& channel(const std::string& name);
 };
 
 /// The names of the measured channels an effect may act on.
 inline const std::vector<std::string>& measured_channels() {
-  static const std::vector<std::string> names{"force_N", "pressure_kPa", "temperature_C"};
+  static const std::vector<std::string> names{"force_N", "gauge_pressure_Pa", "temperature_K"};
   return names;
 }
 
@@ -133,7 +134,7 @@ struct EffectParameter {
   static EffectParameter declared(std::string name, double value, const FieldInfo& field, const EffectFieldInfo& info);
 };
 
-/// How the muscle's gas is held during a test (DESIGN.md, "A measured dataset").
+/// How the muscle's gas is held during a test: sealed after inflation, or supplied by a regulator.
 enum class GasMode { sealed, supplied };
 
 /// A model extension with physical parameters. Effects are immutable once configured and
@@ -175,9 +176,10 @@ class Effect {
   /// in a supplied test (and a static table) it acts on the pressure that drives the model.
   virtual bool reads_supplied_pressure() const { return false; }
   /// Stage 0, supplied tests only: the pressure that drives the model from the transducer's
-  /// reading, sample by sample [kPa gauge]. `time_s` is empty for a static table of settled
+  /// reading, sample by sample [Pa gauge]. `time_s` is empty for a static table of settled
   /// rows; an effect that needs time then throws InvalidParameter.
-  virtual void apply_to_supplied_pressure(const std::vector<double>& time_s, std::vector<double>& pressure_kPa) const;
+  virtual void apply_to_supplied_pressure(const std::vector<double>& time_s,
+                                          std::vector<double>& gauge_pressure_Pa) const;
   /// Stage 1: changes the model's parameters.
   virtual void apply_to_params(MuscleParams& params) const;
   /// Stage 2: the muscle's elongation from the crosshead's, sample by sample.
@@ -189,13 +191,14 @@ class Effect {
 
 using EffectPtr = std::shared_ptr<Effect>;
 
-/// Effect names mapped to factories; `builtin()` holds the catalog of DESIGN.md. An ordinary
+/// Effect names mapped to factories; `builtin()` holds pamkit's own catalog. An ordinary
 /// object, not a global: make one, add your own effects, pass it where effects are parsed.
 class EffectCatalog {
  public:
   using Factory = std::function<EffectPtr()>;
 
-  /// The effects of DESIGN.md's catalog, and what real muscles add (braid_slack, pressure_hysteresis).
+  /// pamkit's effects: the model's physical extensions, what real muscles add (braid_slack,
+  /// pressure_hysteresis) and the instruments' errors (include/pamkit/effects/catalog.hpp).
   static EffectCatalog builtin();
 
   /// Adds or replaces an effect. \throws InvalidParameter for an empty name.
@@ -205,6 +208,11 @@ class EffectCatalog {
   /// Parses "NAME" or "NAME:key=value,key=value" into a configured effect.
   /// \throws InvalidParameter naming the bad part of the text.
   EffectPtr parse(const std::string& spec) const;
+  /// The grammar `parse` reads, without making the effect: the name, and the settings in the
+  /// order written (key, value), as text. A caller that fills in what a spec leaves out (a
+  /// synthetic bench drawing the other parameters) reads the given keys here.
+  /// \throws InvalidParameter naming an item that is not key=value.
+  static std::pair<std::string, std::vector<std::pair<std::string, std::string>>> split(const std::string& spec);
   std::vector<std::string> names() const;
 
  private:

@@ -7,9 +7,9 @@ namespace pamkit {
 
 inline std::vector<double>& Measurement::channel(const std::string& name) {
   if (name == "force_N") return force_N;
-  if (name == "pressure_kPa") return pressure_kPa;
-  if (name == "temperature_C") return temperature_C;
-  throw InvalidInput(detail::message("no measured channel '", name, "' (force_N, pressure_kPa, temperature_C)"));
+  if (name == "gauge_pressure_Pa") return gauge_pressure_Pa;
+  if (name == "temperature_K") return temperature_K;
+  throw InvalidInput(detail::message("no measured channel '", name, "' (force_N, gauge_pressure_Pa, temperature_K)"));
 }
 
 inline bool Effect::acts_in(GasMode, std::string*) const { return true; }
@@ -76,10 +76,11 @@ inline EffectPtr EffectCatalog::make(const std::string& name) const {
   return found->second();
 }
 
-inline EffectPtr EffectCatalog::parse(const std::string& spec) const {
+inline std::pair<std::string, std::vector<std::pair<std::string, std::string>>> EffectCatalog::split(
+    const std::string& spec) {
   const auto colon = spec.find(':');
-  EffectPtr effect = make(spec.substr(0, colon));
-  if (colon == std::string::npos) return effect;
+  std::pair<std::string, std::vector<std::pair<std::string, std::string>>> out{spec.substr(0, colon), {}};
+  if (colon == std::string::npos) return out;
   std::istringstream items(spec.substr(colon + 1));
   std::string item;
   while (std::getline(items, item, ',')) {
@@ -87,8 +88,14 @@ inline EffectPtr EffectCatalog::parse(const std::string& spec) const {
     if (equals == std::string::npos || equals == 0) {
       throw InvalidParameter(detail::message("effect '", spec, "': '", item, "' is not key=value"));
     }
-    effect->set(item.substr(0, equals), item.substr(equals + 1));
+    out.second.emplace_back(item.substr(0, equals), item.substr(equals + 1));
   }
+  return out;
+}
+
+inline EffectPtr EffectCatalog::parse(const std::string& spec) const {
+  EffectPtr effect = make(spec.substr(0, spec.find(':')));  // an unknown name is the first thing said
+  for (const auto& [key, value] : split(spec).second) effect->set(key, value);
   return effect;
 }
 

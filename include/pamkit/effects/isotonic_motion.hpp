@@ -38,17 +38,17 @@ struct IsotonicMotionConfig {
 
 /// The motion of an isotonic test; every vector has one entry per pressure sample.
 struct IsotonicMotion {
-  std::vector<double> time_s;              ///< sample times [s]
-  std::vector<double> length_m;            ///< muscle length [m]
-  std::vector<double> velocity_m_per_s;    ///< lengthening rate [m/s] (> 0 while the load wins)
-  std::vector<double> force_N;             ///< the muscle's tension, friction included [N]
-  std::vector<double> gauge_pressure_kPa;  ///< the gauge pressure that drove the model (effects applied) [kPa]
-  SolverStatistics statistics;             ///< CVODES counters, summed over the restarts
+  std::vector<double> time_s;             ///< sample times [s]
+  std::vector<double> length_m;           ///< muscle length [m]
+  std::vector<double> velocity_m_per_s;   ///< lengthening rate [m/s] (> 0 while the load wins)
+  std::vector<double> force_N;            ///< the muscle's tension, friction included [N]
+  std::vector<double> gauge_pressure_Pa;  ///< the gauge pressure that drove the model (effects applied) [Pa]
+  SolverStatistics statistics;            ///< CVODES counters, summed over the restarts
 };
 
 /// Integrates a mass `mass_kg` hanging on the muscle under a constant load `load_N` (its weight,
 /// or weight plus any constant pull) while the supplied gauge pressure moves through
-/// `gauge_pressures_kPa` at `time_s`, linearly between samples:
+/// `gauge_pressures_Pa` at `time_s`, linearly between samples:
 ///     dL/dt = v,   m dv/dt = load_N - F(L, p(t), v, branch),
 /// the length growing while the load wins. F is the tension of `detail::supplied_force`: gas,
 /// bladder and the tanh friction at velocity v, less the pressurise/vent hysteresis on the
@@ -58,7 +58,7 @@ struct IsotonicMotion {
 /// Effects act as in `isotonic_lengths`: physical ones through the parameters, the supplied
 /// pressure's transducer through the pressure.
 /// \param time_s              sample times [s], strictly increasing, at least two
-/// \param gauge_pressures_kPa supplied gauge pressure at each sample [kPa]
+/// \param gauge_pressures_Pa  supplied gauge pressure at each sample [Pa]
 /// \param load_N              constant load on the muscle [N]
 /// \param mass_kg             moving mass [kg], > 0
 /// \param start_length_m      length at time_s[0], at rest [m]; by default the quasi-static
@@ -70,7 +70,7 @@ struct IsotonicMotion {
 ///         around it); InvalidParameter for a mass not > 0, a bad config or an effect that
 ///         cannot act here; SolverError with the CVODES flag's name if integration fails.
 IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<double>& time_s,
-                               const std::vector<double>& gauge_pressures_kPa, double load_N, double mass_kg,
+                               const std::vector<double>& gauge_pressures_Pa, double load_N, double mass_kg,
                                std::optional<double> start_length_m = std::nullopt,
                                const std::vector<EffectPtr>& effects = {}, const IsotonicMotionConfig& config = {});
 

@@ -76,7 +76,7 @@ class ParametricEffect : public Effect {
         const auto& names = measured_channels();
         if (std::find(names.begin(), names.end(), value) == names.end()) {
           throw InvalidParameter(message("effect ", Params::kName, ": channel = '", value,
-                                         "' is not one of force_N, pressure_kPa, temperature_C"));
+                                         "' is not one of force_N, gauge_pressure_Pa, temperature_K"));
         }
         params_.channel = value;
         return;

@@ -13,7 +13,6 @@
 
 #include "pamkit/effects/effect.hpp"
 #include "pamkit/sim/simulator.hpp"
-#include "pamkit/units.hpp"
 
 namespace pamkit {
 
@@ -53,12 +52,8 @@ inline SolverStatistics sealed_measurement_blocks(const MuscleParams& params, co
     block.time_s = r.time_s;
     block.elongation_m.assign(from, from + static_cast<std::ptrdiff_t>(n));
     block.force_N = r.force_N;
-    block.pressure_kPa.resize(n);
-    block.temperature_C.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      block.pressure_kPa[k] = units::kilopascal_from_pascal(r.pressure_gauge_Pa[k]);
-      block.temperature_C[k] = units::celsius_from_kelvin(r.temperature_K[k]);
-    }
+    block.gauge_pressure_Pa = r.gauge_pressure_Pa;
+    block.temperature_K = r.temperature_K;
     sink(first, block);
   };
   return simulator.run_blocks(MuscleModel(extended, initial), moved ? *moved : crosshead, block_size, channels, shapes);
@@ -81,7 +76,7 @@ inline Measurement simulate_measurement(const MuscleParams& params, const Initia
                                         const ElongationTrajectory& crosshead, const std::vector<EffectPtr>& effects,
                                         const Simulator& simulator = Simulator(), const ShapeTable* shapes = nullptr) {
   Measurement m;
-  for (std::vector<double>* column : {&m.time_s, &m.elongation_m, &m.force_N, &m.pressure_kPa, &m.temperature_C}) {
+  for (std::vector<double>* column : {&m.time_s, &m.elongation_m, &m.force_N, &m.gauge_pressure_Pa, &m.temperature_K}) {
     column->reserve(crosshead.size());
   }
   const SolverStatistics statistics = detail::sealed_measurement_blocks(
@@ -90,8 +85,9 @@ inline Measurement simulate_measurement(const MuscleParams& params, const Initia
         m.time_s.insert(m.time_s.end(), block.time_s.begin(), block.time_s.end());
         m.elongation_m.insert(m.elongation_m.end(), block.elongation_m.begin(), block.elongation_m.end());
         m.force_N.insert(m.force_N.end(), block.force_N.begin(), block.force_N.end());
-        m.pressure_kPa.insert(m.pressure_kPa.end(), block.pressure_kPa.begin(), block.pressure_kPa.end());
-        m.temperature_C.insert(m.temperature_C.end(), block.temperature_C.begin(), block.temperature_C.end());
+        m.gauge_pressure_Pa.insert(m.gauge_pressure_Pa.end(), block.gauge_pressure_Pa.begin(),
+                                   block.gauge_pressure_Pa.end());
+        m.temperature_K.insert(m.temperature_K.end(), block.temperature_K.begin(), block.temperature_K.end());
       },
       shapes);
   for (const EffectPtr& effect : effects) effect->apply_to_measurement(m);
@@ -124,18 +120,20 @@ inline SolverStatistics simulate_measurement_blocks(const MuscleParams& params, 
 }
 
 /// The branch of each sample of a supplied pressure: +1 while it is raised, -1 while it is
-/// lowered. A play operator of half-width `play_kPa` decides, so that noise in a hold or a
+/// lowered. A play operator of half-width `play_Pa` decides, so that noise in a hold or a
 /// settled step does not flip it; the record starts on the pressurising branch.
-inline std::vector<double> pressure_branches(const std::vector<double>& pressure_kPa, double play_kPa = 2.0) {
-  std::vector<double> branch(pressure_kPa.size(), 1.0);
-  if (pressure_kPa.empty()) return branch;
-  double extreme = pressure_kPa.front();
+/// \param gauge_pressure_Pa  the supplied gauge pressure, sample by sample [Pa]
+/// \param play_Pa            half the change that turns the branch [Pa]
+inline std::vector<double> pressure_branches(const std::vector<double>& gauge_pressure_Pa, double play_Pa = 2e3) {
+  std::vector<double> branch(gauge_pressure_Pa.size(), 1.0);
+  if (gauge_pressure_Pa.empty()) return branch;
+  double extreme = gauge_pressure_Pa.front();
   double direction = 1.0;
-  for (std::size_t k = 0; k < pressure_kPa.size(); ++k) {
-    const double p = pressure_kPa[k];
+  for (std::size_t k = 0; k < gauge_pressure_Pa.size(); ++k) {
+    const double p = gauge_pressure_Pa[k];
     if (direction > 0.0 ? p > extreme : p < extreme) {
       extreme = p;
-    } else if (std::abs(p - extreme) > 2.0 * play_kPa) {
+    } else if (std::abs(p - extreme) > 2.0 * play_Pa) {
       direction = -direction;
       extreme = p;
     }
@@ -148,7 +146,7 @@ namespace detail {
 /// The effects a static table admits: physical ones that act at a supplied pressure, and
 /// errors of the transducer whose reading drives the model. \throws InvalidParameter otherwise.
 inline void apply_static_effects(const std::vector<EffectPtr>& effects, MuscleParams& extended,
-                                 std::vector<double>& driving_kPa) {
+                                 std::vector<double>& driving_Pa) {
   for (const EffectPtr& effect : effects) {
     std::string why_not;
     if (!effect->acts_in(GasMode::supplied, &why_not)) throw InvalidParameter(why_not);
@@ -157,7 +155,7 @@ inline void apply_static_effects(const std::vector<EffectPtr>& effects, MusclePa
                                              " acts on the motion or the instruments over time; a static table of "
                                              "settled rows has no time axis for it"));
     }
-    effect->apply_to_supplied_pressure({}, driving_kPa);
+    effect->apply_to_supplied_pressure({}, driving_Pa);
     effect->apply_to_params(extended);
   }
   extended.validate();
@@ -166,25 +164,26 @@ inline void apply_static_effects(const std::vector<EffectPtr>& effects, MusclePa
 
 /// Simulates a supplied-pressure test as its instruments read it: the muscle hangs on a
 /// regulator, so the measured gauge pressure drives the static model sample by sample (the gas
-/// stays at `ambient_temperature_C`), and force is what is predicted. `effects` act at every
-/// stage, as in a sealed test; an effect that cannot act in a supplied test is refused.
-/// \param length_m          muscle length at zero elongation [m]
-/// \param crosshead         the crosshead's elongation over time [m]
-/// \param pressure_kPa      supplied gauge pressure at the crosshead's samples [kPa]
+/// stays at the ambient temperature, `params.gas.ambient_temperature_K`), and force is what is
+/// predicted. `effects` act at every stage, as in a sealed test; an effect that cannot act in a
+/// supplied test is refused.
+/// \param length_m           muscle length at zero elongation [m]
+/// \param crosshead          the crosshead's elongation over time [m]
+/// \param gauge_pressure_Pa  supplied gauge pressure at the crosshead's samples [Pa]
 /// \throws InvalidParameter for an effect that cannot act here; InvalidInput naming the sample
 ///         whose length leaves the braid's range.
 inline Measurement simulate_supplied_measurement(const MuscleParams& params, double length_m,
                                                  const ElongationTrajectory& crosshead,
-                                                 const std::vector<double>& pressure_kPa, double ambient_temperature_C,
+                                                 const std::vector<double>& gauge_pressure_Pa,
                                                  const std::vector<EffectPtr>& effects) {
   const std::vector<double>& time = crosshead.time();
-  if (pressure_kPa.size() != time.size()) {
-    throw InvalidInput(detail::message("simulate_supplied_measurement: ", pressure_kPa.size(), " pressures for ",
+  if (gauge_pressure_Pa.size() != time.size()) {
+    throw InvalidInput(detail::message("simulate_supplied_measurement: ", gauge_pressure_Pa.size(), " pressures for ",
                                        time.size(), " samples"));
   }
   MuscleParams extended = params;
   std::vector<double> motion = crosshead.elongation();
-  std::vector<double> driving = pressure_kPa;
+  std::vector<double> driving = gauge_pressure_Pa;
   for (const EffectPtr& effect : effects) {
     std::string why_not;
     if (!effect->acts_in(GasMode::supplied, &why_not)) throw InvalidParameter(why_not);
@@ -196,8 +195,8 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
   Measurement m;
   m.time_s = time;
   m.elongation_m = crosshead.elongation();
-  m.pressure_kPa = pressure_kPa;  // what the transducer read: the effects that read it made `driving`
-  m.temperature_C.assign(time.size(), ambient_temperature_C);
+  m.gauge_pressure_Pa = gauge_pressure_Pa;  // what the transducer read: the effects that read it made `driving`
+  m.temperature_K.assign(time.size(), params.gas.ambient_temperature_K);
   m.force_N.resize(time.size());
   const std::vector<double> branch = pressure_branches(driving);
   for (std::size_t k = 0; k < time.size(); ++k) {
@@ -212,8 +211,7 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
       throw InvalidInput(detail::message("sample ", k + 1, " (time ", time[k], " s, elongation ", motion[k], " m): ",
                                          error.what(), "; check the elongation's zero and [test] initial_length_m"));
     }
-    m.force_N[k] = detail::supplied_force(geometry, extended, shape, units::pascal_from_kilopascal(driving[k]),
-                                          velocity, branch[k]);
+    m.force_N[k] = detail::supplied_force(geometry, extended, shape, driving[k], velocity, branch[k]);
   }
   for (const EffectPtr& effect : effects) {
     if (!effect->reads_supplied_pressure()) effect->apply_to_measurement(m);
@@ -226,19 +224,19 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
 /// were measured (the pressurise/vent branch follows it). Friction, which needs a velocity, is
 /// zero at rest. Physical effects act through the parameters, the supplied pressure's
 /// transducer through the pressure; a table has no time axis for motion and other instruments.
-/// \param lengths_m            muscle length of each row [m]
-/// \param gauge_pressures_kPa  supplied gauge pressure of each row [kPa]
+/// \param lengths_m           muscle length of each row [m]
+/// \param gauge_pressures_Pa  supplied gauge pressure of each row [Pa]
 /// \throws InvalidParameter for an effect that cannot act on a static table; InvalidInput naming
 ///         the row whose length leaves the braid's range.
 inline std::vector<double> static_forces(const MuscleParams& params, const std::vector<double>& lengths_m,
-                                         const std::vector<double>& gauge_pressures_kPa,
+                                         const std::vector<double>& gauge_pressures_Pa,
                                          const std::vector<EffectPtr>& effects = {}) {
-  if (lengths_m.size() != gauge_pressures_kPa.size()) {
-    throw InvalidInput(detail::message("static_forces: ", lengths_m.size(), " lengths for ", gauge_pressures_kPa.size(),
-                                       " pressures"));
+  if (lengths_m.size() != gauge_pressures_Pa.size()) {
+    throw InvalidInput(
+        detail::message("static_forces: ", lengths_m.size(), " lengths for ", gauge_pressures_Pa.size(), " pressures"));
   }
   MuscleParams extended = params;
-  std::vector<double> driving = gauge_pressures_kPa;
+  std::vector<double> driving = gauge_pressures_Pa;
   detail::apply_static_effects(effects, extended, driving);
   const BraidGeometry geometry(extended.build);
   const std::vector<double> branch = pressure_branches(driving);
@@ -250,8 +248,7 @@ inline std::vector<double> static_forces(const MuscleParams& params, const std::
     } catch (const InvalidInput& error) {
       throw InvalidInput(detail::message("row ", k + 1, " (length ", lengths_m[k], " m): ", error.what()));
     }
-    force[k] =
-        detail::supplied_force(geometry, extended, shape, units::pascal_from_kilopascal(driving[k]), 0.0, branch[k]);
+    force[k] = detail::supplied_force(geometry, extended, shape, driving[k], 0.0, branch[k]);
   }
   return force;
 }
@@ -270,12 +267,15 @@ struct IsotonicLengths {
 /// the muscle pulls more than the load. Where a light load has several equilibria, the muscle
 /// stays on the branch it is on, as a real one does. The search spans half the deflated length
 /// to 1.2 times it, within the braid's range.
-/// 	hrows InvalidParameter for an effect that cannot act on a static table.
-inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::vector<double>& gauge_pressures_kPa,
+/// \param gauge_pressures_Pa  supplied gauge pressure of each row [Pa]
+/// \param load_N              the load the muscle carries [N]
+/// \param start_length_m      where the first row's search starts [m]
+/// \throws InvalidParameter for an effect that cannot act on a static table.
+inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::vector<double>& gauge_pressures_Pa,
                                         double load_N, double start_length_m,
                                         const std::vector<EffectPtr>& effects = {}) {
   MuscleParams extended = params;
-  std::vector<double> driving = gauge_pressures_kPa;
+  std::vector<double> driving = gauge_pressures_Pa;
   detail::apply_static_effects(effects, extended, driving);
   const BraidGeometry geometry(extended.build);
   const double deflated = extended.build.length_m;
@@ -286,7 +286,7 @@ inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::v
   IsotonicLengths out;
   double length = std::clamp(start_length_m, shortest, longest);
   for (std::size_t k = 0; k < driving.size(); ++k) {
-    const double gauge = units::pascal_from_kilopascal(driving[k]);
+    const double gauge = driving[k];
     auto imbalance = [&](double L) {
       return detail::supplied_force(geometry, extended, geometry.shape(L), gauge, 0.0, branch[k]) - load_N;
     };

@@ -117,18 +117,18 @@ inline JigSample Jig::convert(double d, double force) const {
 
 /// A row of table 4.2: the mechanical tests of the prototype.
 struct Table42Row {
-  double pressure_kPa;             ///< PAM inflation (gauge) [kPa]
+  double gauge_pressure_Pa;        ///< PAM inflation, above the atmosphere [Pa]
   double muscle_length_m;          ///< measured between attachment points, end caps included [m]
   double angle_deg;                ///< theta at the start [deg]
   double vertical_displacement_m;  ///< crosshead travel [m]
 };
 
-/// Table 4.2 as printed.
+/// Table 4.2 as printed (its pressures in kPa, here in Pa).
 inline std::vector<Table42Row> table_4_2() {
-  return {{70.0, 0.286, 80.0, 0.0503},
-          {70.0, 0.286, 80.0, 0.0604},
-          {55.0, 0.290, 82.0, 0.0703},
-          {48.0, 0.295, 85.0, 0.0803}};
+  return {{70e3, 0.286, 80.0, 0.0503},
+          {70e3, 0.286, 80.0, 0.0604},
+          {55e3, 0.290, 82.0, 0.0703},
+          {48e3, 0.295, 85.0, 0.0803}};
 }
 
 }  // namespace pamkit::exo

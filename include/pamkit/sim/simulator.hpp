@@ -82,7 +82,7 @@ struct SimulationResult {
   std::vector<double> length_m;               ///< muscle length
   std::vector<double> force_N;                ///< axial force (tension > 0), friction included
   std::vector<double> friction_force_N;       ///< friction part of force_N
-  std::vector<double> pressure_gauge_Pa;      ///< gas pressure above ambient
+  std::vector<double> gauge_pressure_Pa;      ///< gas pressure above ambient
   std::vector<double> temperature_K;          ///< gas temperature
   std::vector<double> gas_volume_m3;          ///< gas volume (eq. 3.1.2, plus any dead volume)
   std::vector<double> gas_mass_kg;            ///< mass of air inside

@@ -1056,6 +1056,11 @@ class SimulationResult:
         gas volume, dead volume included [m^3]
         """
     @property
+    def gauge_pressure_Pa(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        gas pressure above ambient [Pa]
+        """
+    @property
     def heat_lost_J(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         heat from gas to wall since the start [J]
@@ -1064,11 +1069,6 @@ class SimulationResult:
     def length_m(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         muscle length [m]
-        """
-    @property
-    def pressure_gauge_Pa(self) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        gas pressure above ambient [Pa]
         """
     @property
     def statistics(self) -> SolverStatistics:
@@ -1226,12 +1226,12 @@ class Measurement:
     def force_N(self, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
         ...
     @property
-    def pressure_kPa(self) -> numpy.typing.NDArray[numpy.float64]:
+    def gauge_pressure_Pa(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        pressure transducer, gauge [kPa]
+        pressure transducer: above the atmosphere [Pa]
         """
-    @pressure_kPa.setter
-    def pressure_kPa(self, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
+    @gauge_pressure_Pa.setter
+    def gauge_pressure_Pa(self, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
         ...
     @property
     def statistics(self) -> SolverStatistics:
@@ -1239,12 +1239,12 @@ class Measurement:
         CVODES counters of the run behind a sealed test; all zero for a supplied test (no ODE)
         """
     @property
-    def temperature_C(self) -> numpy.typing.NDArray[numpy.float64]:
+    def temperature_K(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        gas temperature sensor [degC]
+        gas temperature sensor [K]
         """
-    @temperature_C.setter
-    def temperature_C(self, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
+    @temperature_K.setter
+    def temperature_K(self, arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> None:
         ...
     @property
     def time_s(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -1518,9 +1518,9 @@ class Effect:
         ...
     def apply_to_params(self, arg0: MuscleParams) -> MuscleParams:
         ...
-    def apply_to_supplied_pressure(self, time_s: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], pressure_kPa: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
+    def apply_to_supplied_pressure(self, time_s: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], gauge_pressure_Pa: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
         """
-        the pressure [kPa] that drives a supplied test, from the reading (time_s empty: settled rows)
+        the gauge pressure [Pa] that drives a supplied test, from the reading (time_s empty: settled rows)
         """
     def channels_changed(self) -> list[str]:
         """
@@ -1568,6 +1568,11 @@ class EffectCatalog:
     def builtin() -> EffectCatalog:
         """
         the nine effects of the catalog
+        """
+    @staticmethod
+    def split(spec: str) -> tuple[str, list[tuple[str, str]]]:
+        """
+        the name and the (key, value) settings of a spec, as parse reads them, without making the effect
         """
     def __init__(self) -> None:
         ...
@@ -1668,9 +1673,9 @@ class IsotonicMotion:
         the muscle's tension, friction included [N]
         """
     @property
-    def gauge_pressure_kPa(self) -> numpy.typing.NDArray[numpy.float64]:
+    def gauge_pressure_Pa(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        gauge pressure that drove the model, effects applied [kPa]
+        gauge pressure that drove the model, effects applied [Pa]
         """
     @property
     def length_m(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -2318,10 +2323,10 @@ class Table42Row:
     def angle_deg(self) -> float:
         ...
     @property
-    def muscle_length_m(self) -> float:
+    def gauge_pressure_Pa(self) -> float:
         ...
     @property
-    def pressure_kPa(self) -> float:
+    def muscle_length_m(self) -> float:
         ...
     @property
     def vertical_displacement_m(self) -> float:
@@ -2386,13 +2391,13 @@ def inflated_and_sealed(params: MuscleParams, gauge_pressure_Pa: typing.Supports
     """
     The start of a sealed test: inflated freely to gauge_pressure_Pa [Pa], sealed at the free length it gives.
     """
-def isotonic_lengths(params: MuscleParams, gauge_pressures_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], load_N: typing.SupportsFloat | typing.SupportsIndex, start_length_m: typing.SupportsFloat | typing.SupportsIndex, effects: collections.abc.Sequence[Effect] = []) -> IsotonicLengths:
+def isotonic_lengths(params: MuscleParams, gauge_pressures_Pa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], load_N: typing.SupportsFloat | typing.SupportsIndex, start_length_m: typing.SupportsFloat | typing.SupportsIndex, effects: collections.abc.Sequence[Effect] = []) -> IsotonicLengths:
     """
-    The length [m] at which the muscle carries load_N at each supplied gauge pressure [kPa], rows in the order measured, following the quasi-static path from start_length_m. Releases the GIL.
+    The length [m] at which the muscle carries load_N at each supplied gauge pressure [Pa], rows in the order measured, following the quasi-static path from start_length_m. Releases the GIL.
     """
-def isotonic_motion(params: MuscleParams, time_s: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], gauge_pressures_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], load_N: typing.SupportsFloat | typing.SupportsIndex, mass_kg: typing.SupportsFloat | typing.SupportsIndex, start_length_m: typing.SupportsFloat | typing.SupportsIndex | None = None, effects: collections.abc.Sequence[Effect] = [], config: IsotonicMotionConfig = ...) -> IsotonicMotion:
+def isotonic_motion(params: MuscleParams, time_s: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], gauge_pressures_Pa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], load_N: typing.SupportsFloat | typing.SupportsIndex, mass_kg: typing.SupportsFloat | typing.SupportsIndex, start_length_m: typing.SupportsFloat | typing.SupportsIndex | None = None, effects: collections.abc.Sequence[Effect] = [], config: IsotonicMotionConfig = ...) -> IsotonicMotion:
     """
-    Integrates a mass mass_kg [kg] under a constant load load_N [N] hanging on the muscle while the supplied gauge pressure [kPa] moves through its samples at time_s [s] (linear between them): m dv/dt = load - F(L, p, v), friction and effects included, starting at rest at start_length_m [m] (None: the quasi-static equilibrium of the first sample). Length and velocity at each sample. Releases the GIL.
+    Integrates a mass mass_kg [kg] under a constant load load_N [N] hanging on the muscle while the supplied gauge pressure [Pa] moves through its samples at time_s [s] (linear between them): m dv/dt = load - F(L, p, v), friction and effects included, starting at rest at start_length_m [m] (None: the quasi-static equilibrium of the first sample). Length and velocity at each sample. Releases the GIL.
     """
 def measured_channels() -> list[str]:
     """
@@ -2414,9 +2419,9 @@ def polytropic_temperature(t0_K: typing.Annotated[numpy.typing.ArrayLike, numpy.
     """
     Eq. 3.1.18: temperature after a polytropic change [K].
     """
-def pressure_branches(pressure_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], play_kPa: typing.SupportsFloat | typing.SupportsIndex = 2.0) -> numpy.typing.NDArray[numpy.float64]:
+def pressure_branches(gauge_pressure_Pa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], play_Pa: typing.SupportsFloat | typing.SupportsIndex = 2000.0) -> numpy.typing.NDArray[numpy.float64]:
     """
-    +1 where a supplied pressure is being raised, -1 where lowered (a play operator of half-width play_kPa).
+    +1 where a supplied gauge pressure [Pa] is being raised, -1 where lowered (a play operator of half-width play_Pa [Pa]).
     """
 def read_muscle_params(path: os.PathLike | str | bytes) -> MuscleParams:
     """
@@ -2458,15 +2463,15 @@ def simulate_measurement(params: MuscleParams, initial: InitialState, crosshead:
     """
 def simulate_measurement_blocks(params: MuscleParams, initial: InitialState, crosshead: ElongationTrajectory, effects: collections.abc.Sequence[Effect], simulator: Simulator, block_rows: typing.SupportsInt | typing.SupportsIndex, sink: collections.abc.Callable, shapes: ShapeTable = None) -> SolverStatistics:
     """
-    simulate_measurement, its samples handed to sink(first, channels) as they are integrated, block_rows at a time: first is the index of the block's first sample, channels a dict of numpy arrays (time_s [s], elongation_m [m], force_N [N], pressure_kPa [kPa gauge], temperature_C [degC]). The samples equal simulate_measurement's bit for bit; only one block is held. Effects on the measured channels read the whole series and are refused (ValueError). Returns the SolverStatistics. Releases the GIL but for the sink's calls. shapes: as for simulate_measurement.
+    simulate_measurement, its samples handed to sink(first, channels) as they are integrated, block_rows at a time: first is the index of the block's first sample, channels a dict of numpy arrays (time_s [s], elongation_m [m], force_N [N], gauge_pressure_Pa [Pa], temperature_K [K]). The samples equal simulate_measurement's bit for bit; only one block is held. Effects on the measured channels read the whole series and are refused (ValueError). Returns the SolverStatistics. Releases the GIL but for the sink's calls. shapes: as for simulate_measurement.
     """
-def simulate_supplied_measurement(params: MuscleParams, length_m: typing.SupportsFloat | typing.SupportsIndex, crosshead: ElongationTrajectory, pressure_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], ambient_temperature_C: typing.SupportsFloat | typing.SupportsIndex, effects: collections.abc.Sequence[Effect]) -> Measurement:
+def simulate_supplied_measurement(params: MuscleParams, length_m: typing.SupportsFloat | typing.SupportsIndex, crosshead: ElongationTrajectory, gauge_pressure_Pa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], effects: collections.abc.Sequence[Effect]) -> Measurement:
     """
-    Simulates a supplied-pressure test: the measured gauge pressure [kPa] drives the static model at each sample of crosshead (lengths from length_m [m]); force is predicted. Releases the GIL.
+    Simulates a supplied-pressure test: the measured gauge pressure [Pa] drives the static model at each sample of crosshead (lengths from length_m [m]), the gas at params.gas.ambient_temperature_K; force is predicted. Releases the GIL.
     """
-def static_forces(params: MuscleParams, lengths_m: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], gauge_pressures_kPa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], effects: collections.abc.Sequence[Effect] = []) -> numpy.typing.NDArray[numpy.float64]:
+def static_forces(params: MuscleParams, lengths_m: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], gauge_pressures_Pa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], effects: collections.abc.Sequence[Effect] = []) -> numpy.typing.NDArray[numpy.float64]:
     """
-    The muscle's force at rest [N] at each row of a static table (length [m], supplied gauge pressure [kPa]), with physical effects applied. Releases the GIL.
+    The muscle's force at rest [N] at each row of a static table (length [m], supplied gauge pressure [Pa]), with physical effects applied. Releases the GIL.
     """
 def table_4_2() -> list[Table42Row]:
     """

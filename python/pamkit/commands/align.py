@@ -7,7 +7,7 @@ import warnings
 
 import numpy as np
 
-from pamkit.io.experiment import LOGGER_CHANNELS
+from pamkit.io.columns import LOGGER_CHANNELS, file_name, si_name, value_from_si
 
 
 def register(subparsers) -> None:
@@ -43,8 +43,8 @@ def register(subparsers) -> None:
     parser.add_argument(
         "--logger-signal",
         default="pressure_kPa",
-        choices=LOGGER_CHANNELS,
-        help="logger channel to align on (default: pressure_kPa)",
+        choices=[file_name(channel) for channel in LOGGER_CHANNELS],
+        help="logger channel to align on, as its CSV names it (default: pressure_kPa)",
     )
     parser.add_argument(
         "--machine-signal",
@@ -73,7 +73,6 @@ def register(subparsers) -> None:
 
 
 def run(arguments: argparse.Namespace) -> int:
-    from pamkit.io.experiment import write_experiment
     from pamkit.io.logger import (
         LoggerError,
         LoggerWarning,
@@ -82,6 +81,7 @@ def run(arguments: argparse.Namespace) -> int:
         read_machine_csv,
         read_muscle_source,
     )
+    from pamkit.io.writers import write_experiment
 
     with warnings.catch_warnings(record=True) as dropped:
         warnings.simplefilter("always", LoggerWarning)
@@ -92,8 +92,10 @@ def run(arguments: argparse.Namespace) -> int:
     sections = read_muscle_source(arguments.muscle)
     for name in LOGGER_CHANNELS:
         if name not in logger:
-            raise LoggerError(f"{arguments.logger}: no {name} column (was the log written with a calibration?)")
-    found = align(logger, machine, arguments.logger_signal, arguments.machine_signal, arguments.max_offset)
+            raise LoggerError(
+                f"{arguments.logger}: no {file_name(name)} column (was the log written with a calibration?)"
+            )
+    found = align(logger, machine, si_name(arguments.logger_signal), arguments.machine_signal, arguments.max_offset)
     offset = found.offset_s
 
     # the span both recorded, on the machine's time base
@@ -108,8 +110,8 @@ def run(arguments: argparse.Namespace) -> int:
         "time_s": t - t[0],
         "elongation_m": machine["extension_m"][inside] - machine["extension_m"][inside][0],
         "force_N": machine["force_N"][inside],
-        "pressure_kPa": np.interp(t + offset, logger["time_s"], logger["pressure_kPa"]),
-        "temperature_C": np.interp(t + offset, logger["time_s"], logger["temperature_C"]),
+        "gauge_pressure_Pa": np.interp(t + offset, logger["time_s"], logger["gauge_pressure_Pa"]),
+        "temperature_K": np.interp(t + offset, logger["time_s"], logger["temperature_K"]),
     }
     # inflation pressure and ambient temperature: the logger's first samples of the muscle at rest,
     # inflated and not yet stretched - from `baseline` seconds before the joint record (if the logger
@@ -124,8 +126,9 @@ def run(arguments: argparse.Namespace) -> int:
     if not window.any():  # no logger sample at rest: take the one nearest to the start
         window = np.zeros(logger["time_s"].size, bool)
         window[np.argmin(np.abs(logger["time_s"] - start))] = True
-    inflation = float(np.mean(logger["pressure_kPa"][window]))
-    ambient = float(np.mean(logger["temperature_C"][window]))
+    # [test] states them as a person reads them, in kPa and °C, to the logger's resolution.
+    inflation = float(value_from_si("gauge_pressure_Pa", np.mean(logger["gauge_pressure_Pa"][window])))
+    ambient = float(value_from_si("temperature_K", np.mean(logger["temperature_K"][window])))
     count = int(window.sum())
     span = (logger["time_s"][window][0] - start, logger["time_s"][window][-1] - start)
     basis = (
@@ -149,7 +152,8 @@ def run(arguments: argparse.Namespace) -> int:
         f"logger: {arguments.logger}; machine: {arguments.machine}; muscle: {arguments.muscle} "
         f"([{'], ['.join(sections)}] copied)",
         f"time offset: logger time = machine time + {offset:.4f} s, found by cross-correlating the logger's "
-        f"{found.logger_signal} with the machine's {found.machine_signal} (grid {found.step_s * 1e3:.3g} ms); "
+        f"{file_name(found.logger_signal)} with the machine's {found.machine_signal} "
+        f"(grid {found.step_s * 1e3:.3g} ms); "
         f"r = {found.correlation:.4f}; next-best cross-correlation peak {found.next_best_ratio:.3f} of the chosen one, "
         f"at {found.next_best_offset_s:.3f} s",
         f"inflation_pressure_kPa and ambient_temperature_C: {basis}",
@@ -158,7 +162,7 @@ def run(arguments: argparse.Namespace) -> int:
 
     print(
         f"offset: logger time = machine time {'+' if offset >= 0 else '-'} {abs(offset):.4f} s "
-        f"(cross-correlation of {found.logger_signal} with {found.machine_signal} "
+        f"(cross-correlation of {file_name(found.logger_signal)} with {found.machine_signal} "
         f"on a {found.step_s * 1e3:.3g} ms grid)"
     )
     print(

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import json
 
+from pamkit.io.columns import value_from_si, value_to_si
+
 
 def register(subparsers) -> None:
     parser = subparsers.add_parser(
@@ -81,11 +83,11 @@ def _describe(report: dict) -> str:
         w = report["walking"]
         for name in ("walking", "bench"):
             s = w[f"{name}_summary"]
+            lowest, highest = (value_from_si("gauge_pressure_Pa", p) for p in s["gauge_pressure_Pa"])
             lines.append(
                 f"muscle, {name} (last cycle): peak force {s['peak_force_N']:.1f} N (gas + bladder "
-                f"{s['peak_elastic_force_N']:.1f} N), "
-                f"pressure {s['pressure_kPa'][0]:.1f}-{s['pressure_kPa'][1]:.1f} kPa, "
-                f"gas temperature swing {s['temperature_swing_C']:.2f} °C"
+                f"{s['peak_elastic_force_N']:.1f} N), pressure {lowest:.1f}-{highest:.1f} kPa, "
+                f"gas temperature swing {s['temperature_swing_K']:.2f} °C"
             )
     return "\n".join(lines)
 
@@ -105,7 +107,7 @@ def run(arguments: argparse.Namespace) -> int:
     print("running the device over the gait cycle and the muscle at walking cadence...", flush=True)
     study = exo_study(
         mass_kg=arguments.mass,
-        pressure_kPa=arguments.pressure,
+        gauge_pressure_Pa=value_to_si("pressure_kPa", arguments.pressure),
         play_deg=arguments.play,
         ankle_range_deg=arguments.ankle_range,
         block_angle_deg=arguments.block_angle,

@@ -6,8 +6,10 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from pamkit.io.experiment import SERIES_COLUMNS, SeriesWriter, load_experiment, write_series
-from pamkit.units import PASCAL_PER_KILOPASCAL
+from pamkit._core import GasMode
+from pamkit.io.columns import SERIES_COLUMNS, file_name, value_from_si
+from pamkit.io.experiment import load_experiment
+from pamkit.io.writers import SeriesWriter, write_series
 
 
 def register(subparsers) -> None:
@@ -51,24 +53,28 @@ def run(arguments: argparse.Namespace) -> int:
 
         calibrated = read_muscle_params_file(arguments.params)
         params = calibrated.params
-        if calibrated.initial is not None and experiment.gas == "sealed" and not experiment.is_table:
+        if calibrated.initial is not None and experiment.gas == GasMode.sealed and not experiment.is_table:
             initial = calibrated.initial
+            starts_kPa = value_from_si("gauge_pressure_Pa", initial.gauge_pressure_Pa)
+            declared_kPa = value_from_si("gauge_pressure_Pa", experiment.inflation_gauge_pressure_Pa)
             print(
-                f"starting from {arguments.params} [initial]: {initial.length_m:.6g} m at "
-                f"{initial.gauge_pressure_Pa / PASCAL_PER_KILOPASCAL:.6g} kPa (the experiment declares "
-                f"{experiment.inflation_pressure_kPa:.6g} kPa)"
+                f"starting from {arguments.params} [initial]: {initial.length_m:.6g} m at {starts_kPa:.6g} kPa "
+                f"(the experiment declares {declared_kPa:.6g} kPa)"
             )
     if not arguments.plot and why_not_streamed(experiment, effects) is None:
         # Written block by block as it is integrated: a long test's prediction never stands in
         # memory whole. A figure needs it whole, and so do the tests why_not_streamed names.
         with SeriesWriter(arguments.output, SERIES_COLUMNS) as writer:
             simulate_streamed(experiment, writer.write, params=params, effects=effects, initial=initial)
-        print(f"wrote {arguments.output} ({writer.rows} samples: {', '.join(SERIES_COLUMNS)})")
+        print(f"wrote {arguments.output} ({writer.rows} samples: {', '.join(map(file_name, SERIES_COLUMNS))})")
         return 0
     predicted = simulate_experiment(experiment, params=params, effects=effects, initial=initial)
     write_series(arguments.output, predicted)
     rows = len(next(iter(predicted.values())))
-    print(f"wrote {arguments.output} ({rows} {'rows' if experiment.is_table else 'samples'}: {', '.join(predicted)})")
+    print(
+        f"wrote {arguments.output} ({rows} {'rows' if experiment.is_table else 'samples'}: "
+        f"{', '.join(map(file_name, predicted))})"
+    )
     if arguments.plot and experiment.is_table:
         from pamkit.plots import plot_table
 
@@ -83,7 +89,7 @@ def run(arguments: argparse.Namespace) -> int:
         title = experiment.description or Path(arguments.experiment).stem
         if effects:
             title += "\nwith " + ", ".join(repr(effect) for effect in effects)
-        plotter = plot_supplied if experiment.gas == "supplied" else plot_simulation
+        plotter = plot_supplied if experiment.gas == GasMode.supplied else plot_simulation
         plotter(arguments.plot, predicted, measured, title=title)
         print(f"wrote {arguments.plot}")
     return 0

@@ -31,7 +31,7 @@ from pamkit.diagnose.calibrate import (
 from pamkit.diagnose.jacobian import SENSITIVITY_STEP, forward_differences, jacobian_for
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import configure, effect_space
-from pamkit.io.experiment import SERIES_COLUMNS
+from pamkit.io.columns import SERIES_COLUMNS
 
 SCAN_POINTS = 5  # simulations per physical effect's first parameter
 SCAN_POINTS_MEASUREMENT = 41  # no simulation needed: scan finely (a skew has one minimum per cycle)
@@ -51,8 +51,8 @@ def candidates(effect_catalog: EffectCatalog, problem: Problem) -> list[tuple[st
             # A supplied test's pressure is an input, not a compared channel; an instrument
             # error there acts on what drives the model (a hose's lag).
             supplied = problem.predictor.mode == GasMode.supplied
-            if supplied and effect_catalog.parse(f"{name}:channel=pressure_kPa").reads_supplied_pressure():
-                channels.append("pressure_kPa")
+            if supplied and effect_catalog.parse(f"{name}:channel=gauge_pressure_Pa").reads_supplied_pressure():
+                channels.append("gauge_pressure_Pa")
             for channel in channels:
                 out.append(
                     (f"{name}:channel={channel}", lambda n=name, c=channel: effect_catalog.parse(f"{n}:channel={c}"))
@@ -75,7 +75,7 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
     measurement_only = effect.stage() == EffectStage.measurement and start is None
     # A transducer whose reading drives a supplied test changes the model's input: its fit runs
     # the model (on the calibrated baseline), not only the instruments' stage.
-    drives_model = problem.experiment.gas == "supplied" and effect.reads_supplied_pressure()
+    drives_model = problem.experiment.gas == GasMode.supplied and effect.reads_supplied_pressure()
     evaluations = 0
 
     def counted():

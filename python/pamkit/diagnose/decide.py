@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from pamkit._core import EffectStage, Resolution
+from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnose import evidence
 from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.kinds import Problem
@@ -67,7 +67,7 @@ STANDS_OUT = 2.0
 # gas's volume (so its pressure) and the force. The temperature, held near the wall's by the gas
 # law and the heat exchange, is not moved by a wrong wind or membrane: a thermometer's offset stands
 # on its own channel whatever the force shows.
-COUPLED = frozenset({"force_N", "pressure_kPa"})
+COUPLED = frozenset({"force_N", "gauge_pressure_Pa"})
 # A named cause leaving a channel this many noise sigmas off tries pairs.
 PAIR_TRIGGER = 2.0
 PAIR_PARTNERS = 3
@@ -100,7 +100,7 @@ def credited_channels(problem: Problem, fit: Fit, effects=None) -> list[str]:
     for effect in effects:
         named = effect.channels_changed()
         changed.update(named if named else problem.channels)
-        if problem.experiment.gas == "supplied" and effect.reads_supplied_pressure():
+        if problem.experiment.gas == GasMode.supplied and effect.reads_supplied_pressure():
             changed.add("force_N")  # its reading drives the model, so it acts on the force
     return [c for c in problem.channels if c in changed] if effects else list(problem.channels)
 

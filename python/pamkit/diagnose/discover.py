@@ -9,9 +9,9 @@ cell's gain and nonlinearity (F, F²), drifts in time and cycle, the gas tempera
 ambient — and reported as an equation with units, with its held-out
 gain and the mechanism each term resembles::
 
-    features = feature_library(time_s, elongation_m, pressure_kPa)
+    features = feature_library(time_s, elongation_m, gauge_pressure_Pa)
     result = discover(features, residual, sigma, fit_mask, held_mask, half_cycle, "force_N", "N")
-    print(result["equation"])   # force_N residual ≈ 0.3 N/kPa · p · tanh(v / 2.1 mm/s)
+    print(result["equation"])   # force_N residual ≈ 0.0003 N/Pa · p · tanh(v / 2.1 mm/s)
     save_effect(result, "friction.json")  # discovered.py: a pamkit.Effect for the next run
 
 Method (docs/diagnosis.md, rule 9): orthogonal matching pursuit (scikit-learn's

@@ -15,7 +15,8 @@ from pamkit.diagnose.discover import _equation
 from pamkit.diagnose.features import MOTION_TERMS, DiscoveryError, _feature_columns
 
 FORMAT = "pamkit.discovered_effect"
-FORMAT_VERSION = 1
+# 2: channels and the record's inputs in SI (gauge_pressure_Pa, temperature_K; ambient_K).
+FORMAT_VERSION = 2
 
 CHANNELS = tuple(pamkit.measured_channels())  # declared once, in C++ (effect.hpp)
 TERM_NAMES = (
@@ -118,14 +119,14 @@ class DiscoveredEffect(pamkit.Effect):
             raise ValueError(f"effect {self._name}: {key} = {number} is outside [{low:g}, {high:g}]")
         self.coefficients[keys.index(key)] = number
 
-    def correction(self, time_s, elongation_m, pressure_kPa=None, temperature_C=None, force_N=None) -> np.ndarray:
-        """Σ coefficient · feature on a record [the channel's unit]."""
+    def correction(self, time_s, elongation_m, gauge_pressure_Pa=None, temperature_K=None, force_N=None) -> np.ndarray:
+        """Σ coefficient · feature on a record (SI) [the channel's unit]."""
         time_s = np.asarray(time_s, dtype=float)
         elongation_m = np.asarray(elongation_m, dtype=float)
         names = {term["name"] for term in self.terms}
         scales = {key: value for term in self.terms for key, value in term.get("parameters", {}).items()}
-        pressure = None if pressure_kPa is None else np.asarray(pressure_kPa, dtype=float)
-        temperature = None if temperature_C is None else np.asarray(temperature_C, dtype=float)
+        pressure = None if gauge_pressure_Pa is None else np.asarray(gauge_pressure_Pa, dtype=float)
+        temperature = None if temperature_K is None else np.asarray(temperature_K, dtype=float)
         force = None if force_N is None else np.asarray(force_N, dtype=float)
         cycle = self._cycle_index(time_s, elongation_m) if "cycle" in names else None
         columns = {
@@ -135,7 +136,7 @@ class DiscoveredEffect(pamkit.Effect):
                 elongation_m,
                 pressure,
                 temperature,
-                scales.get("ambient_C"),
+                scales.get("ambient_K"),
                 cycle,
                 force,
                 include_motion=bool(names & set(MOTION_TERMS)),
@@ -154,8 +155,8 @@ class DiscoveredEffect(pamkit.Effect):
         correction = self.correction(
             measurement.time_s,
             measurement.elongation_m,
-            measurement.pressure_kPa,
-            measurement.temperature_C,
+            measurement.gauge_pressure_Pa,
+            measurement.temperature_K,
             measurement.force_N,
         )
         setattr(measurement, self.channel, getattr(measurement, self.channel) + correction)

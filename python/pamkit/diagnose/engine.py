@@ -41,7 +41,9 @@ from pamkit.diagnose.decide import (
 from pamkit.diagnose.kinds import Problem, build_problem
 from pamkit.diagnose.tables import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.experiment import OPTIONAL_COLUMNS, Experiment, ExperimentError, load_tests
+from pamkit.io.columns import OPTIONAL_COLUMNS
+from pamkit.io.experiment import Experiment, load_tests
+from pamkit.io.guards import ExperimentError
 
 __all__ = ["MIN_GAIN", "MAX_DIAGNOSED_ROWS", "Diagnosis", "ThinningWarning", "diagnose", "data_seed"]
 
@@ -212,7 +214,7 @@ def _check_the_build(
     return Decision("unexplained" if left else "none", [], dropped, margins, left, check.to_json())
 
 
-CHANNEL_UNITS = {"force_N": "N", "pressure_kPa": "kPa", "temperature_C": "°C"}  # as the report prints them
+CHANNEL_UNITS = {"force_N": "N", "gauge_pressure_Pa": "Pa", "temperature_K": "K"}  # as the report prints them
 
 
 def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
@@ -238,9 +240,9 @@ def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
         features = feature_library(
             experiment.time_s,
             experiment.elongation_m,
-            pressure_kPa=column("pressure_kPa"),
-            temperature_C=column("temperature_C"),
-            ambient_C=experiment.ambient_temperature_C if "temperature_C" in experiment.columns else None,
+            gauge_pressure_Pa=column("gauge_pressure_Pa"),
+            temperature_K=column("temperature_K"),
+            ambient_K=experiment.gas_params.ambient_temperature_K if "temperature_K" in experiment.columns else None,
             cycle=problem.cycle.astype(float),
             force_N=fit.predicted.get("force_N"),
         )

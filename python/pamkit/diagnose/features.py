@@ -2,7 +2,11 @@
 computed from a record's time, elongation, pressure, temperature, cycle and predicted force:
 Coulomb friction ``p · tanh(v / v0)``, Dahl friction, viscous ``v``, stiffness errors ``x, x², x³``,
 pressure, its rate and the pressurise/vent branch, the load cell's gain and nonlinearity (F, F²),
-drifts in time and cycle, the gas temperature above ambient."""
+drifts in time and cycle, the gas temperature above ambient.
+
+The record comes in SI, and the pressure's terms stay in it (p in Pa, as the channels it is
+regressed against); the crosshead's are in millimetres (x in mm, v in mm/s), the scale of a
+bench's stroke, so that a discovered equation reads in numbers a person can weigh."""
 
 from __future__ import annotations
 
@@ -11,6 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.signal import savgol_coeffs, savgol_filter
+
+from pamkit.units import MILLIMETRE_PER_METRE
 
 DERIVATIVE_WINDOW_S = 0.05  # a tensile machine turns round within tens of ms
 DERIVATIVE_MIN_SAMPLES = 5  # fewest samples of the local quadratic behind a derivative
@@ -27,7 +33,7 @@ class Term:
 
     name: str  # e.g. "tanh(v/v0)*p"; the key that recomputes it (see _feature_columns)
     expression: str  # human readable with symbols and scales, e.g. "p · tanh(v / 1 mm/s)"
-    unit: str  # unit of the feature itself, e.g. "kPa"
+    unit: str  # unit of the feature itself, e.g. "Pa"
     resembles: str  # the physical mechanism it stands for
     parameters: tuple[tuple[str, float], ...] = ()  # data-derived scales it was computed with (v0, window, ...)
 
@@ -144,9 +150,9 @@ MOTION_TERMS = ("tanh(v/v0)*p", "tanh(v/v0)", "dahl(x; xc)", "v", "|v|")
 def _feature_columns(
     time_s,
     elongation_m,
-    pressure_kPa,
-    temperature_C,
-    ambient_C,
+    gauge_pressure_Pa,
+    temperature_K,
+    ambient_K,
     cycle,
     force_N,
     include_motion: bool,
@@ -160,7 +166,7 @@ def _feature_columns(
     dt = float(np.median(np.diff(time_s)))
     window = int(scales.get("window_samples", _derivative_window(time_s)))
     with_window = (("window_samples", float(window)),)
-    x_mm = 1e3 * elongation_m
+    x_mm = MILLIMETRE_PER_METRE * elongation_m
     offset = Term("offset", "1", "1", "a zero offset of the channel (load-cell tare, transducer or thermometer offset)")
     columns: list[tuple[Term, np.ndarray]] = [(offset, np.ones(n))]
     if include_motion:
@@ -169,17 +175,17 @@ def _feature_columns(
         if v0 > 0.0:
             coulomb = np.tanh(v_mm_s / v0)
             with_v0 = (("v0_mm_per_s", float(v0)),) + with_window
-            if pressure_kPa is not None:
+            if gauge_pressure_Pa is not None:
                 columns.append(
                     (
                         Term(
                             "tanh(v/v0)*p",
                             f"p · tanh(v / {v0:.3g} mm/s)",
-                            "kPa",
+                            "Pa",
                             "Coulomb friction between fibres and bladder (pressure-proportional)",
                             with_v0,
                         ),
-                        pressure_kPa * coulomb,
+                        gauge_pressure_Pa * coulomb,
                     )
                 )
             columns.append(
@@ -232,25 +238,32 @@ def _feature_columns(
             x_mm**3,
         ),
     ]
-    if pressure_kPa is not None:
-        deadband = scales.get("deadband_kPa") or max(
-            BRANCH_SPAN_FRACTION * float(np.ptp(pressure_kPa)), BRANCH_NOISE_MULTIPLE * _white_noise(pressure_kPa)
+    if gauge_pressure_Pa is not None:
+        deadband = scales.get("deadband_Pa") or max(
+            BRANCH_SPAN_FRACTION * float(np.ptp(gauge_pressure_Pa)),
+            BRANCH_NOISE_MULTIPLE * _white_noise(gauge_pressure_Pa),
         )
-        branch = _branch(pressure_kPa, deadband) if deadband > 0.0 else np.zeros(n)
-        with_deadband = (("deadband_kPa", float(deadband)),)
+        branch = _branch(gauge_pressure_Pa, deadband) if deadband > 0.0 else np.zeros(n)
+        with_deadband = (("deadband_Pa", float(deadband)),)
         columns += [
             (
-                Term("p", "p", "kPa", "proportional to pressure (effective area; a transducer's gain error)"),
-                pressure_kPa,
+                Term("p", "p", "Pa", "proportional to pressure (effective area; a transducer's gain error)"),
+                gauge_pressure_Pa,
             ),
             (
-                Term("dp/dt", "dp/dt", "kPa/s", "a lag behind the pressure (gas dynamics, sensor lag)", with_window),
-                _derivative(pressure_kPa, time_s, window),
+                Term(
+                    "dp/dt",
+                    "dp/dt",
+                    "Pa/s",
+                    "a lag behind the pressure (gas dynamics, sensor lag)",
+                    with_window,
+                ),
+                _derivative(gauge_pressure_Pa, time_s, window),
             ),
             (
                 Term(
                     "sign(dp/dt)",
-                    f"branch(p; {deadband:.3g} kPa)",
+                    f"branch(p; {deadband:.3g} Pa)",
                     "1",
                     "pressurise/vent hysteresis of constant size (+1 pressurising, -1 venting)",
                     with_deadband,
@@ -260,12 +273,12 @@ def _feature_columns(
             (
                 Term(
                     "sign(dp/dt)*p",
-                    f"p · branch(p; {deadband:.3g} kPa)",
-                    "kPa",
+                    f"p · branch(p; {deadband:.3g} Pa)",
+                    "Pa",
                     "pressurise/vent hysteresis growing with pressure (bladder-braid friction at fixed length)",
                     with_deadband,
                 ),
-                pressure_kPa * branch,
+                gauge_pressure_Pa * branch,
             ),
         ]
     if force_N is not None:
@@ -286,8 +299,8 @@ def _feature_columns(
                 cycle,
             )
         )
-    if temperature_C is not None and ambient_C is not None:
-        ambient = scales.get("ambient_C", float(ambient_C))
+    if temperature_K is not None and ambient_K is not None:
+        ambient = scales.get("ambient_K", float(ambient_K))
         columns.append(
             (
                 Term(
@@ -295,24 +308,24 @@ def _feature_columns(
                     "(T - T_ambient)",
                     "K",
                     "a thermal effect (gas heating, thermal drift of a sensor)",
-                    (("ambient_C", ambient),),
+                    (("ambient_K", ambient),),
                 ),
-                temperature_C - ambient,
+                temperature_K - ambient,
             )
         )
     return columns
 
 
 def feature_library(
-    time_s, elongation_m, pressure_kPa=None, temperature_C=None, ambient_C=None, cycle=None, force_N=None
+    time_s, elongation_m, gauge_pressure_Pa=None, temperature_K=None, ambient_K=None, cycle=None, force_N=None
 ) -> dict[Term, np.ndarray]:
     """Physically meaningful features of a record, one array per library term.
 
     Args:
         time_s: sample times [s], strictly increasing.
         elongation_m: the crosshead's elongation [m]; used in millimetres (x, and v in mm/s).
-        pressure_kPa: gauge pressure [kPa] (measured, or the supply), or None.
-        temperature_C, ambient_C: gas and ambient temperature [°C]; both or the term is skipped.
+        gauge_pressure_Pa: gauge pressure [Pa] (measured, or the supply), or None.
+        temperature_K, ambient_K: gas and ambient temperature [K]; both or the term is skipped.
         cycle: cycle index of every sample, or None.
         force_N: the model's predicted force [N], or None: F and F² stand for the load cell's
             gain and nonlinearity (the effect reads the simulated force in their place).
@@ -335,24 +348,24 @@ def feature_library(
         raise DiscoveryError(f"time_s must increase strictly (sample {int(not_increasing[0]) + 1} does not)")
     inputs = {
         "elongation_m": elongation_m,
-        "pressure_kPa": pressure_kPa,
-        "temperature_C": temperature_C,
+        "gauge_pressure_Pa": gauge_pressure_Pa,
+        "temperature_K": temperature_K,
         "cycle": cycle,
         "force_N": force_N,
     }
     arrays = {key: None if value is None else _as_column(key, value, time_s.size) for key, value in inputs.items()}
-    if ambient_C is not None and not math.isfinite(float(ambient_C)):
-        raise DiscoveryError(f"ambient_C = {ambient_C} is not a finite temperature")
-    x_mm = 1e3 * arrays["elongation_m"]
+    if ambient_K is not None and not math.isfinite(float(ambient_K)):
+        raise DiscoveryError(f"ambient_K = {ambient_K} is not a finite temperature")
+    x_mm = MILLIMETRE_PER_METRE * arrays["elongation_m"]
     # Travel within ten noise deviations (an isometric test's encoder) is no motion: its
     # "velocity" would be differentiated noise.
     moves = bool(np.ptp(x_mm) > 10.0 * _white_noise(x_mm))
     columns = _feature_columns(
         time_s,
         arrays["elongation_m"],
-        arrays["pressure_kPa"],
-        arrays["temperature_C"],
-        ambient_C,
+        arrays["gauge_pressure_Pa"],
+        arrays["temperature_K"],
+        ambient_K,
         arrays["cycle"],
         arrays["force_N"],
         include_motion=moves,

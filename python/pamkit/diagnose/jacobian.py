@@ -26,7 +26,6 @@ import numpy as np
 from pamkit._core import Effect, EffectStage, ElongationTrajectory, GasMode, Measurement
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import muscle_signature
-from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
 
 # Finite-difference step in the unit box of each coordinate, where a fit differences runs: large
 # enough that the integrator's adaptive steps (relative error ~1e-7) do not swamp the slopes.
@@ -79,8 +78,8 @@ def _channels(run, crosshead_m: np.ndarray, derivative=None, step: float = 0.0) 
     m.time_s = np.asarray(run.time_s)
     m.elongation_m = crosshead_m
     m.force_N = column("force_N")
-    m.pressure_kPa = column("pressure_gauge_Pa") / PASCAL_PER_KILOPASCAL
-    m.temperature_C = column("temperature_K") - KELVIN_AT_ZERO_CELSIUS
+    m.gauge_pressure_Pa = column("gauge_pressure_Pa")
+    m.temperature_K = column("temperature_K")
     return m
 
 

@@ -32,11 +32,12 @@ from pamkit.diagnose.calibrate import (
 from pamkit.diagnose.jacobian import SENSITIVITY_STEP, applies, forward_differences, sensitivity_jacobian
 from pamkit.diagnose.kinds import Problem
 from pamkit.diagnose.model import Baseline, Coordinate, configure, effect_space, muscle_signature
-from pamkit.io.experiment import Experiment, ExperimentError
+from pamkit.io.experiment import Experiment
+from pamkit.io.guards import ExperimentError
 from pamkit.simulate import muscle_params
 
 # Each test's own coordinates; every other baseline coordinate is shared.
-PER_TEST = ("inflation_pressure_kPa",)
+PER_TEST = ("inflation_gauge_pressure_Pa",)
 # A test whose fitted units the shared muscle fits with more than this multiple of the RMSE its own
 # calibration reaches disagrees with the others. The calibrations alone reach 0.75-1.5x the noise
 # on pamkit's null benchmark (decide.py), so sharing a muscle that fits costs well under 2x.

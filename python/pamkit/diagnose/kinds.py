@@ -15,11 +15,14 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.ndimage import median_filter
 
-from pamkit._core import deflated_braid_angle_deg
+from pamkit._core import GasMode, deflated_braid_angle_deg
 from pamkit.diagnose import evidence
 from pamkit.diagnose.cycles import Cycles, find_cycles, split_cycles
 from pamkit.diagnose.model import Predictor
-from pamkit.io.experiment import Experiment, ExperimentError
+from pamkit.io.columns import file_name, value_from_si
+from pamkit.io.experiment import Experiment
+from pamkit.io.guards import ExperimentError
+from pamkit.units import MILLIMETRE_PER_METRE
 
 # A plateau of a stepped sweep starts where the pressure leaves the last one's level by more
 # than this many noise sigmas, or this share of the sweep's span, whichever is larger; pieces
@@ -31,12 +34,13 @@ PLATEAU_MERGE = 0.25
 # encoder (Gaussian noise over 10^4 samples spans about 8 sigma peak to peak).
 HELD_TRAVEL_NOISE = 20.0
 
-# Units that cannot be right: (column, lowest, highest plausible value, what it looks like instead).
+# Units that cannot be right: (column, lowest, highest plausible value in the file's unit, what
+# it looks like instead).
 PLAUSIBLE_VALUES = {
     "elongation_m": (-0.5, 0.5, "millimetres"),
     "force_N": (-1e4, 1e5, "the wrong unit"),
-    "pressure_kPa": (-101.0, 2000.0, "pascals or psi"),
-    "temperature_C": (-50.0, 150.0, "kelvin"),
+    "gauge_pressure_Pa": (-101.0, 2000.0, "pascals or psi"),
+    "temperature_K": (-50.0, 150.0, "kelvin"),
 }
 
 
@@ -72,26 +76,26 @@ class Problem:
 
 def check_units(experiment: Experiment) -> None:
     """Raises ExperimentError naming the file, row and column of the first value whose size
-    says its unit is wrong (elongation in mm, pressure in Pa, temperature in K)."""
+    says its file's unit is wrong (elongation in mm, pressure in Pa, temperature in K), as the
+    file gives it."""
     names = list(experiment.columns)
     for name, (low, high, looks_like) in PLAUSIBLE_VALUES.items():
         if name not in experiment.columns:
             continue
-        values = experiment.columns[name]
+        values = value_from_si(name, experiment.columns[name])
         bad = np.flatnonzero((values < low) | (values > high))
         if bad.size:
             row = int(bad[0])
             raise ExperimentError(
-                f"{experiment.data_path}:{row + 2}: column {names.index(name) + 1} ({name}) = {values[row]:g} "
-                f"is outside "
-                f"[{low:g}, {high:g}]: is it in {looks_like}?"
+                f"{experiment.data_path}:{row + 2}: column {names.index(name) + 1} ({file_name(name)}) = "
+                f"{values[row]:g} is outside [{low:g}, {high:g}]: is it in {looks_like}?"
             )
 
 
 # The measured pressure at the start of a sealed test may differ from the declared inflation
 # pressure by the transducer's calibration error (sensor_offset's plausible 12 kPa and 7 % gain)
 # and the 5 % tolerance the baseline allows; beyond both it is a different test.
-INFLATION_MISMATCH_KPA = 25.0
+INFLATION_MISMATCH_PA = 25e3
 INFLATION_MISMATCH_FRACTION = 0.25
 # arctan(sqrt(2)): a braid at this angle neither contracts nor extends under pressure.
 LOCKING_ANGLE_DEG = math.degrees(math.atan(math.sqrt(2.0)))
@@ -126,23 +130,25 @@ def check_consistency(experiment: Experiment) -> None:
     ):
         raise ExperimentError(
             f"{experiment.data_path}: one sample per {interval:g} s and a crosshead never faster than "
-            f"{fastest * 1e6:.2g} um/s over {np.ptp(elongation) * 1e3:.3g} mm of travel: is the time column in "
+            f"{fastest * 1e6:.2g} um/s over {np.ptp(elongation) * MILLIMETRE_PER_METRE:.3g} mm of travel: is the time "
+            "column in "
             "milliseconds? (time_s is in seconds)"
         )
-    if experiment.gas != "sealed" or "pressure_kPa" not in experiment.columns:
+    if experiment.gas != GasMode.sealed or "gauge_pressure_Pa" not in experiment.columns:
         return
-    pressure = experiment.columns["pressure_kPa"]
+    pressure = experiment.columns["gauge_pressure_Pa"]
     start = float(np.median(pressure[:5]))
     rest = float(np.min(pressure[: first_cycle_end(elongation)]))
-    declared = experiment.inflation_pressure_kPa
-    tolerance = max(INFLATION_MISMATCH_KPA, INFLATION_MISMATCH_FRACTION * declared)
+    declared = experiment.inflation_gauge_pressure_Pa
+    tolerance = max(INFLATION_MISMATCH_PA, INFLATION_MISMATCH_FRACTION * declared)
     # The first samples, or the lowest pressure of the first cycle: a sealed muscle is at its
     # inflation pressure whenever it is back at zero elongation, and a pressure logged late or early
     # (a time skew, which the diagnosis may name) passes through that rest within the first cycle.
     if abs(start - declared) > tolerance and abs(rest - declared) > tolerance:
+        start_kPa, rest_kPa, declared_kPa = (value_from_si("gauge_pressure_Pa", p) for p in (start, rest, declared))
         raise ExperimentError(
-            f"{experiment.path}: [test] inflation_pressure_kPa = {declared:g}, but the data start at "
-            f"{start:.1f} kPa and rest at {rest:.1f} kPa in their first cycle ({experiment.data_path}): the "
+            f"{experiment.path}: [test] inflation_pressure_kPa = {declared_kPa:g}, but the data start at "
+            f"{start_kPa:.1f} kPa and rest at {rest_kPa:.1f} kPa in their first cycle ({experiment.data_path}): the "
             "declared test and the measured one differ; correct the inflation pressure (or the pressure "
             "column's unit) before diagnosing"
         )
@@ -169,8 +175,8 @@ def length_is_held(experiment: Experiment) -> bool:
 
 def driving_signal(experiment: Experiment) -> tuple[str, np.ndarray, str]:
     """The commanded signal whose cycles are the test's units: (column, values, unit name)."""
-    if experiment.gas == "supplied" and length_is_held(experiment):
-        return "pressure_kPa", experiment.columns["pressure_kPa"], "pressurise/vent sweep"
+    if experiment.gas == GasMode.supplied and length_is_held(experiment):
+        return "gauge_pressure_Pa", experiment.columns["gauge_pressure_Pa"], "pressurise/vent sweep"
     return "elongation_m", experiment.elongation_m, "stretch cycle"
 
 
@@ -202,8 +208,8 @@ def build_problem(experiment: Experiment) -> Problem:
     check_units(experiment)
     check_consistency(experiment)
     channels = experiment.measured()
-    if experiment.gas == "supplied":
-        channels = [c for c in channels if c != "pressure_kPa"]  # an input there, not a prediction
+    if experiment.gas == GasMode.supplied:
+        channels = [c for c in channels if c != "gauge_pressure_Pa"]  # an input there, not a prediction
     if not channels:
         raise ExperimentError(
             f"{experiment.data_path}: no measured channel to compare with (needs force_N, pressure_kPa or "
@@ -212,7 +218,7 @@ def build_problem(experiment: Experiment) -> Problem:
     column, signal, unit_name = driving_signal(experiment)
     cycles: Cycles = find_cycles(signal)
     halves = cycles.half_cycle_index(signal)
-    if len(cycles) < 4 and column == "pressure_kPa":
+    if len(cycles) < 4 and column == "gauge_pressure_Pa":
         # One or two sweeps: their pressure plateaus are the units (steps), each its own
         # bootstrap unit.
         cycles, unit_name = plateaus(signal), "pressure plateau"

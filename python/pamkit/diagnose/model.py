@@ -37,14 +37,14 @@ from pamkit._core import (
     Simulator,
     SimulatorConfig,
     fiber_revolutions_for_braid_angle,
-    inflated_and_sealed,
     simulate_measurement,
     simulate_supplied_measurement,
 )
 from pamkit.diagnose.motion import measured_motion, programmed_motion
-from pamkit.io.experiment import BRAID_ANGLE_KEY, SERIES_COLUMNS, Experiment, declared_value
-from pamkit.simulate import initial_length, muscle_params
-from pamkit.units import PASCAL_PER_KILOPASCAL
+from pamkit.io.columns import SERIES_COLUMNS
+from pamkit.io.experiment import Experiment
+from pamkit.io.sections import BRAID_ANGLE_KEY, declared_value
+from pamkit.simulate import initial_length, muscle_params, sealed_start
 
 PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
 # relative: the fibers' turns over the braided length, counted by hand on the built muscle (a
@@ -135,7 +135,7 @@ def effect_space(effect: Effect) -> list[Coordinate]:
 
 
 def unknown_coordinate(name: str, bounds: tuple[float, float], experiment: Experiment) -> Coordinate:
-    """The fit coordinate of a `[calibrate]` field (DESIGN.md, "Unknown builds"): its declared
+    """The fit coordinate of a `[calibrate]` field (an unknown of the build): its declared
     bounds are both its search interval and its plausible range; it starts at the declared value
     when that lies inside, else mid-interval. `name` may carry a test's suffix (`load_N[a]`)."""
     lower, upper = bounds
@@ -194,12 +194,12 @@ class Baseline:
     @staticmethod
     def coordinates(experiment: Experiment, wind: bool = False) -> list[Coordinate]:
         """Every coordinate a test's baseline may calibrate (with `wind`, the braid's wind)."""
-        p0 = experiment.inflation_pressure_kPa
+        p0 = experiment.inflation_gauge_pressure_Pa
         space = []
-        if experiment.gas == "sealed":
+        if experiment.gas == GasMode.sealed:
             space.append(
                 _linear(
-                    "inflation_pressure_kPa",
+                    "inflation_gauge_pressure_Pa",
                     p0 * (1 - PRESSURE_TOLERANCE),
                     p0 * (1 + PRESSURE_TOLERANCE),
                     p0,
@@ -251,7 +251,7 @@ class Baseline:
         return self.fixed | {c.name: float(c.value(v)) for c, v in zip(self.space, x)}
 
     def model_params(self, x: np.ndarray) -> tuple[MuscleParams, float]:
-        """Model parameters and inflation pressure [kPa] at baseline coordinates x."""
+        """Model parameters and inflation gauge pressure [Pa] at baseline coordinates x."""
         values = self.values(x)
         params = with_unknowns(muscle_params(self.experiment), values)
         friction = params.friction
@@ -259,7 +259,7 @@ class Baseline:
         friction.fiber_bladder_coefficient *= values["friction_scale"]
         params.friction = friction
         params.bladder = scaled_law(params.bladder, values.get("bladder_scale", 1.0))
-        return params, values.get("inflation_pressure_kPa", self.experiment.inflation_pressure_kPa)
+        return params, values.get("inflation_gauge_pressure_Pa", self.experiment.inflation_gauge_pressure_Pa)
 
 
 def winds_declared(experiment: Experiment) -> bool:
@@ -302,7 +302,7 @@ class Predictor:
         self.experiment = experiment
         self.channels = channels
         self.baseline = Baseline(experiment, wind=wind)
-        self.mode = GasMode.supplied if experiment.gas == "supplied" else GasMode.sealed
+        self.mode = experiment.gas
         self.motion = (
             programmed_motion(experiment.time_s, experiment.elongation_m)
             if self.mode == GasMode.sealed
@@ -349,18 +349,17 @@ class Predictor:
         """One run of the model with `effects` at baseline coordinates x. A sealed run whose
         effects leave the muscle's motion and fibres alone reads the braid's shapes from a table
         solved once per build and initial length (the same numbers, bit for bit, as solving them)."""
-        params, pressure_kPa = self.baseline.model_params(x)
+        params, pressure_Pa = self.baseline.model_params(x)
         if self.mode == GasMode.supplied:
             # The measured motion (not the programmed one): samples and pressures line up.
             return simulate_supplied_measurement(
                 params,
                 initial_length(self.experiment, params),
                 self.trajectory,
-                self.experiment.columns["pressure_kPa"],
-                self.experiment.ambient_temperature_C,
+                self.experiment.columns["gauge_pressure_Pa"],
                 effects,
             )
-        initial = self.initial_state(params, pressure_kPa)
+        initial = self.initial_state(params, pressure_Pa)
         extended = params
         for effect in effects:
             extended = effect.apply_to_params(extended)
@@ -372,8 +371,8 @@ class Predictor:
 
     def sealed_model(self, x: np.ndarray, effects: list[Effect]) -> MuscleModel:
         """The sealed test's model at baseline coordinates x, extended by `effects`' parameters."""
-        params, pressure_kPa = self.baseline.model_params(x)
-        initial = self.initial_state(params, pressure_kPa)
+        params, pressure_Pa = self.baseline.model_params(x)
+        initial = self.initial_state(params, pressure_Pa)
         for effect in effects:
             params = effect.apply_to_params(params)
         return MuscleModel(params, initial)
@@ -397,14 +396,9 @@ class Predictor:
                     del self._shape_tables[next(iter(self._shape_tables))]
         return shapes
 
-    def initial_state(self, params: MuscleParams, pressure_kPa: float) -> InitialState:
-        """A sealed test's state at zero elongation at inflation pressure `pressure_kPa`: at the
-        file's initial length, or inflated freely and sealed."""
-        if self.experiment.initial_length_m is not None:
-            return InitialState(
-                length_m=self.experiment.initial_length_m, gauge_pressure_Pa=pressure_kPa * PASCAL_PER_KILOPASCAL
-            )
-        return inflated_and_sealed(params, pressure_kPa * PASCAL_PER_KILOPASCAL)
+    def initial_state(self, params: MuscleParams, gauge_pressure_Pa: float) -> InitialState:
+        """This test's sealed start (simulate.sealed_start) at inflation gauge pressure [Pa]."""
+        return sealed_start(self.experiment, params, gauge_pressure_Pa)
 
     def select(self, m: Measurement) -> dict[str, np.ndarray]:
         """The measured channels of a simulated measurement, at the data's samples."""

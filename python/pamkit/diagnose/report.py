@@ -25,6 +25,7 @@ from pamkit.diagnose.identify import why_undetermined
 from pamkit.diagnose.model import Baseline, muscle_signature
 from pamkit.diagnose.table_fit import TableModel
 from pamkit.diagnose.tables import TableDiagnosis
+from pamkit.io.columns import file_name, file_unit, value_from_si
 from pamkit.plots import save_figure
 
 
@@ -343,20 +344,23 @@ def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Pa
     grid = figure.add_gridspec(rows + 1, 2)
     held = p.held_mask
     for i, c in enumerate(p.channels):
+        # Drawn in the units a person reads (kPa, °C), as the data's file gives them.
+        measured = value_from_si(c, p.measured[c])
+        baseline, extended = (value_from_si(c, fit.predicted[c]) for fit in (d.baseline, d.extended))
         signal = figure.add_subplot(grid[i, 0])
-        signal.plot(time, p.measured[c], color="0.55", lw=1.0, label="measured")
-        signal.plot(time, d.baseline.predicted[c], color="C3", lw=0.9, label="baseline")
+        signal.plot(time, measured, color="0.55", lw=1.0, label="measured")
+        signal.plot(time, baseline, color="C3", lw=0.9, label="baseline")
         if d.extended is not d.baseline:
-            signal.plot(time, d.extended.predicted[c], color="C0", lw=0.9, label=f"extended ({d.extended.name})")
+            signal.plot(time, extended, color="C0", lw=0.9, label=f"extended ({d.extended.name})")
         residual = figure.add_subplot(grid[i, 1], sharex=signal)
-        residual.plot(time, p.measured[c] - d.baseline.predicted[c], color="C3", lw=0.8, label="baseline")
+        residual.plot(time, measured - baseline, color="C3", lw=0.8, label="baseline")
         if d.extended is not d.baseline:
-            residual.plot(time, p.measured[c] - d.extended.predicted[c], color="C0", lw=0.8, label="extended")
+            residual.plot(time, measured - extended, color="C0", lw=0.8, label="extended")
         for axis in (signal, residual):
             _shade(axis, time, held)
             axis.grid(alpha=0.3)
-        signal.set_ylabel(f"{c}")
-        residual.set_ylabel(f"measured − model [{UNITS.get(c, '')}]")
+        signal.set_ylabel(file_name(c))
+        residual.set_ylabel(f"measured − model [{file_unit(c) or UNITS.get(c, '')}]")
         if i == 0:
             signal.legend(loc="upper right", fontsize="small")
             residual.legend(loc="upper right", fontsize="small")
@@ -429,8 +433,8 @@ def calibrated_params(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> tuple[M
                 )
         return muscles[0], None
     predictor = d.problem.predictor
-    params, pressure_kPa = predictor.baseline.model_params(d.baseline.baseline_x)
-    initial = predictor.initial_state(params, pressure_kPa) if predictor.mode == GasMode.sealed else None
+    params, pressure_Pa = predictor.baseline.model_params(d.baseline.baseline_x)
+    initial = predictor.initial_state(params, pressure_Pa) if predictor.mode == GasMode.sealed else None
     return params, initial
 
 

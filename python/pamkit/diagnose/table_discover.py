@@ -13,6 +13,7 @@ import numpy as np
 
 from pamkit.diagnose.decide import NONE_WITHIN_NOISE
 from pamkit.diagnose.features import DiscoveryError, Term
+from pamkit.io.columns import value_from_si
 
 UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
 # A channel is searched when its held-out RMSE exceeds the factor within which a model is said
@@ -32,7 +33,8 @@ def table_features(
     """The terms a row of this kind of table can be explained by, each with its column; in a
     campaign, one indicator per test after the first (`names` its tests' names); the
     pressurise/vent `branch` of each row (+1/-1)."""
-    pressure = columns["pressure_kPa"]
+    # In kPa: p² in Pa² (~1e11) would stand eleven decades beside the offset in one least-squares solve.
+    pressure = value_from_si("gauge_pressure_Pa", columns["gauge_pressure_Pa"])
     unit = UNITS[channel]
     features = {
         Term("offset", "1", "1", "a constant error: the instrument's zero, or a fixed length of the fittings"): (

@@ -14,7 +14,8 @@ from pamkit._core import Effect, MuscleParams
 from pamkit.diagnose.identify import identify
 from pamkit.diagnose.model import Coordinate, configure, effect_space, unknown_coordinate, with_unknowns
 from pamkit.diagnose.table_kinds import Campaign, test_names
-from pamkit.io.experiment import Experiment, ExperimentError
+from pamkit.io.experiment import Experiment
+from pamkit.io.guards import ExperimentError
 from pamkit.simulate import muscle_params, simulate_table
 
 # The channels each kind predicts.

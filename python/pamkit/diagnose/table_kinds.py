@@ -13,8 +13,12 @@ import numpy as np
 
 from pamkit._core import BraidGeometry, pressure_branches
 from pamkit.diagnose.kinds import LOCKING_ANGLE_DEG
-from pamkit.io.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError
+from pamkit.io.columns import value_from_si
+from pamkit.io.experiment import Experiment
+from pamkit.io.guards import ExperimentError
+from pamkit.io.sections import BRAID_ANGLE_KEY
 from pamkit.simulate import muscle_params
+from pamkit.units import MILLIMETRE_PER_METRE
 
 # [calibrate] fields that move the braid's reach: with one of them unknown, the reach is too.
 REACH_FIELDS = ("length_m", "diameter_m", "fiber_revolutions", BRAID_ANGLE_KEY, "end_diameter_m", "cone_generator_m")
@@ -56,7 +60,7 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
         raise ExperimentError(f"a campaign's tables must be of one kind; found {', '.join(sorted(kinds))}")
     kind = kinds.pop()
     columns = {c: np.concatenate([e.columns[c] for e in experiments]) for c in experiments[0].columns}
-    test = np.concatenate([np.full(len(e.columns["pressure_kPa"]), i) for i, e in enumerate(experiments)])
+    test = np.concatenate([np.full(len(e.columns["gauge_pressure_Pa"]), i) for i, e in enumerate(experiments)])
     labels: list[str] = []
     groups = np.empty(len(test), dtype=int)
     names = test_names(experiments)
@@ -69,22 +73,22 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
                 labels.append(f"{prefix(i)}L={length:g}")
         elif kind == "isotonic":
             # A sweep: pressurised, then vented; the next starts where the pressure rises again.
-            branch = pressure_branches(e.columns["pressure_kPa"])
+            branch = pressure_branches(e.columns["gauge_pressure_Pa"])
             sweep = np.concatenate([[0], np.cumsum((branch[1:] > 0) & (branch[:-1] < 0))])
             for number in np.unique(sweep):
                 groups[rows[sweep == number]] = len(labels)
                 labels.append(f"{prefix(i)}sweep {number + 1}")
         else:
-            for row, pressure in zip(rows, e.columns["pressure_kPa"]):
+            for row, pressure in zip(rows, value_from_si("gauge_pressure_Pa", e.columns["gauge_pressure_Pa"])):
                 groups[row] = len(labels)
-                labels.append(f"{prefix(i)}p={pressure:g}")
+                labels.append(f"{prefix(i)}p={pressure:g}")  # in kPa, as the file gives it
     name = {"isometric_map": "held length", "isotonic": "sweep"}.get(kind, "row")
     censored = np.concatenate([e.censored for e in experiments])
     records = groups if kind == "isometric_map" else test
     branch = np.empty(len(test))
     for record in np.unique(records):
         rows = np.flatnonzero(records == record)
-        branch[rows] = pressure_branches(columns["pressure_kPa"][rows])
+        branch[rows] = pressure_branches(columns["gauge_pressure_Pa"][rows])
     return Campaign(experiments, kind, columns, test, groups, labels, name, censored, branch)
 
 
@@ -110,8 +114,10 @@ def beyond_reach(campaign: Campaign) -> list[dict]:
         rows = np.flatnonzero(e.columns["diameter_m"] > reach)
         if rows.size == 0:
             continue
-        pressures = ", ".join(f"{e.columns['pressure_kPa'][r]:g}" for r in rows)
-        diameters = ", ".join(f"{1e3 * e.columns['diameter_m'][r]:.4g}" for r in rows)
+        pressures = ", ".join(
+            f"{value_from_si('gauge_pressure_Pa', e.columns['gauge_pressure_Pa'][r]):g}" for r in rows
+        )
+        diameters = ", ".join(f"{MILLIMETRE_PER_METRE * e.columns['diameter_m'][r]:.4g}" for r in rows)
         out.append(
             {
                 "data": "diameter_m",
@@ -120,7 +126,8 @@ def beyond_reach(campaign: Campaign) -> list[dict]:
                 "reach_m": reach,
                 "message": (
                     f"{e.path}: the diameter at {pressures} kPa ({diameters} mm) exceeds the most a cylinder of the "
-                    f"declared braid reaches ({1e3 * reach:.4g} mm: its locking angle, plus two fibres for the "
+                    f"declared braid reaches ({MILLIMETRE_PER_METRE * reach:.4g} mm: its locking angle, plus two "
+                    "fibres for the "
                     "calipers); measured over a bulge, or the braid is not the one declared — no model parameter of "
                     "this build can fit it"
                 ),
@@ -135,10 +142,10 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
     spread of the repeats; otherwise the residual of a cubic in pressure fitted to each held
     length's loaded rows (force > 0) of a map or to each free-inflation table. Either leaves
     what the instruments add, not what the model misses."""
-    pressure = campaign.columns["pressure_kPa"]
+    pressure = campaign.columns["gauge_pressure_Pa"]
     branch = campaign.branch if campaign.kind == "isotonic" else np.ones(len(pressure))
     used = ~campaign.censored
-    key = np.column_stack([campaign.test, branch, np.round(pressure, 6)])
+    key = np.column_stack([campaign.test, branch, np.round(pressure, 3)])  # to a mPa: a file's 1e-6 kPa
     if campaign.kind == "isometric_map":
         key = np.column_stack([key, np.round(campaign.columns["length_m"], 9)])
     pressure, key = pressure[used], key[used]

@@ -11,7 +11,9 @@ import numpy as np
 from pamkit.diagnose.identify import why_undetermined
 from pamkit.diagnose.table_kinds import test_names
 from pamkit.diagnose.tables import CHANNEL_UNITS, TableDiagnosis, TableFit, heldout_rmse
+from pamkit.io.columns import value_from_si
 from pamkit.plots import save_figure
+from pamkit.units import MILLIMETRE_PER_METRE
 
 
 def to_json(d: TableDiagnosis) -> dict:
@@ -223,14 +225,14 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
     import matplotlib.pyplot as plt
 
     c = d.campaign
-    pressure = c.columns["pressure_kPa"]
+    pressure = value_from_si("gauge_pressure_Pa", c.columns["gauge_pressure_Pa"])  # drawn in kPa
     by_group = c.kind in ("isometric_map", "isotonic")
     curves = c.groups if by_group else c.test
     names = c.group_labels if by_group else test_names(c.experiments)
     figure, axes = plt.subplots(1, len(d.channels), figsize=(6.5 * len(d.channels), 4.8), squeeze=False)
     for axis, channel in zip(axes[0], d.channels):
         unit = CHANNEL_UNITS[channel]
-        scale = 1e3 if unit == "m" else 1.0
+        scale = MILLIMETRE_PER_METRE if unit == "m" else 1.0
         shown_unit = "mm" if unit == "m" else unit
         colors = plt.cm.viridis(np.linspace(0, 0.9, len(np.unique(curves))))
         for curve, color in zip(np.unique(curves), colors):

@@ -29,7 +29,8 @@ from pamkit.diagnose.table_discover import discover_table
 from pamkit.diagnose.table_fit import PREDICTED, Fitter, TableFit, TableModel, fit_table, heldout_rmse
 from pamkit.diagnose.table_kinds import Campaign, beyond_reach, campaign_of, noise_of
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.experiment import Experiment, ExperimentError
+from pamkit.io.experiment import Experiment
+from pamkit.io.guards import ExperimentError
 
 CHANNEL_UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
 # Fewer held-out groups than this cannot say whether a model carries beyond its fitted rows.
@@ -145,7 +146,7 @@ def _judge(
     between = campaign is not None and any(e.shows_between_branches() for e in (acting or fit.effects))
     judged_gain, judged_ci = gain, ci
     if between:
-        pressure, branch = campaign.columns["pressure_kPa"], campaign.branch
+        pressure, branch = campaign.columns["gauge_pressure_Pa"], campaign.branch
         judged_gain, judged_ci = {}, {}
         for c in channels:
             r_base, r_fit = baseline.heldout[c] - measured[c], fit.heldout[c] - measured[c]

@@ -1,2 +1,5 @@
-"""Files in and out: experiment files (TOML and CSV, one reader and one writer), tensile machines'
-exports (Instron Bluehill, ZwickRoell testXpert) and the Arduino logger's host side."""
+"""Files in and out: experiment files (the schema and its loading in :mod:`~pamkit.io.experiment`,
+the muscle's sections in :mod:`~pamkit.io.sections`, the CSV readers in :mod:`~pamkit.io.series`,
+the writers in :mod:`~pamkit.io.writers`, the checks on whatever is read in
+:mod:`~pamkit.io.guards`), tensile machines' exports (Instron Bluehill, ZwickRoell testXpert) and
+the Arduino logger's host side."""

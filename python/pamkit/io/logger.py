@@ -1,5 +1,5 @@
 """The Arduino logger's files: its calibration file, its CSV, the tensile machine's export, and
-the join of the two into an experiment (DESIGN.md, "A measured dataset").
+the join of the two into an experiment file.
 
 The serial reading itself is C++ (``pamkit._core.logger.Reader``); this module holds what is
 file handling and signal processing.
@@ -25,6 +25,9 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 from pamkit._core.logger import LoggerCalibration, fit_pressure
+from pamkit.io.columns import to_si
+from pamkit.io.guards import ExperimentError
+from pamkit.io.machine import read_machine_export
 
 _DEFAULTS = LoggerCalibration()  # the host's defaults: a 5 V reference, the TMP36's datasheet line
 
@@ -144,9 +147,6 @@ def read_machine_csv(path: str | Path, specimen: str | None = None) -> dict[str,
         LoggerError: naming the file, line and column of the first problem; naming the
             specimens when there are several and none (or another) is chosen.
     """
-    from pamkit.io.experiment import ExperimentError
-    from pamkit.io.machine import read_machine_export
-
     try:
         return read_machine_export(path, specimen).columns
     except ExperimentError as error:
@@ -154,7 +154,9 @@ def read_machine_csv(path: str | Path, specimen: str | None = None) -> dict[str,
 
 
 def read_logger_csv(path: str | Path) -> dict[str, np.ndarray]:
-    """Reads a `pamkit log` CSV (time_s, pressure_kPa, temperature_C, ...).
+    """Reads a `pamkit log` CSV (time_s, pressure_kPa, temperature_C, ...), its channels in SI
+    (gauge_pressure_Pa, temperature_K: pamkit.io.columns), the raw ones (pressure_V, boot, ...)
+    as they are.
 
     A last line without a line end is a row the logger was writing when it was stopped (killed,
     or the machine lost power, docs/logger.md): it is dropped with a :class:`LoggerWarning`
@@ -202,7 +204,7 @@ def read_logger_csv(path: str | Path) -> dict[str, np.ndarray]:
     data = np.asarray(table)
     out = {name: data[:, i].copy() for i, name in enumerate(header)}
     _check_time(path, out["time_s"])
-    return out
+    return to_si(out)
 
 
 def _check_time(path: Path, time: np.ndarray) -> None:
@@ -317,7 +319,7 @@ def _pearson_at(logger_time, logger_values, machine_time, machine_values, offset
 def align(
     logger: dict[str, np.ndarray],
     machine: dict[str, np.ndarray],
-    logger_signal: str = "pressure_kPa",
+    logger_signal: str = "gauge_pressure_Pa",
     machine_signal: str = "extension_m",
     max_offset_s: float | None = None,
 ) -> Alignment:

@@ -22,7 +22,7 @@ A plain CSV whose column names carry their units ("Time (s)", "Extension [mm]", 
 read the same way, with no units row. The header row is found by its names (English or
 German, :data:`ALIASES`), so neither format has to be declared.
 
-Every problem is an :class:`~pamkit.io.experiment.ExperimentError` (a ``ValueError``) naming the
+Every problem is an :class:`~pamkit.io.guards.ExperimentError` (a ``ValueError``) naming the
 file, and the line and column.
 """
 
@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.io.experiment import ExperimentError, _text
+from pamkit.io.guards import ExperimentError, read_text
 
 # Column names, lowercased, units removed. testXpert's "Standardweg" / "Standard travel" is the
 # crosshead travel since the test started; its absolute position ("Traversenweg absolut") is
@@ -183,7 +183,7 @@ def read_machine_export(path: str | Path, specimen: str | None = None) -> Machin
             file does not hold (naming those it holds).
     """
     path = Path(path)
-    lines = _lines(_text(path, "data", decode=lambda raw: _decode(raw, path)))
+    lines = _lines(read_text(path, "data", decode=lambda raw: _decode(raw, path)))
     found = find_header(lines)
     if found is None:
         raise ExperimentError(

@@ -1,8 +1,8 @@
-"""Synthetic measured datasets with one effect hidden in them (DESIGN.md, "Tests that hide an
-effect"): a random bench protocol, the model extended by the effect at a random realistic
-strength, read by the bench's instruments (:mod:`pamkit.synth.instruments`) and written as an
-experiment (TOML + CSV, DESIGN.md "A measured dataset"). What was hidden goes to a separate
-``manifest.json`` that nothing in diagnosis may read.
+"""Synthetic measured datasets with one effect hidden in them: a random bench protocol, the
+model extended by the effect at a random realistic strength, read by the bench's instruments
+(:mod:`pamkit.synth.instruments`) and written as an experiment (TOML + CSV, as load_experiment
+reads them). What was hidden goes to a separate ``manifest.json`` that nothing in diagnosis may
+read.
 
 Random draws (one seeded ``numpy.random.Generator`` per concern, spawned from the seed, so
 that the same seed gives the same protocol, build and instrument noise whatever the effect):
@@ -21,7 +21,7 @@ that the same seed gives the same protocol, build and instrument noise whatever 
   two thirds keep the thesis's hold-free protocol so that diagnosis cannot rely on holds);
 - effect strength: each parameter not given uniformly in the effect's realistic range,
   log-uniformly where that range spans more than a decade (the time constants); for effects
-  acting on a channel, the channel at random among pressure_kPa and temperature_C (the
+  acting on a channel, the channel at random among gauge_pressure_Pa and temperature_K (the
   Arduino's), and the sign at random where the effect declares `either_sign` (time_skew),
   unless given. Only channels that move by more than one ADC count in the test are drawn:
   the baseline's gas is isothermal (polytropic n = 1), so its temperature is constant, and a
@@ -45,10 +45,8 @@ from pamkit._core import (
     BraidGeometry,
     EffectCatalog,
     ElongationTrajectory,
-    FrictionParams,
     GasMode,
     GasParams,
-    InitialState,
     MuscleBuild,
     MuscleParams,
     Simulator,
@@ -57,7 +55,10 @@ from pamkit._core import (
     simulate_measurement,
 )
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.experiment import LOGGER_CHANNELS, OPTIONAL_COLUMNS, write_experiment
+from pamkit.io.columns import LOGGER_CHANNELS, OPTIONAL_COLUMNS, value_to_si
+from pamkit.io.experiment import experiment_of
+from pamkit.io.writers import write_experiment
+from pamkit.simulate import muscle_params, sealed_start
 from pamkit.synth.instruments import (
     ArduinoLogger,
     ArduinoLoggerSettings,
@@ -67,12 +68,11 @@ from pamkit.synth.instruments import (
     TensileMachineSettings,
     merge_logs,
 )
-from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
 
 NONE = "none"
 LOG_DRAW_SPAN = 10.0  # a realistic range wider than this ratio is drawn log-uniformly
 
-# Ranges of DESIGN.md, "Tests that hide an effect".
+# The ranges a dataset draws from: the thesis's bench tests and faster ones (module docstring).
 INFLATION_KPA = (35.0, 276.0)
 STRETCH_FRACTION = (0.80, 0.95)
 SPEED_M_PER_S = (2.5e-3, 50e-3)
@@ -98,10 +98,12 @@ LOGGER_MARGIN_S = 1.0
 
 @dataclass(frozen=True)
 class Protocol:
-    """A bench test's plan: inflation, and triangle cycles of the crosshead."""
+    """A bench test's plan: inflation, and triangle cycles of the crosshead. The inflation and
+    the room are as the experiment file states them, to the digits a person writes there; the
+    model reads them from the file (pamkit.io.experiment), as a diagnosis will."""
 
-    inflation_pressure_kPa: float  #: gauge, after inflation [kPa]
-    ambient_temperature_C: float  #: [°C]
+    inflation_pressure_kPa: float  #: gauge, after inflation, as the file states it [kPa]
+    ambient_temperature_C: float  #: the room, as the file states it [°C]
     free_length_m: float  #: free inflated length, where the test starts [m]
     free_contraction_m: float  #: deflated length minus free inflated length [m]
     stretch_fraction: float  #: of the free contraction [1]
@@ -135,7 +137,7 @@ class Protocol:
     def on_samples(self, sample_rate_Hz: float) -> Protocol:
         """The same protocol with every corner on a sample of a machine logging at
         `sample_rate_Hz`: ramp, hold and rests whole numbers of sample periods, the speed
-        adjusted (by less than half a period per ramp, kept within DESIGN.md's range).
+        adjusted (by less than half a period per ramp, kept within SPEED_M_PER_S).
 
         A machine's controller reverses where it is told, not on a logging tick; but a corner
         between two samples is cut by the data's straight line, and the model driven by the
@@ -179,15 +181,8 @@ def draw_build(rng: np.random.Generator) -> MuscleBuild:
     return build
 
 
-def muscle_params(build: MuscleBuild, ambient_temperature_C: float) -> MuscleParams:
-    """The baseline model of a synthetic test: what ``load_experiment`` makes of its file."""
-    gas = GasParams()
-    gas.ambient_temperature_K = ambient_temperature_C + KELVIN_AT_ZERO_CELSIUS
-    return MuscleParams(build=build, bladder=BladderLaw.thesis(), friction=FrictionParams(), gas=gas)
-
-
 def draw_protocol(rng: np.random.Generator, build: MuscleBuild) -> Protocol:
-    """A random protocol in DESIGN.md's ranges (module docstring)."""
+    """A random protocol in this module's ranges (module docstring)."""
     pressure = round(rng.uniform(*INFLATION_KPA), 2)
     ambient = round(rng.uniform(*AMBIENT_C), 2)
     fraction = rng.uniform(*STRETCH_FRACTION)
@@ -197,7 +192,7 @@ def draw_protocol(rng: np.random.Generator, build: MuscleBuild) -> Protocol:
     rest = rng.uniform(*REST_BEFORE_S)
     gas = GasParams()
     free = free_inflation(
-        BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, pressure * PASCAL_PER_KILOPASCAL
+        BraidGeometry(build), BladderLaw.thesis(), gas.atmospheric_pressure_Pa, value_to_si("pressure_kPa", pressure)
     )
     contraction = build.length_m - free.length_m
     return Protocol(
@@ -261,25 +256,20 @@ def draw_instruments(rng: np.random.Generator, protocol: Protocol) -> dict:
 
 
 def parse_spec(spec: str, effect_catalog: EffectCatalog) -> tuple[str, dict[str, str]]:
-    """Splits ``NAME[:key=value,...]`` after checking it with the catalog.
+    """The effect's name and the settings `spec` gives (``NAME[:key=value,...]``, the catalog's
+    grammar), once the catalog accepts it; ``"none"`` takes none.
 
     Raises:
         ValueError: naming the unknown effect, the bad key or value (the catalog's message).
     """
     spec = spec.strip()
-    name, _, rest = spec.partition(":")
-    given: dict[str, str] = {}
-    for item in filter(None, rest.split(",")):
-        key, equals, value = item.partition("=")
-        if not equals or not key:
-            raise ValueError(f"effect '{spec}': '{item}' is not key=value")
-        given[key.strip()] = value.strip()
+    name, settings = EffectCatalog.split(spec)
     if name == NONE:
-        if given:
-            raise ValueError(f"effect 'none' takes no parameters (got {', '.join(given)})")
-        return name, given
+        if settings:
+            raise ValueError(f"effect 'none' takes no parameters (got {', '.join(key for key, _ in settings)})")
+        return name, {}
     effect_catalog.parse(spec)  # raises ValueError naming the effect, key or value
-    return name, given
+    return name, dict(settings)
 
 
 def configure_effect(
@@ -356,7 +346,8 @@ def synthesize(
     say; every draw is still made, so the others stay those of the seed.
 
     `true_muscle(declared, protocol)` makes the muscle the data come from out of the one the file
-    declares, returning it and a description for the manifest (:mod:`pamkit.synth.mismatch`): a real muscle is never exactly its declared build (a
+    declares, returning it and a description for the manifest (:mod:`pamkit.synth.mismatch`): a
+    real muscle is never exactly its declared build (a
     braid wound a few per cent otherwise, another end geometry, a sharper friction). The true
     muscle is inflated freely to the test's pressure and sealed at its own free length; the
     crosshead follows the protocol planned from the declared build, as a lab plans it.
@@ -398,10 +389,21 @@ def synthesize(
     times = np.unique(times)
     times = times[np.concatenate([[True], np.diff(times) > 1e-6])]
     crosshead = ElongationTrajectory(times, np.interp(times, corners_t, corners_e))
-    params = muscle_params(build, protocol.ambient_temperature_C)
-    initial = InitialState(
-        length_m=protocol.free_length_m, gauge_pressure_Pa=protocol.inflation_pressure_kPa * PASCAL_PER_KILOPASCAL
-    )
+    out_dir = Path(out_dir)
+    files = SynthFiles(out_dir / "experiment.toml", out_dir / "experiment.csv", out_dir / "manifest.json")
+    sections = {
+        "muscle": build.to_dict(),
+        "test": {
+            "description": "synthetic bench test (pamkit synth)",
+            "inflation_pressure_kPa": protocol.inflation_pressure_kPa,
+            "ambient_temperature_C": protocol.ambient_temperature_C,
+            "data": files.data.name,
+        },
+    }
+    # The model of the file as a reader makes it, from the state every sealed test starts in.
+    experiment = experiment_of(files.experiment, sections)
+    params = muscle_params(experiment)
+    initial = sealed_start(experiment, params)
     mismatch = {}
     if true_muscle is not None:
         params, mismatch = true_muscle(params, protocol)
@@ -412,7 +414,7 @@ def synthesize(
     # A lag or skew of a channel that does not move cannot be seen (the temperature of the
     # isothermal baseline, polytropic n = 1): the channel is drawn among those that move by
     # more than one ADC count over the test.
-    step = {"pressure_kPa": logger.pressure_step_kPa(), "temperature_C": logger.temperature_step_C()}
+    step = {"gauge_pressure_Pa": logger.pressure_step_Pa(), "temperature_K": logger.temperature_step_K()}
     moving = [name for name in LOGGER_CHANNELS if np.ptp(getattr(baseline, name)) > step[name]]
     effect, effect_info = configure_effect(effect_spec, effect_rng, effect_catalog, moving or LOGGER_CHANNELS)
     effects = [effect] if effect is not None else []
@@ -427,19 +429,10 @@ def synthesize(
     sync = instruments["logger"].clock_offset_s + instruments["sync_error_s"]
     columns = merge_logs(machine_log, logger_log, sync)
 
-    out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    files = SynthFiles(out_dir / "experiment.toml", out_dir / "experiment.csv", out_dir / "manifest.json")
     write_experiment(
         files.experiment,
-        {
-            "muscle": build.to_dict(),
-            "test": {
-                "description": "synthetic bench test (pamkit synth)",
-                "inflation_pressure_kPa": protocol.inflation_pressure_kPa,
-                "ambient_temperature_C": protocol.ambient_temperature_C,
-            },
-        },
+        sections,
         columns,
         comments=[
             "A synthetic bench test (pamkit synth): PAM 2 on a tensile machine, pressure and temperature",
@@ -458,8 +451,8 @@ def synthesize(
             "tensile_machine": asdict(instruments["machine"]),
             "arduino_logger": asdict(instruments["logger"]),
             "pressure_calibration": calibration.to_dict(),
-            "pressure_step_kPa": logger.pressure_step_kPa(),
-            "temperature_step_C": logger.temperature_step_C(),
+            "pressure_step_Pa": logger.pressure_step_Pa(),
+            "temperature_step_K": logger.temperature_step_K(),
             "logger_clock_at_machine_zero_s": {"true": instruments["logger"].clock_offset_s, "used_to_merge": sync},
         },
         "samples": {

@@ -7,18 +7,18 @@ own sample rate, with its own noise and resolution (thesis section 3.2 and appen
   the TMP36 inside the muscle (A1) through its 10-bit ADC with a 5 V reference, on its own
   clock (an offset and a drift in ppm against the machine's), at its own rate. Its host
   software is the real logger's: ``pamkit._core.logger.LoggerCalibration`` (C++) turns counts
-  into volts and volts into kPa (gauge) and °C, and ``fit_pressure`` fits appendix B's
-  calibration, as ``pamkit log`` does with a real board. What stays here is the synthetic
-  instrument's physics: what the transducer and the TMP36 put out, the ADC's noise and rounding,
-  the clocks.
+  into volts and volts into kPa (gauge) and °C, the units of the CSV ``pamkit log`` writes,
+  and ``fit_pressure`` fits appendix B's calibration, as ``pamkit log`` does with a real board.
+  What stays here is the synthetic instrument's physics: what the transducer and the TMP36 put
+  out, the ADC's noise and rounding, the clocks.
 - :func:`merge_logs`: the hand synchronisation of the two logs after the test (thesis appendix
   G.2 aligns them by hand) and the merge onto the machine's time base by linear
-  interpolation, into the columns of DESIGN.md's measured dataset.
+  interpolation, into the columns of a measured time series, SI (pamkit.io.columns).
 
 Every random draw takes a ``numpy.random.Generator``; nothing here holds global state. The
 "truth" an instrument reads is a dense record on the machine's clock (``time_s`` and the true
-channels, e.g. a :class:`pamkit.Measurement`), linear between its samples; instruments sample
-it at their own instants.
+channels in SI, e.g. a :class:`pamkit.Measurement`), linear between its samples; instruments
+sample it at their own instants.
 """
 
 from __future__ import annotations
@@ -28,7 +28,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from pamkit._core.logger import ADC_FULL_SCALE, LoggerCalibration, fit_pressure
-from pamkit.units import KILOPASCAL_PER_PSI
+from pamkit.io.columns import to_si, value_from_si
+from pamkit.units import KILOPASCAL_PER_PSI, PASCAL_PER_KILOPASCAL
 
 # The host's defaults, declared in C++ (include/pamkit/logger/calibration.hpp): the nominal 5 V
 # reference and the TMP36's datasheet line. The synthetic sensors and ADC start from them.
@@ -158,9 +159,11 @@ class PressureTransducer:
         _check_positive("PressureTransducer.sensitivity_V_per_psi", self.sensitivity_V_per_psi)
         _check_nonnegative("PressureTransducer.noise_rms_V", self.noise_rms_V)
 
-    def voltage(self, gauge_kPa: np.ndarray) -> np.ndarray:
-        """Noise-free output for a gauge pressure [V]."""
-        return self.offset_V + self.sensitivity_V_per_psi * np.asarray(gauge_kPa, dtype=float) / KILOPASCAL_PER_PSI
+    def voltage(self, gauge_pressure_Pa: np.ndarray) -> np.ndarray:
+        """Noise-free output for a gauge pressure [Pa] [V]: the unit's line, which its
+        datasheet and appendix B give per psi."""
+        kilopascals = value_from_si("gauge_pressure_Pa", np.asarray(gauge_pressure_Pa, dtype=float))
+        return self.offset_V + self.sensitivity_V_per_psi * kilopascals / KILOPASCAL_PER_PSI
 
 
 @dataclass(frozen=True)
@@ -179,9 +182,10 @@ class TMP36:
         _check_positive("TMP36.sensitivity_V_per_C", self.sensitivity_V_per_C)
         _check_nonnegative("TMP36.noise_rms_V", self.noise_rms_V)
 
-    def voltage(self, temperature_C: np.ndarray) -> np.ndarray:
-        """Noise-free output for a temperature [V]."""
-        return self.offset_V + self.sensitivity_V_per_C * np.asarray(temperature_C, dtype=float)
+    def voltage(self, temperature_K: np.ndarray) -> np.ndarray:
+        """Noise-free output for a temperature [K] [V]: the datasheet's line, in °C."""
+        celsius = value_from_si("temperature_K", np.asarray(temperature_K, dtype=float))
+        return self.offset_V + self.sensitivity_V_per_C * celsius
 
 
 def appendix_g2_calibration() -> LoggerCalibration:
@@ -226,7 +230,8 @@ class ArduinoLoggerSettings:
 
 @dataclass
 class LoggerLog:
-    """What the logger's host software writes: its own time stamps, raw counts, calibrated values."""
+    """What the logger's host software writes in its CSV: its own time stamps, raw counts,
+    calibrated values in the CSV's units (kPa gauge, °C)."""
 
     time_s: np.ndarray
     """logger clock at each sample [s] (millis() / 1000)"""
@@ -310,12 +315,13 @@ class ArduinoLogger:
         """What the host takes one count of a sample's sum to be [V]: Vref / 1024 / oversample."""
         return float(self.volts(1.0))
 
-    def pressure_step_kPa(self) -> float:
-        """The calibrated pressure's quantum: one count of a sample's sum [kPa]."""
-        return self.calibration.pressure_kPa_per_V * self.volts_per_count()
+    def pressure_step_Pa(self) -> float:
+        """The calibrated pressure's quantum: one count of a sample's sum [Pa] (the
+        calibration's slope is in kPa/V, as its file gives it)."""
+        return self.calibration.pressure_kPa_per_V * PASCAL_PER_KILOPASCAL * self.volts_per_count()
 
-    def temperature_step_C(self) -> float:
-        """The TMP36 reading's quantum: one count of a sample's sum [°C]."""
+    def temperature_step_K(self) -> float:
+        """The TMP36 reading's quantum: one count of a sample's sum [K] (a step of one °C is one K)."""
         return self.volts_per_count() / self.calibration.tmp36_V_per_C
 
     # calibration and recording --------------------------------------------------------------
@@ -332,7 +338,7 @@ class ArduinoLogger:
         s = self.settings
         volts = []
         for psi in points_psi:
-            true = np.full(readings_per_point, s.pressure.voltage(psi * KILOPASCAL_PER_PSI))
+            true = np.full(readings_per_point, s.pressure.voltage(psi * KILOPASCAL_PER_PSI * PASCAL_PER_KILOPASCAL))
             volts.append(float(self.volts(self.counts(true, s.pressure.noise_rms_V, rng)).mean()))
         fit = fit_pressure([float(psi) for psi in points_psi], volts)
         self.calibration = LoggerCalibration(
@@ -346,7 +352,7 @@ class ArduinoLogger:
         return self.calibration
 
     def record(self, truth, rng: np.random.Generator, start_s: float, stop_s: float) -> LoggerLog:
-        """Logs `truth` (time_s on the machine's clock, pressure_kPa gauge, temperature_C; held
+        """Logs `truth` (time_s on the machine's clock, gauge_pressure_Pa, temperature_K; held
         at its ends outside its span, where the muscle rests) between machine times start_s
         and stop_s, on the logger's clock and at its rate.
 
@@ -358,8 +364,8 @@ class ArduinoLogger:
         clock = self.sample_clock_times(start_s, stop_s)
         when = self.machine_time(clock)
         time = np.asarray(truth.time_s, dtype=float)
-        pressure = np.interp(when, time, np.asarray(truth.pressure_kPa, dtype=float))
-        temperature = np.interp(when, time, np.asarray(truth.temperature_C, dtype=float))
+        pressure = np.interp(when, time, np.asarray(truth.gauge_pressure_Pa, dtype=float))
+        temperature = np.interp(when, time, np.asarray(truth.temperature_K, dtype=float))
         pressure_counts = self.counts(s.pressure.voltage(pressure), s.pressure.noise_rms_V, rng)
         temperature_counts = self.counts(s.temperature.voltage(temperature), s.temperature.noise_rms_V, rng)
         stamps = _floor(clock, s.timestamp_resolution_s)
@@ -377,8 +383,9 @@ class ArduinoLogger:
 
 
 def merge_logs(machine: MachineLog, logger: LoggerLog, logger_clock_at_machine_zero_s: float) -> dict[str, np.ndarray]:
-    """The two logs on the machine's time base, as DESIGN.md's measured dataset columns:
-    time_s, elongation_m, force_N, pressure_kPa (gauge), temperature_C.
+    """The two logs on the machine's time base, as a measured time series' columns, SI:
+    time_s, elongation_m, force_N, gauge_pressure_Pa, temperature_K (the logger's kPa and °C
+    read as a reader of its CSV reads them).
 
     The synchronisation is the one done by hand after the test: the logger's time stamps are
     shifted by `logger_clock_at_machine_zero_s` (the logger clock's reading when the machine
@@ -394,13 +401,15 @@ def merge_logs(machine: MachineLog, logger: LoggerLog, logger_clock_at_machine_z
             f"merge_logs: the logger covers [{shifted[0]:.3f}, {shifted[-1]:.3f}] s of machine time, "
             f"the machine's record [{machine.time_s[0]:.3f}, {machine.time_s[-1]:.3f}] s"
         )
-    return {
-        "time_s": np.asarray(machine.time_s, dtype=float),
-        "elongation_m": np.asarray(machine.displacement_m, dtype=float),
-        "force_N": np.asarray(machine.force_N, dtype=float),
-        "pressure_kPa": np.interp(machine.time_s, shifted, logger.pressure_kPa),
-        "temperature_C": np.interp(machine.time_s, shifted, logger.temperature_C),
-    }
+    return to_si(
+        {
+            "time_s": np.asarray(machine.time_s, dtype=float),
+            "elongation_m": np.asarray(machine.displacement_m, dtype=float),
+            "force_N": np.asarray(machine.force_N, dtype=float),
+            "pressure_kPa": np.interp(machine.time_s, shifted, logger.pressure_kPa),
+            "temperature_C": np.interp(machine.time_s, shifted, logger.temperature_C),
+        }
+    )
 
 
 # ----------------------------------------------------------------------------------------------

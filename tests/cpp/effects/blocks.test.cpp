@@ -24,8 +24,9 @@ Measurement joined_blocks(const std::vector<EffectPtr>& effects, std::size_t blo
     joined.time_s.insert(joined.time_s.end(), block.time_s.begin(), block.time_s.end());
     joined.elongation_m.insert(joined.elongation_m.end(), block.elongation_m.begin(), block.elongation_m.end());
     joined.force_N.insert(joined.force_N.end(), block.force_N.begin(), block.force_N.end());
-    joined.pressure_kPa.insert(joined.pressure_kPa.end(), block.pressure_kPa.begin(), block.pressure_kPa.end());
-    joined.temperature_C.insert(joined.temperature_C.end(), block.temperature_C.begin(), block.temperature_C.end());
+    joined.gauge_pressure_Pa.insert(joined.gauge_pressure_Pa.end(), block.gauge_pressure_Pa.begin(),
+                                    block.gauge_pressure_Pa.end());
+    joined.temperature_K.insert(joined.temperature_K.end(), block.temperature_K.begin(), block.temperature_K.end());
   };
   joined.statistics =
       simulate_measurement_blocks(MuscleParams(), table_c2_90(), bench(), effects, Simulator(), block_size, append);

@@ -25,18 +25,18 @@ TEST_CASE(
   std::vector<double> time, pressure;
   for (int k = 0; k <= 28; ++k) {
     time.push_back(0.5 * k);
-    pressure.push_back(20.0 + 10.0 * k);
+    pressure.push_back(20e3 + 10e3 * k);
   }
   const ElongationTrajectory held(time, std::vector<double>(time.size(), 0.0));
   const double band = 2.0;
-  const Measurement thesis = simulate_supplied_measurement(params, length, held, pressure, 20.0, {});
+  const Measurement thesis = simulate_supplied_measurement(params, length, held, pressure, {});
   const Measurement slack =
-      simulate_supplied_measurement(params, length, held, pressure, 20.0, {effect("braid_slack:band_N=2")});
+      simulate_supplied_measurement(params, length, held, pressure, {effect("braid_slack:band_N=2")});
   REQUIRE(*std::min_element(thesis.force_N.begin(), thesis.force_N.end()) < -band);  // the sweep spans both
   REQUIRE(max_of(thesis.force_N) > band);
   for (std::size_t k = 0; k < time.size(); ++k) {
     const double pushing = thesis.force_N[k];
-    INFO(pressure[k] << " kPa: thesis " << pushing << " N, slack braid " << slack.force_N[k] << " N");
+    INFO(pressure[k] << " Pa: thesis " << pushing << " N, slack braid " << slack.force_N[k] << " N");
     if (pushing >= band) {
       CHECK(slack.force_N[k] == pushing);  // taut: untouched
     } else if (pushing <= -band) {

@@ -21,8 +21,8 @@ using namespace pamkit;
 /// elongation. With the default MuscleParams (PAM 2's build, table C.4; isothermal gas, n = 1).
 inline InitialState table_c2_90() { return {0.167, 236.63e3}; }
 
-/// The atmosphere of the default GasParams (table C.4) [kPa].
-constexpr double kAtmosphere_kPa = 101.0;
+/// The atmosphere of the default GasParams (table C.4) [Pa].
+constexpr double kAtmosphere_Pa = 101e3;
 
 /// The built-in catalog, parsing `spec` as `--effect` does.
 inline EffectPtr effect(const std::string& spec) { return EffectCatalog::builtin().parse(spec); }
@@ -58,7 +58,7 @@ inline std::size_t sample_at(const std::vector<double>& time, double t) {
 /// The largest element of a non-empty vector.
 inline double max_of(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
 
-/// A measurement with `n` samples `dt` apart and temperature_C = f(t); the other channels filled
+/// A measurement with `n` samples `dt` apart and temperature_K = f(t); the other channels filled
 /// with recognisable values so that any change to them shows.
 template <class F>
 Measurement synthetic(std::size_t n, double dt, F f) {
@@ -68,8 +68,8 @@ Measurement synthetic(std::size_t n, double dt, F f) {
     m.time_s.push_back(t);
     m.elongation_m.push_back(1e-3 * t);
     m.force_N.push_back(100.0 + t);
-    m.pressure_kPa.push_back(200.0 - t);
-    m.temperature_C.push_back(f(t));
+    m.gauge_pressure_Pa.push_back(200e3 - 1e3 * t);
+    m.temperature_K.push_back(f(t));
   }
   return m;
 }
@@ -82,8 +82,8 @@ inline bool identical(const std::vector<double>& a, const std::vector<double>& b
 /// Every channel of two measurements bit for bit.
 inline bool identical(const Measurement& a, const Measurement& b) {
   return identical(a.time_s, b.time_s) && identical(a.elongation_m, b.elongation_m) &&
-         identical(a.force_N, b.force_N) && identical(a.pressure_kPa, b.pressure_kPa) &&
-         identical(a.temperature_C, b.temperature_C);
+         identical(a.force_N, b.force_N) && identical(a.gauge_pressure_Pa, b.gauge_pressure_Pa) &&
+         identical(a.temperature_K, b.temperature_K);
 }
 
 /// A simulator tight enough that its global error (~1e-9 relative over these runs) stays

@@ -64,7 +64,7 @@ ElongationTrajectory sealed_bench() { return thesis_protocol(0.05, 2.5e-3, 2, 0.
 struct SuppliedBench {
   double length_m;
   ElongationTrajectory crosshead;
-  std::vector<double> pressure_kPa;
+  std::vector<double> gauge_pressure_Pa;
 };
 SuppliedBench supplied_bench() {
   const MuscleParams params;
@@ -73,7 +73,7 @@ SuppliedBench supplied_bench() {
   std::vector<double> time, pressure;
   for (int k = 0; k <= 56; ++k) {
     time.push_back(0.5 * k);
-    pressure.push_back(k <= 28 ? 20.0 + 10.0 * k : 300.0 - 10.0 * (k - 28));
+    pressure.push_back(k <= 28 ? 20e3 + 10e3 * k : 300e3 - 10e3 * (k - 28));
   }
   return {length, ElongationTrajectory(time, std::vector<double>(time.size(), 0.0)), pressure};
 }
@@ -83,14 +83,14 @@ Measurement run(GasMode mode, const MuscleParams& params, const std::vector<Effe
     return simulate_measurement(params, table_c2_90(), sealed_bench(), effects, precise_simulator());
   }
   const SuppliedBench bench = supplied_bench();
-  return simulate_supplied_measurement(params, bench.length_m, bench.crosshead, bench.pressure_kPa, 20.0, effects);
+  return simulate_supplied_measurement(params, bench.length_m, bench.crosshead, bench.gauge_pressure_Pa, effects);
 }
 
 // The mode an effect is checked in: the sealed bench where it acts there, else the supplied one.
 GasMode home(const Effect& e) { return e.acts_in(GasMode::sealed, nullptr) ? GasMode::sealed : GasMode::supplied; }
 
 // The thesis's model with heat exchange at a finite rate, so that the gas temperature swings
-// and a lag or a skew of temperature_C shows (the default gas is isothermal).
+// and a lag or a skew of temperature_K shows (the default gas is isothermal).
 MuscleParams swinging_temperature() {
   MuscleParams params;
   params.gas.process = GasProcess::heat_transfer;
@@ -252,8 +252,8 @@ TEST_CASE("every effect: in a supplied test it changes the driving pressure exac
   for (const EffectPtr& e : every_effect()) {
     if (!e->acts_in(GasMode::supplied, nullptr)) continue;
     INFO(label(*e));
-    std::vector<double> driving = bench.pressure_kPa;
+    std::vector<double> driving = bench.gauge_pressure_Pa;
     e->apply_to_supplied_pressure(bench.crosshead.time(), driving);
-    CHECK(identical(driving, bench.pressure_kPa) == !e->reads_supplied_pressure());
+    CHECK(identical(driving, bench.gauge_pressure_Pa) == !e->reads_supplied_pressure());
   }
 }

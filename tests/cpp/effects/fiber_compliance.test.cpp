@@ -48,6 +48,6 @@ TEST_CASE("fiber_compliance: the braid is shorter by F Lym / (N EA), and the mus
     CHECK(drop_quarter > 0.0);
     CHECK(drop_top > drop_quarter);
     // The braid travels less than the crosshead, so the gas is compressed less.
-    CHECK(m.pressure_kPa[top] < baseline.pressure_kPa[top]);
+    CHECK(m.gauge_pressure_Pa[top] < baseline.gauge_pressure_Pa[top]);
   }
 }

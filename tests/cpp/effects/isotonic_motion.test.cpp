@@ -27,10 +27,10 @@ MuscleParams conservative() {
   return params;
 }
 
-/// The muscle's force at rest [N] at `length` under a supplied gauge `pressure_kPa`, through the
+/// The muscle's force at rest [N] at `length` under a supplied gauge `pressure_Pa`, through the
 /// public static model.
-double force_at_rest(const MuscleParams& params, double length, double pressure_kPa) {
-  return static_forces(params, {length}, {pressure_kPa}).front();
+double force_at_rest(const MuscleParams& params, double length, double pressure_Pa) {
+  return static_forces(params, {length}, {pressure_Pa}).front();
 }
 
 std::vector<double> uniform_times(double duration, std::size_t samples) {
@@ -56,7 +56,7 @@ TEST_CASE("isotonic_motion: a slow ramp follows isotonic_lengths, lagging by the
   std::vector<double> time, pressure;
   for (int j = 0; j <= 200; ++j) {
     time.push_back(30.0 * j);
-    pressure.push_back(j <= 100 ? 100.0 + 3.0 * j : 400.0 - 3.0 * (j - 100));
+    pressure.push_back(j <= 100 ? 100e3 + 3e3 * j : 400e3 - 3e3 * (j - 100));
   }
   const double load = 100.0;
   const double mass = 0.1;
@@ -69,7 +69,7 @@ TEST_CASE("isotonic_motion: a slow ramp follows isotonic_lengths, lagging by the
   const std::vector<double> branch = pressure_branches(pressure);
   double largest_lag = 0.0;
   for (std::size_t j = 0; j < time.size(); ++j) {
-    const double gauge = pressure[j] * 1e3;
+    const double gauge = pressure[j];
     const double L = path.length_m[j];
     auto at_rest = [&](double length) {
       return detail::supplied_force(geometry, params, geometry.shape(length), gauge, 0.0, branch[j]);
@@ -78,7 +78,7 @@ TEST_CASE("isotonic_motion: a slow ramp follows isotonic_lengths, lagging by the
     const double stiffness = (at_rest(L + h) - at_rest(L - h)) / (2.0 * h);
     const double lag = -friction_force(params.friction, geometry, gauge, motion.velocity_m_per_s[j]) / stiffness;
     largest_lag = std::max(largest_lag, std::abs(lag));
-    INFO("sample " << j + 1 << ", p = " << pressure[j] << " kPa, static length " << L << " m, viscous lag " << lag
+    INFO("sample " << j + 1 << ", p = " << pressure[j] << " Pa, static length " << L << " m, viscous lag " << lag
                    << " m");
     CHECK(std::abs(motion.length_m[j] - L - lag) <= 0.01 * std::abs(lag) + 1e-9);
   }
@@ -95,7 +95,7 @@ TEST_CASE("isotonic_motion: without friction a displaced mass conserves its ener
   // not the energy's bookkeeping).
   const MuscleParams params = conservative();
   const double load = 100.0;
-  const double pressure = 300.0;
+  const double pressure = 300e3;
   const double mass = 1.0;
   const double equilibrium = isotonic_lengths(params, {pressure}, load, params.build.length_m).length_m.front();
   const double start = equilibrium + 0.005;
@@ -135,7 +135,7 @@ TEST_CASE("isotonic_motion: a small oscillation has the period 2 pi sqrt(m / k)"
   // of a radian at most, and alike at each crossing. The check allows 1e-6 of the period.
   const MuscleParams params = conservative();
   const double load = 100.0;
-  const double pressure = 300.0;
+  const double pressure = 300e3;
   const double mass = 1.0;
   const double equilibrium = isotonic_lengths(params, {pressure}, load, params.build.length_m).length_m.front();
   const double h = 1e-6;
@@ -171,7 +171,7 @@ TEST_CASE("isotonic_motion: friction brings the mass to rest at isotonic_lengths
   // 0.11 s. After 10 s the transient is gone far below the 1e-10 m length tolerance; the check
   // allows 1e-9 m, and the force balances the load to 1e-7 (k 1e-9 m / 100 N ~ 5e-8).
   const double load = 100.0;
-  const double pressure = 300.0;
+  const double pressure = 300e3;
   const double mass = 10.0;
   for (double friction_scale : {1.0, 0.1}) {
     MuscleParams params;
@@ -218,13 +218,13 @@ TEST_CASE("isotonic_motion: bad inputs are named", "[effects][isotonic_motion]")
   using Catch::Matchers::Contains;
   const MuscleParams params;
   const std::vector<double> time{0.0, 0.5, 1.0};
-  const std::vector<double> pressure{100.0, 100.0, 100.0};
+  const std::vector<double> pressure{100e3, 100e3, 100e3};
   CHECK_THROWS_WITH(isotonic_motion(params, time, pressure, 100.0, 0.0), Contains("mass_kg = 0 kg"));
   CHECK_THROWS_AS(isotonic_motion(params, time, pressure, 100.0, -1.0), InvalidParameter);
   CHECK_THROWS_AS(isotonic_motion(params, time, pressure, 100.0, std::nan("")), InvalidParameter);
-  CHECK_THROWS_WITH(isotonic_motion(params, time, {100.0, 100.0}, 100.0, 1.0), Contains("2 pressures for 3 times"));
+  CHECK_THROWS_WITH(isotonic_motion(params, time, {100e3, 100e3}, 100.0, 1.0), Contains("2 pressures for 3 times"));
   CHECK_THROWS_WITH(isotonic_motion(params, {0.0, 0.5, 0.5}, pressure, 100.0, 1.0), Contains("sample 3 has time 0.5"));
-  CHECK_THROWS_WITH(isotonic_motion(params, {0.0}, {100.0}, 100.0, 1.0), Contains("two or more"));
+  CHECK_THROWS_WITH(isotonic_motion(params, {0.0}, {100e3}, 100.0, 1.0), Contains("two or more"));
   CHECK_THROWS_WITH(isotonic_motion(params, time, pressure, 100.0, 1.0, 0.3), Contains("start_length_m = 0.3"));
   CHECK_THROWS_AS(isotonic_motion(params, time, pressure, 100.0, 1.0, std::nullopt, {effect("sensor_lag")}),
                   InvalidParameter);

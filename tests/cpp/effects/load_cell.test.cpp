@@ -20,8 +20,8 @@ TEST_CASE("load_cell: the force reads offset + F (1 + c F) exactly", "[effects][
     const double f = truth.force_N[k];
     CHECK(m.force_N[k] == -4.5 + f * (1.0 + 0.12e-3 * f));
   }
-  CHECK(identical(m.pressure_kPa, truth.pressure_kPa));
-  CHECK(identical(m.temperature_C, truth.temperature_C));
+  CHECK(identical(m.gauge_pressure_Pa, truth.gauge_pressure_Pa));
+  CHECK(identical(m.temperature_K, truth.temperature_K));
 }
 
 TEST_CASE("load_cell: the nonlinearity is the relative error per kN", "[effects][load_cell]") {

@@ -21,18 +21,18 @@ TEST_CASE("pressure_hysteresis: venting reads 2 mu p pi D^2 / 4 more than pressu
   const double kPi = std::acos(-1.0);
   // 20 kPa to 300 kPa and back in 10 kPa steps: pressurising at sample k, venting at 56 - k.
   std::vector<double> pressure;
-  for (int k = 0; k <= 56; ++k) pressure.push_back(k <= 28 ? 20.0 + 10.0 * k : 300.0 - 10.0 * (k - 28));
+  for (int k = 0; k <= 56; ++k) pressure.push_back(k <= 28 ? 20e3 + 10e3 * k : 300e3 - 10e3 * (k - 28));
   for (const double step_s : {0.5, 5.0}) {  // a tenfold slower sweep: rate independence
     std::vector<double> time;
     for (std::size_t k = 0; k < pressure.size(); ++k) time.push_back(step_s * static_cast<double>(k));
     const ElongationTrajectory held(time, std::vector<double>(time.size(), 0.0));
-    const Measurement m = simulate_supplied_measurement(params, length, held, pressure, 20.0,
-                                                        {effect("pressure_hysteresis:coefficient=0.1")});
+    const Measurement m =
+        simulate_supplied_measurement(params, length, held, pressure, {effect("pressure_hysteresis:coefficient=0.1")});
     for (std::size_t k = 0; k < 28; ++k) {
       const std::size_t venting = 56 - k;
       REQUIRE(pressure[venting] == pressure[k]);
-      const double friction = mu * units::pascal_from_kilopascal(pressure[k]) * 0.25 * kPi * diameter * diameter;
-      INFO(step_s << " s per step, " << pressure[k] << " kPa");
+      const double friction = mu * pressure[k] * 0.25 * kPi * diameter * diameter;
+      INFO(step_s << " s per step, " << pressure[k] << " Pa");
       // Held still, the thesis's friction is zero: the elastic force is the same on both branches
       // and only rounding (~1e-13 of it) separates the difference from 2 x the friction.
       CHECK_REL(m.force_N[venting] - m.force_N[k], 2.0 * friction, 1e-9);

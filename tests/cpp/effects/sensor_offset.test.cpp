@@ -13,11 +13,11 @@ using namespace pamkit_test;
 TEST_CASE("sensor_offset: the pressure reads gain x p + offset exactly", "[effects][sensor_offset]") {
   const ElongationTrajectory crosshead = thesis_protocol(0.05, 2.5e-3, 1, 0.1);
   const Measurement truth = measure(MuscleParams(), table_c2_90(), crosshead, {});
-  const Measurement m = measure(MuscleParams(), table_c2_90(), crosshead, {"sensor_offset:offset_kPa=-7.5,gain=1.04"});
+  const Measurement m = measure(MuscleParams(), table_c2_90(), crosshead, {"sensor_offset:offset_Pa=-7.5e3,gain=1.04"});
   for (std::size_t k = 0; k < truth.time_s.size(); ++k) {
     INFO("sample " << k);
-    CHECK(m.pressure_kPa[k] == 1.04 * truth.pressure_kPa[k] + -7.5);
+    CHECK(m.gauge_pressure_Pa[k] == 1.04 * truth.gauge_pressure_Pa[k] + -7.5e3);
   }
   CHECK(identical(m.force_N, truth.force_N));
-  CHECK(identical(m.temperature_C, truth.temperature_C));
+  CHECK(identical(m.temperature_K, truth.temperature_K));
 }

@@ -16,18 +16,18 @@ TEST_CASE("time_skew: the channel is the truth shifted by the offset", "[effects
     const double dt = 0.1;
     const Measurement truth = synthetic(201, dt, [](double t) { return std::sin(t); });
     Measurement m = truth;
-    effect("time_skew:channel=temperature_C,offset_s=0.35")->apply_to_measurement(m);
+    effect("time_skew:channel=temperature_K,offset_s=0.35")->apply_to_measurement(m);
     for (std::size_t k = 0; k < m.time_s.size(); ++k) {
       const double t = m.time_s[k];
       INFO("t = " << t << " s");
       if (t < 0.35) {
-        CHECK(m.temperature_C[k] == truth.temperature_C.front());  // before the record: held at its start
+        CHECK(m.temperature_K[k] == truth.temperature_K.front());  // before the record: held at its start
       } else {
         // Linear interpolation of sin errs by at most dt^2/8 max|sin''| = 1.25e-3.
-        CHECK(std::abs(m.temperature_C[k] - std::sin(t - 0.35)) <= dt * dt / 8.0);
+        CHECK(std::abs(m.temperature_K[k] - std::sin(t - 0.35)) <= dt * dt / 8.0);
       }
     }
-    CHECK(identical(m.pressure_kPa, truth.pressure_kPa));
+    CHECK(identical(m.gauge_pressure_Pa, truth.gauge_pressure_Pa));
     CHECK(identical(m.force_N, truth.force_N));
   }
 
@@ -40,10 +40,10 @@ TEST_CASE("time_skew: the channel is the truth shifted by the offset", "[effects
     for (std::size_t k = 0; k < n; ++k) {
       INFO("t = " << truth.time_s[k] << " s");
       // 1 s is 10 samples; the times are multiples of 0.1 s only to rounding, hence CHECK_REL.
-      CHECK_REL(behind.pressure_kPa[k], truth.pressure_kPa[k >= 10 ? k - 10 : 0], 1e-12);
-      CHECK_REL(ahead.pressure_kPa[k], truth.pressure_kPa[k + 10 < n ? k + 10 : n - 1], 1e-12);
+      CHECK_REL(behind.gauge_pressure_Pa[k], truth.gauge_pressure_Pa[k >= 10 ? k - 10 : 0], 1e-12);
+      CHECK_REL(ahead.gauge_pressure_Pa[k], truth.gauge_pressure_Pa[k + 10 < n ? k + 10 : n - 1], 1e-12);
     }
     CHECK(identical(behind.force_N, truth.force_N));
-    CHECK(identical(behind.temperature_C, truth.temperature_C));
+    CHECK(identical(behind.temperature_K, truth.temperature_K));
   }
 }

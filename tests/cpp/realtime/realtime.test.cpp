@@ -1,7 +1,8 @@
 // RealtimeMuscle (muscle/realtime.hpp): the force a controller calls in its loop is the library's
 // two-call force, bit for bit, inside the braid's range; outside it a status, no exception; and
 // no heap allocation in any call. This executable replaces the global operator new to count
-// allocations, so it is its own ctest area (label "realtime").
+// allocations (bench/allocation_counter.hpp, which the benchmark of the same call counts with),
+// so it is its own ctest area (label "realtime").
 
 #include <atomic>
 #include <cmath>
@@ -12,29 +13,12 @@
 
 #include <catch2/catch.hpp>
 
+#include "allocation_counter.hpp"
 #include "pamkit/muscle/realtime.hpp"
 
 namespace {
-std::atomic<long> allocations{0};
-}  // namespace
 
-// Every allocation of this program is counted. The array and sized forms of the standard
-// library call this one; aligned new is not used by pamkit.
-void* operator new(std::size_t size) {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
-  throw std::bad_alloc();
-}
-// The nothrow form too (Catch2 uses it): a sanitizer's runtime supplies its own, which must not be
-// freed by the replacement below.
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size == 0 ? 1 : size);
-}
-void operator delete(void* memory) noexcept { std::free(memory); }
-void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
-
-namespace {
+using allocation_counter::allocations;
 
 using namespace pamkit;
 

@@ -35,7 +35,7 @@ def test_each_test_is_one_row_and_a_broken_file_keeps_its_message(folder, tmp_pa
     assert capsys.readouterr().out == f"wrote {output} (3 tests, 1 failed)\n"
     broken, leak, plain = read_rows(output)  # in file-name order
     assert broken["error"].endswith("broken.toml: missing section [test]") and broken["cause"] is None
-    assert leak["cause"] == "leak" and leak["gain_pressure_kPa"] > 0.5 and leak["error"] is None
+    assert leak["cause"] == "leak" and leak["gain_gauge_pressure_Pa"] > 0.5 and leak["error"] is None
     assert plain["cause"] == "none" and plain["gain_force_N"] == 0.0
     for row in (leak, plain):
         assert row["heldout_rmse_force_N"] > 0 and row["warnings"] >= 0

@@ -22,7 +22,8 @@ from pamkit.diagnose.campaign import campaign_of_series  # noqa: E402
 from pamkit.diagnose.joint import DISAGREES, calibrate_jointly  # noqa: E402
 from pamkit.diagnose.report import write, write_params  # noqa: E402
 from pamkit.effects import catalog  # noqa: E402
-from pamkit.io.experiment import ExperimentError, load_tests  # noqa: E402
+from pamkit.io.experiment import load_tests  # noqa: E402
+from pamkit.io.guards import ExperimentError  # noqa: E402
 
 HEAT_TIME_CONSTANT_S = 3.0  # one muscle, one wall: the same heat exchange in every test
 
@@ -71,7 +72,7 @@ def test_a_campaign_toml_shares_its_sections_with_its_tests(tmp_path):
     campaign.write_text('[campaign]\ntests = ["a.toml", "b.toml"]\n\n[muscle]\nlength_m = 0.2\n')
     a, b = load_tests(campaign)
     assert a.build.length_m == b.build.length_m == 0.2
-    assert (a.inflation_pressure_kPa, b.inflation_pressure_kPa) == (200.0, 150.0)
+    assert (a.inflation_gauge_pressure_Pa, b.inflation_gauge_pressure_Pa) == (200e3, 150e3)
     (tmp_path / "b.toml").write_text("[muscle]\nlength_m = 0.3\n" + test)
     with pytest.raises(ExperimentError, match=r"b.toml: gives \[muscle\], which its campaign shares"):
         load_tests(campaign)

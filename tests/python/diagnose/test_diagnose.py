@@ -2,9 +2,6 @@
 API, and bad input named by file, row and column."""
 
 import json
-import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -12,7 +9,7 @@ import pytest
 from pamkit.diagnose import diagnose, to_json, verdict
 from pamkit.diagnose.cycles import find_cycles, split_cycles
 from pamkit.diagnose.evidence import ljung_box_p, noise_scale
-from pamkit.io.experiment import ExperimentError
+from pamkit.io.guards import ExperimentError
 from pamkit.synth.dataset import synthesize
 
 DESIGN_KEYS = {"baseline", "candidates", "cause", "extended", "gain", "gain_ci95", "residuals"}
@@ -24,17 +21,7 @@ def leak_dataset(tmp_path_factory):
     return synthesize("leak:time_constant_s=300", 5, tmp_path_factory.mktemp("leak"))
 
 
-def run_pamkit(*arguments):
-    return subprocess.run(
-        [sys.executable, "-m", "pamkit", *map(str, arguments)],
-        capture_output=True,
-        text=True,
-        env=os.environ.copy(),
-        timeout=300,
-    )
-
-
-def test_report_has_the_design_keys_and_names_the_leak(leak_dataset, tmp_path):
+def test_report_has_the_design_keys_and_names_the_leak(leak_dataset, tmp_path, run_pamkit):
     report_path, plot_path = tmp_path / "r.json", tmp_path / "r.png"
     done = run_pamkit("diagnose", leak_dataset.experiment, "--json", report_path, "--plot", plot_path)
     assert done.returncode == 0, done.stderr
@@ -45,7 +32,7 @@ def test_report_has_the_design_keys_and_names_the_leak(leak_dataset, tmp_path):
     assert report["cause"] == "leak"
     assert report["extended"]["effects"] == ["leak"]
     channels = set(report["baseline"]["rmse"])
-    assert channels == {"force_N", "pressure_kPa", "temperature_C"}
+    assert channels == {"force_N", "gauge_pressure_Pa", "temperature_K"}
     assert set(report["gain"]) == channels and set(report["gain_ci95"]) == channels
     for candidate in report["candidates"]:
         assert {"effect", "params", "heldout_rmse", "gain", "score"} <= set(candidate)
@@ -113,7 +100,7 @@ def test_units_that_cannot_be_right_are_named(tmp_path):
         diagnose(path)
 
 
-def test_cli_reports_bad_input_without_traceback(tmp_path):
+def test_cli_reports_bad_input_without_traceback(tmp_path, run_pamkit):
     done = run_pamkit("diagnose", write(tmp_path, triangle_csv(5).replace("0.50,", "nan,", 1)))
     assert done.returncode == 2
     assert "run.csv:3: column 1 (time_s) = 'nan' is not finite" in done.stderr

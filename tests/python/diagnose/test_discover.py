@@ -15,29 +15,29 @@ from pamkit.diagnose.discovered import discovered_effect, load_effect, save_effe
 from pamkit.effects import catalog as builtin_catalog
 
 SIGMA_N = 2.0  # white load-cell noise of the stretch record [N]
-COULOMB = 0.3  # N/kPa: the friction hidden in it, 0.3 N per kPa (60 N at 200 kPa)
+COULOMB = 3e-4  # N/Pa: the friction hidden in it, 0.3 N per kPa (60 N at 200 kPa)
 
 
 def stretch_record(n=10_000, cycles=10, seed=0):
     """A sealed cyclic test: 25 mm sinusoidal stretch, 10 cycles in 200 s, a 10 µm encoder,
     a pressure that follows the stretch and drifts slowly (so p·tanh(v/v0) and tanh(v/v0)
-    differ), with 0.3 kPa transducer noise. Even cycles are fitted, odd ones held out; the
-    held-out units are half-cycles."""
+    differ), with 0.3 kPa transducer noise, in Pa. Even cycles are fitted, odd ones held out;
+    the held-out units are half-cycles."""
     rng = np.random.default_rng(seed)
     time_s = np.linspace(0.0, 200.0, n)
     phase = 2 * np.pi * cycles * time_s / time_s[-1]
     elongation_m = np.round(0.025 * (1 - np.cos(phase)) / 1e-5) * 1e-5
-    pressure_kPa = 200 + 60 * np.sin(phase / 2.5) + 30 * (1 - np.cos(phase)) + rng.normal(0, 0.3, n)
+    pressure_Pa = 1e3 * (200 + 60 * np.sin(phase / 2.5) + 30 * (1 - np.cos(phase)) + rng.normal(0, 0.3, n))
     cycle = np.minimum(np.floor(cycles * time_s / time_s[-1]), cycles - 1)
     half_cycle = np.minimum(np.floor(2 * cycles * time_s / time_s[-1]), 2 * cycles - 1)
     fit = cycle % 2 == 0
-    return time_s, elongation_m, pressure_kPa, cycle, half_cycle, fit, ~fit
+    return time_s, elongation_m, pressure_Pa, cycle, half_cycle, fit, ~fit
 
 
 def step_sweep(sweeps=6, rate_hz=100.0, seed=0):
     """An isometric pressure sweep as the commercial muscle's of issue 9: held at 20 mm, the
     pressure stepped 0 -> 600 kPa by 100 kPa and back (2 s plateaus, 0.1 s steps), 0.5 kPa
-    transducer noise; the record starts with the first step up. Returns the programmed
+    transducer noise, in Pa; the record starts with the first step up. Returns the programmed
     direction too: +1 after a step up (pressurising), -1 after a step down (venting)."""
     levels = np.r_[np.arange(100, 601, 100), np.arange(500, -1, -100)]
     hold_s, step_s = 2.0, 0.1
@@ -50,7 +50,8 @@ def step_sweep(sweeps=6, rate_hz=100.0, seed=0):
     direction = np.sign(levels[k] - previous).astype(float)
     rng = np.random.default_rng(seed)
     sweep = np.floor(time_s / period)
-    return time_s, np.full(time_s.size, 0.02), pressure + rng.normal(0, 0.5, time_s.size), direction, sweep
+    pressure_Pa = 1e3 * (pressure + rng.normal(0, 0.5, time_s.size))
+    return time_s, np.full(time_s.size, 0.02), pressure_Pa, direction, sweep
 
 
 def by_name(features, name):
@@ -59,15 +60,15 @@ def by_name(features, name):
 
 @pytest.fixture(scope="module")
 def coulomb_case():
-    time_s, elongation_m, pressure_kPa, cycle, half_cycle, fit, held = stretch_record()
-    features = feature_library(time_s, elongation_m, pressure_kPa, cycle=cycle)
+    time_s, elongation_m, pressure_Pa, cycle, half_cycle, fit, held = stretch_record()
+    features = feature_library(time_s, elongation_m, pressure_Pa, cycle=cycle)
     friction = by_name(features, "tanh(v/v0)*p")
     residual = COULOMB * friction + np.random.default_rng(1).normal(0, SIGMA_N, time_s.size)
     result = discover(features, residual, SIGMA_N, fit, held, half_cycle, "force_N", "N")
     return {
         "time_s": time_s,
         "elongation_m": elongation_m,
-        "pressure_kPa": pressure_kPa,
+        "gauge_pressure_Pa": pressure_Pa,
         "features": features,
         "friction": friction,
         "residual": residual,
@@ -113,14 +114,14 @@ def test_the_library_holds_the_physical_terms_a_stretch_record_allows(coulomb_ca
     term = next(t for t in coulomb_case["features"] if t.name == "tanh(v/v0)*p")
     v0 = dict(term.parameters)["v0_mm_per_s"]
     assert 0.05 * 7.85 * 0.5 < v0 < 0.05 * 7.85
-    assert term.unit == "kPa" and "Coulomb" in term.resembles
+    assert term.unit == "Pa" and "Coulomb" in term.resembles
 
 
 def test_a_hidden_coulomb_friction_is_found_with_its_coefficient_and_gain(coulomb_case):
     result, fit, held = coulomb_case["result"], coulomb_case["fit"], coulomb_case["held"]
     assert [term["name"] for term in result["terms"]] == ["tanh(v/v0)*p"]
     (term,) = result["terms"]
-    assert term["unit"] == "N/kPa" and term["expression"].startswith("p · tanh(v / ")
+    assert term["unit"] == "N/Pa" and term["expression"].startswith("p · tanh(v / ")
     # Least squares of one term under white noise: standard error σ / sqrt(Σ f²) over the fitted
     # samples; 4 standard errors leave a 6e-5 chance of failing by noise.
     standard_error = SIGMA_N / np.sqrt(np.sum(coulomb_case["friction"][fit] ** 2))
@@ -135,7 +136,7 @@ def test_a_hidden_coulomb_friction_is_found_with_its_coefficient_and_gain(coulom
     assert result["gain_attainable"]["force_N"] == pytest.approx(analytic, rel=1e-12)
     low, high = result["gain_ci95"]["force_N"]
     assert 0 < low <= result["gain"]["force_N"] <= high
-    assert result["equation"].startswith("force_N residual ≈ 0.3 N/kPa · p · tanh(v / ")
+    assert result["equation"].startswith("force_N residual ≈ 0.0003 N/Pa · p · tanh(v / ")
     json.dumps(result)  # JSON-ready
 
 
@@ -160,7 +161,7 @@ def test_several_hidden_terms_are_found_with_their_units(coulomb_case):
     result = discover(features, residual, SIGMA_N, fit, held, coulomb_case["half_cycle"], "force_N", "N")
     found = {term["name"]: term for term in result["terms"]}
     assert sorted(found) == sorted(hidden)
-    assert [found[name]["unit"] for name in hidden] == ["N/kPa", "N/mm", "N"]
+    assert [found[name]["unit"] for name in hidden] == ["N/Pa", "N/mm", "N"]
     # Least squares on the three columns under white noise: covariance σ² (AᵀA)⁻¹ over the
     # fitted samples; each coefficient within 4 of its standard errors.
     design = np.column_stack([by_name(features, name)[fit] for name in hidden])
@@ -172,7 +173,7 @@ def test_several_hidden_terms_are_found_with_their_units(coulomb_case):
     assert [term["name"] for term in result["terms"]] == ["tanh(v/v0)*p", "x", "offset"]
     friction, stiffness, tare = (found[name]["coefficient"] for name in hidden)
     assert result["equation"] == (
-        f"force_N residual ≈ {friction:.3g} N/kPa · {found['tanh(v/v0)*p']['expression']}"
+        f"force_N residual ≈ {friction:.3g} N/Pa · {found['tanh(v/v0)*p']['expression']}"
         f" + {stiffness:.3g} N/mm · x + {tare:.3g} N"
     )
 
@@ -183,13 +184,13 @@ def test_an_offset_is_not_taken_for_terms_of_positive_mean(coulomb_case):
     them stand in for the offset. On centred columns, with the offset as the intercept, the two
     true terms come out."""
     features, fit, held = coulomb_case["features"], coulomb_case["fit"], coulomb_case["held"]
-    pressure = coulomb_case["pressure_kPa"]
-    residual = 3.0 - 0.02 * pressure + np.random.default_rng(4).normal(0, 0.5, pressure.size)
-    result = discover(features, residual, 0.5, fit, held, coulomb_case["half_cycle"], "pressure_kPa", "kPa")
+    pressure = coulomb_case["gauge_pressure_Pa"]
+    residual = 3e3 - 0.02 * pressure + np.random.default_rng(4).normal(0, 500.0, pressure.size)
+    result = discover(features, residual, 500.0, fit, held, coulomb_case["half_cycle"], "gauge_pressure_Pa", "Pa")
     found = {term["name"]: term for term in result["terms"]}
     assert sorted(found) == ["offset", "p"]
-    assert (found["p"]["unit"], found["offset"]["unit"]) == ("1", "kPa")
-    for name, value in (("p", -0.02), ("offset", 3.0)):
+    assert (found["p"]["unit"], found["offset"]["unit"]) == ("1", "Pa")
+    for name, value in (("p", -0.02), ("offset", 3e3)):
         assert found[name]["coefficient"] == pytest.approx(value, abs=4 * found[name]["standard_error"])
 
 
@@ -223,8 +224,8 @@ def test_dahl_friction_is_told_from_coulomb_friction(coulomb_case):
 def test_a_nonlinear_load_cell_is_found_from_the_model_force(coulomb_case):
     """A load cell reading 0.02 % per newton high (the quadratic load cell of issue 9): the
     residual is 2e-4 N⁻¹ · F² of the model's force F, here 1 N/kPa · p + 8 N/mm · x."""
-    time_s, elongation_m, pressure = (coulomb_case[key] for key in ("time_s", "elongation_m", "pressure_kPa"))
-    force = 1.0 * pressure + 8.0 * 1e3 * elongation_m
+    time_s, elongation_m, pressure = (coulomb_case[key] for key in ("time_s", "elongation_m", "gauge_pressure_Pa"))
+    force = 1e-3 * pressure + 8.0 * 1e3 * elongation_m
     features = feature_library(time_s, elongation_m, pressure, force_N=force)
     residual = 2e-4 * force**2 + np.random.default_rng(6).normal(0, SIGMA_N, force.size)
     fit, held = coulomb_case["fit"], coulomb_case["held"]
@@ -242,8 +243,8 @@ def test_noise_alone_is_not_a_discovery(correlation):
     error rule alone selects a spurious term for about half of them, with gains below 1 %; the
     gates — 2 standard errors and a tenth of the noise better than no term — stop them: none
     selected over 50 seeds per case.)"""
-    time_s, elongation_m, pressure_kPa, cycle, half_cycle, fit, held = stretch_record()
-    features = feature_library(time_s, elongation_m, pressure_kPa, cycle=cycle)
+    time_s, elongation_m, pressure_Pa, cycle, half_cycle, fit, held = stretch_record()
+    features = feature_library(time_s, elongation_m, pressure_Pa, cycle=cycle)
     for seed in range(20):
         white = np.random.default_rng(1000 + seed).normal(0, SIGMA_N, time_s.size)
         noise = np.empty_like(white)
@@ -259,8 +260,8 @@ def test_noise_alone_is_not_a_discovery(correlation):
 def test_pressurise_vent_hysteresis_is_found_in_an_isometric_sweep():
     """Venting force 40 N above pressurising force (issue 9's commercial muscle): a residual of
     -20 N while pressurising and +20 N while venting, 0.24 N noise (that test's)."""
-    time_s, elongation_m, pressure_kPa, direction, sweep = step_sweep()
-    features = feature_library(time_s, elongation_m, pressure_kPa, cycle=sweep)
+    time_s, elongation_m, pressure_Pa, direction, sweep = step_sweep()
+    features = feature_library(time_s, elongation_m, pressure_Pa, cycle=sweep)
     names = [term.name for term in features]
     # Held at one length: no velocity terms and no elongation terms (constant: the offset's).
     assert names == ["offset", "p", "dp/dt", "sign(dp/dt)", "sign(dp/dt)*p", "t", "cycle"]
@@ -298,19 +299,19 @@ def test_a_saved_effect_round_trips_and_adds_the_fitted_correction(coulomb_case,
     effect = load_effect(path)
     assert isinstance(effect, pamkit.Effect) and effect.name() == "discovered_force_N"
     (parameter,) = effect.parameters()
-    assert (parameter.name, parameter.value, parameter.unit) == ("c0", result["terms"][0]["coefficient"], "N/kPa")
+    assert (parameter.name, parameter.value, parameter.unit) == ("c0", result["terms"][0]["coefficient"], "N/Pa")
     assert parameter.realistic_min < parameter.value < parameter.realistic_max
 
     # On the record it was fitted to, the effect adds exactly the fitted correction.
     measurement = pamkit.Measurement()
     measurement.time_s = coulomb_case["time_s"]
     measurement.elongation_m = coulomb_case["elongation_m"]
-    measurement.pressure_kPa = coulomb_case["pressure_kPa"]
+    measurement.gauge_pressure_Pa = coulomb_case["gauge_pressure_Pa"]
     measurement.force_N = np.zeros(coulomb_case["time_s"].size)
-    measurement.temperature_C = np.full(coulomb_case["time_s"].size, 20.0)
+    measurement.temperature_K = np.full(coulomb_case["time_s"].size, 293.15)
     corrected = effect.apply_to_measurement(measurement)
     np.testing.assert_allclose(corrected.force_N, parameter.value * coulomb_case["friction"], rtol=1e-12, atol=1e-12)
-    np.testing.assert_array_equal(corrected.pressure_kPa, coulomb_case["pressure_kPa"])
+    np.testing.assert_array_equal(corrected.gauge_pressure_Pa, coulomb_case["gauge_pressure_Pa"])
 
     # In the next run: a simulation with the effect is the one without plus the correction,
     # the correction computed on that simulation's own record with the fitted record's v0.
@@ -319,8 +320,8 @@ def test_a_saved_effect_round_trips_and_adds_the_fitted_correction(coulomb_case,
     catalog.add(effect.name(), lambda: load_effect(path))
     with_effect = pamkit.simulate_measurement(params, initial, crosshead, [catalog.parse("discovered_force_N")])
     without = pamkit.simulate_measurement(params, initial, crosshead, [])
-    expected = effect.correction(without.time_s, without.elongation_m, without.pressure_kPa, without.temperature_C)
-    assert np.ptp(expected) > 10.0  # ±0.3 N/kPa · ~240 kPa: it acts
+    expected = effect.correction(without.time_s, without.elongation_m, without.gauge_pressure_Pa, without.temperature_K)
+    assert np.ptp(expected) > 10.0  # ±3e-4 N/Pa · ~240 kPa: it acts
     np.testing.assert_allclose(with_effect.force_N, without.force_N + expected, rtol=1e-12, atol=1e-9)
     # Its coefficient is a parameter like any effect's, set from `--effect` text.
     halved = catalog.parse(f"discovered_force_N:c0={parameter.value / 2}")
@@ -335,13 +336,13 @@ def test_a_saved_effect_round_trips_and_adds_the_fitted_correction(coulomb_case,
 
 
 def test_bad_input_is_named():
-    time_s, elongation_m, pressure_kPa, _, half_cycle, fit, held = stretch_record(n=2000)
-    features = feature_library(time_s, elongation_m, pressure_kPa)
+    time_s, elongation_m, pressure_Pa, _, half_cycle, fit, held = stretch_record(n=2000)
+    features = feature_library(time_s, elongation_m, pressure_Pa)
     residual = np.zeros(time_s.size)
-    with pytest.raises(DiscoveryError, match="pressure_kPa has 1999 samples, time_s has 2000"):
-        feature_library(time_s, elongation_m, pressure_kPa[:-1])
+    with pytest.raises(DiscoveryError, match="gauge_pressure_Pa has 1999 samples, time_s has 2000"):
+        feature_library(time_s, elongation_m, pressure_Pa[:-1])
     with pytest.raises(DiscoveryError, match="time_s must increase strictly"):
-        feature_library(time_s[::-1], elongation_m, pressure_kPa)
+        feature_library(time_s[::-1], elongation_m, pressure_Pa)
     with pytest.raises(DiscoveryError, match="fit_mask and held_mask share 2000 sample"):
         discover(features, residual, 1.0, fit | held, fit | held, half_cycle, "force_N", "N")
     with pytest.raises(DiscoveryError, match="held_mask covers 1 unit"):
@@ -354,12 +355,12 @@ def test_nothing_discovered_is_no_effect_and_a_bad_file_is_named(tmp_path):
     with pytest.raises(DiscoveryError, match="no terms were discovered for force_N"):
         discovered_effect({"channel": "force_N", "terms": [], "equation": ""})
     broken = tmp_path / "broken.json"
-    broken.write_text('{"format": "pamkit.discovered_effect",\n "version": 1,\n "terms": [}\n')
+    broken.write_text('{"format": "pamkit.discovered_effect",\n "version": 2,\n "terms": [}\n')
     with pytest.raises(DiscoveryError, match=r"broken.json:3: not JSON"):
         load_effect(broken)
     other = tmp_path / "other.json"
     other.write_text(
-        '{"format": "pamkit.discovered_effect", "version": 1, "channel": "force_N", '
+        '{"format": "pamkit.discovered_effect", "version": 2, "channel": "force_N", '
         '"terms": [{"name": "creep", "expression": "c", "coefficient": 1, "unit": "N"}]}'
     )
     with pytest.raises(DiscoveryError, match=r"other.json: discovered effect: terms\[0\].name = 'creep' is not"):

@@ -10,7 +10,7 @@ from pamkit.diagnose.model import Predictor
 from pamkit.effects import parse_effects
 from pamkit.io.experiment import load_experiment
 
-CHANNELS = ["force_N", "pressure_kPa", "temperature_C"]
+CHANNELS = ["force_N", "gauge_pressure_Pa", "temperature_K"]
 
 
 @pytest.fixture
@@ -41,7 +41,7 @@ def direct(predictor, x, effects):
 def test_an_instrument_at_the_same_coordinates_reads_the_last_run_bit_for_bit(write_experiment, runs):
     predictor = sealed(write_experiment)
     x = np.array([c.start for c in predictor.baseline.space])
-    first = parse_effects(["sensor_offset:offset_kPa=3"])
+    first = parse_effects(["sensor_offset:offset_Pa=3e3"])
     second = parse_effects(["load_cell:offset_N=-4"])
     for effects in (first, second, first):
         shortcut, full = predictor.predict(x, effects), direct(predictor, x, effects)
@@ -53,7 +53,7 @@ def test_an_instrument_at_the_same_coordinates_reads_the_last_run_bit_for_bit(wr
 def test_other_coordinates_or_a_physical_effect_run_the_model(write_experiment, runs):
     predictor = sealed(write_experiment)
     x = np.array([c.start for c in predictor.baseline.space])
-    offset = parse_effects(["sensor_offset:offset_kPa=3"])
+    offset = parse_effects(["sensor_offset:offset_Pa=3e3"])
     predictor.predict(x, offset)
     moved = x.copy()
     moved[0] *= 1.01
@@ -72,7 +72,7 @@ def test_a_transducer_that_drives_a_supplied_test_is_not_an_instrument_of_it(wri
         toml_test_extra='gas = "supplied"',
     )
     predictor = Predictor(load_experiment(toml), ["force_N"])
-    (pressure,) = parse_effects(["sensor_offset:offset_kPa=3"])
+    (pressure,) = parse_effects(["sensor_offset:offset_Pa=3e3"])
     (force,) = parse_effects(["load_cell:offset_N=-4"])
     assert not predictor.reads_the_model(pressure)  # it changes the pressure that drives the model
     assert predictor.reads_the_model(force)

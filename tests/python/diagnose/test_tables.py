@@ -11,7 +11,7 @@ import pytest
 from conftest import SOURCE_DIR
 
 from pamkit.diagnose import diagnose, to_json, verdict
-from pamkit.io.experiment import ExperimentError
+from pamkit.io.guards import ExperimentError
 
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
 from independent.static_map import write_isotonic, write_map  # noqa: E402 (needs the path above)

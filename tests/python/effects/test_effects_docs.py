@@ -109,7 +109,7 @@ def test_the_user_effect_example_runs_through_simulate_and_synth(tmp_path):
     drifted = simulate_experiment(experiment, effects=parse_effects(["load_cell_drift:rate_N_per_s=0.02"], effects))
     # A zero drifting at 0.02 N/s: the force is up by 0.02 x t, the rest unchanged.
     np.testing.assert_allclose(drifted["force_N"] - baseline["force_N"], 0.02 * experiment.time_s, atol=1e-9)
-    np.testing.assert_array_equal(drifted["pressure_kPa"], baseline["pressure_kPa"])
+    np.testing.assert_array_equal(drifted["gauge_pressure_Pa"], baseline["gauge_pressure_Pa"])
 
     files = synthesize("load_cell_drift", 3, tmp_path / "drift", effects)
     truth = json.loads(files.manifest.read_text())["effect"]

@@ -16,7 +16,7 @@ LOAD_N = 100.0
 def pressure_step() -> tuple[np.ndarray, np.ndarray]:
     """200 kPa for 1 s, then 300 kPa over 10 ms, held to 10 s."""
     time = np.linspace(0.0, 10.0, 1001)
-    return time, np.interp(time, [0.0, 1.0, 1.01, 10.0], [200.0, 200.0, 300.0, 300.0])
+    return time, np.interp(time, [0.0, 1.0, 1.01, 10.0], [200e3, 200e3, 300e3, 300e3])
 
 
 def test_a_pressure_step_moves_the_mass_between_the_two_equilibria():
@@ -26,12 +26,12 @@ def test_a_pressure_step_moves_the_mass_between_the_two_equilibria():
     params = pamkit.MuscleParams()
     time, pressure = pressure_step()
     motion = pamkit.isotonic_motion(params, time, pressure, LOAD_N, 2.0)
-    static = pamkit.isotonic_lengths(params, np.array([200.0, 300.0]), LOAD_N, params.build.length_m)
+    static = pamkit.isotonic_lengths(params, np.array([200e3, 300e3]), LOAD_N, params.build.length_m)
     for column in (motion.time_s, motion.length_m, motion.velocity_m_per_s, motion.force_N):
         assert isinstance(column, np.ndarray)
         assert column.dtype == np.float64
         assert column.shape == time.shape
-    np.testing.assert_array_equal(motion.gauge_pressure_kPa, pressure)
+    np.testing.assert_array_equal(motion.gauge_pressure_Pa, pressure)
     assert motion.length_m[0] == static.length_m[0]
     assert motion.length_m[-1] == pytest.approx(static.length_m[1], abs=1e-9)
     assert motion.force_N[-1] == pytest.approx(LOAD_N, rel=1e-7)

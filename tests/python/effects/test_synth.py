@@ -4,7 +4,7 @@ Where the numbers come from:
 - the ADC: ATmega2560, 10 bits, 5 V reference -> 1024 counts over 5 V (thesis appendix B; datasheet);
 - the pressure calibration: appendix G.2's ``psi = 25 V - 14``; 1 psi = 6.894757 kPa;
 - the TMP36: 10 mV/°C with 500 mV at 0 °C (datasheet, appendix B);
-- the protocol ranges: DESIGN.md, "Tests that hide an effect";
+- the protocol ranges: pamkit.synth.dataset's (the thesis's bench tests and faster ones);
 - noise sizes: the instrument settings each dataset's manifest records.
 """
 
@@ -12,8 +12,6 @@ from __future__ import annotations
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -23,7 +21,9 @@ import pamkit
 from pamkit._core.logger import ADC_FULL_SCALE, LoggerCalibration
 from pamkit.cli import main as pamkit_main
 from pamkit.effects import catalog
-from pamkit.io.experiment import LOGGER_CHANNELS, load_experiment, read_series
+from pamkit.io.columns import LOGGER_CHANNELS
+from pamkit.io.experiment import load_experiment
+from pamkit.io.series import read_series
 from pamkit.simulate import simulate_experiment
 from pamkit.synth.dataset import configure_effect, hideable_effects, synthesize
 from pamkit.synth.instruments import (
@@ -43,12 +43,15 @@ EFFECTS = hideable_effects()
 
 
 class Truth:
-    """A dense 'true' record on the machine's clock, for the instruments to read."""
+    """A dense 'true' record on the machine's clock, SI, for the instruments to read; a channel
+    not given is zero (the temperature 0 °C)."""
 
     def __init__(self, time_s, **channels):
         self.time_s = np.asarray(time_s, dtype=float)
-        for name in ("elongation_m", "force_N", "pressure_kPa", "temperature_C"):
-            setattr(self, name, np.asarray(channels.get(name, np.zeros_like(self.time_s)), dtype=float))
+        zero = {"temperature_K": 273.15}
+        for name in ("elongation_m", "force_N", "gauge_pressure_Pa", "temperature_K"):
+            default = np.full_like(self.time_s, zero.get(name, 0.0))
+            setattr(self, name, np.asarray(channels.get(name, default), dtype=float))
 
 
 def manifest(files) -> dict:
@@ -71,6 +74,11 @@ def temperature_counts(temperature_C: np.ndarray) -> np.ndarray:
     return (0.5 + 0.01 * np.asarray(temperature_C)) / VOLTS_PER_COUNT
 
 
+def in_file_units(columns: dict) -> tuple[np.ndarray, np.ndarray]:
+    """An experiment's pressure [kPa] and temperature [°C], as its CSV holds them."""
+    return columns["gauge_pressure_Pa"] / 1e3, columns["temperature_K"] - 273.15
+
+
 # ----------------------------------------------------------------------------------------------
 # the dataset and its files
 
@@ -79,12 +87,12 @@ def test_synth_output_loads_and_pamkit_simulate_accepts_it(tmp_path):
     files = synthesize("none", 1, tmp_path / "none")
     experiment = load_experiment(files.experiment)
     truth = manifest(files)
-    # DESIGN.md's columns, all five, on one time base.
-    assert list(experiment.columns) == ["time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C"]
-    # No initial_length_m: the test starts at the free inflated length (DESIGN.md default).
+    # A time series' columns, all five, on one time base, SI as read.
+    assert list(experiment.columns) == ["time_s", "elongation_m", "force_N", "gauge_pressure_Pa", "temperature_K"]
+    # No initial_length_m: the test starts at the free inflated length (load_experiment's default).
     assert experiment.initial_length_m is None
-    assert experiment.gas == "sealed"
-    assert experiment.inflation_pressure_kPa == truth["protocol"]["inflation_pressure_kPa"]
+    assert experiment.gas == pamkit.GasMode.sealed
+    assert experiment.inflation_gauge_pressure_Pa == truth["protocol"]["inflation_pressure_kPa"] * 1e3
     assert experiment.build.to_dict() == truth["muscle"]
     # The machine's record: samples every 1 / rate from 0.
     rate = truth["instruments"]["tensile_machine"]["sample_rate_Hz"]
@@ -102,7 +110,7 @@ def test_protocol_within_design_ranges(tmp_path):
     for seed in range(6):
         truth = manifest(synthesize("none", seed, tmp_path / str(seed)))
         p = truth["protocol"]
-        assert 35.0 <= p["inflation_pressure_kPa"] <= 276.0  # DESIGN.md
+        assert 35.0 <= p["inflation_pressure_kPa"] <= 276.0  # synth's INFLATION_KPA: the thesis's 35-276 kPa
         # 80-95 % of the free contraction, the top rounded to 0.1 mm as the machine is programmed.
         assert 0.80 * p["free_contraction_m"] - 5e-5 <= p["max_elongation_m"] <= 0.95 * p["free_contraction_m"] + 5e-5
         assert 2.5e-3 <= p["speed_m_per_s"] <= 50e-3
@@ -134,12 +142,12 @@ def test_manifest_holds_the_truth_and_the_experiment_does_not_mention_it(tmp_pat
     truth = manifest(files)["effect"]
     assert truth["name"] == "sensor_offset"
     assert truth["parameters"]["gain"] == 1.05  # given
-    assert truth["drawn"] == ["offset_kPa"]
-    assert -12.0 <= truth["parameters"]["offset_kPa"] <= 12.0  # realistic range, catalog.hpp
+    assert truth["drawn"] == ["offset_Pa"]
+    assert -12e3 <= truth["parameters"]["offset_Pa"] <= 12e3  # realistic range, sensor_offset.hpp
     text = (files.experiment.read_text() + files.data.read_text()).lower()
     for word in ("sensor_offset", "offset", "gain", "effect", "manifest"):
         assert word not in text, word
-    # Only DESIGN.md's keys: load_experiment rejects unknown ones, and no [effect] section.
+    # Only an experiment file's keys: load_experiment rejects unknown ones, and no [effect] section.
     assert "[muscle]" in files.experiment.read_text() and "[test]" in files.experiment.read_text()
 
 
@@ -150,7 +158,7 @@ def test_each_catalog_effect_and_none_synthesize(tmp_path, name):
     load_experiment(files.experiment)
     assert truth["effect"]["name"] == name
     if name == "none":
-        assert truth["effect"]["largest_change"] == {"force_N": 0.0, "pressure_kPa": 0.0, "temperature_C": 0.0}
+        assert truth["effect"]["largest_change"] == {"force_N": 0.0, "gauge_pressure_Pa": 0.0, "temperature_K": 0.0}
         return
     # The effect acted: the true channels moved, and since the seed fixes protocol and noise,
     # the files differ from the same seed's "none" only because of it.
@@ -187,12 +195,12 @@ def test_a_channel_effect_lands_on_a_channel_that_moves(tmp_path):
     # lag or skew of it could not be seen. The drawn channel is one that moves.
     for seed in range(4):
         truth = manifest(synthesize("sensor_lag", seed, tmp_path / str(seed)))["effect"]
-        assert truth["options"]["channel"] == "pressure_kPa"
-        assert truth["largest_change"]["pressure_kPa"] > 0.0
+        assert truth["options"]["channel"] == "gauge_pressure_Pa"
+        assert truth["largest_change"]["gauge_pressure_Pa"] > 0.0
     # Given explicitly, the channel is honoured, even where it changes nothing.
-    truth = manifest(synthesize("sensor_lag:channel=temperature_C", 0, tmp_path / "t"))["effect"]
-    assert truth["options"]["channel"] == "temperature_C"
-    assert truth["largest_change"]["temperature_C"] == 0.0
+    truth = manifest(synthesize("sensor_lag:channel=temperature_K", 0, tmp_path / "t"))["effect"]
+    assert truth["options"]["channel"] == "temperature_K"
+    assert truth["largest_change"]["temperature_K"] == 0.0
 
 
 # ----------------------------------------------------------------------------------------------
@@ -206,17 +214,18 @@ def test_pressure_and_temperature_in_the_file_lie_on_the_adc_grid(tmp_path):
     # The merge interpolates the logger's samples at the machine's times: wherever two logger
     # samples in a row read the same count the value stays on the grid. Seeds 0-11 give
     # 20-55 % of pressures and about half the temperatures on it; 10 % is the floor checked.
-    pressure = on_grid(pressure_counts(experiment.columns["pressure_kPa"], calibration))
-    temperature = on_grid(temperature_counts(experiment.columns["temperature_C"]))
+    pressure_kPa, temperature_C = in_file_units(experiment.columns)
+    pressure = on_grid(pressure_counts(pressure_kPa, calibration))
+    temperature = on_grid(temperature_counts(temperature_C))
     assert pressure.mean() > 0.10
     assert temperature.mean() > 0.10
     # Control: the model's noise-free prediction of the same test is (almost) never on the grid.
     predicted = simulate_experiment(experiment)
-    assert on_grid(pressure_counts(predicted["pressure_kPa"], calibration)).mean() < 0.01
+    assert on_grid(pressure_counts(in_file_units(predicted)[0], calibration)).mean() < 0.01
     # The grid's step: one count, 5 V / 1024 x about 25 psi/V x 6.894757 kPa/psi = 0.84 kPa.
-    step = manifest(files)["instruments"]["pressure_step_kPa"]
-    assert step == pytest.approx(calibration["pressure_kPa_per_V"] * VOLTS_PER_COUNT)
-    assert step == pytest.approx(25 * VOLTS_PER_COUNT * KPA_PER_PSI, rel=0.05)
+    step = manifest(files)["instruments"]["pressure_step_Pa"]
+    assert step == pytest.approx(calibration["pressure_kPa_per_V"] * VOLTS_PER_COUNT * 1e3)
+    assert step == pytest.approx(25 * VOLTS_PER_COUNT * KPA_PER_PSI * 1e3, rel=0.05)
 
 
 @pytest.mark.parametrize("seed", [0, 3, 7])
@@ -262,7 +271,7 @@ def test_logger_reads_the_adc_grid_and_the_appendix_b_calibration():
     assert calibration.pressure_kPa_per_V == pytest.approx(25.0 * KPA_PER_PSI, rel=0.005)
     assert calibration.pressure_offset_kPa == pytest.approx(-14.0 * KPA_PER_PSI, abs=0.15 * KPA_PER_PSI)
     t = np.linspace(0.0, 20.0, 201)
-    truth = Truth(t, pressure_kPa=100.0 + 10.0 * t, temperature_C=23.0 + 0.1 * t)
+    truth = Truth(t, gauge_pressure_Pa=(100.0 + 10.0 * t) * 1e3, temperature_K=23.0 + 0.1 * t + 273.15)
     log = logger.record(truth, np.random.default_rng(2), 0.0, 20.0)
     assert on_grid(pressure_counts(log.pressure_kPa, calibration.to_dict())).all()
     assert on_grid(temperature_counts(log.temperature_C)).all()
@@ -288,7 +297,7 @@ def test_the_host_side_is_the_logger_readers_calibration():
     nominal = PressureTransducer()
     gauge_kPa = np.linspace(0.0, 600.0, 13)
     host = logger.calibration
-    np.testing.assert_allclose(host.pressure_kPa(nominal.voltage(gauge_kPa)), gauge_kPa, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(host.pressure_kPa(nominal.voltage(gauge_kPa * 1e3)), gauge_kPa, rtol=0, atol=1e-12)
     # The C++ conversions take arrays and floats alike, and agree with themselves.
     assert isinstance(host.volts(512.0), float)
     volts = np.linspace(0.0, 5.0, 11)
@@ -310,8 +319,8 @@ def test_oversampled_sums_read_as_their_mean():
     np.testing.assert_array_equal(sixteen.pressure_kPa(summed), one.pressure_kPa(single))
     np.testing.assert_array_equal(sixteen.temperature_C(summed), one.temperature_C(single))
     # One count of the sum is a sixteenth of one conversion's count: 5 V / 1024 / 16.
-    assert sixteen.pressure_step_kPa() == pytest.approx(one.pressure_step_kPa() / 16, rel=1e-15)
-    assert one.temperature_step_C() == pytest.approx(VOLTS_PER_COUNT / 0.01, rel=1e-15)
+    assert sixteen.pressure_step_Pa() == pytest.approx(one.pressure_step_Pa() / 16, rel=1e-15)
+    assert one.temperature_step_K() == pytest.approx(VOLTS_PER_COUNT / 0.01, rel=1e-15)
 
 
 def test_calibration_absorbs_the_units_own_offset_and_sensitivity():
@@ -339,7 +348,7 @@ def test_logger_clock_drift_shows_as_a_growing_skew_after_the_merge():
     logger = ArduinoLogger(settings)
     t = np.linspace(-2.0, 102.0, 105)
     slope_kPa_per_s = 2.0  # up to 252 kPa: inside the ADC's range (5 V is 111 psi, 765 kPa)
-    truth = Truth(t, pressure_kPa=50.0 + slope_kPa_per_s * np.clip(t, 0, None))
+    truth = Truth(t, gauge_pressure_Pa=(50.0 + slope_kPa_per_s * np.clip(t, 0, None)) * 1e3)
     logger_log = logger.record(truth, np.random.default_rng(0), -1.0, 101.0)
     machine_log = TensileMachine(TensileMachineSettings(sample_rate_Hz=10.0)).record(
         Truth(np.linspace(0.0, 100.0, 11)), np.random.default_rng(0)
@@ -347,7 +356,7 @@ def test_logger_clock_drift_shows_as_a_growing_skew_after_the_merge():
     merged = merge_logs(machine_log, logger_log, logger_clock_at_machine_zero_s=12.0)
     late = merged["time_s"] > 90.0
     expected = slope_kPa_per_s * merged["time_s"][late] * (1 - 1 / 1.01)  # about 1.9 kPa
-    error = 50.0 + slope_kPa_per_s * merged["time_s"][late] - merged["pressure_kPa"][late]
+    error = 50.0 + slope_kPa_per_s * merged["time_s"][late] - merged["gauge_pressure_Pa"][late] / 1e3
     # Half a count of quantisation: 0.5 x 5 V / 1024 x 25 psi/V x 6.894757 kPa/psi = 0.42 kPa.
     assert np.abs(error - expected).max() < 0.5 * 25 * VOLTS_PER_COUNT * KPA_PER_PSI + 1e-6
     # Without the drift the same check fails: the lag is 4 times the quantisation.
@@ -389,45 +398,15 @@ def test_bad_effect_text_is_a_clear_error(tmp_path, capsys, spec, named):
     assert not out.exists()  # nothing written
 
 
-def test_cli_writes_the_three_files_and_exits_2_on_a_bad_spec(tmp_path):
-    ok = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "pamkit",
-            "synth",
-            "--effect",
-            "dead_volume:volume_fraction=0.1",
-            "--seed",
-            "3",
-            "-o",
-            str(tmp_path / "dv"),
-        ],
-        capture_output=True,
-        text=True,
-    )
+def test_cli_writes_the_three_files_and_exits_2_on_a_bad_spec(tmp_path, run_pamkit):
+    ok = run_pamkit("synth", "--effect", "dead_volume:volume_fraction=0.1", "--seed", 3, "-o", tmp_path / "dv")
     assert ok.returncode == 0, ok.stderr
     assert sorted(p.name for p in (tmp_path / "dv").iterdir()) == ["experiment.csv", "experiment.toml", "manifest.json"]
     assert json.loads((tmp_path / "dv" / "manifest.json").read_text())["effect"]["parameters"] == {
         "volume_fraction": 0.1
     }
     assert "volume_fraction" not in ok.stdout  # the truth is not printed
-    bad = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "pamkit",
-            "synth",
-            "--effect",
-            "dead_volume:fraction=0.1",
-            "--seed",
-            "3",
-            "-o",
-            str(tmp_path / "bad"),
-        ],
-        capture_output=True,
-        text=True,
-    )
+    bad = run_pamkit("synth", "--effect", "dead_volume:fraction=0.1", "--seed", 3, "-o", tmp_path / "bad")
     assert bad.returncode == 2
     assert "fraction" in bad.stderr and "volume_fraction" in bad.stderr
 

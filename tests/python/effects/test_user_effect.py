@@ -14,10 +14,11 @@ import pytest
 import pamkit
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.effects import parse_effects
-from pamkit.io.experiment import ExperimentError, load_experiment
+from pamkit.io.experiment import load_experiment
+from pamkit.io.guards import ExperimentError
 from pamkit.simulate import simulate_experiment
 
-CHANNELS = ("time_s", "elongation_m", "force_N", "pressure_kPa", "temperature_C")
+CHANNELS = ("time_s", "elongation_m", "force_N", "gauge_pressure_Pa", "temperature_K")
 
 
 class ParametricPythonEffect(pamkit.Effect):
@@ -92,10 +93,10 @@ class ThermometerOffset(ParametricPythonEffect):
 
     NAME = "thermometer_offset"
     DESCRIPTION = "offset of the gas-temperature reading"
-    PARAMETERS = {"offset_C": (0.0, "K", -10.0, 10.0, -2.0, 2.0, "reading minus truth")}
+    PARAMETERS = {"offset_K": (0.0, "K", -10.0, 10.0, -2.0, 2.0, "reading minus truth")}
 
     def apply_to_measurement(self, measurement):
-        measurement.temperature_C = measurement.temperature_C + self.values["offset_C"]
+        measurement.temperature_K = measurement.temperature_K + self.values["offset_K"]
         return measurement
 
 
@@ -127,14 +128,14 @@ def assert_identical(a, b, channels=CHANNELS):
 
 def test_python_effects_are_added_and_parsed_from_text(catalog):
     assert {"hose_volume", "loose_pin", "thermometer_offset", "dead_volume"} <= set(catalog.names())
-    effect = catalog.parse("thermometer_offset:offset_C=0.75")
+    effect = catalog.parse("thermometer_offset:offset_K=0.75")
     assert isinstance(effect, ThermometerOffset)
-    assert [(p.name, p.value, p.unit) for p in effect.parameters()] == [("offset_C", 0.75, "K")]
+    assert [(p.name, p.value, p.unit) for p in effect.parameters()] == [("offset_K", 0.75, "K")]
     assert catalog.make("loose_pin").parameters()[0].value == 1e-3  # the default
     with pytest.raises(ValueError, match="loose_pin has no parameter 'play'"):
         catalog.parse("loose_pin:play=1")
-    with pytest.raises(ValueError, match="offset_C = 'warm' is not a number"):
-        catalog.parse("thermometer_offset:offset_C=warm")
+    with pytest.raises(ValueError, match="offset_K = 'warm' is not a number"):
+        catalog.parse("thermometer_offset:offset_K=warm")
     with pytest.raises(ValueError, match="outside"):
         catalog.parse("hose_volume:volume_fraction=-1")
     with pytest.raises(ValueError, match="unknown effect 'hose'"):
@@ -151,7 +152,7 @@ def test_parameter_stage_matches_the_builtin_dead_volume(catalog, bench):
     )
     baseline = pamkit.simulate_measurement(params, initial, crosshead, [])
     assert_identical(python, builtin)
-    assert np.ptp(python.pressure_kPa) < np.ptp(baseline.pressure_kPa)  # it did act
+    assert np.ptp(python.gauge_pressure_Pa) < np.ptp(baseline.gauge_pressure_Pa)  # it did act
     assert params.extensions.dead_volume_fraction == 0.0  # on a copy, not on the caller's parameters
 
 
@@ -168,10 +169,10 @@ def test_elongation_stage_matches_the_builtin_fixture_slack(catalog, bench):
 
 def test_measurement_stage_shifts_the_reading_only(catalog, bench):
     params, initial, crosshead = bench
-    python = pamkit.simulate_measurement(params, initial, crosshead, [catalog.parse("thermometer_offset:offset_C=0.5")])
+    python = pamkit.simulate_measurement(params, initial, crosshead, [catalog.parse("thermometer_offset:offset_K=0.5")])
     baseline = pamkit.simulate_measurement(params, initial, crosshead, [])
-    assert_identical(python, baseline, ("time_s", "elongation_m", "force_N", "pressure_kPa"))
-    assert python.temperature_C.tobytes() == (baseline.temperature_C + 0.5).tobytes()
+    assert_identical(python, baseline, ("time_s", "elongation_m", "force_N", "gauge_pressure_Pa"))
+    assert python.temperature_K.tobytes() == (baseline.temperature_K + 0.5).tobytes()
 
 
 def test_all_three_stages_through_simulate_experiment(catalog, thesis_dir):
@@ -179,7 +180,7 @@ def test_all_three_stages_through_simulate_experiment(catalog, thesis_dir):
     specs = [
         "hose_volume:volume_fraction=0.05",
         "loose_pin:slack_m=0.001",
-        "thermometer_offset:offset_C=-1.25",
+        "thermometer_offset:offset_K=-1.25",
         "heat_transfer:time_constant_s=2",
     ]
     python = simulate_experiment(experiment, effects=parse_effects(specs, catalog))
@@ -189,12 +190,12 @@ def test_all_three_stages_through_simulate_experiment(catalog, thesis_dir):
             ["dead_volume:volume_fraction=0.05", "fixture_slack:slack_m=0.001", "heat_transfer:time_constant_s=2"]
         ),
     )
-    assert_identical(python, builtin, ("time_s", "elongation_m", "force_N", "pressure_kPa"))
-    assert python["temperature_C"].tobytes() == (builtin["temperature_C"] - 1.25).tobytes()
+    assert_identical(python, builtin, ("time_s", "elongation_m", "force_N", "gauge_pressure_Pa"))
+    assert python["temperature_K"].tobytes() == (builtin["temperature_K"] - 1.25).tobytes()
     # The heat exchange makes the gas temperature swing; the offset moved the whole record.
-    assert np.ptp(python["temperature_C"]) > 0.1
-    # (to rounding: the ambient goes to kelvin and back)
-    assert python["temperature_C"][0] == pytest.approx(experiment.ambient_temperature_C - 1.25, abs=1e-12)
+    assert np.ptp(python["temperature_K"]) > 0.1
+    # The gas starts at the room's temperature, which the file gives once.
+    assert python["temperature_K"][0] == experiment.gas_params.ambient_temperature_K - 1.25
 
 
 def test_an_effect_that_cannot_act_says_why(catalog, write_experiment):
@@ -220,8 +221,8 @@ def test_motion_and_reading_stages_act_in_a_supplied_test(catalog, write_experim
         )
     )
     python = simulate_experiment(
-        supplied, effects=parse_effects(["loose_pin:slack_m=0.0015", "thermometer_offset:offset_C=0.5"], catalog)
+        supplied, effects=parse_effects(["loose_pin:slack_m=0.0015", "thermometer_offset:offset_K=0.5"], catalog)
     )
     builtin = simulate_experiment(supplied, effects=parse_effects(["fixture_slack:slack_m=0.0015"]))
-    assert_identical(python, builtin, ("time_s", "elongation_m", "force_N", "pressure_kPa"))
-    np.testing.assert_array_equal(python["temperature_C"], supplied.ambient_temperature_C + 0.5)
+    assert_identical(python, builtin, ("time_s", "elongation_m", "force_N", "gauge_pressure_Pa"))
+    np.testing.assert_array_equal(python["temperature_K"], supplied.gas_params.ambient_temperature_K + 0.5)

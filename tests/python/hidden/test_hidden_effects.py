@@ -4,9 +4,6 @@ and quantisation), and `pamkit diagnose`, given only the TOML and CSV, must name
 with no effect must come back "none". A fixed set of seeds; bench/bench_diagnose.py sweeps more."""
 
 import json
-import os
-import subprocess
-import sys
 
 import pytest
 
@@ -17,18 +14,8 @@ NULL_SEEDS = (21, 22, 23)
 CASES = [(name, seed) for name in hideable_effects() for seed in SEEDS] + [("none", seed) for seed in NULL_SEEDS]
 
 
-def run_pamkit(*arguments):
-    return subprocess.run(
-        [sys.executable, "-m", "pamkit", *map(str, arguments)],
-        capture_output=True,
-        text=True,
-        env=os.environ.copy(),
-        timeout=300,
-    )
-
-
 @pytest.mark.parametrize("effect, seed", CASES, ids=[f"{name}-{seed}" for name, seed in CASES])
-def test_diagnosis_names_the_hidden_effect(effect, seed, tmp_path):
+def test_diagnosis_names_the_hidden_effect(effect, seed, tmp_path, run_pamkit):
     dataset = tmp_path / "dataset"
     made = run_pamkit("synth", "--effect", effect, "--seed", seed, "-o", dataset)
     assert made.returncode == 0, made.stderr

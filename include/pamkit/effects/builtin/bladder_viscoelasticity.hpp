@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `bladder_viscoelasticity` (DESIGN.md, "The effect catalog").
+/// The catalog effect `bladder_viscoelasticity`.
 
 #include "pamkit/effects/parametric.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `braid_slack` (DESIGN.md, "The effect catalog").
+/// The catalog effect `braid_slack`.
 
 #include "pamkit/effects/parametric.hpp"
 

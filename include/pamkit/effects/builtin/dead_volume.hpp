@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `dead_volume` (DESIGN.md, "The effect catalog").
+/// The catalog effect `dead_volume`.
 
 #include "pamkit/effects/parametric.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `fiber_compliance` (DESIGN.md, "The effect catalog").
+/// The catalog effect `fiber_compliance`.
 
 #include "pamkit/effects/parametric.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `fixture_slack` (DESIGN.md, "The effect catalog").
+/// The catalog effect `fixture_slack`.
 
 #include <algorithm>
 #include <vector>

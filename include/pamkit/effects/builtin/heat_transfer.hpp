@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `heat_transfer` (DESIGN.md, "The effect catalog").
+/// The catalog effect `heat_transfer`.
 
 #include "pamkit/effects/parametric.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `leak` (DESIGN.md, "The effect catalog").
+/// The catalog effect `leak`.
 
 #include "pamkit/effects/parametric.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `load_cell` (issue #17, "Instrument errors on every channel").
+/// The catalog effect `load_cell`: the force reading's tare and nonlinearity.
 
 #include "pamkit/effects/parametric.hpp"
 

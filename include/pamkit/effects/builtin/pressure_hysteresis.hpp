@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `pressure_hysteresis` (DESIGN.md, "The effect catalog").
+/// The catalog effect `pressure_hysteresis`.
 
 #include "pamkit/effects/parametric.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `sensor_lag` (DESIGN.md, "The effect catalog").
+/// The catalog effect `sensor_lag`.
 
 #include <cmath>
 #include <vector>
@@ -31,13 +31,13 @@ struct SensorLagParams {
   static constexpr const char* kName = "sensor_lag";
   static constexpr const char* kDescription =
       "first-order lag of one channel (a TMP36 in still air is slow; a long hose slows a pressure transducer). "
-      "In a supplied test on pressure_kPa, the muscle's pressure lags the transducer's reading (a hose and the "
+      "In a supplied test on gauge_pressure_Pa, the muscle's pressure lags the transducer's reading (a hose and the "
       "muscle's volume between them). Gives it away: that channel lags its prediction and its swings are "
       "attenuated, more so at higher rates; in a supplied test the force lags the pressure.";
   static constexpr const char* kSignature = "{channel} lags its prediction and swings less";
   static constexpr EffectStage kStage = EffectStage::measurement;
   static constexpr bool kHasChannel = true;
-  std::string channel = "temperature_C";
+  std::string channel = "temperature_K";
   double time_constant_s = 5.0;  ///< time constant of the lag [s]; 0: none
   template <class V>
   static void for_each_field(V&& visit) {
@@ -56,11 +56,12 @@ class SensorLagEffect : public detail::ParametricEffect<SensorLagParams> {
  public:
   /// On the pressure of a supplied test the lag sits between the transducer and the muscle:
   /// the reading is the regulator's, and the muscle's gas follows it through the hose.
-  bool reads_supplied_pressure() const override { return params_.channel == "pressure_kPa"; }
+  bool reads_supplied_pressure() const override { return params_.channel == "gauge_pressure_Pa"; }
   /// A static table's rows are settled (empty `time_s`): the lag has died out.
-  void apply_to_supplied_pressure(const std::vector<double>& time_s, std::vector<double>& pressure_kPa) const override {
+  void apply_to_supplied_pressure(const std::vector<double>& time_s,
+                                  std::vector<double>& gauge_pressure_Pa) const override {
     if (reads_supplied_pressure() && !time_s.empty())
-      detail::first_order_lag(time_s, pressure_kPa, params_.time_constant_s);
+      detail::first_order_lag(time_s, gauge_pressure_Pa, params_.time_constant_s);
   }
   void apply_to_measurement(Measurement& m) const override {
     detail::first_order_lag(m.time_s, m.channel(params_.channel), params_.time_constant_s);

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `sensor_offset` (DESIGN.md, "The effect catalog").
+/// The catalog effect `sensor_offset`: the pressure calibration's offset and gain.
 
 #include <vector>
 
@@ -16,19 +16,19 @@ struct SensorOffsetParams {
       "Gives it away: a constant offset, or a residual proportional to the pressure, at every rate and in holds.";
   static constexpr const char* kSignature = "pressure reads off by a constant or a scale";
   static constexpr EffectStage kStage = EffectStage::measurement;
-  static constexpr const char* kChannel = "pressure_kPa";
+  static constexpr const char* kChannel = "gauge_pressure_Pa";
   static constexpr bool kHasChannel = false;
-  double offset_kPa = 5.0;  ///< reading at zero gauge pressure [kPa]
-  double gain = 1.0;        ///< reading per true kPa [1]
+  double offset_Pa = 5e3;  ///< reading at zero gauge pressure [Pa]
+  double gain = 1.0;       ///< reading per true pascal [1]
   template <class V>
   static void for_each_field(V&& visit) {
-    visit("offset_kPa", &SensorOffsetParams::offset_kPa, FieldInfo{"kPa", -500.0, 500.0, "pressure offset"},
-          EffectFieldInfo{{-12.0, 12.0},
+    visit("offset_Pa", &SensorOffsetParams::offset_Pa, FieldInfo{"Pa", -500e3, 500e3, "pressure offset"},
+          EffectFieldInfo{{-12e3, 12e3},
                           false,
-                          {-15.0, 15.0,
+                          {-15e3, 15e3,
                            "2 % of the 61CP transducer's 0-100 psi span (689 kPa) after a calibration by hand "
                            "(appendix B)"},
-                          {FitScale::linear, -100.0, 100.0, 0.0},
+                          {FitScale::linear, -100e3, 100e3, 0.0},
                           Resolution::any,
                           0.0});
     visit("gain", &SensorOffsetParams::gain, FieldInfo{"1", 0.1, 10.0, "pressure gain"},
@@ -45,11 +45,11 @@ class SensorOffsetEffect : public detail::ParametricEffect<SensorOffsetParams> {
   /// In a supplied test the transducer's reading is the model's input: the true pressure is
   /// the reading with the calibration error undone, and the reported channel is read again.
   bool reads_supplied_pressure() const override { return true; }
-  void apply_to_supplied_pressure(const std::vector<double>&, std::vector<double>& pressure_kPa) const override {
-    for (double& p : pressure_kPa) p = (p - params_.offset_kPa) / params_.gain;
+  void apply_to_supplied_pressure(const std::vector<double>&, std::vector<double>& gauge_pressure_Pa) const override {
+    for (double& p : gauge_pressure_Pa) p = (p - params_.offset_Pa) / params_.gain;
   }
   void apply_to_measurement(Measurement& m) const override {
-    for (double& p : m.pressure_kPa) p = params_.gain * p + params_.offset_kPa;
+    for (double& p : m.gauge_pressure_Pa) p = params_.gain * p + params_.offset_Pa;
   }
 };
 

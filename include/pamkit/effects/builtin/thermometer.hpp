@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `thermometer` (issue #9, "offset and gain of the load cell and the TMP36").
+/// The catalog effect `thermometer`: the temperature reading's offset.
 
 #include "pamkit/effects/parametric.hpp"
 
@@ -18,12 +18,12 @@ struct ThermometerParams {
       "off by a constant at rest and through the test, while its swings fit.";
   static constexpr const char* kSignature = "temperature reads off by a constant";
   static constexpr EffectStage kStage = EffectStage::measurement;
-  static constexpr const char* kChannel = "temperature_C";
+  static constexpr const char* kChannel = "temperature_K";
   static constexpr bool kHasChannel = false;
-  double offset_C = 1.0;  ///< reading minus the gas temperature [degC]
+  double offset_K = 1.0;  ///< reading minus the gas temperature [K]
   template <class V>
   static void for_each_field(V&& visit) {
-    visit("offset_C", &ThermometerParams::offset_C, FieldInfo{"degC", -50.0, 50.0, "temperature reading offset"},
+    visit("offset_K", &ThermometerParams::offset_K, FieldInfo{"K", -50.0, 50.0, "temperature reading offset"},
           EffectFieldInfo{{0.5, 2.0},
                           true,
                           {-4.0, 4.0,
@@ -37,7 +37,7 @@ struct ThermometerParams {
 class ThermometerEffect : public detail::ParametricEffect<ThermometerParams> {
  public:
   void apply_to_measurement(Measurement& m) const override {
-    for (double& t : m.temperature_C) t += params_.offset_C;
+    for (double& t : m.temperature_K) t += params_.offset_K;
   }
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `time_skew` (DESIGN.md, "The effect catalog").
+/// The catalog effect `time_skew`.
 
 #include <algorithm>
 #include <vector>
@@ -19,7 +19,7 @@ struct TimeSkewParams {
   static constexpr const char* kSignature = "{channel} is shifted in time against the machine's channels";
   static constexpr EffectStage kStage = EffectStage::measurement;
   static constexpr bool kHasChannel = true;
-  std::string channel = "pressure_kPa";
+  std::string channel = "gauge_pressure_Pa";
   double offset_s = 1.0;  ///< the channel reads at t what happened at t - offset [s]
   template <class V>
   static void for_each_field(V&& visit) {

@@ -1,0 +1,96 @@
+"""The columns of a measured time series: their names inside pamkit, where every value is SI
+(the model's channels, declared once in C++: effect.hpp's measured_channels), and their names in
+a file, where a person reads them (gauge pressure in kPa, temperature in degC); and the one
+conversion between the two, which the readers apply to what they read and the writers to what
+they write. Nothing between a reader and a writer converts a unit."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from pamkit._core import measured_channels
+from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
+
+# The time base and the crosshead's motion are required; the channels the instruments read are
+# optional. Every module that lists them imports them from here.
+REQUIRED_COLUMNS = ("time_s", "elongation_m")
+OPTIONAL_COLUMNS = tuple(measured_channels())
+SERIES_COLUMNS = REQUIRED_COLUMNS + OPTIONAL_COLUMNS
+# The channels the Arduino logger records (the 61CP transducer on A0, the TMP36 on A1); the
+# tensile machine records the others.
+LOGGER_CHANNELS = ("gauge_pressure_Pa", "temperature_K")
+
+
+@dataclass(frozen=True)
+class FileUnit:
+    """A column whose file unit is not SI: its name in a file, its name in SI, the file's unit
+    as a person reads it, and the value in each unit of a value in the other."""
+
+    file_name: str
+    si_name: str
+    unit: str
+    to_si: Callable
+    from_si: Callable
+
+
+FILE_UNITS = (
+    FileUnit(
+        "pressure_kPa",
+        "gauge_pressure_Pa",
+        "kPa",
+        lambda kilopascals: kilopascals * PASCAL_PER_KILOPASCAL,
+        lambda pascals: pascals / PASCAL_PER_KILOPASCAL,
+    ),
+    FileUnit(
+        "temperature_C",
+        "temperature_K",
+        "°C",
+        lambda celsius: celsius + KELVIN_AT_ZERO_CELSIUS,
+        lambda kelvin: kelvin - KELVIN_AT_ZERO_CELSIUS,
+    ),
+)
+_BY_FILE_NAME = {unit.file_name: unit for unit in FILE_UNITS}
+_BY_SI_NAME = {unit.si_name: unit for unit in FILE_UNITS}
+
+
+def file_name(name: str) -> str:
+    """A column's name in a file (pressure_kPa for gauge_pressure_Pa; time_s for time_s)."""
+    return _BY_SI_NAME[name].file_name if name in _BY_SI_NAME else name
+
+
+def file_unit(name: str) -> str | None:
+    """The unit a file (and a figure) gives the SI column `name` in, where it is not SI ("kPa"
+    for gauge_pressure_Pa); None for a column a file keeps in SI."""
+    return _BY_SI_NAME[name].unit if name in _BY_SI_NAME else None
+
+
+def si_name(name: str) -> str:
+    """A file column's name inside pamkit (gauge_pressure_Pa for pressure_kPa)."""
+    return _BY_FILE_NAME[name].si_name if name in _BY_FILE_NAME else name
+
+
+def value_to_si(name: str, value):
+    """A value (or array) of the file column `name` in SI."""
+    return _BY_FILE_NAME[name].to_si(value) if name in _BY_FILE_NAME else value
+
+
+def value_from_si(name: str, value):
+    """A value (or array) of the SI column `name` in its file's unit."""
+    return _BY_SI_NAME[name].from_si(value) if name in _BY_SI_NAME else value
+
+
+def to_si(columns: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """Columns as read from a file, renamed and converted to SI, in their order."""
+    return {si_name(name): value_to_si(name, values) for name, values in columns.items()}
+
+
+def to_file(columns: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """SI columns renamed and converted to their file units, in their order."""
+    return {file_name(name): value_from_si(name, values) for name, values in columns.items()}
+
+
+# The optional columns as a file names them.
+FILE_OPTIONAL_COLUMNS = tuple(file_name(name) for name in OPTIONAL_COLUMNS)
