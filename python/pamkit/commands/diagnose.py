@@ -28,9 +28,10 @@ def register(subparsers) -> None:
     parser.add_argument(
         "--params-out",
         metavar="PARAMS.toml",
-        help="write the calibrated baseline as a muscle-parameters file under the C++ field names (one time "
-        "series; static tables of one muscle; a campaign of time series: the muscle calibrated on all its tests): "
-        "what `pamkit simulate --params` and the C++ pamkit::read_muscle_params load",
+        help="write the muscle the diagnosis found as a muscle-parameters file under the C++ field names: the "
+        "calibrated build with every named cause (physical causes as its parameters, the test rig's as [rig] "
+        "effects; one time series; static tables of one muscle; a campaign of time series: the muscle calibrated "
+        "on all its tests): what `pamkit simulate --params` and the C++ pamkit::read_muscle_params load",
     )
     parser.add_argument("--threads", type=int, default=None, help="fits in parallel (default: all cores)")
     batch = parser.add_argument_group(

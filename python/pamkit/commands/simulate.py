@@ -34,7 +34,8 @@ def register(subparsers) -> None:
         metavar="PARAMS.toml",
         help="simulate the muscle of a muscle-parameters file (C++ field names, e.g. from `pamkit diagnose "
         "--params-out`) instead of the experiment's [muscle], [bladder], [friction] and [gas]; a sealed time series "
-        "starts from the file's [initial] state when it has one",
+        "starts from the file's [initial] state when it has one, and the file's [rig] effects (the test rig's "
+        "fixture and instruments a diagnosis found) are applied as --effect would",
     )
     parser.add_argument("-o", "--output", required=True, help="CSV file to write")
     parser.add_argument("--plot", help="also write a PNG figure of the prediction (and of the data, if measured)")
@@ -53,6 +54,7 @@ def run(arguments: argparse.Namespace) -> int:
 
         calibrated = read_muscle_params_file(arguments.params)
         params = calibrated.params
+        effects += parse_effects(calibrated.rig_effects)
         if calibrated.initial is not None and experiment.gas == GasMode.sealed and not experiment.is_table:
             initial = calibrated.initial
             starts_kPa = value_from_si("gauge_pressure_Pa", initial.gauge_pressure_Pa)

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit._core import GasMode, InitialState, MuscleParams, write_muscle_params
+from pamkit._core import EffectStage, GasMode, InitialState, MuscleParams, write_muscle_params
 from pamkit.diagnose import campaign, evidence, table_report
 from pamkit.diagnose.calibrate import Fit
 from pamkit.diagnose.campaign import SeriesCampaign
@@ -25,6 +25,7 @@ from pamkit.diagnose.identify import why_undetermined
 from pamkit.diagnose.model import Baseline, muscle_signature
 from pamkit.diagnose.table_fit import TableModel
 from pamkit.diagnose.tables import TableDiagnosis
+from pamkit.effects import catalog as builtin_catalog
 from pamkit.io.columns import file_name, file_unit, value_from_si
 from pamkit.plots import save_figure
 
@@ -409,57 +410,98 @@ def write(
         plot(d, plot_path)
 
 
-def calibrated_params(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> tuple[MuscleParams, InitialState | None]:
-    """The calibrated baseline as the C++ model's parameters and, for a sealed test, its state at
-    zero elongation at the calibrated inflation pressure: what the baseline prediction was
-    simulated from (a time series: Baseline.model_params at the fitted coordinates; static tables:
-    TableModel.params with the calibrated unknowns, the same muscle for every table; a campaign of
-    time series: the muscle calibrated on all its tests, with no [initial], each test being filled
-    to its own pressure).
+def effect_spec(effect) -> str:
+    """An effect as the catalog parses it back: ``NAME:option=value,...,parameter=value,...``."""
+    items = [f"{k}={v}" for k, v in effect.options().items()]
+    items += [f"{p.name}={p.value!r}" for p in effect.parameters()]
+    return f"{effect.name()}:{','.join(items)}" if items else effect.name()
+
+
+def _extend(params: MuscleParams, effects) -> tuple[MuscleParams, list[str]]:
+    """`params` with the physical effects applied (their fields in [extensions] or [gas]), and the
+    specs of the others: the test rig's fixture and instruments, which are not the muscle."""
+    rig = []
+    for effect in effects:
+        if effect.stage() == EffectStage.physics and not effect.reads_supplied_pressure():
+            params = effect.apply_to_params(params)
+        else:
+            rig.append(effect_spec(effect))
+    return params, rig
+
+
+def diagnosed_muscle(
+    d: Diagnosis | TableDiagnosis | SeriesCampaign, catalog=None
+) -> tuple[MuscleParams, InitialState | None, list[str]]:
+    """The muscle the diagnosis found: the calibrated model with every cause named — the physical
+    ones as the C++ model's parameters (a braid that goes slack, heat exchange, a pressurise/vent
+    hysteresis, ...), the test rig's (a time skew, a load cell's offset) as effect specs — and, for
+    a sealed test, its state at zero elongation at the calibrated inflation pressure. What the
+    extended prediction was computed from: a time series' extended fit (its baseline moved beside
+    the causes); static tables' extended fit with the calibrated unknowns, the same muscle for every
+    table; a campaign of time series: the muscle calibrated on all its tests (with the shared cause),
+    with no [initial], each test being filled to its own pressure.
 
     Raises:
         ValueError: for tables whose files declare different muscles.
     """
     if isinstance(d, SeriesCampaign):
+        final = d.extended or d.joint
         params, _ = Baseline(d.diagnoses[0].problem.experiment, d.joint.params).model_params(np.array([]))
-        return params, None
+        effects = []
+        if d.extended is not None:
+            effect = (catalog or builtin_catalog()).parse(d.extended.effect)
+            for p in effect.parameters():
+                if p.name in final.params:
+                    effect.set_value(p.name, final.params[p.name])
+            effects = [effect]
+        params, rig = _extend(params, effects)
+        return params, None, rig
     if isinstance(d, TableDiagnosis):
-        muscles = [TableModel.params(e, d.baseline.params) for e in d.campaign.experiments]
+        fit = d.extended
+        muscles = [TableModel.params(e, fit.params) for e in d.campaign.experiments]
         for experiment, muscle in zip(d.campaign.experiments[1:], muscles[1:]):
             if muscle_signature(muscle) != muscle_signature(muscles[0]):
                 raise ValueError(
                     f"--params-out: {experiment.path} declares another muscle than {d.campaign.experiments[0].path} "
                     "(its [muscle], [bladder], [friction] or [gas] differ): diagnose the table whose muscle you want"
                 )
-        return muscles[0], None
+        params, rig = _extend(muscles[0], fit.effects)
+        return params, None, rig
     predictor = d.problem.predictor
-    params, pressure_Pa = predictor.baseline.model_params(d.baseline.baseline_x)
+    params, pressure_Pa = predictor.baseline.model_params(d.extended.baseline_x)
+    params, rig = _extend(params, d.extended.effects)
     initial = predictor.initial_state(params, pressure_Pa) if predictor.mode == GasMode.sealed else None
-    return params, initial
+    return params, initial, rig
 
 
 def write_params(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> None:
-    """Writes the calibrated baseline as a muscle-parameters TOML file (the C++ reader's,
-    include/pamkit/io/params_file.hpp), with an [initial] section for a sealed test.
+    """Writes the muscle the diagnosis found (:func:`diagnosed_muscle`) as a muscle-parameters
+    TOML file (the C++ reader's, include/pamkit/io/params_file.hpp): the calibrated build with
+    every named cause, an [initial] section for a sealed test, and the rig's effects in [rig].
 
     Raises:
         ValueError: for tables that declare different muscles.
     """
-    params, initial = calibrated_params(d)
-    values = d.joint.params if isinstance(d, SeriesCampaign) else d.baseline.params
-    baseline = ", ".join(f"{name} = {value:.6g}" for name, value in values.items())
+    params, initial, rig = diagnosed_muscle(d)
+    values = d.joint.params if isinstance(d, SeriesCampaign) else d.extended.params
+    if not isinstance(d, SeriesCampaign) and not isinstance(d, TableDiagnosis):
+        values = {**d.extended.baseline_params, **d.extended.params}
+    fitted = ", ".join(f"{name} = {value:.6g}" for name, value in values.items() if not isinstance(value, str))
     if isinstance(d, SeriesCampaign):
         tests = [diagnosis.problem.experiment for diagnosis in d.diagnoses]
+        causes = [d.extended.effect] if d.extended is not None else []
     else:
         tests = d.campaign.experiments if isinstance(d, TableDiagnosis) else [d.problem.experiment]
-    comment = f"The calibrated baseline of `pamkit diagnose {' '.join(str(e.path) for e in tests)}`: {baseline}."
+        causes = [e.name() for e in d.extended.effects]
+    named = f" with {', '.join(causes)}" if causes else " (no cause named: the calibrated baseline)"
+    comment = f"The muscle `pamkit diagnose {' '.join(str(e.path) for e in tests)}` found{named}: {fitted}."
     if initial is not None:
         comment += (
             "\n[initial] is that test's state at zero elongation; a test at another inflation pressure needs it "
             "removed."
         )
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    write_muscle_params(path, params, initial, comment)
+    write_muscle_params(path, params, initial, comment, rig)
 
 
 class Report:
