@@ -26,7 +26,7 @@ from pamkit.diagnose.model import Baseline, muscle_signature
 from pamkit.diagnose.table_fit import TableModel
 from pamkit.diagnose.tables import TableDiagnosis
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.columns import file_name, file_unit, value_from_si
+from pamkit.io.columns import difference_from_si, file_name, file_unit, value_from_si
 from pamkit.plots import save_figure
 
 
@@ -230,10 +230,20 @@ def _phrase(j: Judgement, channel: str) -> str:
     return phrase.format(channel=options.get("channel", channel))
 
 
+def _error(channel: str, value: float, digits: str = ".3g") -> str:
+    """An error of a channel as a person reads it: in its file's unit (kPa, °C)."""
+    return f"{difference_from_si(channel, value):{digits}}"
+
+
+def _unit(channel: str) -> str:
+    return file_unit(channel) or UNITS.get(channel, "")
+
+
 def _sizes(d: Diagnosis, fit: Fit) -> str:
     rmse = _heldout_rmse(d, fit)
     return ", ".join(
-        f"{c} {rmse[c]:.3g} {UNITS.get(c, '')} (noise {d.problem.sigma[c]:.2g})" for c in d.problem.channels
+        f"{file_name(c)} {_error(c, rmse[c])} {_unit(c)} (noise {_error(c, d.problem.sigma[c], '.2g')})"
+        for c in d.problem.channels
     )
 
 
@@ -268,7 +278,7 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
             f"{_sizes(d, d.baseline)}){tail}{bounds}"
         )
     if decision.cause == "unexplained":
-        left = ", ".join(decision.left_structure) or "the residual"
+        left = ", ".join(file_name(c) for c in decision.left_structure) or "the residual"
         if decision.rejected is not None:
             j = decision.rejected
             channel = max(p.channels, key=lambda c: j.score.gain[c])
@@ -299,8 +309,9 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     lo, hi = first["gain_ci95"][channel]
     rmse = _heldout_rmse(d, lead.judgement.fit)[channel]
     text = (
-        f"{_phrase(lead.judgement, channel)}: {first['effect']}, {numbers}; held-out {channel} RMSE "
-        f"{baseline_rmse[channel]:.3g} → {rmse:.3g} {UNITS.get(channel, '')} (gain {first['gain'][channel]:.2f}, "
+        f"{_phrase(lead.judgement, channel)}: {first['effect']}, {numbers}; held-out {file_name(channel)} RMSE "
+        f"{_error(channel, baseline_rmse[channel])} → {_error(channel, rmse)} {_unit(channel)} (gain "
+        f"{first['gain'][channel]:.2f}, "
         f"95 % CI {lo:.2f}–{hi:.2f})"
     )
     for more in causes[1:]:
@@ -317,7 +328,7 @@ def _remainder_phrase(d: Diagnosis) -> str:
     remainder = remainder_json(d)
     if remainder is None:
         return "; nothing is left above the noise"
-    left = ", ".join(f"{c} at {r:.1f}x its noise" for c, r in remainder["channels"].items())
+    left = ", ".join(f"{file_name(c)} at {r:.1f}x its noise" for c, r in remainder["channels"].items())
     found = remainder["discovered"]
     if found.get("terms"):
         return (
@@ -361,7 +372,7 @@ def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Pa
             _shade(axis, time, held)
             axis.grid(alpha=0.3)
         signal.set_ylabel(file_name(c))
-        residual.set_ylabel(f"measured − model [{file_unit(c) or UNITS.get(c, '')}]")
+        residual.set_ylabel(f"measured − model [{_unit(c)}]")
         if i == 0:
             signal.legend(loc="upper right", fontsize="small")
             residual.legend(loc="upper right", fontsize="small")

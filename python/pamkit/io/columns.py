@@ -82,6 +82,12 @@ def value_from_si(name: str, value):
     return _BY_SI_NAME[name].from_si(value) if name in _BY_SI_NAME else value
 
 
+def difference_from_si(name: str, value):
+    """A difference (an error, a noise) of the SI column `name` in its file's unit: scaled, never
+    offset (an RMSE of 0.2 K is 0.2 °C)."""
+    return value_from_si(name, value) - value_from_si(name, 0.0)
+
+
 def to_si(columns: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
     """Columns as read from a file, renamed and converted to SI, in their order."""
     return {si_name(name): value_to_si(name, values) for name, values in columns.items()}
