@@ -1,21 +1,24 @@
 """Does each named cause keep its gain when the build is as uncertain as it is?
 
-A diagnosis takes the muscle's build as the experiment file declares it. The number a builder
-knows least well is the braid's wind: the fibers' turns over the braided length, counted by hand,
-and the angle the sleeve settles at on its end fittings. A few percent of wind changes how the gas
-volume and the force follow the stretch, which a catalog effect can mimic in part: on data from
-another team's model, whose braid kinematics differ from pamkit's by about a 2.5 % wind, a 3.8 %
-crosshead scale was named a dead volume, and a 0.8-sample fixture slack a pressure offset.
+A diagnosis takes the muscle's build as the experiment file declares it. No build is exactly as
+declared, and the experiment says by how much it may not be: `[uncertain]` gives each build field
+a tolerance (fiber_revolutions = 0.1, braid_angle_deg = 1.5, length_m = 0.001, ...); without it,
+the braid's wind is free within 5 % of the declared revolutions (io.sections.DEFAULT_WIND_TOLERANCE:
+the fibers' turns are counted by hand, the sleeve settles on its end fittings as it will). A few
+percent of wind changes how the gas volume and the force follow the stretch, which a catalog
+effect can mimic in part: on data from another team's model, whose braid kinematics differ from
+pamkit's by about a 2.5 % wind, a 3.8 % crosshead scale was named a dead volume, and a 0.8-sample
+fixture slack a pressure offset.
 
-So the causes are fitted again with the wind free within its tolerance (model.WIND_TOLERANCE),
-beside the leading cause's rivals and against a baseline calibrated with the same freedom, and
-judged by the same rules (decide.py): each cause must keep a significant gain on the channels it
-changes over the model without it, and the leading cause must still beat every credible rival on
-the same bootstrap draws. A cause that fails either cannot be told from a braid wound otherwise
-than declared, and the diagnosis says so instead of naming it. A wind that the refit drives to its
-tolerance's end is the base model straining (reported), not a reason to refuse a cause that keeps
-its gain. A `[calibrate]` table that already declares the wind or the braid angle unknown needs no
-check (the baseline fits it).
+So the causes are fitted again with the uncertain fields free within their tolerances, beside the
+leading cause's rivals and against a baseline calibrated with the same freedom, and judged by the
+same rules (decide.py): each cause must keep a significant gain on the channels it changes over the
+model without it, and the leading cause must still beat every credible rival on the same bootstrap
+draws. A cause that fails either cannot be told from a build otherwise than declared, and the
+diagnosis says so instead of naming it. A field that the refit drives to its tolerance's end is the
+base model straining (reported), not a reason to refuse a cause that keeps its gain. A test whose
+uncertain fields `[calibrate]` already fits, or whose `[uncertain]` section is empty (the build is
+exact), needs no check.
 """
 
 from __future__ import annotations
@@ -29,20 +32,20 @@ from pamkit.diagnose.calibrate import Fit, fit_baseline
 from pamkit.diagnose.candidates import fit_candidate, fit_pair
 from pamkit.diagnose.decide import MIN_GAIN, Cause, Judgement, Score, judge, keeps_gain, score
 from pamkit.diagnose.kinds import Problem
-from pamkit.diagnose.model import WIND_TOLERANCE, Predictor, winds_declared
+from pamkit.diagnose.model import Predictor, uncertain_fields
+from pamkit.io.sections import declared_value
 
-WIND = "fiber_revolutions"
 # Significant candidates after the leading cause refitted beside it: the ones that could take its place.
 RIVALS = 3
 
 
 @dataclass
 class BuildCheck:
-    """The causes refitted with the braid's wind free, and how many of them keep their gain."""
+    """The causes refitted with the build's uncertain fields free, and how many keep their gain."""
 
     causes: list[str]  # the labels of the causes named with the build as declared, in order
-    declared: float  # the declared fiber revolutions
-    baseline: Fit  # the baseline calibrated with the wind free
+    fields: dict[str, tuple[float, float]]  # each uncertain field: (declared value, tolerance)
+    baseline: Fit  # the baseline calibrated with the uncertain fields free
     fits: list[Fit]  # the models up to each cause, refitted there (fewer when a refit failed)
     own: list[Score]  # each cause's own gain there, over the model without it (credited)
     declared_gains: list[float]  # each cause's own credited gain with the build as declared
@@ -50,28 +53,32 @@ class BuildCheck:
     ahead: Judgement | None  # a credible rival the leading cause does not beat there on the same draws
     over_rival: float  # the lower end of the leading cause's paired gain over its closest credible rival there
 
-    @property
-    def wind(self) -> float:
-        """The wind the baseline calibrates with it free."""
-        return self.baseline.params[WIND]
-
-    def wind_at_bound(self) -> bool:
-        """The wind ends at an end of its tolerance, in the baseline or beside the causes."""
-        return any(
-            coordinate.at_bound(x) is not None
-            for fit in [self.baseline, *self.fits]
-            for name, (coordinate, x) in fit.coordinates.items()
-            if name == WIND
+    def at_bound(self) -> list[str]:
+        """The uncertain fields that end at an end of their tolerance, in the baseline or beside the
+        causes: the base model straining."""
+        return sorted(
+            {
+                name
+                for fit in [self.baseline, *self.fits]
+                for name, (coordinate, x) in fit.coordinates.items()
+                if name in self.fields and coordinate.at_bound(x) is not None
+            }
         )
 
     def margin(self) -> float:
-        """How far the check is from refusing, with the wind free: the smallest of each cause's own
+        """How far the check is from refusing, with the build free: the smallest of each cause's own
         credited gain over MIN_GAIN, the lower end of its interval, and the leading cause's paired
         margin over its closest credible rival (> 0 keeps them); -1 where a refit failed."""
         if not self.own:
             return -1.0
         own = min(min(s.credited_gain - MIN_GAIN, s.credited_ci95[0]) for s in self.own)
         return float(min(own, self.over_rival))
+
+    def _freedom(self) -> str:
+        return ", ".join(
+            f"{name} {declared:.4g} ± {tolerance:.3g} (calibrated {self.baseline.params[name]:.4g})"
+            for name, (declared, tolerance) in self.fields.items()
+        )
 
     def objection(self) -> str:
         label = self.causes[self.kept]
@@ -90,19 +97,23 @@ class BuildCheck:
                 f"from {self.declared_gains[self.kept]:.3f} with the build as declared"
             )
         return (
-            f"with the braid's wind free within {100 * WIND_TOLERANCE:.0f} % of the declared {self.declared:g} "
-            f"revolutions (calibrated {self.wind:.4g}) {label} is no longer a cause ({why}): the data do not tell it "
-            "from a braid wound otherwise than declared"
+            f"with the build free within what the experiment declares ({self._freedom()}) {label} is no longer a "
+            f"cause ({why}): the data do not tell it from a muscle built otherwise than declared"
         )
 
     def to_json(self) -> dict:
+        with_causes = self.fits[-1].baseline_params if self.fits else {}
         return {
-            "parameter": WIND,
-            "declared": self.declared,
-            "tolerance": WIND_TOLERANCE,
-            "calibrated": self.wind,  # by the baseline alone
-            "calibrated_with_causes": self.fits[-1].baseline_params.get(WIND) if self.fits else None,
-            "at_bound": self.wind_at_bound(),
+            "fields": {
+                name: {
+                    "declared": declared,
+                    "tolerance": tolerance,
+                    "calibrated": self.baseline.params[name],  # by the baseline alone
+                    "calibrated_with_causes": with_causes.get(name),
+                }
+                for name, (declared, tolerance) in self.fields.items()
+            },
+            "at_bound": self.at_bound(),
             "causes": self.causes,
             "own_gain_there": [s.credited_gain for s in self.own],
             "own_gain_declared": self.declared_gains,
@@ -126,17 +137,22 @@ def _refit(problem: Problem, baseline: Fit, label: str, factory, seed: int) -> F
     return refit if gains[1] > gains[0] else fit
 
 
-def check_wind(
+def check_build(
     problem: Problem, causes: list[Cause], judged: list[Judgement], factories: dict, seed: int, pool
 ) -> BuildCheck | None:
-    """The `causes` (decide.Cause, the leading one first) refitted with the braid's wind free,
-    each beside those before it, and the RIVALS significant candidates that follow the leading
-    cause in `judged`, all judged by decide.py's rules against a baseline calibrated with the wind
-    free; None where the experiment declares the wind unknown already. `pool` runs the refits (a
-    concurrent.futures executor)."""
-    if winds_declared(problem.experiment):
+    """The `causes` (decide.Cause, the leading one first) refitted with the build's uncertain
+    fields free, each beside those before it, and the RIVALS significant candidates that follow
+    the leading cause in `judged`, all judged by decide.py's rules against a baseline calibrated
+    with the same freedom; None where nothing of the build is uncertain and not already fitted.
+    `pool` runs the refits (a concurrent.futures executor)."""
+    experiment = problem.experiment
+    names = uncertain_fields(experiment)
+    if not names:
         return None
-    windy = replace(problem, predictor=Predictor(problem.experiment, problem.channels, wind=True))
+    fields = {
+        name: (declared_value(name, experiment.build, experiment.bladder), experiment.uncertain[name]) for name in names
+    }
+    windy = replace(problem, predictor=Predictor(experiment, problem.channels, uncertain=True))
     baseline = fit_baseline(windy)
     labels = [c.label for c in causes]
     rivals = [j.fit.name for j in judged if j.significant and j.fit.name not in labels][:RIVALS]
@@ -178,14 +194,4 @@ def check_wind(
                 break
             kept += 1
     declared = [c.own.credited_gain for c in causes]
-    return BuildCheck(
-        labels,
-        float(problem.experiment.build.fiber_revolutions),
-        baseline,
-        fits,
-        own,
-        declared,
-        kept,
-        ahead,
-        over_rival,
-    )
+    return BuildCheck(labels, fields, baseline, fits, own, declared, kept, ahead, over_rival)

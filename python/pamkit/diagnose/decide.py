@@ -402,7 +402,7 @@ class Decision:
     rejected: Judgement | None  # the best significant candidate, when it is not among the causes
     margins: dict[str, float]  # each decision's distance from its threshold
     left_structure: list[str]  # channels above NONE_WITHIN_NOISE after the causes: the remainder
-    # the causes refitted with the braid's wind free (buildcheck.BuildCheck.to_json), when checked
+    # the causes refitted with the build as uncertain as declared (buildcheck.BuildCheck.to_json)
     build_check: dict | None = None
 
     @property

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from pamkit._core import EffectCatalog, EffectStage
-from pamkit.diagnose.buildcheck import check_wind
+from pamkit.diagnose.buildcheck import check_build
 from pamkit.diagnose.calibrate import Fit, fit_baseline, one_blas_thread
 from pamkit.diagnose.candidates import candidates, fit_candidate, fit_pair
 from pamkit.diagnose.decide import (
@@ -194,15 +194,15 @@ def _add_cause(
 def _check_the_build(
     problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, pool, report
 ):
-    """The causes refitted with the braid's wind free (buildcheck.py): each must keep a
+    """The causes refitted with the build's uncertain fields free (buildcheck.py): each must keep a
     significant gain on its own channels there; those that do not are dropped, with the reason
     kept in the report (`decision.build_check`)."""
-    report(f"refitting {decision.causes[-1].judgement.fit.name} with the braid's wind free")
-    check = check_wind(problem, decision.causes, judged, factories, seed, pool)
+    report(f"refitting {decision.causes[-1].judgement.fit.name} with the build as uncertain as declared")
+    check = check_build(problem, decision.causes, judged, factories, seed, pool)
     if check is None:
         return decision
     kept = decision.causes[: check.kept]
-    margins = {**decision.margins, "wind": check.margin()}
+    margins = {**decision.margins, "build": check.margin()}
     if kept:
         left = structured(problem, kept[-1].judgement.fit, NONE_WITHIN_NOISE)
         return replace(decision, causes=kept, margins=margins, left_structure=left, build_check=check.to_json())

@@ -5,8 +5,8 @@ Baseline parameters (the model's own uncertainty, not a cause):
   - the inflation pressure, within the transducer's tolerance (sealed tests only);
   - a scale on both friction coefficients (eqs. 3.1.19-3.1.24 are the least certain part);
   - a scale on the bladder stress law (eqs. 3.1.12-13 were fitted to one rubber sample);
-  - with `wind`, the braid's wind (fiber revolutions) within what counting it by hand allows,
-    unless `[calibrate]` declares the wind or the braid angle itself (buildcheck.py: a named
+  - with `uncertain`, the build fields `[uncertain]` declares (by default the braid's wind within
+    what counting it by hand allows), unless `[calibrate]` declares them unknown (buildcheck.py: a named
     cause must survive it).
 An effect adds its own physical parameters, fitted in a space where they move smoothly
 (log for time constants, rates for "infinite means off" constants).
@@ -47,10 +47,6 @@ from pamkit.io.sections import BRAID_ANGLE_KEY, declared_value
 from pamkit.simulate import initial_length, muscle_params, sealed_start
 
 PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
-# relative: the fibers' turns over the braided length, counted by hand on the built muscle (a
-# tenth of a turn in the thesis's two), and the angle the sleeve settles at once pulled onto its
-# end fittings; 5 % is 1.3 degrees of braid angle at PAM 2's deflated 31.2 degrees
-WIND_TOLERANCE = 0.05
 # [calibrate] unknowns whose declared range spans more than this ratio are searched on a log scale.
 LOG_SPAN = 20.0
 
@@ -177,23 +173,24 @@ def configure(effect: Effect, space: list[Coordinate], x: np.ndarray) -> Effect:
 @dataclass
 class Baseline:
     """Maps baseline coordinates to model inputs: the inflation pressure (sealed tests), the
-    friction and bladder scales, and the fields `[calibrate]` declares unknown; with `wind`, the
-    braid's wind too. Names in `fixed` are held at the given values instead of fitted (a
-    campaign's jointly calibrated muscle)."""
+    friction and bladder scales, and the fields `[calibrate]` declares unknown; with `uncertain`,
+    the build fields `[uncertain]` declares too, each within its tolerance. Names in `fixed` are
+    held at the given values instead of fitted (a campaign's jointly calibrated muscle)."""
 
     experiment: Experiment
     fixed: dict[str, float] = field(default_factory=dict)
-    wind: bool = False
+    uncertain: bool = False
     params: MuscleParams = field(init=False)
     space: list[Coordinate] = field(init=False)
 
     def __post_init__(self):
         self.params = muscle_params(self.experiment)
-        self.space = [c for c in self.coordinates(self.experiment, self.wind) if c.name not in self.fixed]
+        self.space = [c for c in self.coordinates(self.experiment, self.uncertain) if c.name not in self.fixed]
 
     @staticmethod
-    def coordinates(experiment: Experiment, wind: bool = False) -> list[Coordinate]:
-        """Every coordinate a test's baseline may calibrate (with `wind`, the braid's wind)."""
+    def coordinates(experiment: Experiment, uncertain: bool = False) -> list[Coordinate]:
+        """Every coordinate a test's baseline may calibrate (with `uncertain`, the build's
+        uncertain fields within their tolerance)."""
         p0 = experiment.inflation_gauge_pressure_Pa
         space = []
         if experiment.gas == GasMode.sealed:
@@ -230,19 +227,8 @@ class Baseline:
                     "by well under 3x",
                 )
             )
-        if wind and not winds_declared(experiment):
-            n0 = experiment.build.fiber_revolutions
-            wind = (n0 * (1 - WIND_TOLERANCE), n0 * (1 + WIND_TOLERANCE))
-            space.append(
-                _linear(
-                    "fiber_revolutions",
-                    *wind,
-                    n0,
-                    wind,
-                    "the declared fiber revolutions within 5 %: turns counted by hand over the braided length, "
-                    "and the angle the sleeve settles at on its end fittings",
-                )
-            )
+        if uncertain:
+            space += [uncertain_coordinate(name, experiment) for name in uncertain_fields(experiment)]
         space += [unknown_coordinate(name, bounds, experiment) for name, bounds in experiment.calibrate.items()]
         return space
 
@@ -262,9 +248,22 @@ class Baseline:
         return params, values.get("inflation_gauge_pressure_Pa", self.experiment.inflation_gauge_pressure_Pa)
 
 
-def winds_declared(experiment: Experiment) -> bool:
-    """Whether `[calibrate]` already declares the braid's wind or angle unknown."""
-    return bool({"fiber_revolutions", BRAID_ANGLE_KEY} & set(experiment.calibrate))
+def uncertain_fields(experiment: Experiment) -> list[str]:
+    """The build fields `[uncertain]` declares that `[calibrate]` does not already fit (the wind
+    and the braid angle are one number)."""
+    known = set(experiment.calibrate)
+    if {"fiber_revolutions", BRAID_ANGLE_KEY} & known:
+        known |= {"fiber_revolutions", BRAID_ANGLE_KEY}
+    return [name for name in experiment.uncertain if name not in known]
+
+
+def uncertain_coordinate(name: str, experiment: Experiment) -> Coordinate:
+    """A build field free within its `[uncertain]` tolerance of its declared value: its search
+    interval is its plausible range, so that ending at an end is the base model straining."""
+    declared = declared_value(name, experiment.build, experiment.bladder)
+    tolerance = experiment.uncertain[name]
+    bounds = (declared - tolerance, declared + tolerance)
+    return _linear(name, *bounds, declared, bounds, f"[uncertain] {name} = {tolerance:g}: the build as it may be")
 
 
 def muscle_signature(params: MuscleParams) -> tuple:
@@ -297,11 +296,15 @@ class Predictor:
     """Predicted channels for baseline coordinates and a list of effects; thread-safe."""
 
     def __init__(
-        self, experiment: Experiment, channels: list[str], config: SimulatorConfig | None = None, wind: bool = False
+        self,
+        experiment: Experiment,
+        channels: list[str],
+        config: SimulatorConfig | None = None,
+        uncertain: bool = False,
     ):
         self.experiment = experiment
         self.channels = channels
-        self.baseline = Baseline(experiment, wind=wind)
+        self.baseline = Baseline(experiment, uncertain=uncertain)
         self.mode = experiment.gas
         self.motion = (
             programmed_motion(experiment.time_s, experiment.elongation_m)

@@ -23,7 +23,7 @@ import numpy as np
 from pamkit._core import BladderLaw, FrictionParams, GasMode, GasParams, MuscleBuild
 from pamkit.io.columns import OPTIONAL_COLUMNS, file_name, si_name, value_to_si
 from pamkit.io.guards import check_keys, fail, named_file, number, read_toml
-from pamkit.io.sections import read_bladder, read_build, read_calibrate, read_friction, read_gas
+from pamkit.io.sections import read_bladder, read_build, read_calibrate, read_friction, read_gas, read_uncertain
 from pamkit.io.series import read_isotonic, read_series, read_table
 
 # [test] gas: how the muscle's gas is held, by the name a file gives it.
@@ -65,9 +65,9 @@ TEST_CONDITIONS = {
 }
 TABLE_DEFAULTS = {"inflation_pressure_kPa": 0.0, "ambient_temperature_C": 20.0}
 # The sections of an experiment file.
-EXPERIMENT_SECTIONS = ("muscle", "bladder", "friction", "gas", "calibrate", "test")
+EXPERIMENT_SECTIONS = ("muscle", "bladder", "friction", "gas", "calibrate", "uncertain", "test")
 # The sections a campaign file shares with its tests, besides [campaign] itself.
-CAMPAIGN_SECTIONS = ("campaign", "muscle", "bladder", "friction", "gas", "calibrate")
+CAMPAIGN_SECTIONS = ("campaign", "muscle", "bladder", "friction", "gas", "calibrate", "uncertain")
 
 
 @dataclass
@@ -87,6 +87,8 @@ class Experiment:
     bladder: BladderLaw = field(default_factory=BladderLaw.thesis)
     kind: str = SERIES_KIND
     calibrate: dict[str, tuple[float, float]] = field(default_factory=dict)
+    # [uncertain]: each build field the muscle may be off by, ± in its unit (default: the wind's 5 %)
+    uncertain: dict[str, float] = field(default_factory=dict)
     load_N: float | None = None
     load_mass_kg: float | None = None
     zeroed: dict[str, float] = field(default_factory=dict)  # offsets the zero run took off each channel
@@ -256,6 +258,7 @@ def _experiment_of(path: Path, document: dict) -> Experiment:
     if initial_length is not None and not 0 < initial_length <= 5:
         raise fail(path, f"[test] initial_length_m = {initial_length} is outside (0, 5] m")
     calibrate = read_calibrate(path, document.get("calibrate", {}), bladder)
+    uncertain = read_uncertain(path, document.get("uncertain"), build)
     load = _given(path, test, "load_N", kind)
     if load is not None and not 0 <= load <= 1e5:
         raise fail(path, f"[test] load_N = {load} is outside [0, 1e5] N")
@@ -292,6 +295,7 @@ def _experiment_of(path: Path, document: dict) -> Experiment:
         bladder=bladder,
         kind=kind,
         calibrate=calibrate,
+        uncertain=uncertain,
         load_N=load,
         preload_N=preload,
         ranges=ranges,

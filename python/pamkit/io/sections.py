@@ -156,6 +156,46 @@ def read_calibrate(path: Path, table: dict, bladder: BladderLaw) -> dict[str, tu
     return out
 
 
+# [uncertain] when a file gives none: the braid's wind within 5 % of the declared revolutions. The
+# wind is the build number a builder knows least well (turns counted by hand over the braided
+# length, and the angle the sleeve settles at on its end fittings); 5 % is a tenth of a turn in the
+# thesis's two, 1.3 degrees of PAM 2's deflated 31.2-degree braid angle.
+DEFAULT_WIND_TOLERANCE = 0.05
+
+
+def read_uncertain(path: Path, table: dict, build: MuscleBuild) -> dict[str, float]:
+    """[uncertain]: how far the built muscle may be from what [muscle] declares, each field a
+    tolerance (±, in the field's own unit: turns, degrees, metres) the diagnosis checks its causes
+    against. Without the section: the wind within DEFAULT_WIND_TOLERANCE of the declared
+    revolutions; an empty section declares the build exact."""
+    if table is None:
+        return {"fiber_revolutions": DEFAULT_WIND_TOLERANCE * build.fiber_revolutions}
+    allowed = {name: bounds for name, bounds in calibratable_fields().items() if name not in NOT_BUILD}
+    out = {}
+    for name, value in table.items():
+        if name not in allowed:
+            raise fail(path, f"[uncertain] {name}: not a field of the build (known: {', '.join(allowed)})")
+        tolerance = number(path, f"[uncertain] {name}", value)
+        low, high, unit = allowed[name]
+        if not (math.isfinite(tolerance) and tolerance > 0.0):
+            raise fail(path, f"[uncertain] {name} = {value!r} must be a tolerance > 0 {unit} (the ± of the build)")
+        declared = declared_value(name, build, BladderLaw.thesis())
+        if declared - tolerance < low or declared + tolerance > high:
+            raise fail(
+                path,
+                f"[uncertain] {name} = {tolerance:g}: the declared {declared:g} ± {tolerance:g} {unit} leaves the "
+                f"allowed [{low}, {high}]",
+            )
+        out[name] = float(tolerance)
+    if "fiber_revolutions" in out and BRAID_ANGLE_KEY in out:
+        raise fail(path, f"[uncertain] names both fiber_revolutions and {BRAID_ANGLE_KEY}: they are one number")
+    return out
+
+
+# Names [calibrate] takes that are not the build's: the test's load and the membrane's law.
+NOT_BUILD = ("load_N", "bladder.shear_modulus_Pa")
+
+
 def read_friction(path: Path, table: dict) -> FrictionParams:
     """[friction]: FrictionParams' fields."""
     return fill_struct(path, "friction", table, FrictionParams())
