@@ -4,30 +4,49 @@ does with two candidates, without fitting anything."""
 from types import SimpleNamespace
 
 import numpy as np
+import pytest
 
+from pamkit._core import EffectStage, GasMode
 from pamkit.diagnose.calibrate import Fit
-from pamkit.diagnose.decide import Judgement, Score, decide
+from pamkit.diagnose.decide import NONE_WITHIN_NOISE, STANDS_OUT, Judgement, Score, decide, noise_ratios, uncredited
 
 SAMPLES = 1000
 rng = np.random.default_rng(7)
 SHARED = rng.normal(0.0, 0.02, SAMPLES)  # what the bootstrap draws do to every candidate alike
+ROWS = 20
 
 
-def problem():
-    """One channel whose held-out samples every fit below predicts exactly (nothing left)."""
-    measured = np.zeros(20)
+def problem(channels=("force_N",), measured=None):
+    """Channels measured as zeros (or `measured`), each with unit noise, every row held out."""
+    measured = measured or {c: np.zeros(ROWS) for c in channels}
     return SimpleNamespace(
-        channels=["force_N"], measured={"force_N": measured}, sigma={"force_N": 1.0}, held_mask=np.ones(20, bool)
+        channels=list(channels),
+        measured=measured,
+        sigma={c: 1.0 for c in channels},
+        held_mask=np.ones(ROWS, bool),
+        experiment=SimpleNamespace(gas=GasMode.sealed),
     )
 
 
-def candidate(name: str, gain: float, samples: np.ndarray, objections=()) -> Judgement:
-    effect = SimpleNamespace(name=lambda: name)
-    fit = Fit(name, [effect], np.zeros(0), {}, {"force_N": np.zeros(20)}, {"force_N": 0.0}, 1)
+def effect(name: str, channels=(), stage=EffectStage.physics):
+    return SimpleNamespace(
+        name=lambda: name,
+        channels_changed=lambda: list(channels),
+        stage=lambda: stage,
+        reads_supplied_pressure=lambda: False,
+    )
+
+
+def fit(name, predicted, effects=None):
+    effects = [effect(name)] if effects is None else effects
+    return Fit(name, effects, np.zeros(0), {}, predicted, {c: 0.0 for c in predicted}, 1)
+
+
+def candidate(name: str, gain: float, samples: np.ndarray, objections=(), channels=("force_N",)) -> Judgement:
     score = Score(
-        rmse={"force_N": 1.0},
-        gain={"force_N": gain},
-        gain_ci95={"force_N": [gain - 0.04, gain + 0.04]},
+        rmse={c: 1.0 for c in channels},
+        gain={c: gain for c in channels},
+        gain_ci95={c: [gain - 0.04, gain + 0.04] for c in channels},
         combined_gain=gain,
         combined_ci95=[float(np.percentile(samples, 2.5)), float(np.percentile(samples, 97.5))],
         delta_bic=-100.0,
@@ -35,7 +54,10 @@ def candidate(name: str, gain: float, samples: np.ndarray, objections=()) -> Jud
         credited_ci95=[gain - 0.04, gain + 0.04],
         combined_samples=samples,
     )
-    return Judgement(fit, score, True, [], list(objections))
+    return Judgement(fit(name, {c: np.zeros(ROWS) for c in channels}), score, True, [], list(objections))
+
+
+BASELINE = fit("none", {"force_N": np.full(ROWS, 5.0)}, effects=[])  # 5 noise sigmas off everywhere
 
 
 def test_two_mechanisms_the_data_cannot_tell_apart_are_not_a_cause():
@@ -43,9 +65,8 @@ def test_two_mechanisms_the_data_cannot_tell_apart_are_not_a_cause():
     # interval of the difference holds zero.
     best = candidate("dead_volume", 0.30, 0.30 + SHARED + rng.normal(0, 0.02, SAMPLES))
     rival = candidate("fiber_compliance", 0.29, 0.29 + SHARED + rng.normal(0, 0.02, SAMPLES))
-    baseline = Fit("none", [], np.zeros(0), {}, {"force_N": np.full(20, 5.0)}, {"force_N": 0.0}, 0)
-    decision = decide(problem(), baseline, [best, rival])
-    assert decision.cause == "unexplained"
+    decision = decide(problem(), BASELINE, [best, rival])
+    assert decision.cause == "unexplained" and decision.causes == []
     assert decision.rejected is best and "fiber_compliance explains the held-out units as well" in best.reasons()[0]
     assert decision.margins["over_rival"] <= 0.0
 
@@ -54,12 +75,87 @@ def test_a_cause_that_beats_its_rival_on_the_same_draws_is_named():
     # The same spread, 0.10 apart: the difference's interval lies above zero.
     best = candidate("dead_volume", 0.40, 0.40 + SHARED + rng.normal(0, 0.02, SAMPLES))
     rival = candidate("fiber_compliance", 0.30, 0.30 + SHARED + rng.normal(0, 0.02, SAMPLES))
-    decision = decide(problem(), None, [best, rival])
+    decision = decide(problem(), BASELINE, [best, rival])
     assert decision.cause == "dead_volume" and decision.margins["over_rival"] > 0.0
+    assert [c.label for c in decision.causes] == ["dead_volume"] and decision.named is best
 
 
 def test_a_rival_that_is_not_credible_does_not_block_a_cause():
     best = candidate("dead_volume", 0.30, 0.30 + SHARED + rng.normal(0, 0.02, SAMPLES))
     rival = candidate("sensor_offset", 0.29, 0.29 + SHARED, objections=["gain = 0.5 ended at its search bound"])
-    decision = decide(problem(), None, [best, rival])
+    decision = decide(problem(), BASELINE, [best, rival])
     assert decision.cause == "dead_volume" and "over_rival" not in decision.margins
+
+
+def test_a_part_of_what_a_better_fit_explains_is_not_named():
+    # A candidate that cannot be named (a parameter at its bound) explains the same channel 0.15
+    # better on the same draws: the credible one behind it may be fitting a piece of that.
+    better = candidate("load_cell", 0.45, 0.45 + SHARED, objections=["nonlinearity_per_kN = 0.5 at its bound"])
+    lesser = candidate("bladder_viscoelasticity", 0.30, 0.30 + SHARED + rng.normal(0, 0.02, SAMPLES))
+    decision = decide(problem(), BASELINE, [better, lesser])
+    assert decision.cause == "unexplained" and decision.causes == []
+    assert any("load_cell explains the held-out units significantly better" in r for r in lesser.reasons())
+
+
+def test_a_cause_stands_beside_a_better_fit_that_explains_another_channel():
+    # The better candidate that cannot be named explains the pressure only; the credible one the
+    # force: they explain different things, and the credible one is a cause.
+    channels = ("force_N", "gauge_pressure_Pa")
+    better = candidate("sensor_offset", 0.45, 0.45 + SHARED, objections=["at its bound"], channels=channels)
+    better.score.gain["force_N"], better.score.gain_ci95["force_N"] = 0.0, [-0.01, 0.01]
+    lesser = candidate("load_cell", 0.30, 0.30 + SHARED + rng.normal(0, 0.02, SAMPLES), channels=channels)
+    lesser.score.gain["gauge_pressure_Pa"], lesser.score.gain_ci95["gauge_pressure_Pa"] = 0.0, [-0.01, 0.01]
+    baseline = fit("none", {c: np.full(ROWS, 5.0) for c in channels}, effects=[])
+    decision = decide(problem(channels), baseline, [better, lesser])
+    assert decision.cause == "load_cell" and decision.rejected is better
+
+
+def test_none_only_within_the_noise():
+    # No significant candidate: `none` while every channel's held-out RMSE is within
+    # NONE_WITHIN_NOISE of its noise, `unexplained` beyond it (the rule's factor, decide.py).
+    weak = candidate("leak", 0.01, 0.01 + SHARED)
+    weak.significant = False
+    inside = fit("none", {"force_N": np.full(ROWS, 0.99 * NONE_WITHIN_NOISE)}, effects=[])
+    outside = fit("none", {"force_N": np.full(ROWS, 1.01 * NONE_WITHIN_NOISE)}, effects=[])
+    assert decide(problem(), inside, [weak]).cause == "none"
+    assert decide(problem(), outside, [weak]).cause == "unexplained"
+
+
+def instrument_case(own_before: float, other_after: float):
+    """A pressure-only instrument effect: the baseline leaves the pressure `own_before` and the
+    force 5 noise sigmas off; the instrument's fit leaves the pressure at the noise and the force
+    at `other_after`."""
+    channels = ("force_N", "gauge_pressure_Pa")
+    p = problem(channels)
+    baseline = fit("none", {"force_N": np.full(ROWS, 5.0), "gauge_pressure_Pa": np.full(ROWS, own_before)}, [])
+    sensor = effect("sensor_offset", ["gauge_pressure_Pa"], EffectStage.measurement)
+    offset = fit("sensor_offset", {"force_N": np.full(ROWS, other_after), "gauge_pressure_Pa": np.ones(ROWS)}, [sensor])
+    score = Score(
+        rmse={"force_N": other_after, "gauge_pressure_Pa": 1.0},
+        gain={"force_N": 0.0, "gauge_pressure_Pa": 0.5},
+        gain_ci95={"force_N": [0, 0], "gauge_pressure_Pa": [0.4, 0.6]},
+        combined_gain=0.3,
+        combined_ci95=[0.2, 0.4],
+        delta_bic=-100.0,
+        credited_gain=0.5,
+        credited_ci95=[0.4, 0.6],
+    )
+    return uncredited(p, offset, score, baseline), noise_ratios(p, baseline)
+
+
+def test_an_instrument_that_stands_out_from_the_base_models_misfit_is_credited():
+    # The pressure STANDS_OUT times further off than the force the instrument cannot change.
+    reasons, ratios = instrument_case(own_before=2.2 * STANDS_OUT * 3.0, other_after=3.0)
+    assert ratios["gauge_pressure_Pa"] == pytest.approx(2.2 * STANDS_OUT * 3.0)
+    assert reasons == []
+
+
+def test_an_instrument_that_does_not_stand_out_may_be_the_base_models_misfit():
+    reasons, _ = instrument_case(own_before=0.9 * STANDS_OUT * 3.0, other_after=3.0)
+    assert len(reasons) == 1 and "does not stand out" in reasons[0]
+
+
+def test_structure_within_the_noise_beside_an_instrument_is_no_objection():
+    # The force it cannot change ends within NONE_WITHIN_NOISE: nothing to compare it with.
+    reasons, _ = instrument_case(own_before=2.5, other_after=0.9 * NONE_WITHIN_NOISE)
+    assert reasons == []
