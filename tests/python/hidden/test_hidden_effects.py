@@ -1,38 +1,126 @@
-"""Hidden effects (DESIGN.md, "Tests that hide an effect"): `pamkit synth` writes a dataset with
-one catalog effect switched on (random realistic strength, random protocol, instrument noise
-and quantisation), and `pamkit diagnose`, given only the TOML and CSV, must name it; datasets
-with no effect must come back "none". A fixed set of seeds; bench/bench_diagnose.py sweeps more."""
+"""Hidden effects, as rates over seeds: `pamkit synth` writes datasets with one catalog effect
+switched on (random realistic strength, random protocol, instrument noise and quantisation), and
+the diagnosis, given only the TOML and CSV, must name it — in two worlds:
+
+- pamkit's own: the data come from the very model the file declares;
+- near the model: the data come from a muscle that differs from its declared build the way a real
+  one does (pamkit.synth.mismatch: a braid wound 2-5 % otherwise, another wall thickness or end
+  cone, a sharper friction), leaving the calibrated baseline 1-5 noise sigmas off on a null.
+
+Each world is the same contiguous block of seeds, the effects in turn (as bench/bench_diagnose.py
+draws them: its seeds 1000-1035, 33 effects and 3 nulls), and is judged as a rate: so many named right, no wrong name,
+nulls within their rule. A test that picks its seeds would pass a diagnosis that names nothing
+elsewhere; a rate fails it. bench/bench_diagnose.py sweeps more seeds (`--mismatch` for the second
+world); the near-model world of another team's implementation is tests/python/hidden/test_near_model.py.
+"""
 
 import json
+from concurrent.futures import ThreadPoolExecutor
 
+import numpy as np
 import pytest
 
-from pamkit.synth.dataset import hideable_effects
+from pamkit.diagnose import diagnose, to_json
+from pamkit.io.experiment import load_experiment
+from pamkit.synth.dataset import hideable_effects, synthesize
+from pamkit.synth.mismatch import draw_mismatch
 
-SEEDS = (11, 12)
-NULL_SEEDS = (21, 22, 23)
-CASES = [(name, seed) for name in hideable_effects() for seed in SEEDS] + [("none", seed) for seed in NULL_SEEDS]
+FIRST_SEED = 1000
+NAMES = ["none", *hideable_effects()]
+DATASETS = 3 * len(NAMES)  # three of each effect and three nulls
 
 
-@pytest.mark.parametrize("effect, seed", CASES, ids=[f"{name}-{seed}" for name, seed in CASES])
-def test_diagnosis_names_the_hidden_effect(effect, seed, tmp_path, run_pamkit):
-    dataset = tmp_path / "dataset"
-    made = run_pamkit("synth", "--effect", effect, "--seed", seed, "-o", dataset)
-    assert made.returncode == 0, made.stderr
-    # Diagnosis sees a copy of the experiment only: the manifest stays behind.
-    seen = tmp_path / "seen"
-    seen.mkdir()
-    for name in ("experiment.toml", "experiment.csv"):
-        (seen / name).write_bytes((dataset / name).read_bytes())
-    report_path = tmp_path / "report.json"
-    done = run_pamkit("diagnose", seen / "experiment.toml", "--json", report_path, "--quiet")
-    assert done.returncode == 0, done.stderr
-    report = json.loads(report_path.read_text())
-    truth = json.loads((dataset / "manifest.json").read_text())["effect"]
-    assert report["cause"] == truth["name"], report["verdict"]
-    if effect == "none":
-        return
-    # The cause comes with a significant held-out gain on some channel.
-    assert any(lo > 0 for lo, _ in report["gain_ci95"].values()), report["gain_ci95"]
-    if "channel" in truth["options"]:
-        assert report["extended"]["params"]["channel"] == truth["options"]["channel"]
+def named(report: dict) -> set[str]:
+    return {c["effect"].split(":")[0] for c in report["causes"]}
+
+
+def run_world(tmp_path_factory, mismatch: bool) -> list[dict]:
+    """Every dataset of a world, diagnosed from its files: truth, names, the report's cause."""
+    folder = tmp_path_factory.mktemp("near" if mismatch else "own")
+
+    def one(i: int) -> dict:
+        seed, effect = FIRST_SEED + i, NAMES[i % len(NAMES)]
+        true_muscle = draw_mismatch(np.random.default_rng([seed, 7])) if mismatch else None
+        files = synthesize(effect, seed, folder / str(i), true_muscle=true_muscle)
+        truth = json.loads(files.manifest.read_text())["effect"]["name"]
+        report = to_json(diagnose(load_experiment(files.experiment), threads=1))
+        rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
+        return {
+            "seed": seed,
+            "truth": truth,
+            "named": named(report),
+            "cause": report["cause"],
+            "remainder": report["remainder"],
+            "baseline_over_noise": max(rmse[c] / noise[c] for c in noise),
+            "verdict": report["verdict"],
+        }
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        return list(pool.map(one, range(DATASETS)))
+
+
+@pytest.fixture(scope="module")
+def own_world(tmp_path_factory):
+    return run_world(tmp_path_factory, mismatch=False)
+
+
+@pytest.fixture(scope="module")
+def near_world(tmp_path_factory):
+    return run_world(tmp_path_factory, mismatch=True)
+
+
+def summary(rows: list[dict]) -> str:
+    return "\n".join(f"  {r['seed']} {r['truth']:<24} -> {sorted(r['named']) or r['cause']}" for r in rows)
+
+
+def effects(rows):
+    return [r for r in rows if r["truth"] != "none"]
+
+
+def nulls(rows):
+    return [r for r in rows if r["truth"] == "none"]
+
+
+def test_own_world_names_the_hidden_effect(own_world):
+    # The target: 32 of 35 named right on bench_diagnose's seeds 1000-1038 (0.91). A diagnosis at
+    # that rate names at least 28 of these 33 with probability 0.94 (binomial).
+    rows = effects(own_world)
+    right = sum(r["truth"] in r["named"] for r in rows)
+    assert right >= 28, f"{right} of {len(rows)} named right:\n{summary(rows)}"
+
+
+def test_own_world_never_names_a_wrong_cause(own_world):
+    wrong = [r for r in own_world if r["named"] - {r["truth"]}]
+    assert not wrong, f"wrong names:\n{summary(wrong)}"
+
+
+def test_own_world_nulls_come_back_none(own_world):
+    # The baseline is the truth there: `none`, the calibrated model within NONE_WITHIN_NOISE of
+    # the noise on every channel (decide.py; tests/python/diagnose/test_decide.py pins the factor).
+    rows = nulls(own_world)
+    assert all(r["cause"] == "none" for r in rows), summary(rows)
+
+
+def test_near_world_names_the_hidden_effect(near_world):
+    # bench_diagnose --mismatch, seeds 1000-1077: 55 of 71 named right (0.77), against 43 of 71
+    # when every cause had to leave the channels it cannot change within the noise, as a base
+    # model that is not exact never does. A diagnosis at 0.77 names at least 22 of these 33 with
+    # probability 0.95 (binomial); one as timid as that earlier rule (0.61) with 0.30.
+    rows = effects(near_world)
+    right = sum(r["truth"] in r["named"] for r in rows)
+    assert right >= 22, f"{right} of {len(rows)} named right:\n{summary(rows)}"
+
+
+def test_near_world_wrong_names_stay_rare(near_world):
+    # The target: at most 5 % wrong names overall; of 36 datasets, at most 1.8: 2 would be a miss.
+    wrong = [r for r in near_world if r["named"] - {r["truth"]}]
+    assert len(wrong) <= 1, f"wrong names:\n{summary(wrong)}"
+
+
+def test_near_world_nulls_name_nothing(near_world):
+    # A null of a muscle that is not its declared build names no cause: `none` within the noise,
+    # or `unexplained` with what is left as a remainder (its channels above the noise).
+    for r in nulls(near_world):
+        assert not r["named"], summary([r])
+        if r["cause"] == "unexplained":
+            assert r["remainder"] and r["remainder"]["channels"], r["verdict"]
