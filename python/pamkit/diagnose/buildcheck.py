@@ -54,12 +54,12 @@ class BuildCheck:
     over_rival: float  # the lower end of the leading cause's paired gain over its closest credible rival there
 
     def at_bound(self) -> list[str]:
-        """The uncertain fields that end at an end of their tolerance, in the baseline or beside the
-        causes: the base model straining."""
+        """The uncertain fields that end at an end of their tolerance beside the causes: the base
+        model straining. (The baseline alone may strain them to absorb what a cause explains.)"""
         return sorted(
             {
                 name
-                for fit in [self.baseline, *self.fits]
+                for fit in self.fits
                 for name, (coordinate, x) in fit.coordinates.items()
                 if name in self.fields and coordinate.at_bound(x) is not None
             }

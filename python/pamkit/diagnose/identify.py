@@ -62,10 +62,11 @@ def identify(jacobian: np.ndarray, meat: np.ndarray | None = None, widths: bool 
     k = jacobian.shape[1]
     if k == 0:
         return Identification(np.zeros((0, 0)), {})
-    _, singular, vt = np.linalg.svd(jacobian, full_matrices=True)
+    # The right singular vectors only: U would be n x n, and a time series has 10^4-10^5 residuals.
+    # More coordinates than residuals: the thin SVD lacks k - n directions, all null.
+    rows = jacobian if jacobian.shape[0] >= k else np.vstack([jacobian, np.zeros((k - jacobian.shape[0], k))])
+    _, s, vt = np.linalg.svd(rows, full_matrices=False)
     v = vt.T
-    s = np.zeros(k)  # more coordinates than residuals: the missing singular values are zeros
-    s[: singular.size] = singular
     largest = float(s.max())
     kept = s > NULL_RTOL * largest if largest > 0 else np.zeros(k, dtype=bool)
     inverse = np.zeros(k)

@@ -1,5 +1,6 @@
-"""`pamkit diagnose --params-out` writes the calibrated baseline under the C++ field names, and
-`pamkit simulate --params` reproduces the diagnosis's baseline prediction from it."""
+"""`pamkit diagnose --params-out` writes the muscle the diagnosis found under the C++ field names —
+the calibrated build with every named cause, the test rig's effects apart — and `pamkit simulate
+--params` reproduces the diagnosis's prediction from it."""
 
 import numpy as np
 import pytest
@@ -139,10 +140,84 @@ def test_a_tables_calibrated_muscle_is_written_and_simulates_as_the_diagnosis_fi
     d = computed[0]
     written = read_muscle_params_file(params_path)
     assert written.initial is None  # a map is measured at supplied pressures
-    assert written.params.build.bladder_diameter_m == d.baseline.params["bladder_diameter_m"]
-    assert written.params.bladder.shear_modulus_Pa == d.baseline.params["bladder.shear_modulus_Pa"]
+    assert written.params.build.bladder_diameter_m == d.extended.params["bladder_diameter_m"]
+    assert written.params.bladder.shear_modulus_Pa == d.extended.params["bladder.shear_modulus_Pa"]
     output = tmp_path / "simulated.csv"
     assert main(["simulate", str(experiment_path), "--params", str(params_path), "-o", str(output)]) == 0
     simulated = np.genfromtxt(output, delimiter=",", names=True)["force_N"]
     # Static forces, no integration: equal to the CSV's ten significant digits.
-    np.testing.assert_allclose(simulated, d.baseline.predicted["force_N"], rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(simulated, d.extended.predicted["force_N"], rtol=1e-9, atol=1e-9)
+
+
+def diagnosed_with_params(experiment_path, params_path):
+    """The diagnosis `pamkit diagnose --params-out` computed (kept by a spy on
+    pamkit.diagnose.diagnose, which the command calls)."""
+    computed = []
+    real_diagnose = pamkit.diagnose.diagnose
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(
+            pamkit.diagnose, "diagnose", lambda *a, **k: computed.append(real_diagnose(*a, **k)) or computed[-1]
+        )
+        assert main(["diagnose", str(experiment_path), "--params-out", str(params_path), "--quiet"]) == 0
+    return computed[0]
+
+
+def test_a_diagnosed_festo_map_is_written_with_its_slack_braid_and_never_pushes(tmp_path, capsys):
+    """The published DMSP-10-250 map (Martens and Boblan 2017): held shorter than its free length
+    the muscle carries nothing, and the diagnosis names the braid that goes slack. The muscle it
+    writes carries that braid, so that simulated from the file it pushes nowhere, as measured."""
+    from conftest import SOURCE_DIR
+
+    experiment_path = SOURCE_DIR / "data" / "experiments" / "festo" / "DMSP-10-250.toml"
+    params_path = tmp_path / "dmsp10.toml"
+    d = diagnosed_with_params(experiment_path, params_path)
+    assert d.cause == "braid_slack"
+    written = read_muscle_params_file(params_path)
+    assert written.params.extensions.slack_band_N > 0.0 and written.rig_effects == []
+    output = tmp_path / "simulated.csv"
+    assert main(["simulate", str(experiment_path), "--params", str(params_path), "-o", str(output)]) == 0
+    simulated = np.genfromtxt(output, delimiter=",", names=True)["force_N"]
+    np.testing.assert_allclose(simulated, d.extended.predicted["force_N"], rtol=1e-9, atol=1e-9)
+    # A braid cannot push: the smooth slack transition leaves at most a tenth of its width (1 N) of
+    # compression, where the baseline's braid pushed with tens of newtons.
+    assert simulated.min() >= -0.1 * written.params.extensions.slack_band_N
+    assert d.baseline.predicted["force_N"].min() < -10.0
+
+
+@pytest.mark.parametrize(
+    "spec, seed",
+    [("heat_transfer:time_constant_s=3", 1005), ("time_skew:channel=gauge_pressure_Pa,offset_s=1.2", 1011)],
+)
+def test_a_named_cause_is_in_the_file_and_simulate_reproduces_the_extended_prediction(spec, seed, tmp_path):
+    """A physical cause goes into the muscle's parameters (heat exchange: [gas]); a cause of the rig
+    (a logger started late: a time skew of the pressure) into [rig] effects, which `simulate
+    --params` applies: either way the file predicts what the diagnosis's extended model did."""
+    from pamkit.synth.dataset import synthesize
+
+    files = synthesize(spec, seed, tmp_path / "data")
+    params_path = tmp_path / "found.toml"
+    d = diagnosed_with_params(files.experiment, params_path)
+    name = spec.split(":")[0]
+    assert d.cause == name, d.decision
+    written = read_muscle_params_file(params_path)
+    if name == "heat_transfer":
+        assert written.params.gas.process.name == "heat_transfer" and written.rig_effects == []
+        fitted = d.extended.params["time_constant_s"]
+        assert written.params.gas.heat_transfer_time_constant_s == pytest.approx(fitted, rel=1e-12)
+    else:
+        assert written.params.gas.process.name != "heat_transfer"
+        assert len(written.rig_effects) == 1 and written.rig_effects[0].startswith("time_skew:")
+        assert f"offset_s={d.extended.params['offset_s']!r}" in written.rig_effects[0]
+    output = tmp_path / "simulated.csv"
+    assert main(["simulate", str(files.experiment), "--params", str(params_path), "-o", str(output)]) == 0
+    simulated = read_series(output)
+    for channel in ("force_N", "gauge_pressure_Pa"):
+        # The diagnosis drives its model with the programmed motion at relative tolerance 1e-6,
+        # simulate with the encoder's samples at 1e-8 (measured: 1 % and 3 % of the noise apart on
+        # heat exchange); the cause the file carries, or its absence, moves them by the noise and more.
+        noise = d.problem.sigma[channel]
+        assert np.max(np.abs(simulated[channel] - d.extended.predicted[channel])) < 0.1 * noise
+    assert max(
+        np.max(np.abs(simulated[c] - d.baseline.predicted[c])) / d.problem.sigma[c]
+        for c in ("force_N", "gauge_pressure_Pa")
+    ) > 1.0
