@@ -1,4 +1,4 @@
-"""No traceback, ever (issue #12): random bytes, random TOML, random CSV and mutated valid files
+"""No traceback, ever: random bytes, random TOML, random CSV and mutated valid files
 thrown at load_experiment and simulate fail, when they fail, with an ExperimentError (or another
 ValueError) whose message is one line naming the file.
 

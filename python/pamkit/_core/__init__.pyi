@@ -2498,3 +2498,4 @@ def write_muscle_params(path: os.PathLike | str | bytes, params: MuscleParams, i
     Writes params (validated first) and, if given, the initial state as a muscle-parameters TOML file under the C++ field names, each key with its unit and meaning; `comment` goes at the top as TOML comments. read_muscle_params gives back the same doubles.
     """
 WINTER_SUBJECT_MASS_KG: float = 56.7
+__version__: str

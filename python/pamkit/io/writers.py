@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from pamkit.io.columns import file_name, value_from_si
-from pamkit.io.experiment import EXPERIMENT_SECTIONS, TEST_KEYS
+from pamkit.io.schema import EXPERIMENT_SECTIONS, TEST_KEYS
 
 #: Rows formatted at a time by write_series.
 WRITE_BLOCK_ROWS = 1 << 16

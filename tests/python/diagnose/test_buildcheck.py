@@ -1,11 +1,11 @@
-"""A named cause must survive the build's own uncertainty (python/pamkit/diagnose/buildcheck.py):
+"""A named cause must survive the build's own uncertainty (python/pamkit/diagnosis/buildcheck.py):
 refitted with the braid's wind free within its tolerance beside its rivals, the same rules must
 name it again."""
 
 import pytest
 
-from pamkit.diagnose import diagnose
-from pamkit.diagnose.report import to_json
+from pamkit.diagnosis import diagnose
+from pamkit.diagnosis.report import to_json
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import synthesize
 

@@ -1,12 +1,12 @@
-"""The decision rules of python/pamkit/diagnose/decide.py on scores made by hand: what each rule
+"""The decision rules of python/pamkit/diagnosis/decide.py on scores made by hand: what each rule
 does with two candidates, without fitting anything."""
 
 from types import SimpleNamespace
 
 import numpy as np
 
-from pamkit.diagnose.calibrate import Fit
-from pamkit.diagnose.decide import Judgement, Score, decide
+from pamkit.diagnosis.calibrate import Fit
+from pamkit.diagnosis.decide import Judgement, Score, decide
 
 SAMPLES = 1000
 rng = np.random.default_rng(7)

@@ -1,4 +1,4 @@
-"""Hidden effects (DESIGN.md, "Tests that hide an effect"): `pamkit synth` writes a dataset with
+"""Hidden effects: `pamkit synth` writes a dataset with
 one catalog effect switched on (random realistic strength, random protocol, instrument noise
 and quantisation), and `pamkit diagnose`, given only the TOML and CSV, must name it; datasets
 with no effect must come back "none". A fixed set of seeds; bench/bench_diagnose.py sweeps more."""

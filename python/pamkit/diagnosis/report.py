@@ -1,0 +1,420 @@
+"""The diagnosis as JSON (DESIGN.md's report keys), as a sentence, and as a figure."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from pamkit._core import GasMode, InitialState, MuscleParams, write_muscle_params
+from pamkit.diagnosis import campaign, evidence, table_report
+from pamkit.diagnosis.calibrate import Fit
+from pamkit.diagnosis.campaign import SeriesCampaign
+from pamkit.diagnosis.decide import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE, Judgement, credited_channels
+from pamkit.diagnosis.engine import CHANNEL_UNITS as UNITS
+from pamkit.diagnosis.engine import Diagnosis
+from pamkit.diagnosis.model import Baseline, muscle_signature
+from pamkit.diagnosis.table_fit import TableModel
+from pamkit.diagnosis.tables import TableDiagnosis
+from pamkit.io.columns import file_name, file_unit, value_from_si
+from pamkit.plots import save_figure
+
+
+def _heldout_rmse(d: Diagnosis, fit: Fit) -> dict[str, float]:
+    p = d.problem
+    return {c: evidence.rmse((fit.predicted[c] - p.measured[c])[p.held_mask]) for c in p.channels}
+
+
+def _residual_evidence(d: Diagnosis, fit: Fit) -> dict:
+    p = d.problem
+    time = p.experiment.time_s
+    elongation = p.experiment.elongation_m
+    velocity = np.gradient(elongation, time)
+    regressors = {
+        "elongation": elongation,
+        "velocity": velocity,
+        "abs_velocity": np.abs(velocity),
+        "time": time,
+        "cycle": p.cycle.astype(float),
+    }
+    mask = p.held_mask
+    out = {"ljung_box_p": {}, "correlation": {}, "best_lag_s": {}}
+    for c in p.channels:
+        r = (fit.predicted[c] - p.measured[c])[mask]
+        out["ljung_box_p"][c] = evidence.ljung_box_p(r)
+        out["correlation"][c] = evidence.correlations(r, {k: v[mask] for k, v in regressors.items()})
+        rate = np.gradient(fit.predicted[c], time)[mask]
+        out["best_lag_s"][c] = evidence.lagged_correlation_peak(r, rate, time[mask])
+    return out
+
+
+def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
+    """The report, with DESIGN.md's keys (and a few more: noise, evidence, verdict, timing)."""
+    if isinstance(d, TableDiagnosis):
+        return table_report.to_json(d)
+    if isinstance(d, SeriesCampaign):
+        return campaign.to_json(d, to_json)
+    p = d.problem
+    baseline_rmse = _heldout_rmse(d, d.baseline)
+    named = d.extended_judgement
+    report = {
+        "baseline": {
+            "params": d.baseline.params,
+            "intervals": {k: list(v) for k, v in d.baseline.intervals.items()},
+            "rmse": baseline_rmse,
+        },
+        "candidates": [
+            {
+                "effect": j.fit.name,
+                "params": j.fit.params,
+                "heldout_rmse": j.score.rmse,
+                "gain": j.score.gain,
+                "gain_ci95": j.score.gain_ci95,
+                "score": j.score.combined_gain,
+                "score_ci95": j.score.combined_ci95,
+                "delta_bic": j.score.delta_bic,
+                "significant": j.significant,
+                "credible": j.credible,
+                "not_credible_because": j.reasons(),
+            }
+            for j in d.candidates
+        ],
+        "cause": d.cause,
+        "extended": {
+            "effects": [e.name() for e in d.extended.effects],
+            "params": {**d.extended.baseline_params, **d.extended.params},
+            "intervals": {k: list(v) for k, v in d.extended.intervals.items()},
+            "rmse": _heldout_rmse(d, d.extended),
+        },
+        "gain": named.score.gain if named else {c: 0.0 for c in p.channels},
+        "gain_ci95": named.score.gain_ci95 if named else {c: [0.0, 0.0] for c in p.channels},
+        "residuals": {"baseline": _residual_evidence(d, d.baseline), "extended": _residual_evidence(d, d.extended)},
+        "evidence": {
+            "noise": p.sigma,
+            "peak_difference": {
+                c: evidence.peak_difference(
+                    p.measured[c][p.held_mask], d.baseline.predicted[c][p.held_mask], p.cycle[p.held_mask]
+                )
+                for c in p.channels
+            },
+            "units": p.unit_name,
+            "cycles": {
+                "fitted": sorted(set(int(k) for k in p.cycle[p.fit_mask])),
+                "held_out": sorted(set(int(k) for k in p.cycle[p.held_mask])),
+            },
+            "min_gain": MIN_GAIN,
+            "min_bic_drop": MIN_BIC_DROP,
+            "none_within_noise": NONE_WITHIN_NOISE,
+            "skipped": d.skipped,
+        },
+        "decision": {
+            "margins": d.decision.margins,
+            "left_above_noise": d.decision.left_structure,
+            "build_check": d.decision.build_check,
+            "rejected": (
+                {
+                    "effect": d.decision.rejected.fit.name,
+                    "params": d.decision.rejected.fit.params,
+                    "score": d.decision.rejected.score.combined_gain,
+                    "because": d.decision.rejected.reasons(),
+                }
+                if d.decision.rejected
+                else None
+            ),
+        },
+        "discovered": d.discovered,
+        "warnings": [f.to_json() for f in d.warnings] + d.data_notes,
+        "verdict": verdict(d),
+        "timing_s": d.seconds,
+    }
+    return report
+
+
+def _phrase(j: Judgement, channel: str) -> str:
+    effect = j.fit.effects[0]
+    options = {k: v for k, v in j.fit.params.items() if isinstance(v, str)}
+    phrase = effect.signature() or effect.description().split(".")[0]
+    return phrase.format(channel=options.get("channel", channel))
+
+
+def _sizes(d: Diagnosis, fit: Fit) -> str:
+    rmse = _heldout_rmse(d, fit)
+    return ", ".join(
+        f"{c} {rmse[c]:.3g} {UNITS.get(c, '')} (noise {d.problem.sigma[c]:.2g})" for c in d.problem.channels
+    )
+
+
+def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
+    """One sentence a person reads in ten seconds."""
+    if isinstance(d, TableDiagnosis):
+        return table_report.verdict(d)
+    if isinstance(d, SeriesCampaign):
+        return campaign.verdict(d)
+    p = d.problem
+    baseline_rmse = _heldout_rmse(d, d.baseline)
+    decision = d.decision
+    baseline_findings = [f.sentence() for f in d.warnings if f.parameter in d.baseline.coordinates]
+    bounds = f"; the base model strains to fit: {'; '.join(baseline_findings)}" if baseline_findings else ""
+    unknowns = [name for name in p.experiment.calibrate if name in d.baseline.intervals]
+    if unknowns:
+        bounds += "; calibrated " + ", ".join(
+            f"{name} = {d.baseline.params[name]:.4g} (95 % CI {d.baseline.intervals[name][0]:.4g}–"
+            f"{d.baseline.intervals[name][1]:.4g})"
+            for name in unknowns
+        )
+    if decision.cause == "none":
+        best = d.candidates[0] if d.candidates else None
+        if decision.rejected is not None:
+            j = decision.rejected
+            tail = f"; best candidate {j.fit.name} gains {j.score.combined_gain:.3f} but {'; '.join(j.reasons())}"
+        elif best is not None:
+            tail = (
+                f"; best candidate {best.fit.name} gains {best.score.combined_gain:.3f} (a cause needs "
+                f"{MIN_GAIN:.2f} with its 95 % CI above 0 and the BIC down by 10)"
+            )
+        else:
+            tail = ""
+        return (
+            f"no cause named: the calibrated model explains the data to within its noise (held-out RMSE "
+            f"{_sizes(d, d.baseline)}){tail}{bounds}"
+        )
+    if decision.cause == "unexplained":
+        left = ", ".join(decision.left_structure) or "the residual"
+        if decision.rejected is not None:
+            j = decision.rejected
+            channel = max(p.channels, key=lambda c: j.score.gain[c])
+            looks = (
+                f"it looks like {_phrase(j, channel)} ({j.fit.name} gains {j.score.combined_gain:.2f}), but "
+                f"{'; '.join(j.reasons())}"
+            )
+        else:
+            looks = "no catalog effect gains significantly on the held-out units"
+        found = d.discovered.get("terms") if d.discovered else None
+        discovered = (
+            (
+                f"; sparse regression finds {d.discovered['equation']} (held-out gain "
+                f"{d.discovered['gain'][d.discovered['channel']]:.2f}), which resembles "
+                f"{found[0]['resembles']}"
+            )
+            if found
+            else ""
+        )
+        return (
+            f"unexplained: structure is left in {left} (held-out RMSE {_sizes(d, d.baseline)}); "
+            f"{looks}{discovered}{bounds}"
+        )
+    j = d.extended_judgement
+    fit, s = j.fit, j.score
+    channel = max(credited_channels(p, fit), key=lambda c: s.gain[c])
+    numbers = ", ".join(f"{k} = {v:.3g}" for k, v in fit.params.items() if not isinstance(v, str))
+    lo, hi = s.gain_ci95[channel]
+    unit = UNITS.get(channel, "")
+    return (
+        f"{_phrase(j, channel)}: {fit.name}, {numbers}; held-out {channel} RMSE {baseline_rmse[channel]:.3g} → "
+        f"{s.rmse[channel]:.3g} {unit} (gain {s.gain[channel]:.2f}, 95 % CI {lo:.2f}–{hi:.2f}){bounds}"
+    )
+
+
+def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Path:
+    """Measured vs baseline vs extended per channel, residuals before and after, the ranking."""
+    if isinstance(d, TableDiagnosis):
+        return table_report.plot(d, path)
+    if isinstance(d, SeriesCampaign):
+        return campaign.plot(d, path)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    p = d.problem
+    time = p.experiment.time_s
+    rows = len(p.channels)
+    figure = plt.figure(figsize=(13, 3.0 * rows + 3.2), constrained_layout=True)
+    grid = figure.add_gridspec(rows + 1, 2)
+    held = p.held_mask
+    for i, c in enumerate(p.channels):
+        # Drawn in the units a person reads (kPa, °C), as the data's file gives them.
+        measured = value_from_si(c, p.measured[c])
+        baseline, extended = (value_from_si(c, fit.predicted[c]) for fit in (d.baseline, d.extended))
+        signal = figure.add_subplot(grid[i, 0])
+        signal.plot(time, measured, color="0.55", lw=1.0, label="measured")
+        signal.plot(time, baseline, color="C3", lw=0.9, label="baseline")
+        if d.extended is not d.baseline:
+            signal.plot(time, extended, color="C0", lw=0.9, label=f"extended ({d.extended.name})")
+        residual = figure.add_subplot(grid[i, 1], sharex=signal)
+        residual.plot(time, measured - baseline, color="C3", lw=0.8, label="baseline")
+        if d.extended is not d.baseline:
+            residual.plot(time, measured - extended, color="C0", lw=0.8, label="extended")
+        for axis in (signal, residual):
+            _shade(axis, time, held)
+            axis.grid(alpha=0.3)
+        signal.set_ylabel(file_name(c))
+        residual.set_ylabel(f"measured − model [{file_unit(c) or UNITS.get(c, '')}]")
+        if i == 0:
+            signal.legend(loc="upper right", fontsize="small")
+            residual.legend(loc="upper right", fontsize="small")
+            signal.set_title("measured and predicted (held-out cycles shaded)")
+            residual.set_title("residuals")
+        if i == rows - 1:
+            signal.set_xlabel("time [s]")
+            residual.set_xlabel("time [s]")
+    ranking = figure.add_subplot(grid[rows, :])
+    labels = [j.fit.name + ("" if j.credible else " (not credible)") for j in d.candidates]
+    gains = [j.score.combined_gain for j in d.candidates]
+    errors = np.array(
+        [
+            [j.score.combined_gain - j.score.combined_ci95[0], j.score.combined_ci95[1] - j.score.combined_gain]
+            for j in d.candidates
+        ]
+    ).T
+    colors = ["C0" if j.fit.name == d.extended.name else "0.6" if j.credible else "0.85" for j in d.candidates]
+    ranking.bar(range(len(labels)), gains, yerr=errors if len(labels) else None, color=colors, capsize=3)
+    ranking.axhline(MIN_GAIN, color="C3", ls="--", lw=1, label=f"needed to name a cause ({MIN_GAIN:.2f})")
+    ranking.set_xticks(range(len(labels)))
+    ranking.set_xticklabels(labels, rotation=20, ha="right", fontsize="small")
+    ranking.set_ylabel("held-out gain (95 % CI)")
+    ranking.set_ylim(min(-0.1, min(gains, default=0) - 0.05), 1.0)
+    ranking.legend(loc="upper right", fontsize="small")
+    ranking.grid(alpha=0.3, axis="y")
+    figure.suptitle(verdict(d), fontsize="medium", wrap=True)
+    return save_figure(figure, path, dpi=100)
+
+
+def _shade(axis, time, mask):
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], mask.astype(int), [0]])))
+    for start, end in zip(edges[::2], edges[1::2]):
+        axis.axvspan(time[start], time[min(end, time.size - 1)], color="C2", alpha=0.08, lw=0)
+
+
+def write(
+    d: Diagnosis | TableDiagnosis | SeriesCampaign,
+    json_path: str | Path | None = None,
+    plot_path: str | Path | None = None,
+) -> None:
+    if json_path:
+        Path(json_path).parent.mkdir(parents=True, exist_ok=True)
+        Path(json_path).write_text(json.dumps(to_json(d), indent=2, default=float) + "\n")
+    if plot_path:
+        plot(d, plot_path)
+
+
+def calibrated_params(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> tuple[MuscleParams, InitialState | None]:
+    """The calibrated baseline as the C++ model's parameters and, for a sealed test, its state at
+    zero elongation at the calibrated inflation pressure: what the baseline prediction was
+    simulated from (a time series: Baseline.model_params at the fitted coordinates; static tables:
+    TableModel.params with the calibrated unknowns, the same muscle for every table; a campaign of
+    time series: the muscle calibrated on all its tests, with no [initial], each test being filled
+    to its own pressure).
+
+    Raises:
+        ValueError: for tables whose files declare different muscles.
+    """
+    if isinstance(d, SeriesCampaign):
+        params, _ = Baseline(d.diagnoses[0].problem.experiment, d.joint.params).model_params(np.array([]))
+        return params, None
+    if isinstance(d, TableDiagnosis):
+        muscles = [TableModel.params(e, d.baseline.params) for e in d.campaign.experiments]
+        for experiment, muscle in zip(d.campaign.experiments[1:], muscles[1:]):
+            if muscle_signature(muscle) != muscle_signature(muscles[0]):
+                raise ValueError(
+                    f"--params-out: {experiment.path} declares another muscle than {d.campaign.experiments[0].path} "
+                    "(its [muscle], [bladder], [friction] or [gas] differ): diagnose the table whose muscle you want"
+                )
+        return muscles[0], None
+    predictor = d.problem.predictor
+    params, pressure_Pa = predictor.baseline.model_params(d.baseline.baseline_x)
+    initial = predictor.initial_state(params, pressure_Pa) if predictor.mode == GasMode.sealed else None
+    return params, initial
+
+
+def write_params(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> None:
+    """Writes the calibrated baseline as a muscle-parameters TOML file (the C++ reader's,
+    include/pamkit/io/params_file.hpp), with an [initial] section for a sealed test.
+
+    Raises:
+        ValueError: for tables that declare different muscles.
+    """
+    params, initial = calibrated_params(d)
+    values = d.joint.params if isinstance(d, SeriesCampaign) else d.baseline.params
+    baseline = ", ".join(f"{name} = {value:.6g}" for name, value in values.items())
+    if isinstance(d, SeriesCampaign):
+        tests = [diagnosis.problem.experiment for diagnosis in d.diagnoses]
+    else:
+        tests = d.campaign.experiments if isinstance(d, TableDiagnosis) else [d.problem.experiment]
+    comment = f"The calibrated baseline of `pamkit diagnose {' '.join(str(e.path) for e in tests)}`: {baseline}."
+    if initial is not None:
+        comment += (
+            "\n[initial] is that test's state at zero elongation; a test at another inflation pressure needs it "
+            "removed."
+        )
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    write_muscle_params(path, params, initial, comment)
+
+
+class Report:
+    """A diagnosis, as ``pamkit.diagnose(...)`` returns it: what the model got wrong in the
+    measured data, the cause named (or none within the noise), and the held-out gain.
+
+    ``report.diagnosis`` is the full result (:class:`~pamkit.diagnosis.Diagnosis` for a time
+    series, ``TableDiagnosis`` for static tables); the methods render it.
+    """
+
+    def __init__(self, diagnosis: Diagnosis | TableDiagnosis):
+        self.diagnosis = diagnosis
+
+    def to_dict(self) -> dict:
+        """The report with DESIGN.md's keys (baseline and extended RMSEs per channel in the
+        channel's unit, the effect named, its parameters, held-out gain, evidence, timing)."""
+        return to_json(self.diagnosis)
+
+    def to_json(self, path: str | Path | None = None) -> str:
+        """The report as JSON text (``to_dict()``, indented); also written to `path` if given."""
+        text = json.dumps(to_json(self.diagnosis), indent=2, default=float) + "\n"
+        if path is not None:
+            Path(path).parent.mkdir(parents=True, exist_ok=True)
+            Path(path).write_text(text)
+        return text
+
+    def verdict(self) -> str:
+        """One sentence: the cause named and its held-out gain, or why none is named."""
+        return verdict(self.diagnosis)
+
+    def plot(self, path: str | Path) -> Path:
+        """Writes the figure (PNG, or any format matplotlib infers from the suffix): measured
+        vs baseline vs extended per channel (time series) or per held length/row (tables),
+        residuals before and after, the ranking. Returns the path written."""
+        return plot(self.diagnosis, path)
+
+    def __repr__(self) -> str:
+        return f"<pamkit diagnosis report: {self.verdict()}>"
+
+
+def diagnose_report(
+    path_or_experiments,
+    effect_catalog=None,
+    progress=None,
+    threads: int | None = None,
+    seed: int | None = None,
+) -> Report:
+    """Diagnoses an experiment (its TOML path or a loaded Experiment), or a campaign (a list of
+    them: static tables of one muscle); this is what ``pamkit.diagnose(...)`` calls.
+
+    Args:
+        path_or_experiments: an experiment TOML path, an Experiment, or a list of either.
+        effect_catalog: the effects to try (default: the built-in catalog).
+        progress: called with a message (str) as work proceeds (default: silent).
+        threads: fits run in parallel (default: all cores).
+        seed: seeds the bootstrap (default: drawn from the data, so a rerun gives the same answer).
+
+    Returns:
+        A :class:`Report`: ``.verdict()`` (str), ``.to_json(path=None)`` (str), ``.to_dict()``,
+        ``.plot(path)`` (writes a figure), ``.diagnosis`` (the full result).
+
+    Raises:
+        ExperimentError: (a ValueError) for a file that cannot be read or data that cannot be
+            diagnosed, naming the file (and row and column).
+    """
+    from pamkit.diagnosis.engine import diagnose
+
+    return Report(diagnose(path_or_experiments, effect_catalog, progress=progress, threads=threads, seed=seed))
