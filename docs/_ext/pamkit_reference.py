@@ -67,10 +67,16 @@ def data_columns() -> list[str]:
         title = f"{kind}"
         lines += [title, "-" * len(title), "", reference.KIND_MEANINGS[kind] + ".", ""]
         rows = [
-            [f"``{c.name}``", c.unit, "required" if c.required else "optional", c.meaning]
+            [
+                f"``{c.name}``",
+                c.unit,
+                "required" if c.required else "optional",
+                f"``{c.si_name}`` [{c.si_unit}]",
+                c.meaning,
+            ]
             for c in reference.data_columns(kind)
         ]
-        lines += _table(["column", "unit", "", "meaning"], rows)
+        lines += _table(["column", "unit", "", "in Python (SI)", "meaning"], rows)
     return lines
 
 

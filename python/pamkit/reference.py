@@ -3,11 +3,16 @@ key of an experiment file (with its unit, default, and the kinds of test that ta
 the data columns of each kind, the muscle-parameters file and the command line.
 
 The field lists come from where they are declared: the C++ structs' ``fields()`` (``[muscle]``,
-``[friction]``, ``[gas]`` and the parameters file), :data:`pamkit.io.experiment.TEST_KEYS`,
-:func:`pamkit.io.experiment.calibratable_fields` and the column lists of
-:mod:`pamkit.io.experiment`. The documentation (its "Reference" pages) and ``pamkit template``
-are generated from this module, and the tests check it against what the readers accept, so a key
-the readers take cannot go undocumented.
+``[friction]``, ``[gas]`` and the parameters file), the experiment file's schema
+(:mod:`pamkit.io.schema`: the [test] keys, the kinds and their columns),
+:func:`pamkit.io.sections.calibratable_fields` and the columns of :mod:`pamkit.io.columns`. The
+documentation (its "Reference" pages) and ``pamkit template`` are generated from this module, and
+the tests check it against what the readers accept, so a key the readers take cannot go
+undocumented.
+
+Keys and columns are named as a file gives them, in its units (``inflation_pressure_kPa``, a CSV's
+``pressure_kPa``); a data column also carries its SI name inside pamkit (``gauge_pressure_Pa`` in
+:attr:`pamkit.Experiment.columns` and :func:`pamkit.simulate`'s DataFrame).
 """
 
 from __future__ import annotations
@@ -24,18 +29,14 @@ else:
     import tomli as tomllib
 
 from pamkit._core import FrictionParams, GasParams, GasProcess, InitialState, ModelExtensions, MuscleBuild
-from pamkit.io.experiment import (
+from pamkit.io.columns import FILE_OPTIONAL_COLUMNS, REQUIRED_COLUMNS, si_name
+from pamkit.io.experiment import GAS_MODES
+from pamkit.io.schema import CAMPAIGN_SECTIONS, TABLE_COLUMNS, TABLE_DEFAULTS, TEST_CONDITIONS, TEST_KEYS
+from pamkit.io.sections import (
     BLADDER_LAWS,
     BRAID_ANGLE_KEY,
-    CAMPAIGN_SECTIONS,
-    GAS_MODES,
     GAS_PROCESS_KEY,
-    OPTIONAL_COLUMNS,
-    REQUIRED_COLUMNS,
     SCALED_WITH_DIAMETER,
-    TABLE_COLUMNS,
-    TABLE_DEFAULTS,
-    TEST_KEYS,
     calibratable_fields,
 )
 
@@ -145,7 +146,7 @@ def _struct_keys(section: str, struct: Any, meanings: dict[str, str] | None = No
     return keys
 
 
-# [test]'s keys in the reference's words; TEST_KEYS (pamkit.io.experiment) says which keys the reader
+# [test]'s keys in the reference's words; TEST_KEYS (pamkit.io.schema) says which keys the reader
 # takes, and a key it takes that has no entry here fails the documentation's build and its test.
 TEST_KEY_MEANINGS = {
     "inflation_pressure_kPa": "gauge pressure after inflation, before the first stretch: a sealed muscle's "
@@ -192,8 +193,7 @@ def _test_keys() -> list[Key]:
     allowed = {
         "kind": ", ".join(f'"{k}"' for k in ("series", *TABLE_KINDS)),
         "gas": ", ".join(f'"{g}"' for g in GAS_MODES),
-        "inflation_pressure_kPa": "[0, 2000]",
-        "ambient_temperature_C": "[-50, 150]",
+        **{key: f"[{lowest:g}, {highest:g}]" for key, (lowest, highest, _, _) in TEST_CONDITIONS.items()},
         "initial_length_m": "(0, 5]",
         "load_N": "[0, 1e5]",
         "load_mass_kg": "(0, 1e4]",
@@ -309,12 +309,36 @@ def experiment_keys() -> list[Key]:
 
 @dataclass(frozen=True)
 class Column:
-    """One column of an experiment's data CSV."""
+    """One column of an experiment's data CSV.
+
+    Attributes
+    ----------
+    name : str
+        Its name in the CSV (``pressure_kPa``).
+    unit : str
+        Its unit in the CSV (``kPa``).
+    required : bool
+        Whether a file of the kind must have it.
+    meaning : str
+        What it holds.
+    si_name : str
+        Its name inside pamkit, SI (``gauge_pressure_Pa``): in :attr:`pamkit.Experiment.columns`,
+        :meth:`pamkit.Experiment.to_frame` and :func:`pamkit.simulate`'s DataFrame.
+    si_unit : str
+        The unit of that name (``Pa``).
+    """
 
     name: str
     unit: str
     required: bool
     meaning: str
+    si_name: str
+    si_unit: str
+
+
+def _column(name: str, required: bool, meaning: str) -> Column:
+    """The column a file names `name`, with its SI name and unit inside pamkit."""
+    return Column(name, unit_of(name), required, meaning, si_name(name), unit_of(si_name(name)))
 
 
 COLUMN_MEANINGS = {
@@ -331,22 +355,23 @@ COLUMN_MEANINGS = {
 
 
 def data_columns(kind: str) -> list[Column]:
-    """The data CSV's columns of a kind of test (pamkit.io.experiment's column lists)."""
+    """The data CSV's columns of a kind of test, as a file names them (the column lists of
+    pamkit.io.columns and pamkit.io.schema), each with its SI name inside pamkit."""
     if kind in SERIES_KINDS:
-        columns = [Column(name, unit_of(name), True, COLUMN_MEANINGS[name]) for name in REQUIRED_COLUMNS]
-        for name in OPTIONAL_COLUMNS:
+        columns = [_column(name, True, COLUMN_MEANINGS[name]) for name in REQUIRED_COLUMNS]
+        for name in FILE_OPTIONAL_COLUMNS:
             needed = kind == SUPPLIED and name == "pressure_kPa"
             meaning = COLUMN_MEANINGS[name] + ("; the supplied pressure, which drives the model" if needed else "")
-            columns.append(Column(name, unit_of(name), needed, meaning))
+            columns.append(_column(name, needed, meaning))
         return columns
     if kind == "isotonic":
         return [
-            Column("pressure_kPa", "kPa", True, COLUMN_MEANINGS["pressure_kPa"] + "; the supplied pressure"),
-            Column("length_m", "m", True, COLUMN_MEANINGS["length_m"] + " (or contraction_m)"),
-            Column("contraction_m", "m", False, COLUMN_MEANINGS["contraction_m"]),
-            Column("time_s", "s", False, "time of the row; needed with [test] load_mass_kg"),
+            _column("pressure_kPa", True, COLUMN_MEANINGS["pressure_kPa"] + "; the supplied pressure"),
+            _column("length_m", True, COLUMN_MEANINGS["length_m"] + " (or contraction_m)"),
+            Column("contraction_m", "m", False, COLUMN_MEANINGS["contraction_m"], "length_m", "m"),
+            _column("time_s", False, "time of the row; needed with [test] load_mass_kg"),
         ]
-    return [Column(name, unit_of(name), True, COLUMN_MEANINGS[name]) for name in TABLE_COLUMNS[kind]]
+    return [_column(name, True, COLUMN_MEANINGS[name]) for name in TABLE_COLUMNS[kind]]
 
 
 def params_file_keys() -> list[Key]:

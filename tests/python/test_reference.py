@@ -14,7 +14,10 @@ import tomllib
 
 import pamkit
 from pamkit.cli import main
-from pamkit.io.experiment import TEST_KEYS, ExperimentError, load_experiment, load_tests
+from pamkit.io.columns import file_name
+from pamkit.io.experiment import load_experiment, load_tests
+from pamkit.io.guards import ExperimentError
+from pamkit.io.schema import CAMPAIGN_SECTIONS, TEST_KEYS
 from pamkit.reference import (
     KINDS,
     SERIES_KINDS,
@@ -103,7 +106,10 @@ def test_every_template_is_a_file_the_reader_takes(tmp_path, kind):
     experiment = load_experiment(written(tmp_path, kind))
     expected_kind = "series" if kind in SERIES_KINDS else kind
     assert experiment.kind == expected_kind
-    assert experiment.gas == ("sealed" if kind == "sealed" else "supplied")
+    assert experiment.gas == (pamkit.GasMode.sealed if kind == "sealed" else pamkit.GasMode.supplied)
+    # The reference's name inside pamkit of each column the file gives is the experiment's own.
+    header = ROWS[kind].splitlines()[0].split(",")
+    assert set(experiment.columns) == {c.si_name for c in data_columns(kind) if c.name in header}
     # ... and one the model predicts.
     frame = pamkit.simulate(experiment)
     assert len(frame) == len(ROWS[kind].splitlines()) - 1 and np.isfinite(frame.to_numpy()).all()
@@ -146,7 +152,7 @@ def test_the_sections_and_test_keys_are_the_readers(tmp_path):
         load_experiment(path)
     assert known_list(str(error.value)) == set(SECTIONS)
     assert documented("test") == set(TEST_KEYS) == set(TEST_KEY_MEANINGS)
-    assert pamkit.io.experiment.CAMPAIGN_SECTIONS[0] == "campaign" and documented("campaign") == {"tests"}
+    assert CAMPAIGN_SECTIONS[0] == "campaign" and documented("campaign") == {"tests"}
 
 
 @pytest.mark.parametrize("kind", KINDS)
@@ -188,9 +194,11 @@ def test_each_required_column_is_required(tmp_path, kind):
         (tmp_path / "run.csv").write_text("\n".join(rows) + "\n")
         with pytest.raises(ExperimentError, match=column.name):
             load_experiment(path)
-    # A time series takes the measured channels pamkit predicts, and nothing else.
+    # A time series takes the measured channels pamkit predicts, as a file names them, and nothing else.
     if kind == SUPPLIED:
-        assert [c.name for c in columns] == ["time_s", "elongation_m", *pamkit.measured_channels()]
+        channels = pamkit.measured_channels()
+        assert [c.name for c in columns] == ["time_s", "elongation_m", *(file_name(c) for c in channels)]
+        assert [c.si_name for c in columns] == ["time_s", "elongation_m", *channels]
 
 
 @pytest.mark.parametrize("neo_hookean", [False, True])
