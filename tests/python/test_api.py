@@ -18,6 +18,7 @@ import pamkit
 from pamkit.effects import parse_effects
 from pamkit.io.guards import ExperimentError
 from pamkit.simulation import simulate_experiment
+from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
 
 SERIES_COLUMNS = ["time_s", "elongation_m", "force_N", "gauge_pressure_Pa", "temperature_K"]
 
@@ -174,28 +175,43 @@ def test_the_calls_are_functions_and_the_modules_stay_importable():
 def test_an_experiment_goes_to_a_frame_and_back(tmp_path):
     experiment = pamkit.load_experiment(SOURCE_DIR / "data" / "experiments" / "example" / "experiment.toml")
     frame = experiment.to_frame()
-    assert list(frame.columns) == list(experiment.columns)
-    assert frame.attrs["units"]["force_N"] == "N" and frame.attrs["kind"] == "series"
+    assert list(frame.columns) == list(experiment.columns) == SERIES_COLUMNS  # SI, as simulate's
+    assert frame.attrs["units"]["gauge_pressure_Pa"] == "Pa" and frame.attrs["units"]["temperature_K"] == "K"
+    assert frame.attrs["kind"] == "series" and frame.attrs["gas"] == "sealed"
+    # The sections are a file's, in its units: the inflation pressure in kPa, the room in °C.
     sections = {
         "muscle": {"length_m": experiment.build.length_m, "diameter_m": experiment.build.diameter_m},
         "test": {
-            "inflation_pressure_kPa": experiment.inflation_pressure_kPa,
-            "ambient_temperature_C": experiment.ambient_temperature_C,
+            "inflation_pressure_kPa": experiment.inflation_gauge_pressure_Pa / PASCAL_PER_KILOPASCAL,
+            "ambient_temperature_C": experiment.gas_params.ambient_temperature_K - KELVIN_AT_ZERO_CELSIUS,
         },
     }
     again = pamkit.Experiment.from_frame(frame, tmp_path / "again.toml", sections)
     assert again.path == tmp_path / "again.toml" and again.data_path == tmp_path / "again.csv"
+    assert again.inflation_gauge_pressure_Pa == pytest.approx(experiment.inflation_gauge_pressure_Pa, rel=1e-12)
+    assert again.gas_params.ambient_temperature_K == pytest.approx(experiment.gas_params.ambient_temperature_K)
     for name, column in experiment.columns.items():
         # write_series keeps 10 significant digits
         np.testing.assert_allclose(again.columns[name], column, rtol=1e-9, atol=1e-12)
+    # The file between them is in the file's units: kPa and °C, as a person reads it.
+    header, first = (tmp_path / "again.csv").read_text().splitlines()[:2]
+    written = dict(zip(header.split(","), map(float, first.split(","))))
+    kilopascals = experiment.columns["gauge_pressure_Pa"][0] / PASCAL_PER_KILOPASCAL
+    assert written["pressure_kPa"] == pytest.approx(kilopascals, rel=1e-9)
+    assert written["temperature_C"] == pytest.approx(experiment.columns["temperature_K"][0] - KELVIN_AT_ZERO_CELSIUS)
     # What the reader refuses in a file it refuses from a frame, naming the file it wrote.
     with pytest.raises(ExperimentError, match=r"bad.csv.*time_s"):
         pamkit.Experiment.from_frame(frame.drop(columns=["time_s"]), tmp_path / "bad.toml", sections)
     with pytest.raises(ExperimentError, match=r"isotonic.toml: \[test\] load_N is missing"):
         pamkit.Experiment.from_frame(
-            pd.DataFrame({"pressure_kPa": [0.0, 100.0], "length_m": [0.2, 0.19]}),
+            pd.DataFrame({"gauge_pressure_Pa": [0.0, 100e3], "length_m": [0.2, 0.19]}),
             tmp_path / "isotonic.toml",
             {"muscle": {}, "test": {"kind": "isotonic"}},
+        )
+    # A frame takes SI columns: a file's name for one is refused, naming the SI name to give.
+    with pytest.raises(ValueError, match=r"kpa.toml: column pressure_kPa .* gauge_pressure_Pa"):
+        pamkit.Experiment.from_frame(
+            frame.rename(columns={"gauge_pressure_Pa": "pressure_kPa"}), tmp_path / "kpa.toml", sections
         )
 
 
@@ -203,10 +219,13 @@ def test_write_experiment_is_the_files_writer(tmp_path):
     data = pamkit.write_experiment(
         tmp_path / "map.toml",
         {"muscle": {"length_m": 0.25, "diameter_m": 0.01}, "test": {"kind": "isometric_map"}},
-        {"length_m": np.array([0.25, 0.24]), "pressure_kPa": np.array([100.0, 200.0]), "force_N": [10.0, 40.0]},
+        {"length_m": np.array([0.25, 0.24]), "gauge_pressure_Pa": np.array([100e3, 200e3]), "force_N": [10.0, 40.0]},
     )
     assert data == tmp_path / "map.csv"
-    assert list(pamkit.load_experiment(tmp_path / "map.toml").columns["force_N"]) == [10.0, 40.0]
+    assert data.read_text().splitlines()[:2] == ["length_m,pressure_kPa,force_N", "0.25,100,10"]  # the file's units
+    again = pamkit.load_experiment(tmp_path / "map.toml")
+    assert list(again.columns["force_N"]) == [10.0, 40.0]
+    assert list(again.columns["gauge_pressure_Pa"]) == [100e3, 200e3]
 
 
 @pytest.mark.parametrize(

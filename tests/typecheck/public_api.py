@@ -18,6 +18,9 @@ def first_hour(folder: Path) -> str:
     frame: pd.DataFrame = pamkit.simulate(experiment, effects=["heat_transfer:time_constant_s=2"])
     by_path: pd.DataFrame = pamkit.simulate(str(folder / "experiment.toml"))
     measured: pd.DataFrame = experiment.to_frame()
+    inflation_Pa: float = experiment.inflation_gauge_pressure_Pa
+    room_K: float = experiment.gas_params.ambient_temperature_K
+    sealed: bool = experiment.gas == pamkit.GasMode.sealed
     again = pamkit.Experiment.from_frame(measured, folder / "again.toml", {"muscle": {}, "test": {}})
     report: pamkit.Report = pamkit.diagnose(again, threads=2, seed=1)
     campaign: pamkit.Report = pamkit.diagnose([folder / "a.toml", folder / "b.toml"])
@@ -28,7 +31,7 @@ def first_hour(folder: Path) -> str:
     text: str = report.to_json(folder / "report.json")
     read = pamkit.Report.read_json(folder / "report.json")
     document: dict[str, object] = read.to_dict()
-    del frame, by_path, campaign, candidates, causes, summary, written, text, document
+    del frame, by_path, campaign, candidates, causes, summary, written, text, document, inflation_Pa, room_K, sealed
     return report.verdict() + report.cause + report.kind + ", ".join(report.channels)
 
 
@@ -46,8 +49,8 @@ def files(folder: Path) -> int:
     data: Path = pamkit.write_experiment(
         folder / "map.toml",
         {"muscle": {"length_m": 0.25}, "test": {"kind": "isometric_map"}},
-        {"length_m": np.array([0.25]), "pressure_kPa": np.array([100.0]), "force_N": np.array([10.0])},
+        {"length_m": np.array([0.25]), "gauge_pressure_Pa": np.array([100e3]), "force_N": np.array([10.0])},
     )
     keys = [key.name for key in experiment_keys() if key.section == "test"]
-    columns = [column.name for column in data_columns("isotonic")]
+    columns = [f"{column.name} ({column.si_name} [{column.si_unit}])" for column in data_columns("isotonic")]
     return len(template("isotonic")) + len(keys) + len(columns) + len(str(data))

@@ -1,8 +1,8 @@
 """Experiment files: a TOML describing the muscle and the test, naming a CSV of what was
-measured (or planned). This module holds their schema (the sections, the [test] keys, the kinds
-of experiment), the :class:`Experiment` they are read into, and the loading: the TOML through
-the guards (:mod:`pamkit.io.guards`), the muscle's sections into structs
-(:mod:`pamkit.io.sections`), the data by kind (:mod:`pamkit.io.series`).
+measured (or planned). This module holds the :class:`Experiment` they are read into and the
+loading, by their schema (:mod:`pamkit.io.schema`: the sections, the [test] keys, the kinds of
+experiment): the TOML through the guards (:mod:`pamkit.io.guards`), the muscle's sections into
+structs (:mod:`pamkit.io.sections`), the data by kind (:mod:`pamkit.io.series`).
 
 A file is written for people (the inflation pressure in kPa, the room in degC, columns in kPa
 and degC); an :class:`Experiment` is SI throughout, converted once, here and in the CSV readers.
@@ -117,8 +117,8 @@ class Experiment:
         pandas.DataFrame
             The columns as read, SI (units in their names: time_s [s], elongation_m [m], force_N
             [N], gauge_pressure_Pa [Pa], temperature_K [K], length_m [m], ...), with ``df.attrs``
-            "experiment" and "data" (the files' paths), "kind", "gas" and "units" (column -> unit),
-            as :func:`pamkit.simulate` gives its prediction.
+            "experiment" and "data" (the files' paths), "kind", "gas" (its name) and "units"
+            (column -> unit), as :func:`pamkit.simulate` gives its prediction.
         """
         import pandas as pd
 
@@ -129,7 +129,7 @@ class Experiment:
             experiment=str(self.path),
             data=str(self.data_path),
             kind=self.kind,
-            gas=self.gas,
+            gas=self.gas.name,
             units={name: COLUMN_UNITS.get(name, "") for name in frame.columns},
         )
         return frame
@@ -166,6 +166,9 @@ class Experiment:
         ------
         ExperimentError
             (a ValueError) naming the file, section, key, row or column of the first problem.
+        ValueError
+            Naming a column given under its file's name (``pressure_kPa``, not
+            ``gauge_pressure_Pa``), or a section or key no experiment file has.
         """
         columns = {str(name): frame[name].to_numpy(dtype=float) for name in frame.columns}
         write_experiment(path, sections, columns)
