@@ -20,8 +20,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import pamkit
-from pamkit.io.experiment import TEST_KEYS
 from pamkit.io.guards import ExperimentError, ExperimentWarning
+from pamkit.io.schema import TEST_KEYS
 
 MAX_EXAMPLES = 150
 DEADLINE_MS = 5000
