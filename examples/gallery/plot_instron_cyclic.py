@@ -33,8 +33,9 @@ force.plot(1e3 * measured["elongation_m"], measured["force_N"], ".", ms=3, label
 force.plot(1e3 * predicted["elongation_m"], predicted["force_N"], label="predicted")
 force.set(xlabel="elongation [mm]", ylabel="force [N]")
 force.legend()
-pressure.plot(predicted["time_s"], predicted["pressure_kPa"], label="polytropic gas")
-pressure.plot(with_heat["time_s"], with_heat["pressure_kPa"], label="heat exchanged in 2 s")
+# The frames are SI (gauge_pressure_Pa); the figure gives the pressure in kPa, as people read it.
+pressure.plot(predicted["time_s"], predicted["gauge_pressure_Pa"] / 1e3, label="polytropic gas")
+pressure.plot(with_heat["time_s"], with_heat["gauge_pressure_Pa"] / 1e3, label="heat exchanged in 2 s")
 pressure.set(xlabel="time [s]", ylabel="gauge pressure [kPa]")
 pressure.legend()
 plt.show()

@@ -33,8 +33,9 @@ extended = report.to_dict()["extended"]
 # The baseline predicts one length per pressure; the named cause opens the loop the data show.
 measured = pamkit.load_experiment(isotonic).to_frame()
 baseline = pamkit.simulate(isotonic)
-plt.plot(measured["pressure_kPa"], 1e3 * measured["length_m"], ".", label="measured")
-plt.plot(baseline["pressure_kPa"], 1e3 * baseline["length_m"], label="declared model (before calibration)")
+# The frames are SI (gauge_pressure_Pa, length_m); the figure is in kPa and mm.
+plt.plot(measured["gauge_pressure_Pa"] / 1e3, 1e3 * measured["length_m"], ".", label="measured")
+plt.plot(baseline["gauge_pressure_Pa"] / 1e3, 1e3 * baseline["length_m"], label="declared model (before calibration)")
 plt.xlabel("supplied gauge pressure [kPa]")
 plt.ylabel("length [mm]")
 plt.legend()

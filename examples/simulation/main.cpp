@@ -19,7 +19,7 @@ int main() {
 
   const pamkit::SimulationResult run = pamkit::Simulator().run(model, pamkit::thesis_protocol(0.045));
   const auto peak_force = std::max_element(run.force_N.begin(), run.force_N.end());
-  const auto peak_pressure = std::max_element(run.pressure_gauge_Pa.begin(), run.pressure_gauge_Pa.end());
+  const auto peak_pressure = std::max_element(run.gauge_pressure_Pa.begin(), run.gauge_pressure_Pa.end());
   std::printf("pamkit %s: %zu samples over %.0f s in %ld CVODES steps\n", PAMKIT_VERSION_STRING, run.time_s.size(),
               run.time_s.back(), static_cast<long>(run.statistics.steps));
   std::printf("sealed at %.4f m and %.0f kPa: peak force %.1f N, peak pressure %.1f kPa\n", start.length_m,
