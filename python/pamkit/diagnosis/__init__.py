@@ -11,6 +11,6 @@ functions below are the implementation and stay importable:
 """
 
 from pamkit.diagnosis.engine import MIN_GAIN, Diagnosis, diagnose
-from pamkit.diagnosis.report import Report, diagnose_report, plot, to_json, verdict
+from pamkit.diagnosis.report import plot, to_json, verdict
 
-__all__ = ["MIN_GAIN", "Diagnosis", "Report", "diagnose", "diagnose_report", "plot", "to_json", "verdict"]
+__all__ = ["MIN_GAIN", "Diagnosis", "diagnose", "plot", "to_json", "verdict"]
