@@ -69,9 +69,9 @@ def muscle_params(experiment: Experiment, bladder: BladderLaw | None = None) -> 
 
 
 def initial_length(experiment: Experiment, params: MuscleParams) -> float:
-    """Length at zero elongation: as given, else the free inflated length (sealed test) or the
-    deflated length (supplied test), as the experiment file's reference says; a supplied test mounted with a
-    preload starts where the deflated muscle carries it.
+    """Length at zero elongation: as given ([test] initial_length_m), else the free inflated length
+    (sealed test) or the deflated length (supplied test); a supplied test mounted with a preload
+    starts where the deflated muscle carries it.
 
     Raises:
         ExperimentError: when the build cannot carry the preload deflated (no membrane stiffness).
