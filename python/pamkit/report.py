@@ -95,7 +95,8 @@ class Report:
 
     @property
     def channels(self) -> list[str]:
-        """The measured channels the diagnosis compared (``force_N``, ``pressure_kPa``, ...)."""
+        """The measured channels the diagnosis compared, as the report's document names them (its
+        ``<channel>`` keys: the reference's "Diagnosis report" page)."""
         return list(self._data["baseline"]["rmse"]) if "rmse" in self._data.get("baseline", {}) else []
 
     def verdict(self) -> str:
@@ -164,9 +165,10 @@ class Report:
         """Every candidate effect, as ranked: one row each.
 
         Columns: ``effect``, ``score`` (the combined held-out gain), ``significant``, ``credible``
-        and the rest of the document's candidate entries flattened with dots (``gain.force_N``,
-        ``heldout_rmse.pressure_kPa``, ``params.time_constant_s``, ...). A campaign's rows are
-        each effect carried to each test (``test``, ``gain.<channel>``, ``carries``).
+        and the rest of the document's candidate entries flattened with dots (``gain.<channel>``
+        and ``heldout_rmse.<channel>`` for each measured channel, ``params.time_constant_s``, ...).
+        A campaign's rows are each effect carried to each test (``test``, ``params.<parameter>``,
+        ``gain``, ``carries``).
         """
         import pandas as pd
 

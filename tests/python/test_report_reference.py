@@ -1,7 +1,12 @@
 """docs/reference/report.md against the reports the diagnosis writes: every key of a time series',
 a static table's and a campaign's JSON document is one the page defines. The page's key columns
-are read as patterns (`<name>` stands for any key, `[]` for each entry of a list); a key no
-pattern matches fails the test with its path."""
+are read as patterns (`<channel>` stands for a measured channel, `<name>` for any other key, `[]`
+for each entry of a list); a key no pattern matches fails the test with its path.
+
+The page names a channel as the data file does (`pressure_kPa`); a report may name it so or by
+its SI name inside pamkit (`gauge_pressure_Pa`), and either matches `<channel>`, so that the page
+documents a channel's key once, whichever name the report's writer gives it. Nothing else does:
+a key where a channel goes that is no channel's name in either form is undocumented."""
 
 from __future__ import annotations
 
@@ -14,6 +19,8 @@ from pathlib import Path
 import pytest
 
 import pamkit
+from pamkit.diagnosis.table_fit import PREDICTED
+from pamkit.io.columns import file_name
 
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[2]))
 PAGE = SOURCE_DIR / "docs" / "reference" / "report.md"
@@ -39,8 +46,20 @@ def documented() -> dict[str, set[tuple[str, ...]]]:
     return sections
 
 
+# The measured channels, by the name a data file gives each and by its SI name inside pamkit: a
+# time series' (declared once, in C++), and what a static table's diagnosis predicts.
+CHANNEL = "<channel>"
+CHANNELS = {name for channel in pamkit.measured_channels() for name in (channel, file_name(channel))} | {
+    channel for channels in PREDICTED.values() for channel in channels
+}
+
+
 def matches(path: tuple[str, ...], pattern: tuple[str, ...]) -> bool:
-    return len(path) == len(pattern) and all(p == q or (q.startswith("<") and q != "[]") for p, q in zip(path, pattern))
+    """Whether a key's path is the pattern's: `<channel>` a measured channel's name, any other
+    `<name>` any key, anything else itself."""
+    return len(path) == len(pattern) and all(
+        p == q or (p in CHANNELS if q == CHANNEL else q.startswith("<")) for p, q in zip(path, pattern)
+    )
 
 
 def undocumented(value, patterns: set[tuple[str, ...]], path: tuple[str, ...] = ()) -> list[str]:
@@ -113,3 +132,16 @@ def test_an_undocumented_key_is_caught(pages):
     document = {"cause": "none", "decision": {"margins": {"significance": 0.1}, "new_key": 1}}
     assert undocumented(document, pages["series"]) == ["decision.new_key"]
     assert undocumented({"candidates": [{"effect": "leak", "novel": 2}]}, pages["series"]) == ["candidates[].novel"]
+
+
+def test_a_channel_is_documented_by_either_of_its_names(pages):
+    # The page documents `baseline.rmse.<channel>` once: the file's name of a channel and its SI
+    # name both match it, and a key that is neither is caught.
+    assert {"pressure_kPa", "gauge_pressure_Pa", "temperature_C", "temperature_K", "force_N"} <= CHANNELS
+    for pressure in ("pressure_kPa", "gauge_pressure_Pa"):
+        document = {"baseline": {"rmse": {"force_N": 1.0, pressure: 2.0}}, "gain": {pressure: 0.5}}
+        assert undocumented(document, pages["series"]) == []
+    document = {"baseline": {"rmse": {"pressure_psi": 2.0}}, "evidence": {"noise": {"stroke": 0.1}}}
+    assert undocumented(document, pages["series"]) == ["baseline.rmse.pressure_psi", "evidence.noise.stroke"]
+    # A table's channels are its own: the free-inflation table's diameter_m.
+    assert undocumented({"noise": {"diameter_m": 1e-4}}, pages["table"]) == []
