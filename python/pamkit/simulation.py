@@ -50,7 +50,7 @@ from pamkit._core import (
     static_forces,
 )
 from pamkit.effects import parse_effects
-from pamkit.io.columns import SERIES_COLUMNS
+from pamkit.io.columns import COLUMN_UNITS, SERIES_COLUMNS
 from pamkit.io.experiment import Experiment, load_experiment
 from pamkit.io.guards import ExperimentError
 
@@ -303,16 +303,6 @@ def simulate_table(
     }
 
 
-# The unit of each column simulate may return, from its name's suffix.
-COLUMN_UNITS = {
-    "time_s": "s",
-    "elongation_m": "m",
-    "length_m": "m",
-    "diameter_m": "m",
-    "force_N": "N",
-    "gauge_pressure_Pa": "Pa",
-    "temperature_K": "K",
-}
 STATISTICS_FIELDS = (
     "steps",
     "rhs_evaluations",

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pamkit._core import BladderLaw, FrictionParams, GasMode, GasParams, MuscleBuild
-from pamkit.io.columns import OPTIONAL_COLUMNS, file_name, si_name, value_to_si
+from pamkit.io.columns import COLUMN_UNITS, OPTIONAL_COLUMNS, file_name, si_name, value_to_si
 from pamkit.io.guards import check_keys, fail, named_file, number, read_toml
 from pamkit.io.schema import (
     CAMPAIGN_SECTIONS,
@@ -122,15 +122,13 @@ class Experiment:
         """
         import pandas as pd
 
-        from pamkit.simulation import COLUMN_UNITS
-
         frame = pd.DataFrame({name: np.asarray(column) for name, column in self.columns.items()})
         frame.attrs.update(
             experiment=str(self.path),
             data=str(self.data_path),
             kind=self.kind,
             gas=self.gas.name,
-            units={name: COLUMN_UNITS.get(name, "") for name in frame.columns},
+            units={name: COLUMN_UNITS[name] for name in frame.columns},
         )
         return frame
 
