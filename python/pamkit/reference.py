@@ -150,8 +150,9 @@ def _struct_keys(section: str, struct: Any, meanings: dict[str, str] | None = No
 # takes, and a key it takes that has no entry here fails the documentation's build and its test.
 TEST_KEY_MEANINGS = {
     "inflation_pressure_kPa": "gauge pressure after inflation, before the first stretch: a sealed muscle's "
-    "fill; a supplied test's pressure at its start",
-    "ambient_temperature_C": "ambient temperature, and the gas's at the start",
+    "fill; a supplied test's pressure at its start (in Python, SI: Experiment.inflation_gauge_pressure_Pa [Pa])",
+    "ambient_temperature_C": "ambient temperature, and the gas's at the start (in Python, SI: "
+    "Experiment.gas_params.ambient_temperature_K [K])",
     "data": "the data CSV, relative to this file",
     "kind": "what was measured: a time series, or a static table of settled rows",
     "gas": "a sealed muscle (a closed mass of air), or one on a pressure regulator whose measured pressure_kPa "
@@ -167,7 +168,7 @@ TEST_KEY_MEANINGS = {
     "initial_length_m)",
     "force_range_N": "[lowest, highest] force the load cell reads: it clips beyond, and so does the prediction",
     "pressure_range_kPa": "[lowest, highest] gauge pressure the transducer reads: rows at an end are censored "
-    "(predicted, never fitted or scored)",
+    "(predicted, never fitted or scored) (in Python, SI: Experiment.ranges['gauge_pressure_Pa'] [Pa])",
     "specimen": "in a tensile machine's export of several specimens: the one this test is (its Specimen Number)",
 }
 

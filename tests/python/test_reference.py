@@ -201,6 +201,31 @@ def test_each_required_column_is_required(tmp_path, kind):
         assert [c.si_name for c in columns] == ["time_s", "elongation_m", *channels]
 
 
+def test_the_python_names_the_reference_gives_hold_the_files_values_in_si(tmp_path):
+    # The reference names a [test] key as a file gives it and, where pamkit converts it, the SI
+    # attribute of Experiment that holds it: that attribute holds the file's value, converted
+    # (1 kPa = 1000 Pa; 0 °C = 273.15 K, by the units' definitions).
+    path = written(tmp_path, "sealed", {"pressure_range_kPa": [-10.0, 1000.0]})
+    test = tomllib.loads(path.read_text())["test"]
+    experiment = load_experiment(path)
+    expected = {
+        "inflation_pressure_kPa": test["inflation_pressure_kPa"] * 1e3,
+        "ambient_temperature_C": test["ambient_temperature_C"] + 273.15,
+        "pressure_range_kPa": (-10e3, 1000e3),
+    }
+    named = {}
+    for key in (k for k in experiment_keys() if k.section == "test"):
+        match = re.search(r"Experiment\.([\w.]+)(?:\['(\w+)'\])?", key.meaning)
+        if match:
+            value = experiment
+            for attribute in match.group(1).split("."):
+                value = getattr(value, attribute)
+            named[key.name] = value[match.group(2)] if match.group(2) else value
+    assert set(named) == set(expected)
+    for name, value in expected.items():
+        assert named[name] == pytest.approx(value, rel=1e-12), name
+
+
 @pytest.mark.parametrize("neo_hookean", [False, True])
 def test_the_parameters_files_keys_are_documented(tmp_path, neo_hookean):
     params = pamkit.MuscleParams()
