@@ -1,5 +1,5 @@
-"""The thesis's 15 bench tests diagnosed as campaigns, timed (issue #13, "Benchmarks": the
-thesis's 15 tests as one campaign ≤ 10 s on 2 cores).
+"""The thesis's 15 bench tests diagnosed as campaigns, timed against the target of the
+thesis's 15 tests as one campaign in ≤ 10 s on 2 cores (docs/benchmarks.md).
 
     PYTHONPATH=build/python python3 bench/bench_campaign.py [--threads 2] [--time-constant 3]
         [--seed 1] [--json OUT.json]
@@ -11,7 +11,7 @@ sealed at the test's inflation pressure and initial length, its programmed elong
 exchange with the wall hidden in every test (one muscle, one wall: --time-constant), and the
 bench's instruments with their noise (load cell, encoder, Arduino-logged transducer and TMP36).
 A campaign is of one muscle, so the 15 tests are two campaigns, diagnosed in-process as
-``pamkit diagnose A.toml B.toml ...`` diagnoses them (pamkit.diagnose.diagnose on the list).
+``pamkit diagnose A.toml B.toml ...`` diagnoses them (pamkit.diagnosis.diagnose on the list).
 
 Printed per campaign and in total: the cause named (and whether it is the hidden one); seconds,
 split into the tests' own diagnoses and the joint part (one muscle calibrated on all tests, the
@@ -40,7 +40,7 @@ import tomllib
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-# Imported before any clock starts, as pamkit.diagnose is: the sparse regression imports
+# Imported before any clock starts, as pamkit.diagnosis is: the sparse regression imports
 # scikit-learn on the first test it runs on (about 1 s here); the campaign's time is the
 # diagnosis's, not Python's imports.
 import sklearn.linear_model  # noqa: F401, E402
@@ -48,17 +48,17 @@ from independent import bench
 from independent.families import draws, record_sealed
 from independent.physics import Build, Motion, Physics, SealedMuscle
 
-import pamkit.diagnose.jacobian
-import pamkit.diagnose.joint
-from pamkit.diagnose import diagnose
-from pamkit.diagnose.model import Predictor
+import pamkit.diagnosis.jacobian
+import pamkit.diagnosis.joint
+from pamkit.diagnosis import diagnose
+from pamkit.diagnosis.model import Predictor
 
 THESIS = Path(__file__).resolve().parents[1] / "data" / "experiments" / "thesis"
 CAMPAIGNS = {"PAM 1": "pam1_*.toml", "PAM 2": "pam2_*.toml"}
 HIDDEN = "heat_transfer"
 # Natural convection in a 20-30 mm muscle (the catalog's heat_transfer notes, docs/table_3_6.md).
 TIME_CONSTANT_S = 3.0
-TARGET_S = 10.0  # issue #13: the thesis's 15 tests as one campaign on 2 cores
+TARGET_S = 10.0  # the thesis's 15 tests as one campaign on 2 cores (docs/benchmarks.md)
 
 
 def protocol(csv: Path) -> tuple[np.ndarray, Motion]:
@@ -142,8 +142,8 @@ def counting_simulations():
         return simulate(self, x, effects)
 
     # joint.py holds its own name for it: both are counted.
-    modules = (pamkit.diagnose.jacobian, pamkit.diagnose.joint)
-    sensitivity_jacobian = pamkit.diagnose.jacobian.sensitivity_jacobian
+    modules = (pamkit.diagnosis.jacobian, pamkit.diagnosis.joint)
+    sensitivity_jacobian = pamkit.diagnosis.jacobian.sensitivity_jacobian
 
     def counted_sensitivities(*args):
         with lock:

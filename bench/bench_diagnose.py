@@ -1,4 +1,4 @@
-"""Diagnosis over many synthetic datasets, each with one effect hidden in it: a confusion
+"""Diagnosis over many synthetic datasets, each with one effect hidden by `pamkit synth`: a confusion
 matrix of hidden effect against named cause, the detection and false-alarm rates, the median
 held-out gain, and the time per diagnosis with its breakdown.
 
@@ -21,10 +21,10 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.diagnose import diagnose
-from pamkit.diagnose.report import to_json
+from pamkit.diagnosis import diagnose
+from pamkit.diagnosis.report import to_json
 from pamkit.io.experiment import load_experiment
-from pamkit.simulate import simulate_experiment
+from pamkit.simulation import simulate_experiment
 from pamkit.synth.dataset import hideable_effects, synthesize
 from pamkit.synth.mismatch import draw_mismatch
 

@@ -1,4 +1,4 @@
-"""Diagnosis on families of tests made outside pamkit (issues #9 and #17, "Checks").
+"""Diagnosis on families of tests made outside pamkit (docs/validation.md, "Data pamkit did not make").
 
     PYTHONPATH=build/python python3 bench/bench_families.py [--per-family 3] [--families a,b]
         [--jobs 1] [--first-seed 1] [--json OUT.json] [--timeout 900]
@@ -12,7 +12,7 @@ files only, as a user would. Per family, the verdicts are counted as
 - wrong: any other catalog name (listed; "truth_only_as_partner" in the JSON counts those whose
   extended model pairs the wrong cause with the true effect);
 - none+structure: ``none`` while some channel's held-out baseline RMSE exceeds 1.5x its noise
-  (the factor of issue #17's rule 3; ``baseline.rmse`` against ``evidence.noise``);
+  (the factor of rule 5 of docs/diagnosis.md; ``baseline.rmse`` against ``evidence.noise``);
 - error: a non-zero exit or a timeout, with the last line of stderr.
 
 The median decision margin (the smallest of the report's ``decision.margins``) is printed, and the median held-out
@@ -77,7 +77,7 @@ def diagnose(toml: Path, timeout_s: float, threads: int) -> dict:
 
 
 def margin_of(report: dict):
-    """The decision's margin (issue #17, rule 2): the smallest of the report's
+    """The decision's margin (docs/reference/report.md, "Margin"): the smallest of the report's
     `decision.margins`, each a distance from its threshold (> 0: the decision holds)."""
     margins = report.get("decision", {}).get("margins", {}) if isinstance(report.get("decision"), dict) else {}
     values = [float(v) for v in margins.values() if isinstance(v, (int, float))]
@@ -86,7 +86,7 @@ def margin_of(report: dict):
 
 def structure_left(report: dict) -> dict:
     """Channels whose held-out baseline RMSE exceeds the report's stated factor of their noise
-    (issue #17, rule 3; `evidence.none_within_noise`): ratio."""
+    (rule 5 of docs/diagnosis.md; `evidence.none_within_noise`): ratio."""
     rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
     factor = report["evidence"]["none_within_noise"]
     return {c: rmse[c] / noise[c] for c in rmse if c in noise and noise[c] > 0 and rmse[c] > factor * noise[c]}

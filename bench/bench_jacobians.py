@@ -1,5 +1,5 @@
 """The diagnosis's Jacobians from forward sensitivities against SciPy's finite differences, side by
-side on the same synthetic datasets (issue #13): time per diagnosis, model runs, and whether the
+side on the same synthetic datasets: time per diagnosis, model runs, and whether the
 verdicts and gains agree.
 
     PYTHONPATH=build/python .venv/bin/python bench/bench_jacobians.py --datasets 39 [--json OUT]
@@ -24,12 +24,12 @@ from pathlib import Path
 
 import numpy as np
 
-import pamkit.diagnose.candidates as candidates
-import pamkit.diagnose.jacobian as jacobian
-import pamkit.diagnose.joint as joint
-from pamkit.diagnose import diagnose
-from pamkit.diagnose.model import Predictor
-from pamkit.diagnose.report import to_json
+import pamkit.diagnosis.candidates as candidates
+import pamkit.diagnosis.jacobian as jacobian
+import pamkit.diagnosis.joint as joint
+from pamkit.diagnosis import diagnose
+from pamkit.diagnosis.model import Predictor
+from pamkit.diagnosis.report import to_json
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import hideable_effects, synthesize
 

@@ -1,4 +1,4 @@
-"""A long test (issue #14): a 1 kHz bench test of 10^6 rows (about 17 minutes), synthesized,
+"""A long test: a 1 kHz bench test of 10^6 rows (about 17 minutes), synthesized,
 loaded and diagnosed, with the wall time, CPU time and peak memory of every phase.
 
     PYTHONPATH=build/python python bench/bench_long_test.py [--rows 1000000] [--threads 2]
@@ -11,7 +11,7 @@ message ends the phase before it), so the table is also a check that no phase ru
 silence. CPU time counts every thread and does not depend on the machine's other load; wall
 time does (the load average is printed). Peak memory is the process's high-water mark
 (`ru_maxrss`) at the end of each phase: it only grows, and a phase that raised it is the one
-that needed it. Target (issue #14): <= 60 s and <= 1 GB in all on 2 cores, or a decimation
+that needed it. Target: <= 60 s and <= 1 GB in all on 2 cores, or a decimation
 that the diagnosis announces.
 """
 
@@ -30,8 +30,8 @@ from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
-from pamkit.diagnose import diagnose, verdict
-from pamkit.diagnose.report import to_json
+from pamkit.diagnosis import diagnose, verdict
+from pamkit.diagnosis.report import to_json
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import Protocol, synthesize
 

@@ -62,7 +62,7 @@ except ImportError:  # convenience: the usual build directory
 from scipy_reference import ReferenceMuscle  # noqa: E402
 
 TARGETS = {
-    "speed_ratio": 60.0,  # issue #13: SciPy LSODA / pamkit at rtol 1e-8, stiff and non-stiff
+    "speed_ratio": 60.0,  # SciPy LSODA / pamkit at rtol 1e-8, stiff and non-stiff (docs/benchmarks.md)
     "max_rel_diff": 1e-6,
     "binding_overhead": 0.05,
     "rhs_bound": 2.0,

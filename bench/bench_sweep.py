@@ -60,7 +60,7 @@ except ImportError:  # convenience: the usual build directory
 
 import pamkit  # noqa: E402
 from pamkit.cluster import chunked, client  # noqa: E402
-from pamkit.simulate import muscle_params  # noqa: E402
+from pamkit.simulation import muscle_params  # noqa: E402
 from pamkit.sweep import (  # noqa: E402
     base_experiment,
     load_spec,

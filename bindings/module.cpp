@@ -5,6 +5,7 @@
 
 #include "pamkit/error.hpp"
 #include "pamkit/units.hpp"
+#include "pamkit/version.hpp"
 
 namespace py = pybind11;
 
@@ -20,6 +21,7 @@ void bind_io(py::module_& m);
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "pamkit's compiled core: the muscle model of the thesis and its CVODES simulator (SI units).";
+  m.attr("__version__") = PAMKIT_VERSION_STRING;  // CMakeLists.txt's project(VERSION), the one place it is kept
   // Bad parameters and inputs are ValueErrors; a failed integration is a RuntimeError.
   // pybind11 tries the most recently registered translator first, so the base class goes first.
   py::register_exception<pamkit::Error>(m, "Error", PyExc_RuntimeError);

@@ -5,7 +5,9 @@
 # enable_language(); the real find_package calls that follow stay REQUIRED.
 #
 # The libraries are checked by their headers (what their -dev packages install), which needs no
-# compiler, so that a machine missing the compiler too hears about everything at once.
+# compiler, so that a machine missing the compiler too hears about everything at once. Only what
+# the parts switched on need is checked (CMakeLists.txt's PAMKIT_BUILD_* options): Boost alone for
+# PAMKIT_BUILD_LIBRARY=OFF.
 
 include(CheckLanguage)
 set(pamkit_missing)
@@ -35,27 +37,33 @@ if(NOT PAMKIT_CHECK_BOOST_INCLUDE_DIR OR pamkit_check_boost_version LESS 107100)
     "Boost >= 1.71 (headers)   Debian: libboost-dev      Homebrew: boost                    conda: libboost-headers")
 endif()
 
-find_path(PAMKIT_CHECK_SUNDIALS_INCLUDE_DIR sundials/sundials_config.h HINTS ${pamkit_check_hints} PATH_SUFFIXES include)
-if(PAMKIT_CHECK_SUNDIALS_INCLUDE_DIR AND EXISTS ${PAMKIT_CHECK_SUNDIALS_INCLUDE_DIR}/cvodes/cvodes.h)
-  file(STRINGS ${PAMKIT_CHECK_SUNDIALS_INCLUDE_DIR}/sundials/sundials_config.h pamkit_check_sundials_major
-       REGEX "^#define SUNDIALS_VERSION_MAJOR [0-9]+")
-  string(REGEX REPLACE ".* ([0-9]+)$" "\\1" pamkit_check_sundials_major "${pamkit_check_sundials_major}")
-endif()
-if(NOT pamkit_check_sundials_major OR pamkit_check_sundials_major LESS 6 OR pamkit_check_sundials_major GREATER 7)
-  list(APPEND pamkit_missing
-    "SUNDIALS 6 or 7 (CVODES)  Debian: libsundials-dev   Homebrew: sundials                 conda: sundials")
-endif()
-
-find_path(PAMKIT_CHECK_TOMLPLUSPLUS_INCLUDE_DIR toml++/toml.h HINTS ${pamkit_check_hints} PATH_SUFFIXES include)
-if(NOT PAMKIT_CHECK_TOMLPLUSPLUS_INCLUDE_DIR)
-  list(APPEND pamkit_missing
-    "toml++ 3 (headers)        Debian: libtomlplusplus-dev Homebrew: tomlplusplus           conda: tomlplusplus")
+if(PAMKIT_BUILD_LIBRARY)
+  find_path(PAMKIT_CHECK_SUNDIALS_INCLUDE_DIR sundials/sundials_config.h HINTS ${pamkit_check_hints} PATH_SUFFIXES include)
+  if(PAMKIT_CHECK_SUNDIALS_INCLUDE_DIR AND EXISTS ${PAMKIT_CHECK_SUNDIALS_INCLUDE_DIR}/cvodes/cvodes.h)
+    file(STRINGS ${PAMKIT_CHECK_SUNDIALS_INCLUDE_DIR}/sundials/sundials_config.h pamkit_check_sundials_major
+         REGEX "^#define SUNDIALS_VERSION_MAJOR [0-9]+")
+    string(REGEX REPLACE ".* ([0-9]+)$" "\\1" pamkit_check_sundials_major "${pamkit_check_sundials_major}")
+  endif()
+  if(NOT pamkit_check_sundials_major OR pamkit_check_sundials_major LESS 6 OR pamkit_check_sundials_major GREATER 7)
+    list(APPEND pamkit_missing
+      "SUNDIALS 6 or 7 (CVODES)  Debian: libsundials-dev   Homebrew: sundials                 conda: sundials")
+  endif()
 endif()
 
-find_path(PAMKIT_CHECK_SERIALPORT_INCLUDE_DIR libserialport.h HINTS ${pamkit_check_hints} PATH_SUFFIXES include)
-if(NOT PAMKIT_CHECK_SERIALPORT_INCLUDE_DIR)
-  list(APPEND pamkit_missing
-    "libserialport (headers)   Debian: libserialport-dev Homebrew: libserialport            conda: libserialport")
+if(PAMKIT_BUILD_PYTHON OR PAMKIT_BUILD_TESTS)  # they compile the muscle-parameters file's reader
+  find_path(PAMKIT_CHECK_TOMLPLUSPLUS_INCLUDE_DIR toml++/toml.h HINTS ${pamkit_check_hints} PATH_SUFFIXES include)
+  if(NOT PAMKIT_CHECK_TOMLPLUSPLUS_INCLUDE_DIR)
+    list(APPEND pamkit_missing
+      "toml++ 3 (headers)        Debian: libtomlplusplus-dev Homebrew: tomlplusplus           conda: tomlplusplus")
+  endif()
+endif()
+
+if(PAMKIT_BUILD_LOGGER)
+  find_path(PAMKIT_CHECK_SERIALPORT_INCLUDE_DIR libserialport.h HINTS ${pamkit_check_hints} PATH_SUFFIXES include)
+  if(NOT PAMKIT_CHECK_SERIALPORT_INCLUDE_DIR)
+    list(APPEND pamkit_missing
+      "libserialport (headers)   Debian: libserialport-dev Homebrew: libserialport            conda: libserialport")
+  endif()
 endif()
 
 # The extension compiles against the headers of the Python that builds it (pip's, or the one

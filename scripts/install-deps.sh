@@ -18,6 +18,7 @@ apt_packages=(
   libtomlplusplus-dev  # the muscle-parameters file (src/io/params_file.cpp), headers only
   gcc-avr avr-libc arduino-core-avr avrdude simavr libsimavr-dev clang libclang-rt-14-dev arduino-builder  # logger firmware, upload, tests
   clang-format  # scripts/format.sh and lint.sh (Debian 12's 14)
+  doxygen  # scripts/docs.sh: the C++ API from the headers
 )
 
 sudo_cmd=()
@@ -34,8 +35,9 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-# What the project asks of PyPI, read from pyproject.toml (build-system, runtime, test and dev
-# extras) so that the lower bounds live in one place; constraints.txt fixes the versions.
+# What the project asks of PyPI, read from pyproject.toml (build-system, runtime and every extra:
+# test, scale, dev, docs, wheel) so that the lower bounds live in one place; constraints.txt fixes
+# the versions.
 if $latest; then venv=.venv-latest; else venv=.venv; fi
 if [ ! -x "$venv/bin/python" ]; then
   echo "creating the Python venv $venv"

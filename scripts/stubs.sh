@@ -37,3 +37,5 @@ PYTHONPATH="$build/python" "$python" -m pybind11_stubgen --exit-code --output-di
 mkdir -p "$output"
 rm -f "$output"/*.pyi  # a submodule removed from the bindings loses its stub
 cp "$work"/pamkit/_core/*.pyi "$output"/
+# The version is kept in CMakeLists.txt alone: the stub gives its type, not its value.
+sed -i -E "s/^__version__: str = .*/__version__: str/" "$output"/__init__.pyi

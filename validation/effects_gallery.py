@@ -1,6 +1,6 @@
 """Writes the effect gallery of docs/effects.md: one PNG per catalog effect in docs/effects/,
 the baseline model against the model with the effect at a clearly visible strength from its
-realistic range, drawn to show what gives the effect away.
+realistic range, drawn to show what gives the effect away (its signature in the catalog).
 The effects are the catalog's; one without a figure of its own (`FIGURES`) is drawn by
 `generic`, at its defaults, on the channels it declares.
 

@@ -40,10 +40,10 @@ from pathlib import Path
 import numpy as np
 
 from pamkit._core import BraidGeometry, GasProcess
-from pamkit.diagnose.cycles import cycle_starts
+from pamkit.diagnosis.cycles import cycle_starts
 from pamkit.effects import catalog
 from pamkit.io.experiment import Experiment, load_experiment
-from pamkit.simulate import initial_length, muscle_params, simulate_experiment
+from pamkit.simulation import initial_length, muscle_params, simulate_experiment
 from pamkit.sweep import thesis_directory
 
 TABLE_3_6_SOURCE = (
@@ -81,7 +81,7 @@ TABLE_3_6 = (
     Table36Row(276, 95, 0.8),
 )
 
-#: The row the time constants are calibrated on (the issue's choice).
+#: The row the time constants are calibrated on (the middle stretch of the lower pressure).
 CALIBRATION_ROW = TABLE_3_6[1]
 
 # --- The TMP36's time constant, from its datasheet ------------------------------------------

@@ -3,7 +3,8 @@
 // from its encoder. The muscle comes from a muscle-parameters file (pamkit/io/params_file.hpp):
 // the one beside this example (PAM 2 of the thesis), or the file given as the first argument,
 // e.g. one that `pamkit diagnose EXP.toml --params-out CALIBRATED.toml` calibrated. Built
-// against the installed package (find_package(pamkit)).
+// against the installed package's header-only targets (find_package(pamkit COMPONENTS params)):
+// no compiled pamkit, no SUNDIALS.
 
 #include <cmath>
 #include <cstdio>

@@ -1,21 +1,19 @@
 """pamkit: simulate and diagnose pneumatic artificial muscles used as passive air springs.
 
-The compiled core (`pamkit._core`) holds the thesis's muscle model and its CVODES simulator;
-this package adds experiment files, the command line and plots. SI units throughout, each in the
-name (``gauge_pressure_Pa``, ``temperature_K``); files and plots are in the units a person reads
-(a CSV's ``pressure_kPa`` and ``temperature_C``), converted by the readers and writers.
+The compiled core (``pamkit._core``) holds the muscle model and its CVODES simulator; this
+package adds experiment files, the diagnosis, the command line and plots. SI units throughout,
+each in the name (``gauge_pressure_Pa``, ``temperature_K``); files and plots are in the units a
+person reads (a CSV's ``pressure_kPa`` and ``temperature_C``), converted by the readers and
+writers.
 
-A notebook's three calls:
+A notebook's three calls::
 
     experiment = pamkit.load_experiment("experiment.toml")  # the muscle, the test, the measured columns
     df = pamkit.simulate(experiment)  # DataFrame: time_s, elongation_m, force_N, gauge_pressure_Pa, temperature_K
-    report = pamkit.diagnose("experiment.toml")  # .verdict(), .to_json(path), .plot(path)
+    report = pamkit.diagnose(experiment)  # a Report: .verdict(), .candidates, .causes, .to_json(), .plot()
 
-``pamkit.simulate`` and ``pamkit.diagnose`` are modules too (``from pamkit.simulate import
-simulate_experiment``); calling one calls its main function (pamkit._callable says why).
+The implementations live in :mod:`pamkit.simulation` and the :mod:`pamkit.diagnosis` package.
 """
-
-import importlib
 
 from pamkit._core import (
     BiaxialStress,
@@ -58,6 +56,7 @@ from pamkit._core import (
     SolverStatistics,
     State,
     StiffnessEstimate,
+    __version__,
     braid_cylinder_length,
     braid_diameter,
     braid_fiber_length,
@@ -83,24 +82,84 @@ from pamkit._core import (
     thesis_protocol,
     write_muscle_params,
 )
-from pamkit.io.experiment import Experiment, load_experiment
+from pamkit.io.experiment import Experiment, load_experiment, load_tests
 from pamkit.io.guards import ExperimentError
+from pamkit.io.writers import write_experiment
+from pamkit.report import Report, diagnose
+from pamkit.simulation import simulate
 
-__version__ = "0.1.0"
-
-# Imported on first use: pamkit.diagnose takes seconds to import (SciPy, scikit-learn), and the
-# command line and `import pamkit` should not wait for it.
-_LAZY_MODULES = ("simulate", "diagnose")
-
-
-def __getattr__(name: str):
-    if name in _LAZY_MODULES:
-        return importlib.import_module(f"pamkit.{name}")
-    raise AttributeError(f"module 'pamkit' has no attribute {name!r}")
-
-
-__all__ = [name for name in dir() if not name.startswith("_") and name != "importlib"] + list(_LAZY_MODULES)
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY_MODULES))
+__all__ = [
+    "BiaxialStress",
+    "BladderLaw",
+    "BraidGeometry",
+    "Effect",
+    "EffectCatalog",
+    "EffectParameter",
+    "EffectStage",
+    "ElongationTrajectory",
+    "Error",
+    "Experiment",
+    "ExperimentError",
+    "FiberTensions",
+    "FitScale",
+    "FreeInflation",
+    "FrictionParams",
+    "GasMode",
+    "GasParams",
+    "GasProcess",
+    "InitialState",
+    "IntegrationMethod",
+    "InvalidInput",
+    "InvalidParameter",
+    "IsotonicLengths",
+    "IsotonicMotion",
+    "IsotonicMotionConfig",
+    "Measurement",
+    "ModelExtensions",
+    "MuscleBuild",
+    "MuscleForces",
+    "MuscleModel",
+    "MuscleOutputs",
+    "MuscleParams",
+    "MuscleParamsFile",
+    "MuscleShape",
+    "Report",
+    "Resolution",
+    "SimulationResult",
+    "Simulator",
+    "SimulatorConfig",
+    "SolverError",
+    "SolverStatistics",
+    "State",
+    "StiffnessEstimate",
+    "__version__",
+    "braid_cylinder_length",
+    "braid_diameter",
+    "braid_fiber_length",
+    "braid_tension",
+    "deflated_braid_angle_deg",
+    "diagnose",
+    "estimate_stiffness",
+    "fiber_revolutions_for_braid_angle",
+    "free_inflation",
+    "inflated_and_sealed",
+    "isotonic_lengths",
+    "isotonic_motion",
+    "load_experiment",
+    "load_tests",
+    "measured_channels",
+    "muscle_forces",
+    "newtonian_fiber_tensions",
+    "polytropic_pressure",
+    "polytropic_temperature",
+    "pressure_branches",
+    "read_muscle_params",
+    "read_muscle_params_file",
+    "simulate",
+    "simulate_measurement",
+    "simulate_supplied_measurement",
+    "static_forces",
+    "thesis_protocol",
+    "write_experiment",
+    "write_muscle_params",
+]

@@ -10,7 +10,7 @@ import traceback
 import warnings
 
 import pamkit.commands
-from pamkit._core import Error, SolverError
+from pamkit._core import Error, SolverError, __version__
 
 # Exit statuses, as `pamkit --help` lists them.
 EXIT_OK = 0
@@ -26,6 +26,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="pamkit", description="Simulate and test pneumatic artificial muscles.", epilog=EPILOG
     )
+    parser.add_argument("--version", action="version", version=f"pamkit {__version__}")
     subparsers = parser.add_subparsers(dest="command", required=True)
     for module in sorted(pkgutil.iter_modules(pamkit.commands.__path__), key=lambda m: m.name):
         importlib.import_module(f"pamkit.commands.{module.name}").register(subparsers)

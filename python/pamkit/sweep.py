@@ -55,13 +55,14 @@ from pamkit._core import (
     fiber_revolutions_for_braid_angle,
 )
 from pamkit.cluster import check_output, run_all, work_key
-from pamkit.diagnose.cycles import cycle_starts
+from pamkit.diagnosis.cycles import cycle_starts
 from pamkit.exo import exo_study
 from pamkit.io.columns import value_to_si
-from pamkit.io.experiment import TEST_CONDITIONS, Experiment, load_experiment, test_condition
+from pamkit.io.experiment import Experiment, load_experiment, test_condition
 from pamkit.io.guards import check_keys, fail, named_file, number, read_toml
+from pamkit.io.schema import TEST_CONDITIONS
 from pamkit.io.sections import BRAID_ANGLE_KEY, calibratable_fields
-from pamkit.simulate import simulate_experiment
+from pamkit.simulation import simulate_experiment
 
 #: The base experiment when a spec names none: PAM 2 of the thesis at 207 kPa, stretched to 80 %.
 DEFAULT_EXPERIMENT = "pam2_207kPa_80pct.toml"

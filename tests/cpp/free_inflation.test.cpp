@@ -81,7 +81,7 @@ TEST_CASE("Table 3.4 with the measured 0.9 mm bladder: the muscle barely inflate
   // 51.5 N while 35 and 48 kPa pull them together with 44.6 and 61.1 N: at 35 kPa the model
   // stays at its deflated length, at 48 kPa it contracts by 1.8 %, while table 3.4 shows the
   // muscle contracted by 17-19 %. Table C.4's 0.254 mm is the thickness the thesis's model was
-  // run with (DESIGN.md).
+  // run with (docs/model.md).
   const FreeInflation lowest = inflate(kTable34[0], 0.9e-3);
   CHECK_FALSE(lowest.contracted);
   CHECK(lowest.length_m == kTable34[0].deflated_length_m);

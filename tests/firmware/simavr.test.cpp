@@ -4,7 +4,7 @@
 //   - every frame the firmware sent arrives, except exactly the ones the harness damaged;
 //   - each frame's counts are those of the voltages served to its conversions: exactly as
 //     simavr converts (V * 1023 / Vref, truncated), and within 1 count of a real ATmega
-//     (V * 1024 / Vref, truncated) - the criterion;
+//     (V * 1024 / Vref, truncated);
 //   - each injected fault is detected and counted by kind.
 // PAMKIT_SIMAVR_HARNESS and the PAMKIT_FIRMWARE_* paths come from tests/firmware/CMakeLists.txt.
 

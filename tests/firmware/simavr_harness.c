@@ -29,6 +29,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <termios.h>
 #include <time.h>
 #include <unistd.h>
@@ -288,6 +289,31 @@ static int port_open(const harness* h) {
   return !(p.revents & POLLHUP);
 }
 
+/* Bytes sent that the host has not read yet: the input queue of the pty's slave side, which the
+ * harness opens for the look (a second open of the slave changes nothing the host sees); -1 if it
+ * cannot look. */
+static int unread_bytes(const harness* h) {
+  const int fd = open(ptsname(h->master), O_RDWR | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0) return -1;
+  int count = 0;
+  if (ioctl(fd, FIONREAD, &count)) count = -1;
+  close(fd);
+  return count;
+}
+
+/* Waits until the host has read everything sent, however slowly a loaded machine runs it, so that
+ * pulling the cable loses only the frame it cuts. The kernel moves written bytes to the slave's
+ * queue asynchronously: the queue must stay empty for a while (20 looks 10 ms apart) before the
+ * host is taken to have read it all. Gives up after timeout_s (a host that stopped reading). */
+static void wait_until_read(const harness* h, double timeout_s) {
+  const double until = wall_now() + timeout_s;
+  int empty_looks = 0;
+  while (empty_looks < 20 && wall_now() < until) {
+    empty_looks = unread_bytes(h) == 0 ? empty_looks + 1 : 0;
+    wall_sleep(0.01);
+  }
+}
+
 static int wait_for_open(const harness* h, double timeout_s) {
   const double until = wall_now() + timeout_s;
   while (!port_open(h)) {
@@ -415,7 +441,7 @@ int main(int argc, char** argv) {
       board_reset(&h, 1);
       h.pending = -1;
     } else if (h.pending == FAULT_UNPLUG) {
-      wall_sleep(0.3); /* the host reads what was sent before the cable came out */
+      wait_until_read(&h, 60); /* the host reads what was sent before the cable comes out */
       unplug(&h);
       ++unplugged;
       wall_sleep(0.5);

@@ -1,7 +1,8 @@
 """`pamkit log` SIGKILLed at random moments while a fake 1 kHz board floods its port (fake_board.py):
 no line is ever cut, and the file holds every frame the reader took from the port but those of
 its last read (docs/logger.md, "What a kill or a power cut can lose"). ctest runs 30 kills
-(PAMKIT_LOGGER_KILLS); bench/bench_logger_kill.py runs hundreds and prints the distribution."""
+(PAMKIT_LOGGER_KILLS), alone (label timing: the flood that puts kills inside the window needs the
+machine's cores); bench/bench_logger_kill.py runs hundreds and prints the distribution."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """The bench's instruments, re-stated from the thesis (section 3.2, appendices B and G.2) and the
-ATmega2560 datasheet rather than imported, and the writer of an experiment (TOML + CSV in the
-format of DESIGN.md, "A measured dataset").
+ATmega2560 datasheet rather than imported, and the writer of an experiment (TOML + CSV, the
+format of docs/reference/experiment-file.rst).
 
 - Load cell (Instron 4482, 100 kN cell far below its range): white noise of 1 N RMS, recorded
   in steps of 0.2 N (a 20-bit conversion of ±100 kN).

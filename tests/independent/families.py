@@ -1,4 +1,4 @@
-"""Families of bench tests that hide a cause, made by the independent model (issues #9 and #17).
+"""Families of bench tests that hide a cause, made by the independent model (docs/validation.md).
 
 Each family is a function ``make(seed, folder) -> Dataset``: it writes ``test.toml`` and
 ``test.csv`` into `folder` and returns what was hidden and the verdict expected. ``expected`` is

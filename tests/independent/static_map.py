@@ -137,7 +137,7 @@ def write_isotonic(
     """Writes an isotonic test (TOML + CSV): `sweeps` lists of settled pressures [kPa] (each up,
     then down), the length measured with `noise_m` of noise in 0.01 mm steps. The transducer
     reads the pressure plus `pressure_offset_kPa`, and nothing below 0 kPa (its display clips, as
-    the rig's in the issue "Isotonic tests" does); the TOML then declares that range. The TOML
+    a lab rig's may); the TOML then declares that range. The TOML
     leaves the braid angle, the membrane and the load unknown."""
     rng = np.random.default_rng(seed)
     folder.mkdir(parents=True, exist_ok=True)

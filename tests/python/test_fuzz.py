@@ -1,4 +1,4 @@
-"""No traceback, ever (issue #12): random bytes, random TOML, random CSV and mutated valid files
+"""No traceback, ever: random bytes, random TOML, random CSV and mutated valid files
 thrown at load_experiment and simulate fail, when they fail, with an ExperimentError (or another
 ValueError) whose message is one line naming the file.
 
@@ -20,8 +20,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import pamkit
-from pamkit.io.experiment import TEST_KEYS
 from pamkit.io.guards import ExperimentError, ExperimentWarning
+from pamkit.io.schema import TEST_KEYS
 
 MAX_EXAMPLES = 150
 DEADLINE_MS = 5000

@@ -47,7 +47,7 @@ def test_a_plain_file_reads_in_less_memory_than_its_size(tmp_path, monkeypatch):
         tracemalloc.stop()
     assert columns["time_s"].size == count
     numbers = count * len(NAMES) * 8
-    # 12.2 MB: about the file's size, where the issue allows three times it.
+    # 12.2 MB: about the file's size, where the target allows three times it (docs/benchmarks.md).
     assert peak < numbers + 16 * block, f"peak {peak / 1e6:.1f} MB reading a {size / 1e6:.1f} MB file"
 
 

@@ -1,4 +1,4 @@
-"""An Instron Bluehill export of several specimens (issue #12): every specimen's block is found and
+"""An Instron Bluehill export of several specimens: every specimen's block is found and
 labelled by its "Specimen Number"; one is read when named, and none is guessed."""
 
 import csv

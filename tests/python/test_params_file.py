@@ -7,7 +7,7 @@ import pytest
 import pamkit
 from pamkit.cli import main
 from pamkit.io.experiment import load_experiment
-from pamkit.simulate import muscle_params
+from pamkit.simulation import muscle_params
 
 
 def read_force(path):

@@ -1,4 +1,4 @@
-"""A real rig's instruments and mount (issue "Commercial muscles on real rigs"): a preloaded mount
+"""A real rig's instruments and mount (docs/experiments.md, "The rig and its instruments"): a preloaded mount
 sets the muscle's length, a load cell and a transducer read only their range, and rows whose
 supplied pressure the transducer clipped are censored."""
 
@@ -8,7 +8,7 @@ import pytest
 from pamkit import static_forces
 from pamkit.io.experiment import load_experiment
 from pamkit.io.guards import ExperimentError, ExperimentWarning
-from pamkit.simulate import initial_length, muscle_params, simulate_experiment
+from pamkit.simulation import initial_length, muscle_params, simulate_experiment
 
 MUSCLE = """[muscle]
 length_m = 0.25
@@ -143,7 +143,7 @@ def _write_isotonic_series(tmp_path, times, pressures, extra="load_mass_kg = 10.
 
 
 def test_a_hanging_mass_lags_a_slow_sweep_in_proportion_to_its_rate_and_a_fast_step_with_inertia(tmp_path):
-    # Issue "Isotonic tests", item 2's dynamic option: [test] load_mass_kg integrates the load's
+    # The dynamic option: [test] load_mass_kg integrates the load's
     # motion (isotonic_motion). On a slow sweep the load follows the quasi-static path behind it
     # by the friction's lag, friction / stiffness; the thesis's tanh(Kf v) with Kf = 1 s/m is
     # linear at these speeds, so the lag halves when the sweep takes twice as long (the limit

@@ -1,7 +1,7 @@
 """Units at the edges: a file is read in the units a person writes (kPa gauge, °C) and converted
 once, by the reader, to SI; every API below it (Experiment, the simulation, the model) is SI,
 the room's temperature is one fact (gas_params.ambient_temperature_K), the gas mode an enum,
-and a sealed test starts from one builder (pamkit.simulate.sealed_start).
+and a sealed test starts from one builder (pamkit.simulation.sealed_start).
 
 The factors are SI's definitions: 1 kPa = 1000 Pa, T [K] = T [°C] + 273.15."""
 
@@ -15,7 +15,7 @@ from pamkit.io.experiment import load_experiment
 from pamkit.io.guards import ExperimentError
 from pamkit.io.series import read_series
 from pamkit.io.writers import write_series
-from pamkit.simulate import muscle_params, sealed_start, simulate_experiment
+from pamkit.simulation import muscle_params, sealed_start, simulate_experiment
 from pamkit.sweep import with_parameters
 from pamkit.synth.dataset import synthesize
 

@@ -1,4 +1,4 @@
-"""A sealed test simulated in blocks (issue #12): `pamkit simulate` writes a long test's prediction
+"""A sealed test simulated in blocks: `pamkit simulate` writes a long test's prediction
 as it is integrated, and what it writes is what the whole prediction gives, byte for byte."""
 
 import numpy as np
@@ -10,7 +10,7 @@ from pamkit.io.columns import SERIES_COLUMNS
 from pamkit.io.experiment import load_experiment
 from pamkit.io.guards import ExperimentError
 from pamkit.io.writers import write_series
-from pamkit.simulate import simulate_experiment, simulate_streamed, why_not_streamed
+from pamkit.simulation import simulate_experiment, simulate_streamed, why_not_streamed
 
 EFFECTS = EffectCatalog.builtin()
 

@@ -1,10 +1,10 @@
 #pragma once
 /// \file
-/// The effect catalog: the model's physical extensions, what real muscles add (a braid that goes
-/// slack, pressurise/vent hysteresis) and the instruments' errors, one header each in `builtin/`,
-/// each with physical parameters, their realistic and plausible ranges, and what gives it away in
-/// the data. `EffectCatalog::builtin()` below is the one place that names them: a new effect is
-/// its header, an include and a line here.
+/// The built-in effect catalog: the candidate causes a diagnosis tries (model extensions, what real
+/// muscles add, the instruments' errors), one header each in `builtin/`, each with physical
+/// parameters, their realistic and plausible ranges, and what gives it away in the data.
+/// `EffectCatalog::builtin()` below is the one place that names them: a new effect is its header,
+/// an include and a line here.
 
 #include "pamkit/effects/builtin/bladder_viscoelasticity.hpp"
 #include "pamkit/effects/builtin/braid_slack.hpp"

@@ -2,8 +2,9 @@
 /// \file
 /// A muscle's parameters as a TOML file, under the C++ field names: what `pamkit diagnose
 /// --params-out` writes after calibrating the model, and what a controller or `pamkit simulate
-/// --params` reads back. Part of pamkit::pamkit (compiled in src/io/params_file.cpp; the TOML
-/// library, toml++, stays out of this header).
+/// --params` reads back. Header-only: CMake target pamkit::params (`find_package(pamkit COMPONENTS
+/// params)`), which needs toml++ 3's headers and nothing of pamkit but pamkit::muscle, so a
+/// controller reads a fitted muscle without the compiled library, SUNDIALS or Python.
 ///
 /// The file has one section per part of MuscleParams, each key a field of that part's
 /// `for_each_field` list, in SI units:
@@ -46,10 +47,10 @@ struct MuscleParamsFile {
 ///         missing or unknown section or key, or a value of the wrong type;
 ///         InvalidParameter (with the same location) for a value outside its field's range, or
 ///         naming the file for fields that do not fit together (MuscleParams::validate).
-MuscleParamsFile read_muscle_params_file(const std::string& path);
+inline MuscleParamsFile read_muscle_params_file(const std::string& path);
 
 /// The muscle of a muscle-parameters file (read_muscle_params_file(path).params).
-MuscleParams read_muscle_params(const std::string& path);
+inline MuscleParams read_muscle_params(const std::string& path);
 
 /// Writes `params` (validated first) and, if given, `initial` to `path`, every key with its unit
 /// and meaning as a comment, numbers to the digits that read back to the same doubles.
@@ -57,8 +58,10 @@ MuscleParams read_muscle_params(const std::string& path);
 /// \param rig_effects written as [rig] effects when not empty: effect specs ("NAME:key=value,...").
 /// \throws InvalidParameter for parameters out of range (nothing is written);
 ///         InvalidInput if the file cannot be written.
-void write_muscle_params(const std::string& path, const MuscleParams& params,
-                         const std::optional<InitialState>& initial = std::nullopt, const std::string& comment = "",
-                         const std::vector<std::string>& rig_effects = {});
+inline void write_muscle_params(const std::string& path, const MuscleParams& params,
+                                const std::optional<InitialState>& initial = std::nullopt,
+                                const std::string& comment = "", const std::vector<std::string>& rig_effects = {});
 
 }  // namespace pamkit
+
+#include "pamkit/io/params_file.hxx"

@@ -16,7 +16,7 @@
 /// garbage and damaged frames, gaps, the board restarting, and the cable being pulled and
 /// plugged back in (it reopens the same path, e.g. a /dev/serial/by-id/ name).
 ///
-/// CSV columns (DESIGN.md units): time_s, pressure_kPa (gauge; only with a pressure calibration),
+/// CSV columns (units in their names): time_s, pressure_kPa (gauge; only with a pressure calibration),
 /// temperature_C, pressure_V, temperature_V, boot, seq. time_s is the device clock, starting at 0
 /// with the first frame written; after a board restart it continues from the host clock.
 

@@ -2345,6 +2345,11 @@ class MuscleParamsFile:
         """
         the muscle: [build], [bladder], [friction], [gas], [extensions]
         """
+    @property
+    def rig_effects(self) -> list[str]:
+        """
+        [rig] effects: what a diagnosis found in the test's fixture and instruments, as effect specs ("NAME:key=value,..."); empty if the file has none
+        """
 def braid_cylinder_length(fiber_length_m: typing.SupportsFloat | typing.SupportsIndex, braid_angle_rad: typing.SupportsFloat | typing.SupportsIndex) -> float:
     """
     Eq. 3.1.10: Lm = Lym cos(theta) [m].
@@ -2493,8 +2498,9 @@ def with_ankle_range(cycle: GaitCycle, range_deg: typing.SupportsFloat | typing.
     """
     The cycle with its ankle angle's excursion scaled to range_deg about the middle of its range.
     """
-def write_muscle_params(path: os.PathLike | str | bytes, params: MuscleParams, initial: InitialState | None = None, comment: str = '') -> None:
+def write_muscle_params(path: os.PathLike | str | bytes, params: MuscleParams, initial: InitialState | None = None, comment: str = '', rig_effects: collections.abc.Sequence[str] = []) -> None:
     """
-    Writes params (validated first) and, if given, the initial state as a muscle-parameters TOML file under the C++ field names, each key with its unit and meaning; `comment` goes at the top as TOML comments. read_muscle_params gives back the same doubles.
+    Writes params (validated first) and, if given, the initial state as a muscle-parameters TOML file under the C++ field names, each key with its unit and meaning; `comment` goes at the top as TOML comments; `rig_effects` (effect specs of the test's fixture and instruments) as [rig] effects. read_muscle_params gives back the same doubles.
     """
 WINTER_SUBJECT_MASS_KG: float = 56.7
+__version__: str

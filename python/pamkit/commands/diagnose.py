@@ -45,8 +45,8 @@ def register(subparsers) -> None:
 
 
 def run(arguments: argparse.Namespace) -> int:
-    from pamkit.diagnose import diagnose, verdict
-    from pamkit.diagnose.report import write, write_params
+    from pamkit.diagnosis import diagnose, verdict
+    from pamkit.diagnosis.report import write, write_params
 
     def progress(message: str) -> None:
         if not arguments.quiet:
@@ -75,7 +75,7 @@ def run(arguments: argparse.Namespace) -> int:
 
 def run_batch(arguments: argparse.Namespace, progress) -> int:
     from pamkit.cluster import check_output, client, require
-    from pamkit.diagnose.batch import batch_files, diagnose_batch
+    from pamkit.diagnosis.batch import batch_files, diagnose_batch
 
     if arguments.experiment:
         raise ValueError("--batch DIR diagnoses the folder's files: name no experiment besides it")

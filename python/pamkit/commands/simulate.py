@@ -44,7 +44,7 @@ def register(subparsers) -> None:
 
 def run(arguments: argparse.Namespace) -> int:
     from pamkit.effects import parse_effects
-    from pamkit.simulate import simulate_experiment, simulate_streamed, why_not_streamed
+    from pamkit.simulation import simulate_experiment, simulate_streamed, why_not_streamed
 
     effects = parse_effects(arguments.effect)
     experiment = load_experiment(arguments.experiment)

@@ -100,3 +100,14 @@ def to_file(columns: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
 
 # The optional columns as a file names them.
 FILE_OPTIONAL_COLUMNS = tuple(file_name(name) for name in OPTIONAL_COLUMNS)
+# The unit of each column inside pamkit, SI, as its name's suffix says: a time series' and a
+# static table's (length_m, diameter_m), as an Experiment holds them and pamkit.simulate returns them.
+COLUMN_UNITS = {
+    "time_s": "s",
+    "elongation_m": "m",
+    "length_m": "m",
+    "diameter_m": "m",
+    "force_N": "N",
+    "gauge_pressure_Pa": "Pa",
+    "temperature_K": "K",
+}

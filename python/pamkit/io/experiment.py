@@ -1,8 +1,8 @@
 """Experiment files: a TOML describing the muscle and the test, naming a CSV of what was
-measured (or planned). This module holds their schema (the sections, the [test] keys, the kinds
-of experiment), the :class:`Experiment` they are read into, and the loading: the TOML through
-the guards (:mod:`pamkit.io.guards`), the muscle's sections into structs
-(:mod:`pamkit.io.sections`), the data by kind (:mod:`pamkit.io.series`).
+measured (or planned). This module holds the :class:`Experiment` they are read into and the
+loading, by their schema (:mod:`pamkit.io.schema`: the sections, the [test] keys, the kinds of
+experiment): the TOML through the guards (:mod:`pamkit.io.guards`), the muscle's sections into
+structs (:mod:`pamkit.io.sections`), the data by kind (:mod:`pamkit.io.series`).
 
 A file is written for people (the inflation pressure in kPa, the room in degC, columns in kPa
 and degC); an :class:`Experiment` is SI throughout, converted once, here and in the CSV readers.
@@ -17,57 +17,33 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from pamkit._core import BladderLaw, FrictionParams, GasMode, GasParams, MuscleBuild
-from pamkit.io.columns import OPTIONAL_COLUMNS, file_name, si_name, value_to_si
+from pamkit.io.columns import COLUMN_UNITS, OPTIONAL_COLUMNS, file_name, si_name, value_to_si
 from pamkit.io.guards import check_keys, fail, named_file, number, read_toml
+from pamkit.io.schema import (
+    CAMPAIGN_SECTIONS,
+    EXPERIMENT_SECTIONS,
+    KINDS,
+    RANGE_KEYS,
+    SERIES_KIND,
+    TABLE_COLUMNS,
+    TABLE_DEFAULTS,
+    TEST_CONDITIONS,
+    TEST_KEYS,
+)
 from pamkit.io.sections import read_bladder, read_build, read_calibrate, read_friction, read_gas, read_uncertain
 from pamkit.io.series import read_isotonic, read_series, read_table
+from pamkit.io.writers import write_experiment
 
 # [test] gas: how the muscle's gas is held, by the name a file gives it.
 GAS_MODES = dict(GasMode.__members__)
 
-# Experiment kinds: a time series, or a static table of settled rows whose columns (as a file
-# names them) are all required.
-SERIES_KIND = "series"
-TABLE_COLUMNS = {
-    "isometric_map": ("length_m", "pressure_kPa", "force_N"),
-    "free_inflation": ("pressure_kPa", "length_m", "diameter_m"),
-    "isotonic": ("pressure_kPa", "length_m"),  # or contraction_m from the deflated length; time_s optional
-}
-KINDS = (SERIES_KIND, *TABLE_COLUMNS)
-
-# [test] keys, their meaning, and whether a time series needs them (a static table does not).
-TEST_KEYS = {
-    "inflation_pressure_kPa": (True, "gauge pressure after inflation, before the first stretch [kPa]"),
-    "ambient_temperature_C": (True, "ambient temperature, the gas's initial temperature [°C]"),
-    "data": (True, "CSV file, relative to the TOML file"),
-    "kind": (False, f"{' or '.join(repr(k) for k in KINDS)} (default {SERIES_KIND!r})"),
-    "gas": (False, '"sealed" (default) or "supplied"'),
-    "initial_length_m": (False, "muscle length at zero elongation [m]"),
-    "load_N": (False, "isotonic: the constant load the muscle carries [N] (or unknown in [calibrate])"),
-    "load_mass_kg": (False, "isotonic time series: the hanging load's mass [kg]; the length follows its motion"),
-    "description": (False, "free text: where the test comes from"),
-    "zero": (False, "a run with no air (CSV, relative to the TOML): its means zero the load cell and transducer"),
-    "preload_N": (False, "supplied: the force the deflated muscle was mounted with; sets its length [N]"),
-    "force_range_N": (False, "[lowest, highest] force the load cell reads; it clips beyond [N]"),
-    "pressure_range_kPa": (False, "[lowest, highest] gauge pressure the transducer reads; it clips beyond [kPa]"),
-    "specimen": (False, "a tensile machine's export of several specimens: the one this test is (its Specimen Number)"),
-}
-# [test] ranges of the instruments, by the channel they read (its file column's unit).
-RANGE_KEYS = {"force_N": "force_range_N", "pressure_kPa": "pressure_range_kPa"}
-# [test] conditions: the range a file may give each in, its unit, and the column of that unit.
-TEST_CONDITIONS = {
-    "inflation_pressure_kPa": (0.0, 2000.0, "kPa (gauge)", "pressure_kPa"),
-    "ambient_temperature_C": (-50.0, 150.0, "°C", "temperature_C"),
-}
-TABLE_DEFAULTS = {"inflation_pressure_kPa": 0.0, "ambient_temperature_C": 20.0}
-# The sections of an experiment file.
-EXPERIMENT_SECTIONS = ("muscle", "bladder", "friction", "gas", "calibrate", "uncertain", "test")
-# The sections a campaign file shares with its tests, besides [campaign] itself.
-CAMPAIGN_SECTIONS = ("campaign", "muscle", "bladder", "friction", "gas", "calibrate", "uncertain")
+if TYPE_CHECKING:
+    import pandas as pd
 
 
 @dataclass
@@ -134,6 +110,69 @@ class Experiment:
             return np.zeros(rows, dtype=bool)
         lowest, highest = self.reading_range("gauge_pressure_Pa")
         return (self.columns["gauge_pressure_Pa"] <= lowest) | (self.columns["gauge_pressure_Pa"] >= highest)
+
+    def to_frame(self) -> pd.DataFrame:
+        """The measured columns as a pandas DataFrame, one row per sample (or table row).
+
+        Returns
+        -------
+        pandas.DataFrame
+            The columns as read, SI (units in their names: time_s [s], elongation_m [m], force_N
+            [N], gauge_pressure_Pa [Pa], temperature_K [K], length_m [m], ...), with ``df.attrs``
+            "experiment" and "data" (the files' paths), "kind", "gas" (its name) and "units"
+            (column -> unit), as :func:`pamkit.simulate` gives its prediction.
+        """
+        import pandas as pd
+
+        frame = pd.DataFrame({name: np.asarray(column) for name, column in self.columns.items()})
+        frame.attrs.update(
+            experiment=str(self.path),
+            data=str(self.data_path),
+            kind=self.kind,
+            gas=self.gas.name,
+            units={name: COLUMN_UNITS[name] for name in frame.columns},
+        )
+        return frame
+
+    @classmethod
+    def from_frame(
+        cls, frame: pd.DataFrame, path: str | Path, sections: Mapping[str, Mapping[str, object]]
+    ) -> Experiment:
+        """An experiment from a pandas DataFrame of what was measured and the TOML sections that
+        describe the muscle and the test: written as files (the TOML at `path`, its CSV beside it)
+        and read back, so that it is checked exactly as a file is, and reports and calibrated
+        parameters name a file that can be read again.
+
+        Parameters
+        ----------
+        frame : pandas.DataFrame
+            The measured columns, SI, units in their names (the columns of the experiment's kind:
+            time_s and elongation_m, and any of force_N, gauge_pressure_Pa, temperature_K for a
+            time series; a table's own), as :meth:`to_frame` gives them. Written to the CSV in
+            the file's units (pressure_kPa, temperature_C) with 10 significant digits.
+        path : str or Path
+            The experiment TOML to write; the CSV gets its stem and the suffix ``.csv``.
+        sections : mapping
+            Section name -> {key: value}: ``"muscle"``, ``"test"`` and any of ``"bladder"``,
+            ``"friction"``, ``"gas"``, ``"calibrate"``, as in a file (``pamkit template KIND``
+            writes one with every key explained). ``[test] data`` is set to the CSV.
+
+        Returns
+        -------
+        Experiment
+            The experiment as :func:`pamkit.load_experiment` reads the files.
+
+        Raises
+        ------
+        ExperimentError
+            (a ValueError) naming the file, section, key, row or column of the first problem.
+        ValueError
+            Naming a column given under its file's name (``pressure_kPa``, not
+            ``gauge_pressure_Pa``), or a section or key no experiment file has.
+        """
+        columns = {str(name): frame[name].to_numpy(dtype=float) for name in frame.columns}
+        write_experiment(path, sections, columns)
+        return load_experiment(path)
 
 
 def test_condition(path: Path, key: str, value) -> float:

@@ -15,8 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.io.columns import file_name, value_from_si
-from pamkit.io.experiment import EXPERIMENT_SECTIONS, TEST_KEYS
+from pamkit.io.columns import file_name, file_unit, si_name, value_from_si
+from pamkit.io.schema import EXPERIMENT_SECTIONS, TEST_KEYS
 
 #: Rows formatted at a time by write_series.
 WRITE_BLOCK_ROWS = 1 << 16
@@ -91,9 +91,16 @@ def write_experiment(
         The CSV's path (the one ``[test] data`` names).
 
     Raises:
-        ValueError: naming the section and key of a value TOML cannot hold or the reader would refuse.
+        ValueError: naming the section and key of a value TOML cannot hold or the reader would refuse;
+            naming a column given under its file's name (pressure_kPa) rather than its SI one.
     """
     path = Path(path)
+    for name in columns or {}:
+        if si_name(name) != name:
+            raise ValueError(
+                f"{path}: column {name} is its name in a file; columns are given in SI: "
+                f"{si_name(name)} (written to the file as {name}, in {file_unit(si_name(name))})"
+            )
     sections = {name: dict(table) for name, table in sections.items()}
     for name in sections:
         if name not in EXPERIMENT_SECTIONS:

@@ -58,7 +58,7 @@ from pamkit.effects import catalog as builtin_catalog
 from pamkit.io.columns import LOGGER_CHANNELS, OPTIONAL_COLUMNS, value_to_si
 from pamkit.io.experiment import experiment_of
 from pamkit.io.writers import write_experiment
-from pamkit.simulate import muscle_params, sealed_start
+from pamkit.simulation import muscle_params, sealed_start
 from pamkit.synth.instruments import (
     ArduinoLogger,
     ArduinoLoggerSettings,

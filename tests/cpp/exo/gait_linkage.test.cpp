@@ -131,7 +131,7 @@ TEST_CASE("chapter 4 kinematics: appendix G.3's parameters and the text's figure
     const double emax = *std::max_element(s.elongation_m.begin(), s.elongation_m.end());
     CHECK_REL(emax, hand_length(p, 100.0 + stretch_deg) - hand_length(p, 100.0), 1e-12);
     // What the code reaches against the text (figure 4.5): 0.336-0.375 m vs 0.25-0.30 m, and
-    // 3.82 cm vs 4.25 cm: not within 10 % (DESIGN.md's warning).
+    // 3.82 cm vs 4.25 cm: not within 10 % (docs/exo.md: not all of the text's figures follow from G.3).
     CHECK(*lmin > 0.25 * 1.30);
     CHECK(emax < 0.0425 * 0.91);
     // Figure 4.7, 86 kg: ~1000 N near 4 cm. The ideal force peaks at row 35 (-89.7 N m for

@@ -8,7 +8,7 @@ import pytest
 
 from pamkit import cli
 from pamkit.cluster import read_rows
-from pamkit.diagnose.batch import batch_files, diagnose_file
+from pamkit.diagnosis.batch import batch_files, diagnose_file
 from pamkit.synth.dataset import synthesize
 
 

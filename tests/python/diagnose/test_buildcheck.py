@@ -1,12 +1,12 @@
 """A named cause must keep its gain when the build is as uncertain as the experiment declares
-(python/pamkit/diagnose/buildcheck.py): refitted with the uncertain build fields free within their
+(python/pamkit/diagnosis/buildcheck.py): refitted with the uncertain build fields free within their
 tolerance, beside its rivals, the same rules must name it again. Decisions are judged over several
 seeds; `[uncertain]` is checked as any section of the file is."""
 
 import pytest
 
-from pamkit.diagnose import diagnose
-from pamkit.diagnose.report import to_json
+from pamkit.diagnosis import diagnose
+from pamkit.diagnosis.report import to_json
 from pamkit.io.experiment import load_experiment
 from pamkit.io.guards import ExperimentError
 from pamkit.synth.dataset import synthesize

@@ -1,4 +1,4 @@
-"""Campaigns of time series (issue "Diagnosis that holds outside its own world", item 2): several
+"""Campaigns of time series (docs/experiments.md, "Campaigns"): several
 bench tests of one muscle from the independent model (tests/independent, never importing
 pamkit), each held out in turn; and the campaign TOML that names them."""
 
@@ -17,10 +17,10 @@ from independent.families import independent_leak, isometric_sweep, sealed_test 
 from independent.physics import Physics  # noqa: E402
 
 from pamkit import deflated_braid_angle_deg, read_muscle_params_file  # noqa: E402
-from pamkit.diagnose import diagnose, verdict  # noqa: E402
-from pamkit.diagnose.campaign import campaign_of_series  # noqa: E402
-from pamkit.diagnose.joint import DISAGREES, calibrate_jointly  # noqa: E402
-from pamkit.diagnose.report import write, write_params  # noqa: E402
+from pamkit.diagnosis import diagnose, verdict  # noqa: E402
+from pamkit.diagnosis.campaign import campaign_of_series  # noqa: E402
+from pamkit.diagnosis.joint import DISAGREES, calibrate_jointly  # noqa: E402
+from pamkit.diagnosis.report import write, write_params  # noqa: E402
 from pamkit.effects import catalog  # noqa: E402
 from pamkit.io.experiment import load_tests  # noqa: E402
 from pamkit.io.guards import ExperimentError  # noqa: E402
@@ -206,8 +206,8 @@ def test_the_one_step_leave_one_test_out_agrees_with_refitting_without_the_test(
 def test_a_cause_whose_shared_parameter_ends_at_a_bound_is_not_named(unknown_braid, monkeypatch):
     """The rule's wiring: the heat campaign, with the shared time constant reported at its search
     bound (as a fit that strains would end), comes back unexplained and says why."""
-    import pamkit.diagnose.campaign as campaign
-    from pamkit.diagnose.decide import Finding
+    import pamkit.diagnosis.campaign as campaign
+    from pamkit.diagnosis.decide import Finding
 
     c, _ = unknown_braid
     real = campaign.findings

@@ -1,4 +1,4 @@
-"""The decision rules of python/pamkit/diagnose/decide.py on scores made by hand: what each rule
+"""The decision rules of python/pamkit/diagnosis/decide.py on scores made by hand: what each rule
 does with two candidates, without fitting anything."""
 
 from types import SimpleNamespace
@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from pamkit._core import EffectStage, GasMode
-from pamkit.diagnose.calibrate import Fit
-from pamkit.diagnose.decide import NONE_WITHIN_NOISE, STANDS_OUT, Judgement, Score, decide, noise_ratios, uncredited
+from pamkit.diagnosis.calibrate import Fit
+from pamkit.diagnosis.decide import NONE_WITHIN_NOISE, STANDS_OUT, Judgement, Score, decide, noise_ratios, uncredited
 
 SAMPLES = 1000
 rng = np.random.default_rng(7)

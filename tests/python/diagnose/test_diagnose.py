@@ -1,4 +1,4 @@
-"""Diagnosis as a user meets it: the report's keys (DESIGN.md), the command line, the Python
+"""Diagnosis as a user meets it: the report's keys (docs/reference/report.md), the command line, the Python
 API, and bad input named by file, row and column."""
 
 import json
@@ -6,9 +6,9 @@ import json
 import numpy as np
 import pytest
 
-from pamkit.diagnose import diagnose, to_json, verdict
-from pamkit.diagnose.cycles import find_cycles, split_cycles
-from pamkit.diagnose.evidence import ljung_box_p, noise_scale
+from pamkit.diagnosis import diagnose, to_json, verdict
+from pamkit.diagnosis.cycles import find_cycles, split_cycles
+from pamkit.diagnosis.evidence import ljung_box_p, noise_scale
 from pamkit.io.guards import ExperimentError
 from pamkit.synth.dataset import synthesize
 
@@ -137,7 +137,7 @@ def test_ljung_box_tells_noise_from_structure():
 def test_programmed_motion_recovers_ramps_holds_and_corners():
     # A bench program: rest, 4 cycles of 20 mm at 5 mm/s with a 3 s hold at the top, sampled at
     # 10 Hz with corners between samples, read through 1 um of encoder noise.
-    from pamkit.diagnose.motion import programmed_motion
+    from pamkit.diagnosis.motion import programmed_motion
 
     knots_t, knots_e, t = [0.0, 1.03], [0.0, 0.0], 1.03
     for _ in range(4):
@@ -158,7 +158,7 @@ def test_programmed_motion_recovers_ramps_holds_and_corners():
 
 
 def test_programmed_motion_keeps_a_curve_as_measured():
-    from pamkit.diagnose.motion import programmed_motion
+    from pamkit.diagnosis.motion import programmed_motion
 
     time = np.linspace(0, 60, 1200)
     curve = 0.02 * (1 - np.cos(2 * np.pi * time / 15))  # not ramps and holds: nothing to fit
@@ -170,8 +170,8 @@ def test_programmed_motion_keeps_a_curve_as_measured():
 @pytest.mark.parametrize(
     "change, message",
     [
-        # Issue "Diagnosis that holds outside its own world", item 8: each of these once came back
-        # as a confident cause with its parameters at their bounds.
+        # Data inconsistent with the declared test: each is an error that says what is inconsistent,
+        # never a confident cause with its parameters at their bounds.
         (
             lambda toml, csv: (toml.replace("inflation_pressure_kPa = ", "inflation_pressure_kPa = 1999 #"), csv),
             "inflation_pressure_kPa = 1999, but the data start at",

@@ -1,4 +1,4 @@
-"""Discovery of what the catalog lacks (pamkit.diagnose.discover): a known term hidden in a
+"""Discovery of what the catalog lacks (pamkit.diagnosis.discover): a known term hidden in a
 residual is found with its coefficient and held-out gain, noise alone is not a discovery, a
 pressurise/vent hysteresis is found in an isometric sweep, and a discovered term saved as a
 user effect adds the same correction in the next simulation."""
@@ -10,8 +10,8 @@ import pytest
 from scipy.signal import savgol_coeffs
 
 import pamkit
-from pamkit.diagnose.discover import DiscoveryError, discover, feature_library
-from pamkit.diagnose.discovered import discovered_effect, load_effect, save_effect
+from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
+from pamkit.diagnosis.discovered import discovered_effect, load_effect, save_effect
 from pamkit.effects import catalog as builtin_catalog
 
 SIGMA_N = 2.0  # white load-cell noise of the stretch record [N]

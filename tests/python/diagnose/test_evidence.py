@@ -4,7 +4,7 @@ definition, computed directly lag by lag."""
 import numpy as np
 import pytest
 
-from pamkit.diagnose.evidence import lagged_correlation_peak, lagged_correlations
+from pamkit.diagnosis.evidence import lagged_correlation_peak, lagged_correlations
 
 
 def direct_lagged_correlations(residual, signal, max_lag):

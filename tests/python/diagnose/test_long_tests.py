@@ -1,4 +1,4 @@
-"""Long tests (issue #14): a test over MAX_DIAGNOSED_ROWS is diagnosed on every k-th row and
+"""Long tests: a test over MAX_DIAGNOSED_ROWS is diagnosed on every k-th row and
 says so (a one-line warning on stderr, the report's warnings), and every phase of diagnosis
 reports its start on stderr."""
 
@@ -9,7 +9,7 @@ import warnings
 
 import pytest
 
-import pamkit.diagnose.engine as engine
+import pamkit.diagnosis.engine as engine
 from pamkit.cli import main
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import synthesize

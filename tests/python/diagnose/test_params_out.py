@@ -5,13 +5,13 @@ the calibrated build with every named cause, the test rig's effects apart — an
 import numpy as np
 import pytest
 
-import pamkit.diagnose
+import pamkit.diagnosis
 from pamkit._core import inflated_and_sealed, read_muscle_params_file
 from pamkit.cli import main
 from pamkit.io.experiment import load_experiment
 from pamkit.io.series import read_series
 from pamkit.io.writers import write_series
-from pamkit.simulate import muscle_params, simulate_experiment
+from pamkit.simulation import muscle_params, simulate_experiment
 from pamkit.units import PASCAL_PER_KILOPASCAL
 
 DECLARED_kPa = 207.0
@@ -23,7 +23,7 @@ TRUE_FRICTION_SCALE = 3.0
 def diagnosed(tmp_path_factory):
     """A sealed test of PAM 2 inflated 3 % above what its file declares, with friction three
     times the thesis's, diagnosed by the command line with --params-out (the diagnosis it
-    computed kept by a spy on pamkit.diagnose.diagnose, which the command calls)."""
+    computed kept by a spy on pamkit.diagnosis.diagnose, which the command calls)."""
     folder = tmp_path_factory.mktemp("params_out")
     # Six triangle cycles of 4 cm at 10 mm/s, sampled at 10 Hz: straight ramps whose turning
     # points are samples, so the programmed motion the diagnosis simulates is the samples' own.
@@ -61,10 +61,10 @@ def diagnosed(tmp_path_factory):
         computed.append(real_diagnose(*arguments, **options))
         return computed[-1]
 
-    real_diagnose = pamkit.diagnose.diagnose
+    real_diagnose = pamkit.diagnosis.diagnose
     params_path = folder / "calibrated.toml"
     with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(pamkit.diagnose, "diagnose", spy)
+        patch.setattr(pamkit.diagnosis, "diagnose", spy)
         assert main(["diagnose", str(experiment_path), "--params-out", str(params_path), "--quiet"]) == 0
     return experiment_path, params_path, computed[0]
 
@@ -130,11 +130,11 @@ def test_a_tables_calibrated_muscle_is_written_and_simulates_as_the_diagnosis_fi
         prestretch=1.06,
     )
     computed = []
-    real_diagnose = pamkit.diagnose.diagnose
+    real_diagnose = pamkit.diagnosis.diagnose
     params_path = tmp_path / "calibrated.toml"
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(
-            pamkit.diagnose, "diagnose", lambda *a, **k: computed.append(real_diagnose(*a, **k)) or computed[-1]
+            pamkit.diagnosis, "diagnose", lambda *a, **k: computed.append(real_diagnose(*a, **k)) or computed[-1]
         )
         assert main(["diagnose", str(experiment_path), "--params-out", str(params_path), "--quiet"]) == 0
     d = computed[0]
@@ -217,7 +217,10 @@ def test_a_named_cause_is_in_the_file_and_simulate_reproduces_the_extended_predi
         # heat exchange); the cause the file carries, or its absence, moves them by the noise and more.
         noise = d.problem.sigma[channel]
         assert np.max(np.abs(simulated[channel] - d.extended.predicted[channel])) < 0.1 * noise
-    assert max(
-        np.max(np.abs(simulated[c] - d.baseline.predicted[c])) / d.problem.sigma[c]
-        for c in ("force_N", "gauge_pressure_Pa")
-    ) > 1.0
+    assert (
+        max(
+            np.max(np.abs(simulated[c] - d.baseline.predicted[c])) / d.problem.sigma[c]
+            for c in ("force_N", "gauge_pressure_Pa")
+        )
+        > 1.0
+    )

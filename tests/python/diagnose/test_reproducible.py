@@ -10,8 +10,8 @@ import sys
 import numpy as np
 import pytest
 
-from pamkit.diagnose.engine import data_seed
-from pamkit.diagnose.kinds import build_problem
+from pamkit.diagnosis.engine import data_seed
+from pamkit.diagnosis.kinds import build_problem
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import synthesize
 

@@ -1,5 +1,5 @@
-"""Static tables (DESIGN.md, "Experiment kinds"): an isometric map is diagnosed on held-out
-lengths. Checked on the published Festo maps (issue "Commercial muscles on real rigs": held-out
+"""Static tables (docs/experiments.md): an isometric map is diagnosed on held-out
+lengths. Checked on the published Festo maps (the targets: held-out
 force RMSE over lengths left out <= 25 N for the DMSP-10-250 and <= 60 N for the DMSP-20-300, no
 force below -2 N, a braid angle of 15-35 degrees) and on maps written by an independent model
 (tests/independent/static_map.py) whose truth is known."""
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from conftest import SOURCE_DIR
 
-from pamkit.diagnose import diagnose, to_json, verdict
+from pamkit.diagnosis import diagnose, to_json, verdict
 from pamkit.io.guards import ExperimentError
 
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
@@ -70,7 +70,7 @@ def test_a_map_of_taut_rows_only_is_explained_within_its_noise(tmp_path):
 
 
 def test_a_nonlinear_load_cell_is_no_catalog_effect_and_is_discovered(tmp_path):
-    # Issue "Diagnosis that holds outside its own world": a cause the catalog lacks (a load cell
+    # A cause the catalog lacks (a load cell
     # reading F + 2e-4 F^2, +12 % at 600 N) must come back unexplained, with a discovered term
     # that gains on held-out lengths, never a wrong name. The map is laid out length by length,
     # pressurising only: pressure_hysteresis, which shows only between branches, cannot act.
@@ -175,7 +175,7 @@ def test_simulate_writes_a_tables_prediction(tmp_path):
 
 
 def test_an_isotonic_campaign_recovers_its_load_braid_and_hysteresis(tmp_path):
-    # Issue "Isotonic tests": load within 5 %, braid angle within 1 degree, the hysteresis named,
+    # Load within 5 %, braid angle within 1 degree, the hysteresis named,
     # held-out RMSE at the noise (0.1 mm written, estimated from the repeated sweeps).
     up = list(np.arange(100.0, 601.0, 50.0))
     sweep = up + up[::-1][1:]  # settled steps up to 6 bar and back, three times
@@ -193,7 +193,7 @@ def test_an_isotonic_campaign_recovers_its_load_braid_and_hysteresis(tmp_path):
 
 
 def test_an_isotonic_campaign_under_a_clipped_offset_transducer_recovers_its_loads(tmp_path):
-    # Issue "Isotonic tests", the check: a campaign at three loads (one weighed, 30 N; 80 and 150 N
+    # A campaign at three loads (one weighed, 30 N; 80 and 150 N
     # unknown, each its own), hysteresis 0.1 and a transducer that reads 20 kPa low and nothing
     # below 0 (the rows it clips are censored, not fitted): loads within 5 %, braid angle within
     # 1 degree, the hysteresis named, held-out RMSE at the noise (1.5x, as above).

@@ -18,7 +18,7 @@ import pytest
 import pamkit
 from pamkit.effects import catalog, describe, parse_effects
 from pamkit.io.experiment import load_experiment
-from pamkit.simulate import simulate_experiment
+from pamkit.simulation import simulate_experiment
 from pamkit.synth.dataset import synthesize
 
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[3]))

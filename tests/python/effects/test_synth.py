@@ -24,7 +24,7 @@ from pamkit.effects import catalog
 from pamkit.io.columns import LOGGER_CHANNELS
 from pamkit.io.experiment import load_experiment
 from pamkit.io.series import read_series
-from pamkit.simulate import simulate_experiment
+from pamkit.simulation import simulate_experiment
 from pamkit.synth.dataset import configure_effect, hideable_effects, synthesize
 from pamkit.synth.instruments import (
     TMP36,

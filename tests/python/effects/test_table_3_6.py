@@ -19,14 +19,14 @@ import numpy as np
 import pytest
 
 import pamkit
-from pamkit.simulate import initial_length, muscle_params
+from pamkit.simulation import initial_length, muscle_params
 
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[3]))
 sys.path.insert(0, str(SOURCE_DIR / "validation"))  # a study outside the wheel, not an installed module
 
 import table_3_6 as thesis  # noqa: E402 (needs the path above)
 
-TOLERANCE_C = 0.3  # the acceptance band, about half the 10-bit ADC's 0.49 °C step on a TMP36
+TOLERANCE_C = 0.3  # the acceptance band: about half the 10-bit ADC's 0.49 °C step on a TMP36
 
 
 @pytest.fixture(scope="module")

@@ -1,7 +1,7 @@
 """A user's own effects, written in Python: subclasses of pamkit.Effect added to a catalog with
 catalog.add(name, factory), parsed from `--effect` text, and acting at each stage of a simulated
 measurement (the model's parameters, the muscle's motion, the instruments' readings) through
-pamkit.simulate_measurement and pamkit.simulate.simulate_experiment.
+pamkit.simulate_measurement and pamkit.simulation.simulate_experiment.
 
 Each Python effect re-implements something the catalog has in C++, so that its result can be
 checked bit for bit against the built-in one."""
@@ -16,7 +16,7 @@ from pamkit.effects import catalog as builtin_catalog
 from pamkit.effects import parse_effects
 from pamkit.io.experiment import load_experiment
 from pamkit.io.guards import ExperimentError
-from pamkit.simulate import simulate_experiment
+from pamkit.simulation import simulate_experiment
 
 CHANNELS = ("time_s", "elongation_m", "force_N", "gauge_pressure_Pa", "temperature_K")
 

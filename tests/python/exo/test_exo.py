@@ -41,7 +41,7 @@ def test_python_callable_spring_matches_the_cpp_spring(cycle):
 def test_chapter4_side_by_side():
     c4 = exo.chapter4_comparison()
     appendix, text, thesis = c4["appendix_g3"], c4["text_geometry"], c4["thesis"]
-    # DESIGN.md: with G.3's own parameters the spring spans roughly 34-38 cm.
+    # With G.3's own parameters the spring spans roughly 34-38 cm (docs/exo.md), not the text's 25-30 cm.
     assert appendix["spring_length_m"][0] == pytest.approx(0.3363, abs=5e-5)
     assert appendix["spring_length_m"][1] == pytest.approx(0.3745, abs=5e-5)
     # The ideal spring (figure 4.7, 86 kg) peaks within 5 % of 1000 N but short of 4 cm, so

@@ -1,12 +1,12 @@
-"""Families of tests that hide a cause in measured data made outside pamkit (issues #9 and #17,
-"Checks"). tests/independent writes each dataset with its own model of a braided muscle and
+"""Families of tests that hide a cause in measured data made outside pamkit (docs/validation.md,
+"Data pamkit did not make"). tests/independent writes each dataset with its own model of a braided muscle and
 of the bench's instruments (it never imports pamkit); `pamkit diagnose` sees the TOML and CSV
 only. One seed per family here; bench/bench_families.py sweeps more.
 
-The assertions marked ACCEPTANCE are the issues' rules: a catalog name only when it is the
+The assertions marked ACCEPTANCE are the diagnosis's promises: a catalog name only when it is the
 truth ("never a wrong name"), `none` only when every channel's held-out RMSE is within the
-report's stated factor of its noise (#17 rule 3; the factor and its source are in
-python/pamkit/diagnose/decide.py), and the hidden effect named when it is in the catalog.
+report's stated factor of its noise (rule 5 of docs/diagnosis.md; the factor and its source are in
+python/pamkit/diagnosis/decide.py), and the hidden effect named when it is in the catalog.
 """
 
 import json
@@ -31,7 +31,7 @@ SEED = 1
 # The independent wall keeps its thickness (gas volume pi/4 (D - delta)^2 L_a, as in eq. 3.1.3)
 # and its braid's kinematics differ from pamkit's by about a 2.5 % wind; between them lies a force
 # and a pressure residual proportional to the gauge pressure. Before a named cause had to survive
-# the braid's wind (python/pamkit/diagnose/buildcheck.py), instrument and gas effects absorbed
+# the braid's wind (python/pamkit/diagnosis/buildcheck.py), instrument and gas effects absorbed
 # part of it: a 3.8 % crosshead scale was named dead_volume and a 0.77-sample fixture slack
 # sensor_offset (now both unexplained).
 WALL = "the independent wall keeps its thickness where pamkit's conserves its volume (see above)"
@@ -41,7 +41,8 @@ KNOWN_MISSES = {
     "pressure offset, which is rejected as implausible (about 20 kPa): unexplained",
     "load_cell_tare": "the independent model's base physics leaves force and pressure 4-6x the noise (its "
     f"null does too: {WALL}); load_cell cannot change the pressure, so it may not be named while the pressure "
-    "is off (#17 rule 1), and its offset runs to the fit's bound absorbing the force's shape: unexplained. "
+    "is off (rule 3 of docs/diagnosis.md), and its offset runs to the fit's bound absorbing the force's shape: "
+    "unexplained. "
     "On pamkit's own world it is found (tests/python/hidden/test_hidden_effects.py)",
     "load_cell_nonlinear": "as load_cell_tare: the pressure left 4x its noise by the base physics forbids an "
     "instrument effect on the force alone; unexplained",
@@ -72,21 +73,21 @@ def test_diagnosis_of_a_family(family, tmp_path):
         # slack where its force would turn negative): a right name, though not a hidden one.
         return
     if dataset.expected == HONEST:
-        # ACCEPTANCE (#9, #17 "never a wrong name"): the cause is outside the catalog or below
+        # ACCEPTANCE ("never a wrong name"): the cause is outside the catalog or below
         # what the sampling resolves, so no catalog effect may be named.
         assert cause in ("none", "unexplained"), f"named {cause} for {dataset.truth}: {verdict}"
     else:
-        # ACCEPTANCE (#17 "never a wrong name"): the truth, or an honest verdict.
+        # ACCEPTANCE ("never a wrong name"): the truth, or an honest verdict.
         assert cause in (dataset.expected, "none", "unexplained"), (
             f"hidden {dataset.expected} {dataset.truth}, named {cause}: {verdict}"
         )
         if family in KNOWN_MISSES and cause != dataset.expected:
             pytest.xfail(KNOWN_MISSES[family])
-        # ACCEPTANCE (#9 "effects hidden in [an independent implementation]", #17 "the truth when
-        # it is in the catalog"): the hidden catalog effect is the cause.
+        # ACCEPTANCE ("the truth when it is in the catalog", on data an independent implementation
+        # made): the hidden catalog effect is the cause.
         assert cause == dataset.expected, f"hidden {dataset.expected} {dataset.truth}, named {cause}: {verdict}"
     if cause == "none":
-        # ACCEPTANCE (#17 rule 3): `none` only when nothing but noise is left.
+        # ACCEPTANCE (rule 5 of docs/diagnosis.md): `none` only when nothing but noise is left.
         rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
         factor = report["evidence"]["none_within_noise"]
         left = {c: round(rmse[c] / noise[c], 2) for c in rmse if rmse[c] > factor * noise[c]}

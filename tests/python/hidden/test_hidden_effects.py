@@ -20,7 +20,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import pytest
 
-from pamkit.diagnose import diagnose, to_json
+from pamkit.diagnosis import diagnose, to_json
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import hideable_effects, synthesize
 from pamkit.synth.mismatch import draw_mismatch

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `bladder_viscoelasticity`.
+/// The catalog effect `bladder_viscoelasticity` (docs/effects.md).
 
 #include "pamkit/effects/parametric.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `braid_slack`.
+/// The catalog effect `braid_slack` (docs/effects.md).
 
 #include "pamkit/effects/parametric.hpp"
 

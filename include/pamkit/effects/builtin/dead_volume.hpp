@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `dead_volume`.
+/// The catalog effect `dead_volume` (docs/effects.md).
 
 #include "pamkit/effects/parametric.hpp"
 

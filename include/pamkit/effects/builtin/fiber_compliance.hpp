@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `fiber_compliance`.
+/// The catalog effect `fiber_compliance` (docs/effects.md).
 
 #include "pamkit/effects/parametric.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `fixture_slack`.
+/// The catalog effect `fixture_slack` (docs/effects.md).
 
 #include <algorithm>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `heat_transfer`.
+/// The catalog effect `heat_transfer` (docs/effects.md).
 
 #include "pamkit/effects/parametric.hpp"
 

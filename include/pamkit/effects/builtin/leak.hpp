@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `leak`.
+/// The catalog effect `leak` (docs/effects.md).
 
 #include "pamkit/effects/parametric.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `load_cell`: the force reading's tare and nonlinearity.
+/// The catalog effect `load_cell`: the load cell's tare and nonlinearity (docs/effects.md).
 
 #include "pamkit/effects/parametric.hpp"
 

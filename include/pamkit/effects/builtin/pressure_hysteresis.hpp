@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `pressure_hysteresis`.
+/// The catalog effect `pressure_hysteresis` (docs/effects.md).
 
 #include "pamkit/effects/parametric.hpp"
 

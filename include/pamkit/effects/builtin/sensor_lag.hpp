@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `sensor_lag`.
+/// The catalog effect `sensor_lag` (docs/effects.md).
 
 #include <cmath>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `sensor_offset`: the pressure calibration's offset and gain.
+/// The catalog effect `sensor_offset` (docs/effects.md).
 
 #include <vector>
 

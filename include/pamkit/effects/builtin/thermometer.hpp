@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `thermometer`: the temperature reading's offset.
+/// The catalog effect `thermometer`: the TMP36's offset (docs/effects.md).
 
 #include "pamkit/effects/parametric.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `time_skew`.
+/// The catalog effect `time_skew` (docs/effects.md).
 
 #include <algorithm>
 #include <vector>

@@ -1,0 +1,294 @@
+"""Fitting each catalog and user effect on the fitted units.
+
+An effect on the physics or the motion is fitted with the baseline's parameters free (a scan of
+its first parameter from the calibrated baseline, then everything jointly). An effect on the
+measurement only is first fitted on the calibrated baseline's prediction; the leading ones are
+then refitted with the baseline free too, since the baseline's calibration has absorbed part of
+them (an offset pulls the inflation pressure to its bound). Such a refit could make the effect a
+general corrector — the inflation pressure and bladder scale move to fit the force while a
+pressure offset undoes that on the pressure channel — so its gain is counted only on the
+channels the effect changes, and it must not make the others worse (decide.py; DESIGN.md, "An
+effect earns credit only where it acts").
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from pamkit._core import EffectCatalog, EffectStage, GasMode, Measurement
+from pamkit.diagnosis.calibrate import (
+    Fit,
+    baseline_coordinates,
+    cluster_intervals,
+    least_squares_in_box,
+    penalty,
+    start_unit,
+    unit_to_x,
+    x_to_unit,
+)
+from pamkit.diagnosis.jacobian import SENSITIVITY_STEP, forward_differences, jacobian_for
+from pamkit.diagnosis.kinds import Problem
+from pamkit.diagnosis.model import configure, effect_space
+from pamkit.io.columns import SERIES_COLUMNS
+
+SCAN_POINTS = 5  # simulations per physical effect's first parameter
+SCAN_POINTS_MEASUREMENT = 41  # no simulation needed: scan finely (a skew has one minimum per cycle)
+
+
+def candidates(effect_catalog: EffectCatalog, problem: Problem) -> list[tuple[str, object]]:
+    """(label, factory) for every catalog effect that can act in this test; effects with a
+    channel option become one candidate per measured channel."""
+    out = []
+    for name in effect_catalog.names():
+        probe = effect_catalog.make(name)
+        acts, _ = probe.acts_in(problem.predictor.mode)
+        if not acts:
+            continue
+        if "channel" in probe.options():
+            channels = list(problem.channels)
+            # A supplied test's pressure is an input, not a compared channel; an instrument
+            # error there acts on what drives the model (a hose's lag).
+            supplied = problem.predictor.mode == GasMode.supplied
+            if supplied and effect_catalog.parse(f"{name}:channel=gauge_pressure_Pa").reads_supplied_pressure():
+                channels.append("gauge_pressure_Pa")
+            for channel in channels:
+                out.append(
+                    (f"{name}:channel={channel}", lambda n=name, c=channel: effect_catalog.parse(f"{n}:channel={c}"))
+                )
+        else:
+            out.append((name, lambda n=name: effect_catalog.make(n)))
+    return out
+
+
+def _effect_coordinates(effect, space, x, prefix: str = "") -> dict:
+    return {prefix + c.name: (c, float(v)) for c, v in zip(space, x)}
+
+
+def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, start: Fit | None = None) -> Fit:
+    """Fits one candidate effect (module docstring). With `start` (a measurement effect's fit on
+    the calibrated baseline), refits it jointly with the baseline from there."""
+    effect = make_effect()
+    space = effect_space(effect)
+    base_space = problem.predictor.baseline.space
+    measurement_only = effect.stage() == EffectStage.measurement and start is None
+    # A transducer whose reading drives a supplied test changes the model's input: its fit runs
+    # the model (on the calibrated baseline), not only the instruments' stage.
+    drives_model = problem.experiment.gas == GasMode.supplied and effect.reads_supplied_pressure()
+    evaluations = 0
+
+    def counted():
+        nonlocal evaluations
+        evaluations += 1
+
+    if measurement_only and not drives_model:
+        base_measurement = problem.predictor.measurement(baseline.baseline_x, [])
+
+    def predict(base_x, effect_x):
+        nonlocal evaluations
+        evaluations += 1
+        configure(effect, space, effect_x)
+        if measurement_only and not drives_model:
+            m = Measurement()
+            for name in SERIES_COLUMNS:
+                setattr(m, name, getattr(base_measurement, name))
+            return problem.predictor.select(effect.apply_to_measurement(m))
+        return problem.predictor.predict(base_x, [effect])
+
+    bad_fit = penalty(problem, float(np.sqrt(sum(baseline.training_chi2.values()) / max(problem.fit_mask.sum(), 1))))
+
+    def chi_or_penalty(base_x, effect_x):
+        try:
+            return problem.chi(predict(base_x, effect_x), problem.fit_mask)
+        except (ValueError, RuntimeError):
+            return bad_fit
+
+    try:
+        if start is not None:
+            best_u = np.clip(x_to_unit(space, np.array([c.of(start.params[c.name]) for c in space])), 0, 1)
+        elif not space:  # every parameter held: only the baseline moves
+            best_u = np.array([])
+        else:
+            # Scan the first coordinate over its range (the others at their starts).
+            first = start_unit(space)
+            best_u, best_chi2 = first, math.inf
+            for point in np.linspace(0.0, 1.0, SCAN_POINTS_MEASUREMENT if measurement_only else SCAN_POINTS):
+                u = first.copy()
+                u[0] = point
+                chi2 = float(np.sum(chi_or_penalty(baseline.baseline_x, unit_to_x(space, u)) ** 2))
+                if chi2 < best_chi2:
+                    best_u, best_chi2 = u, chi2
+        if measurement_only:
+
+            def residual(u):
+                return chi_or_penalty(baseline.baseline_x, unit_to_x(space, u))
+
+            # The instruments read one fixed run (or a supplied test's model, without an ODE): their
+            # differences at the sensitivities' small step are as exact as the sealed fits' Jacobians.
+            result = (
+                least_squares_in_box(
+                    residual,
+                    best_u,
+                    30 * (len(space) + 1),
+                    jac=lambda u: forward_differences(residual, u, SENSITIVITY_STEP),
+                )
+                if space
+                else None
+            )
+            u = result.x if result is not None else best_u
+            base_x, effect_x = baseline.baseline_x, unit_to_x(space, u)
+            count = len(space)
+            fitted_space = space
+        else:
+            n_base = len(base_space)
+            base_u = np.clip(x_to_unit(base_space, baseline.baseline_x), 0.0, 1.0)
+            # A baseline coordinate the calibration left at a search bound is straining to absorb
+            # what the candidate may explain; from the bound, the bounded solver may never leave
+            # it (the answer then flips with rounding). The joint fit starts it from its declared
+            # start instead, free to go either way.
+            at_bound = [c.at_bound(x) is not None for c, x in zip(base_space, baseline.baseline_x)]
+            base_u = np.where(at_bound, start_unit(base_space), base_u)
+
+            def residual(u):
+                return chi_or_penalty(unit_to_x(base_space, u[:n_base]), unit_to_x(space, u[n_base:]))
+
+            def point(u):
+                return unit_to_x(base_space, u[:n_base]), [
+                    configure(make_effect(), space, unit_to_x(space, u[n_base:]))
+                ]
+
+            jac = jacobian_for(problem, point, residual, counted)
+            result = least_squares_in_box(
+                residual, np.concatenate([base_u, best_u]), 12 * (n_base + len(space) + 1), jac=jac
+            )
+            u = result.x
+            base_x, effect_x = unit_to_x(base_space, u[:n_base]), unit_to_x(space, u[n_base:])
+            count = len(space) + n_base
+            fitted_space = base_space + space
+        configure(effect, space, effect_x)
+        predicted = predict(base_x, effect_x)
+        params = {c.name: float(c.value(v)) for c, v in zip(space, effect_x)}
+        params.update(effect.options())
+        coordinates = {} if measurement_only else baseline_coordinates(problem, base_x)
+        coordinates.update(_effect_coordinates(effect, space, effect_x))
+        bands, undetermined = (
+            cluster_intervals(fitted_space, u, result.jac, result.fun, problem.residual_units())
+            if result is not None
+            else ([], {})
+        )
+        intervals = {c.name: band for c, band in zip(fitted_space, bands)}
+        # A measurement effect keeps the calibrated baseline: counted as one model with it.
+        total = count + (len(base_space) if measurement_only else 0)
+        return Fit(
+            label,
+            [effect],
+            base_x,
+            params,
+            predicted,
+            problem.chi2_by_channel(predicted),
+            total,
+            evaluations,
+            baseline_params=problem.predictor.baseline.values(base_x),
+            coordinates=coordinates,
+            intervals=intervals,
+            undetermined=undetermined,
+        )
+    except (ValueError, RuntimeError) as error:  # the effect drove the model out of its range
+        return Fit(
+            label, [effect], baseline.baseline_x, {}, baseline.predicted, {}, len(space), evaluations, error=str(error)
+        )
+
+
+def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) -> Fit:
+    """Adds a second effect to a fitted one: a scan of the second's first parameter from the
+    first's fit, then everything (baseline, both effects) jointly."""
+    effects = [make_first(), make_second()]
+    spaces = [effect_space(e) for e in effects]
+    base_space = problem.predictor.baseline.space
+    n_base, n_first = len(base_space), len(spaces[0])
+    evaluations = 0
+
+    def counted():
+        nonlocal evaluations
+        evaluations += 1
+
+    def split(u):
+        return (
+            unit_to_x(base_space, u[:n_base]),
+            unit_to_x(spaces[0], u[n_base : n_base + n_first]),
+            unit_to_x(spaces[1], u[n_base + n_first :]),
+        )
+
+    def predict(u):
+        nonlocal evaluations
+        evaluations += 1
+        base_x, x1, x2 = split(u)
+        configure(effects[0], spaces[0], x1)
+        configure(effects[1], spaces[1], x2)
+        return problem.predictor.predict(base_x, effects)
+
+    bad_fit = penalty(problem, float(np.sqrt(sum(first.training_chi2.values()) / max(problem.fit_mask.sum(), 1))))
+
+    def residual(u):
+        try:
+            return problem.chi(predict(u), problem.fit_mask)
+        except (ValueError, RuntimeError):
+            return bad_fit
+
+    start = np.concatenate(
+        [
+            np.clip(x_to_unit(base_space, first.baseline_x), 0, 1),
+            np.clip(x_to_unit(spaces[0], np.array([c.of(first.params[c.name]) for c in spaces[0]])), 0, 1),
+            start_unit(spaces[1]),
+        ]
+    )
+    best_u, best_chi2 = start, math.inf
+    # Finer than a single effect's scan: the first effect already absorbed part of the second.
+    for point in np.linspace(0.0, 1.0, 2 * SCAN_POINTS - 1) if spaces[1] else ():
+        u = start.copy()
+        u[n_base + n_first] = point
+        chi2 = float(np.sum(residual(u) ** 2))
+        if chi2 < best_chi2:
+            best_u, best_chi2 = u, chi2
+
+    def point(u):
+        base_x, x1, x2 = split(u)
+        return base_x, [
+            configure(make(), space, x) for make, space, x in zip((make_first, make_second), spaces, (x1, x2))
+        ]
+
+    jac = jacobian_for(problem, point, residual, counted)
+    result = least_squares_in_box(residual, best_u, 10 * (len(start) + 1), jac=jac)
+    u = result.x
+    try:
+        predicted = predict(u)
+    except (ValueError, RuntimeError) as error:
+        return Fit(label, effects, first.baseline_x, {}, first.predicted, {}, len(start), evaluations, error=str(error))
+    base_x, x1, x2 = split(u)
+    params = {}
+    coordinates = baseline_coordinates(problem, base_x)
+    for effect, space, x in zip(effects, spaces, (x1, x2)):
+        params.update({f"{effect.name()}.{c.name}": float(c.value(v)) for c, v in zip(space, x)})
+        params.update({f"{effect.name()}.{k}": v for k, v in effect.options().items()})
+        coordinates.update(_effect_coordinates(effect, space, x, prefix=f"{effect.name()}."))
+    names = [c.name for c in base_space] + [f"{e.name()}.{c.name}" for e, space in zip(effects, spaces) for c in space]
+    bands, undetermined = cluster_intervals(
+        base_space + spaces[0] + spaces[1], u, result.jac, result.fun, problem.residual_units()
+    )
+    intervals = dict(zip(names, bands))
+    rename = dict(zip([c.name for c in base_space + spaces[0] + spaces[1]], names))
+    return Fit(
+        label,
+        effects,
+        base_x,
+        params,
+        predicted,
+        problem.chi2_by_channel(predicted),
+        len(start),
+        evaluations,
+        baseline_params=problem.predictor.baseline.values(base_x),
+        coordinates=coordinates,
+        intervals=intervals,
+        undetermined={rename[k]: [rename[o] for o in v] for k, v in undetermined.items()},
+    )

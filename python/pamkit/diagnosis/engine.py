@@ -1,0 +1,430 @@
+"""Diagnosis, the orchestration of its stages: find the test's units (kinds), calibrate the
+baseline on some of them (calibrate), fit every candidate effect on the same units
+(candidates), score all of them on the units held out and decide (decide), look for what the
+catalog lacks in what remains (discover), and report (report)."""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import os
+import time as clock
+import warnings as python_warnings
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from pamkit._core import EffectCatalog, EffectStage
+from pamkit.diagnosis.buildcheck import check_build
+from pamkit.diagnosis.calibrate import Fit, fit_baseline, one_blas_thread
+from pamkit.diagnosis.candidates import candidates, fit_candidate, fit_pair
+from pamkit.diagnosis.decide import (
+    MIN_GAIN,
+    NONE_WITHIN_NOISE,
+    PAIR_PARTNERS,
+    PAIR_TRIGGER,
+    Cause,
+    Decision,
+    Finding,
+    Judgement,
+    decide,
+    findings,
+    judge,
+    keeps_gain,
+    noise_ratios,
+    score,
+    significant,
+    structured,
+)
+from pamkit.diagnosis.kinds import Problem, build_problem
+from pamkit.diagnosis.tables import TableDiagnosis, diagnose_table
+from pamkit.effects import catalog as builtin_catalog
+from pamkit.io.columns import OPTIONAL_COLUMNS
+from pamkit.io.experiment import Experiment, load_tests
+from pamkit.io.guards import ExperimentError
+
+__all__ = ["MIN_GAIN", "MAX_DIAGNOSED_ROWS", "Diagnosis", "ThinningWarning", "diagnose", "data_seed"]
+
+REFIT_LEADERS = 3  # leading measurement candidates refitted with the baseline free
+# A time series longer than this is diagnosed on every k-th row (the fewest k that fits), as if
+# logged at 1/k of its rate: each model run costs about 1 us per row, and a diagnosis makes
+# several hundred, so 10^6 rows (a 17-minute test at 1 kHz) took 400 s; at 10^5 rows it is
+# about ten times less. The rows kept are samples as measured (not means), so the noise and
+# everything diagnosis knows of a channel is that of the slower test, the kind of test
+# (10-100 Hz) the synthetic benchmarks validate it on.
+MAX_DIAGNOSED_ROWS = 100_000
+
+
+class ThinningWarning(UserWarning):
+    """A long test is diagnosed on every k-th row; the message says how many were kept."""
+
+
+def thinned(experiment: Experiment, max_rows: int | None = None) -> tuple[Experiment, dict | None]:
+    """The experiment with every k-th row (the fewest k that leaves at most `max_rows`, by
+    default MAX_DIAGNOSED_ROWS), and a note of it for the report's warnings (None when every
+    row is kept)."""
+    max_rows = MAX_DIAGNOSED_ROWS if max_rows is None else max_rows
+    rows = experiment.time_s.size
+    if rows <= max_rows:
+        return experiment, None
+    step = math.ceil(rows / max_rows)
+    kept = replace(experiment, columns={name: values[::step].copy() for name, values in experiment.columns.items()})
+    interval = float(np.median(np.diff(experiment.time_s)))
+    message = (
+        f"{experiment.data_path}: {rows} rows, more than the {max_rows} a diagnosis runs on: diagnosed on one row "
+        f"in {step} ({kept.time_s.size} rows, one every {step * interval:.3g} s instead of {interval:.3g} s)"
+    )
+    note = {"thinned": message, "step": step, "rows_read": rows, "rows_diagnosed": int(kept.time_s.size)}
+    return kept, note
+
+
+@dataclass
+class Diagnosis:
+    """Everything the report says; see report.py for the JSON, text and plot."""
+
+    problem: Problem
+    baseline: Fit
+    candidates: list[Judgement]  # every fitted candidate, best held-out gain first
+    skipped: dict[str, str]  # candidates that could not act or whose fit failed, and why
+    decision: Decision
+    extended: Fit  # the named cause's model, or the baseline
+    extended_judgement: Judgement | None
+    warnings: list[Finding]  # baseline and extended parameters at a bound or implausible
+    discovered: dict = field(default_factory=dict)
+    seconds: dict[str, float] = field(default_factory=dict)
+    data_notes: list[dict] = field(default_factory=list)  # what was done to the data first (thinned)
+
+    @property
+    def cause(self) -> str:
+        return self.decision.cause
+
+
+def data_seed(problem: Problem) -> int:
+    """A seed for the bootstrap drawn from the data itself: the same input gives the same
+    report on any machine and thread count."""
+    digest = hashlib.sha256()
+    for name in ["time_s", *problem.channels]:
+        values = problem.experiment.time_s if name == "time_s" else problem.measured[name]
+        digest.update(np.ascontiguousarray(values, dtype="<f8").tobytes())
+    return int.from_bytes(digest.digest()[:8], "little")
+
+
+def _pool(threads: int | None) -> ThreadPoolExecutor:
+    return ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1)
+
+
+def _better(refit: Judgement, fit: Judgement) -> bool:
+    """Whether a measurement effect's refit with the baseline free replaces its fit on the
+    calibrated baseline: when it explains more, unless it is the refit alone that cannot be named
+    (the baseline moved to a bound: an offset trading against the inflation pressure)."""
+    if fit.significant and fit.credible and not refit.credible:
+        return False
+    return refit.score.combined_gain > fit.score.combined_gain
+
+
+def _add_cause(
+    problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, threads, report
+) -> Decision:
+    """The causes named leave structure: try each next significant, credible candidate beside
+    them, and add the one that gains most, if it gains significantly on its own channels over the
+    causes alone (rule 6 of docs/diagnosis.md) with every parameter of the pair credible. A real rig
+    has more than one thing wrong; what no partner explains stays the remainder."""
+    single = decision.causes[-1].judgement
+    taken = {e.name() for e in single.fit.effects}
+    partners = [j for j in judged if j.significant and j.credible and j.fit.effects[0].name() not in taken][
+        :PAIR_PARTNERS
+    ]
+    if not partners:
+        return decision
+    report(
+        f"{single.fit.name} leaves {', '.join(structured(problem, single.fit, PAIR_TRIGGER))} above noise: "
+        f"trying it with {', '.join(p.fit.name for p in partners)}"
+    )
+    best: Cause | None = None
+    alone: Judgement | None = None  # the partner of `best` fitted alone
+    with _pool(threads) as pool:
+        futures = [
+            (
+                p,
+                pool.submit(
+                    fit_pair,
+                    problem,
+                    single.fit,
+                    factories[single.fit.name],
+                    factories[p.fit.name],
+                    f"{single.fit.name}+{p.fit.name}",
+                ),
+            )
+            for p in partners
+        ]
+        for partner, future in futures:
+            pair = future.result()
+            if pair.error is not None:
+                continue
+            own = score(problem, single.fit, pair, np.random.default_rng(seed), credit=pair.effects[1:])
+            candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
+            if (
+                significant(own)
+                and own.credited_gain >= MIN_GAIN
+                and own.credited_ci95[0] > 0.0
+                and candidate.credible
+                and (best is None or candidate.score.combined_gain > best.judgement.score.combined_gain)
+            ):
+                best, alone = Cause(partner.fit.name, candidate, own), partner
+    if best is None:
+        return decision
+    # Each cause must gain on its own beside the other: the first may have been standing in for the
+    # second (a load cell's offset for a viscoelastic bladder's hysteresis), which then leads alone.
+    first = score(problem, alone.fit, best.judgement.fit, np.random.default_rng(seed), credit=single.fit.effects)
+    if not keeps_gain(first):
+        report(f"{single.fit.name} adds nothing significant beside {alone.fit.name}: {alone.fit.name} leads alone")
+        left = structured(problem, alone.fit, NONE_WITHIN_NOISE)
+        return replace(
+            decision,
+            cause=alone.fit.effects[0].name(),
+            causes=[Cause(alone.fit.name, alone, alone.score)],
+            left_structure=left,
+        )
+    causes = [*decision.causes, best]
+    return replace(decision, causes=causes, left_structure=structured(problem, best.judgement.fit, NONE_WITHIN_NOISE))
+
+
+def _check_the_build(
+    problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, pool, report
+):
+    """The causes refitted with the build's uncertain fields free (buildcheck.py): each must keep a
+    significant gain on its own channels there; those that do not are dropped, with the reason
+    kept in the report (`decision.build_check`)."""
+    report(f"refitting {decision.causes[-1].judgement.fit.name} with the build as uncertain as declared")
+    check = check_build(problem, decision.causes, judged, factories, seed, pool)
+    if check is None:
+        return decision
+    kept = decision.causes[: check.kept]
+    margins = {**decision.margins, "build": check.margin()}
+    if kept:
+        left = structured(problem, kept[-1].judgement.fit, NONE_WITHIN_NOISE)
+        return replace(decision, causes=kept, margins=margins, left_structure=left, build_check=check.to_json())
+    dropped = decision.causes[0].judgement
+    dropped.objections.append(check.objection())
+    left = structured(problem, baseline, NONE_WITHIN_NOISE)
+    if not left:
+        margins["within_noise"] = float(NONE_WITHIN_NOISE - max(noise_ratios(problem, baseline).values()))
+    return Decision("unexplained" if left else "none", [], dropped, margins, left, check.to_json())
+
+
+CHANNEL_UNITS = {"force_N": "N", "gauge_pressure_Pa": "Pa", "temperature_K": "K"}  # as the report prints them
+
+
+def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
+    """Sparse regression of what `fit` leaves in the channel furthest above its noise, on the
+    physical feature library (discover.py): what the catalog lacks, as an equation."""
+    from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
+
+    ratios = noise_ratios(problem, fit)
+    channel = max(problem.channels, key=lambda c: ratios[c])
+    experiment = problem.experiment
+    # The model's own channels where the data has none (a sealed test logged without pressure).
+    simulated = (
+        problem.predictor.select(problem.predictor.measurement(fit.baseline_x, fit.effects))
+        if set(problem.channels) != set(OPTIONAL_COLUMNS)
+        else {}
+    )
+    simulated = {**simulated, **fit.predicted}
+
+    def column(name):
+        return experiment.columns[name] if name in experiment.columns else simulated.get(name)
+
+    try:
+        features = feature_library(
+            experiment.time_s,
+            experiment.elongation_m,
+            gauge_pressure_Pa=column("gauge_pressure_Pa"),
+            temperature_K=column("temperature_K"),
+            ambient_K=experiment.gas_params.ambient_temperature_K if "temperature_K" in experiment.columns else None,
+            cycle=problem.cycle.astype(float),
+            force_N=fit.predicted.get("force_N"),
+        )
+        residual = problem.measured[channel] - fit.predicted[channel]
+        return discover(
+            features,
+            residual,
+            problem.sigma[channel],
+            problem.fit_mask,
+            problem.held_mask,
+            problem.half_cycle,
+            channel,
+            CHANNEL_UNITS[channel],
+            seed=seed % 2**32,
+        )
+    except DiscoveryError as error:
+        return {"channel": channel, "terms": [], "error": str(error)}
+
+
+def diagnose(
+    experiment: Experiment | str | Path | list,
+    effect_catalog: EffectCatalog | None = None,
+    progress=None,
+    threads: int | None = None,
+    seed: int | None = None,
+) -> Diagnosis | TableDiagnosis:
+    """Diagnoses one experiment, or a campaign (a list) of tests of one muscle, or a campaign
+    TOML (`[campaign] tests = [...]`). `progress(message)` is called as work proceeds; `seed`
+    (by default drawn from the data) seeds the bootstrap. Static tables (isometric maps,
+    isotonic and free-inflation tables) are diagnosed by tables.py, on held-out lengths, sweeps
+    or rows; a campaign of time series by campaign.py, each test held out in turn.
+
+    Raises:
+        ExperimentError: for data that cannot be diagnosed, naming file, row and column.
+    """
+    with one_blas_thread():  # the parallelism is the simulations' (calibrate.one_blas_thread)
+        return _diagnose(experiment, effect_catalog, progress, threads, seed)
+
+
+def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis | TableDiagnosis:
+    started = clock.perf_counter()
+    report = progress or (lambda message: None)
+    tests = list(experiment) if isinstance(experiment, (list, tuple)) else [experiment]
+    loaded = []
+    for test in tests:
+        if isinstance(test, Experiment):
+            loaded.append(test)
+            continue
+        report(f"reading {test}")
+        for one in load_tests(test):
+            rows = len(next(iter(one.columns.values())))
+            report(f"read {rows} rows of {one.data_path.name} ({clock.perf_counter() - started:.1f} s)")
+            loaded.append(one)
+    tests = loaded
+    effect_catalog = effect_catalog if effect_catalog is not None else builtin_catalog()
+    if all(e.is_table for e in tests):
+        return diagnose_table(tests, effect_catalog, progress=progress, threads=threads)
+    if len(tests) > 1:
+        return _diagnose_series_campaign(tests, effect_catalog, progress, threads, seed)
+    experiment, note = thinned(tests[0])
+    notes = [note] if note else []
+    if note:  # on stderr even with no progress shown (the command line prints warnings as one line)
+        python_warnings.warn(note["thinned"], ThinningWarning, 2)
+    report("finding the test's cycles and noise")
+    problem = build_problem(experiment)
+    seed = data_seed(problem) if seed is None else seed
+    seconds = {"data": clock.perf_counter() - started}  # reading, thinning, finding the units
+
+    report(
+        f"calibrating the baseline on {len(np.unique(problem.cycle[problem.fit_mask]))} {problem.unit_name}s "
+        f"({', '.join(problem.channels)})"
+    )
+    phase = clock.perf_counter()
+    baseline = fit_baseline(problem)
+    seconds["baseline"] = clock.perf_counter() - phase
+    report(f"baseline calibrated in {baseline.evaluations} model runs ({seconds['baseline']:.1f} s)")
+
+    skipped = {}
+    for name in effect_catalog.names():
+        acts, why_not = effect_catalog.make(name).acts_in(problem.predictor.mode)
+        if not acts:
+            skipped[name] = why_not
+    todo = candidates(effect_catalog, problem)
+    judged: list[Judgement] = []
+    phase = clock.perf_counter()
+    report(f"fitting {len(todo)} candidate effects, {threads or os.cpu_count() or 1} at a time")
+    with _pool(threads) as pool:
+        futures = [(label, pool.submit(fit_candidate, problem, baseline, factory, label)) for label, factory in todo]
+        for done, (label, future) in enumerate(futures, start=1):
+            fit = future.result()
+            if fit.error is None:
+                # Every candidate's bootstrap draws the same units: scores differ by the fits alone.
+                judged.append(judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), baseline))
+            else:
+                skipped[label] = f"fit failed: {fit.error}"
+            report(
+                f"[{done}/{len(futures)}] {label}: "
+                + (f"held-out gain {judged[-1].score.combined_gain:+.3f}" if fit.error is None else "failed")
+            )
+    judged.sort(key=lambda j: (-j.score.combined_gain, j.score.delta_bic, j.fit.name))
+    # The baseline's calibration absorbed part of a measurement effect (an offset pulls the
+    # inflation pressure to its bound): the leading ones are refitted with the baseline free. They
+    # lead among the measurement effects, not among all: an instrument error on one channel (a
+    # pressure offset) must not lose its refit because another channel's (the load cell's) scored
+    # higher on the calibrated baseline.
+    factories = dict(todo)
+    measurement = [i for i, j in enumerate(judged) if j.fit.effects[0].stage() == EffectStage.measurement]
+    leaders = measurement[:REFIT_LEADERS]
+    if leaders:
+        report(f"refitting {', '.join(judged[i].fit.name for i in leaders)} with the baseline")
+        with _pool(threads) as pool:
+            refits = {
+                i: pool.submit(
+                    fit_candidate, problem, baseline, factories[judged[i].fit.name], judged[i].fit.name, judged[i].fit
+                )
+                for i in leaders
+            }
+            for i, future in refits.items():
+                fit = future.result()
+                if fit.error is None:
+                    refit = judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), baseline)
+                    if _better(refit, judged[i]):
+                        judged[i] = refit
+        judged.sort(key=lambda j: (-j.score.combined_gain, j.score.delta_bic, j.fit.name))
+    seconds["candidates"] = clock.perf_counter() - phase
+
+    report("deciding on held-out units")
+    decision = decide(problem, baseline, judged)
+    if decision.causes:
+        if structured(problem, decision.named.fit, PAIR_TRIGGER):
+            decision = _add_cause(problem, baseline, decision, judged, factories, seed, threads, report)
+        with _pool(threads) as pool:
+            decision = _check_the_build(problem, baseline, decision, judged, factories, seed, pool, report)
+    named = decision.named
+    extended = named.fit if named is not None else baseline
+    # The base model's strain and the rejected best candidate's findings (why it is not a cause).
+    warnings = findings(baseline)
+    if decision.rejected is not None:
+        warnings += [
+            replace(f, parameter=f"{decision.rejected.fit.name}: {f.parameter}") for f in decision.rejected.findings
+        ]
+    discovered = {}
+    if decision.cause == "unexplained" or decision.left_structure:
+        report("looking for what the catalog lacks in the residual (sparse regression)")
+        phase = clock.perf_counter()
+        discovered = discover_remainder(problem, extended, seed)
+        seconds["discover"] = clock.perf_counter() - phase
+    seconds["total"] = clock.perf_counter() - started
+    report(
+        f"cause: {decision.cause}"
+        + (f" with {extended.effects[1].name()}" if len(extended.effects) > 1 else "")
+        + f" ({seconds['total']:.1f} s)"
+    )
+    return Diagnosis(
+        problem, baseline, judged, skipped, decision, extended, named, warnings, discovered, seconds, notes
+    )
+
+
+def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress, threads, seed):
+    """Each time series alone, then the causes carried from the others to each (campaign.py)."""
+    from pamkit.diagnosis.campaign import MIN_TESTS, campaign_of_series
+    from pamkit.diagnosis.joint import check_one_muscle
+
+    if any(e.is_table for e in tests):
+        raise ExperimentError(
+            f"{tests[0].path}: a campaign is of one kind: static tables together, or time series together"
+        )
+    check_one_muscle(tests)
+    report = progress or (lambda message: None)
+    # The tests side by side, one thread each: a test's own diagnosis has stretches one thread
+    # runs (its baseline, its decision, the discovery), which another test's fits fill. Each
+    # report is the one a single diagnosis gives (the same with 1 or 2 threads).
+    workers = min(threads or os.cpu_count() or 1, len(tests))
+
+    def one(numbered):
+        number, test = numbered
+        report(f"test {number}/{len(tests)}: {test.path}")
+        # Two tests report at once: each line says whose it is.
+        return diagnose(test, effect_catalog, lambda message: report(f"{test.path.name}: {message}"), 1, seed)
+
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        diagnoses = list(pool.map(one, enumerate(tests, start=1)))
+    if len(diagnoses) < MIN_TESTS:
+        raise ExperimentError(f"{tests[0].path}: a campaign needs at least {MIN_TESTS} tests")
+    return campaign_of_series(diagnoses, effect_catalog, report, threads or 2)

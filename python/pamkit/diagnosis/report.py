@@ -1,0 +1,521 @@
+"""The diagnosis as JSON (DESIGN.md's report keys), as a sentence, and as a figure."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from pamkit._core import EffectStage, GasMode, InitialState, MuscleParams, write_muscle_params
+from pamkit.diagnosis import campaign, evidence, table_report
+from pamkit.diagnosis.calibrate import Fit
+from pamkit.diagnosis.campaign import SeriesCampaign
+from pamkit.diagnosis.decide import (
+    MIN_BIC_DROP,
+    MIN_GAIN,
+    NONE_WITHIN_NOISE,
+    Judgement,
+    credited_channels,
+    noise_ratios,
+)
+from pamkit.diagnosis.engine import CHANNEL_UNITS as UNITS
+from pamkit.diagnosis.engine import Diagnosis
+from pamkit.diagnosis.identify import why_undetermined
+from pamkit.diagnosis.model import Baseline, muscle_signature
+from pamkit.diagnosis.table_fit import TableModel
+from pamkit.diagnosis.tables import TableDiagnosis
+from pamkit.effects import catalog as builtin_catalog
+from pamkit.io.columns import difference_from_si, file_name, file_unit, value_from_si
+from pamkit.plots import save_figure
+
+
+def _heldout_rmse(d: Diagnosis, fit: Fit) -> dict[str, float]:
+    p = d.problem
+    return {c: evidence.rmse((fit.predicted[c] - p.measured[c])[p.held_mask]) for c in p.channels}
+
+
+def _residual_evidence(d: Diagnosis, fit: Fit) -> dict:
+    p = d.problem
+    time = p.experiment.time_s
+    elongation = p.experiment.elongation_m
+    velocity = np.gradient(elongation, time)
+    regressors = {
+        "elongation": elongation,
+        "velocity": velocity,
+        "abs_velocity": np.abs(velocity),
+        "time": time,
+        "cycle": p.cycle.astype(float),
+    }
+    mask = p.held_mask
+    out = {"ljung_box_p": {}, "correlation": {}, "best_lag_s": {}}
+    for c in p.channels:
+        r = (fit.predicted[c] - p.measured[c])[mask]
+        out["ljung_box_p"][c] = evidence.ljung_box_p(r)
+        out["correlation"][c] = evidence.correlations(r, {k: v[mask] for k, v in regressors.items()})
+        rate = np.gradient(fit.predicted[c], time)[mask]
+        out["best_lag_s"][c] = evidence.lagged_correlation_peak(r, rate, time[mask])
+    return out
+
+
+def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
+    """The report, with DESIGN.md's keys (and a few more: noise, evidence, verdict, timing)."""
+    if isinstance(d, TableDiagnosis):
+        return table_report.to_json(d)
+    if isinstance(d, SeriesCampaign):
+        return campaign.to_json(d, to_json)
+    p = d.problem
+    baseline_rmse = _heldout_rmse(d, d.baseline)
+    named = d.extended_judgement
+    report = {
+        "baseline": {
+            "params": d.baseline.params,
+            "intervals": {k: list(v) for k, v in d.baseline.intervals.items()},
+            "undetermined": undetermined_json(d.baseline),
+            "rmse": baseline_rmse,
+        },
+        "candidates": [
+            {
+                "effect": j.fit.name,
+                "params": j.fit.params,
+                "heldout_rmse": j.score.rmse,
+                "gain": j.score.gain,
+                "gain_ci95": j.score.gain_ci95,
+                "score": j.score.combined_gain,
+                "score_ci95": j.score.combined_ci95,
+                "delta_bic": j.score.delta_bic,
+                "significant": j.significant,
+                "credible": j.credible,
+                "not_credible_because": j.reasons(),
+            }
+            for j in d.candidates
+        ],
+        "cause": d.cause,
+        "extended": {
+            "effects": [e.name() for e in d.extended.effects],
+            "params": {**d.extended.baseline_params, **d.extended.params},
+            "intervals": {k: list(v) for k, v in d.extended.intervals.items()},
+            "undetermined": undetermined_json(d.extended),
+            "rmse": _heldout_rmse(d, d.extended),
+        },
+        "gain": named.score.gain if named else {c: 0.0 for c in p.channels},
+        "gain_ci95": named.score.gain_ci95 if named else {c: [0.0, 0.0] for c in p.channels},
+        "residuals": {"baseline": _residual_evidence(d, d.baseline), "extended": _residual_evidence(d, d.extended)},
+        "evidence": {
+            "noise": p.sigma,
+            "peak_difference": {
+                c: evidence.peak_difference(
+                    p.measured[c][p.held_mask], d.baseline.predicted[c][p.held_mask], p.cycle[p.held_mask]
+                )
+                for c in p.channels
+            },
+            "units": p.unit_name,
+            "cycles": {
+                "fitted": sorted(set(int(k) for k in p.cycle[p.fit_mask])),
+                "held_out": sorted(set(int(k) for k in p.cycle[p.held_mask])),
+            },
+            "min_gain": MIN_GAIN,
+            "min_bic_drop": MIN_BIC_DROP,
+            "none_within_noise": NONE_WITHIN_NOISE,
+            "skipped": d.skipped,
+        },
+        "decision": {
+            "margins": d.decision.margins,
+            "left_above_noise": d.decision.left_structure,
+            "build_check": d.decision.build_check,
+            "rejected": (
+                {
+                    "effect": d.decision.rejected.fit.name,
+                    "params": d.decision.rejected.fit.params,
+                    "score": d.decision.rejected.score.combined_gain,
+                    "because": d.decision.rejected.reasons(),
+                }
+                if d.decision.rejected
+                else None
+            ),
+        },
+        "causes": causes_json(d),
+        "remainder": remainder_json(d),
+        "discovered": d.discovered,
+        "warnings": [f.to_json() for f in d.warnings] + d.data_notes,
+        "verdict": verdict(d),
+        "timing_s": d.seconds,
+    }
+    return report
+
+
+def undetermined_json(fit: Fit) -> dict:
+    """The fitted values the data do not determine (identify.py): each with the values it trades
+    against and why, in words. Their interval is their search interval."""
+    return {
+        name: {"trades_against": partners, "why": why_undetermined(partners, _at_bound(fit, name))}
+        for name, partners in fit.undetermined.items()
+    }
+
+
+def _at_bound(fit: Fit, name: str) -> bool:
+    coordinate, x = fit.coordinates.get(name, (None, None))
+    return coordinate is not None and coordinate.at_bound(x) is not None
+
+
+def interval_phrase(fit: Fit, name: str) -> str:
+    """`name = value (95 % CI lo–hi)`, or what the data cannot tell of it."""
+    value, interval = fit.params[name], fit.intervals[name]
+    if name in fit.undetermined:
+        why = why_undetermined(fit.undetermined[name], _at_bound(fit, name))
+        return f"{name} = {value:.4g} (not determined by the data: {why})"
+    return f"{name} = {value:.4g} (95 % CI {interval[0]:.4g}–{interval[1]:.4g})"
+
+
+def _own(params: dict, effect, count: int) -> dict:
+    """One effect's entries of a fit's params or intervals (a pair's are prefixed by its name)."""
+    if count == 1:
+        return dict(params)
+    prefix = f"{effect.name()}."
+    return {k[len(prefix) :]: v for k, v in params.items() if k.startswith(prefix)}
+
+
+def causes_json(d: Diagnosis) -> list[dict]:
+    """Each cause present, the leading one first: its parameters and intervals (fitted with every
+    cause together), the channels it changes, and its own held-out gain there and on every
+    channel — over the calibrated baseline for the first, over the causes before it for the next."""
+    out = []
+    causes = d.decision.causes
+    if not causes:
+        return out
+    fit = causes[-1].judgement.fit
+    for position, cause in enumerate(causes):
+        effect = fit.effects[position]
+        own = cause.own
+        channels = credited_channels(d.problem, fit, [effect])
+        out.append(
+            {
+                "effect": cause.label,
+                "params": _own(fit.params, effect, len(fit.effects)),
+                "intervals": {k: list(v) for k, v in _own(fit.intervals, effect, len(fit.effects)).items()},
+                "channels": channels,
+                "gain_own_channels": own.credited_gain,
+                "gain_own_channels_ci95": own.credited_ci95,
+                "gain_all_channels": own.combined_gain,
+                "gain_all_channels_ci95": own.combined_ci95,
+                "gain": own.gain,
+                "gain_ci95": own.gain_ci95,
+                "over": "baseline" if position == 0 else "+".join(c.label for c in causes[:position]),
+                "base_model_strain": [f.to_json() for f in cause.judgement.strain],
+            }
+        )
+    return out
+
+
+def remainder_json(d: Diagnosis) -> dict | None:
+    """What is still above the noise after the causes: each such channel's held-out RMSE over its
+    noise, and the term sparse regression finds in the furthest one, with its held-out gain."""
+    if not d.decision.left_structure:
+        return None
+    ratios = noise_ratios(d.problem, d.extended)
+    found = d.discovered or {}
+    return {
+        "channels": {c: ratios[c] for c in d.decision.left_structure},
+        "over": "+".join(c.label for c in d.decision.causes) or "baseline",
+        "discovered": {
+            key: found[key] for key in ("channel", "equation", "terms", "gain", "gain_ci95", "error") if key in found
+        },
+    }
+
+
+def _phrase(j: Judgement, channel: str) -> str:
+    effect = j.fit.effects[0]
+    options = {k: v for k, v in j.fit.params.items() if isinstance(v, str)}
+    phrase = effect.signature() or effect.description().split(".")[0]
+    return phrase.format(channel=options.get("channel", channel))
+
+
+def _error(channel: str, value: float, digits: str = ".3g") -> str:
+    """An error of a channel as a person reads it: in its file's unit (kPa, °C)."""
+    return f"{difference_from_si(channel, value):{digits}}"
+
+
+def _unit(channel: str) -> str:
+    return file_unit(channel) or UNITS.get(channel, "")
+
+
+def _sizes(d: Diagnosis, fit: Fit) -> str:
+    rmse = _heldout_rmse(d, fit)
+    return ", ".join(
+        f"{file_name(c)} {_error(c, rmse[c])} {_unit(c)} (noise {_error(c, d.problem.sigma[c], '.2g')})"
+        for c in d.problem.channels
+    )
+
+
+def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
+    """One sentence a person reads in ten seconds."""
+    if isinstance(d, TableDiagnosis):
+        return table_report.verdict(d)
+    if isinstance(d, SeriesCampaign):
+        return campaign.verdict(d)
+    p = d.problem
+    baseline_rmse = _heldout_rmse(d, d.baseline)
+    decision = d.decision
+    baseline_findings = [f.sentence() for f in d.warnings if f.parameter in d.baseline.coordinates]
+    bounds = f"; the base model strains to fit: {'; '.join(baseline_findings)}" if baseline_findings else ""
+    check = decision.build_check
+    if check and check["at_bound"]:
+        bounds += (
+            f"; with the build free, {', '.join(check['at_bound'])} ends at the tolerance [uncertain] declares: the "
+            "base model strains beyond what the build's uncertainty explains"
+        )
+    unknowns = [name for name in p.experiment.calibrate if name in d.baseline.intervals]
+    if unknowns:
+        bounds += "; calibrated " + ", ".join(interval_phrase(d.baseline, name) for name in unknowns)
+    if decision.cause == "none":
+        best = d.candidates[0] if d.candidates else None
+        if decision.rejected is not None:
+            j = decision.rejected
+            tail = f"; best candidate {j.fit.name} gains {j.score.combined_gain:.3f} but {'; '.join(j.reasons())}"
+        elif best is not None:
+            tail = (
+                f"; best candidate {best.fit.name} gains {best.score.combined_gain:.3f} (a cause needs "
+                f"{MIN_GAIN:.2f} with its 95 % CI above 0 and the BIC down by 10)"
+            )
+        else:
+            tail = ""
+        return (
+            f"no cause named: the calibrated model explains the data to within its noise (held-out RMSE "
+            f"{_sizes(d, d.baseline)}){tail}{bounds}"
+        )
+    if decision.cause == "unexplained":
+        left = ", ".join(file_name(c) for c in decision.left_structure) or "the residual"
+        if decision.rejected is not None:
+            j = decision.rejected
+            channel = max(p.channels, key=lambda c: j.score.gain[c])
+            looks = (
+                f"it looks like {_phrase(j, channel)} ({j.fit.name} gains {j.score.combined_gain:.2f}), but "
+                f"{'; '.join(j.reasons())}"
+            )
+        else:
+            looks = "no catalog effect gains significantly on the held-out units"
+        found = d.discovered.get("terms") if d.discovered else None
+        discovered = (
+            (
+                f"; sparse regression finds {d.discovered['equation']} (held-out gain "
+                f"{d.discovered['gain'][d.discovered['channel']]:.2f}), which resembles "
+                f"{found[0]['resembles']}"
+            )
+            if found
+            else ""
+        )
+        return (
+            f"unexplained: structure is left in {left} (held-out RMSE {_sizes(d, d.baseline)}); "
+            f"{looks}{discovered}{bounds}"
+        )
+    causes = causes_json(d)
+    first, lead = causes[0], decision.causes[0]
+    channel = max(first["channels"], key=lambda c: first["gain"][c])
+    numbers = ", ".join(f"{k} = {v:.3g}" for k, v in first["params"].items() if not isinstance(v, str))
+    lo, hi = first["gain_ci95"][channel]
+    rmse = _heldout_rmse(d, lead.judgement.fit)[channel]
+    text = (
+        f"{_phrase(lead.judgement, channel)}: {first['effect']}, {numbers}; held-out {file_name(channel)} RMSE "
+        f"{_error(channel, baseline_rmse[channel])} → {_error(channel, rmse)} {_unit(channel)} (gain "
+        f"{first['gain'][channel]:.2f}, "
+        f"95 % CI {lo:.2f}–{hi:.2f})"
+    )
+    for more in causes[1:]:
+        numbers = ", ".join(f"{k} = {v:.3g}" for k, v in more["params"].items() if not isinstance(v, str))
+        text += (
+            f"; and {more['effect']}, {numbers} (its own held-out gain on {', '.join(more['channels'])} "
+            f"{more['gain_own_channels']:.2f}, 95 % CI {more['gain_own_channels_ci95'][0]:.2f}–"
+            f"{more['gain_own_channels_ci95'][1]:.2f})"
+        )
+    return text + _remainder_phrase(d) + bounds
+
+
+def _remainder_phrase(d: Diagnosis) -> str:
+    remainder = remainder_json(d)
+    if remainder is None:
+        return "; nothing is left above the noise"
+    left = ", ".join(f"{file_name(c)} at {r:.1f}x its noise" for c, r in remainder["channels"].items())
+    found = remainder["discovered"]
+    if found.get("terms"):
+        return (
+            f"; still left: {left}, where sparse regression finds {found['equation']} (held-out gain "
+            f"{found['gain'][found['channel']]:.2f}), which resembles {found['terms'][0]['resembles']}"
+        )
+    return f"; still left: {left}, which no catalog effect explains"
+
+
+def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Path:
+    """Measured vs baseline vs extended per channel, residuals before and after, the ranking."""
+    if isinstance(d, TableDiagnosis):
+        return table_report.plot(d, path)
+    if isinstance(d, SeriesCampaign):
+        return campaign.plot(d, path)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    p = d.problem
+    time = p.experiment.time_s
+    rows = len(p.channels)
+    figure = plt.figure(figsize=(13, 3.0 * rows + 3.2), constrained_layout=True)
+    grid = figure.add_gridspec(rows + 1, 2)
+    held = p.held_mask
+    for i, c in enumerate(p.channels):
+        # Drawn in the units a person reads (kPa, °C), as the data's file gives them.
+        measured = value_from_si(c, p.measured[c])
+        baseline, extended = (value_from_si(c, fit.predicted[c]) for fit in (d.baseline, d.extended))
+        signal = figure.add_subplot(grid[i, 0])
+        signal.plot(time, measured, color="0.55", lw=1.0, label="measured")
+        signal.plot(time, baseline, color="C3", lw=0.9, label="baseline")
+        if d.extended is not d.baseline:
+            signal.plot(time, extended, color="C0", lw=0.9, label=f"extended ({d.extended.name})")
+        residual = figure.add_subplot(grid[i, 1], sharex=signal)
+        residual.plot(time, measured - baseline, color="C3", lw=0.8, label="baseline")
+        if d.extended is not d.baseline:
+            residual.plot(time, measured - extended, color="C0", lw=0.8, label="extended")
+        for axis in (signal, residual):
+            _shade(axis, time, held)
+            axis.grid(alpha=0.3)
+        signal.set_ylabel(file_name(c))
+        residual.set_ylabel(f"measured − model [{_unit(c)}]")
+        if i == 0:
+            signal.legend(loc="upper right", fontsize="small")
+            residual.legend(loc="upper right", fontsize="small")
+            signal.set_title("measured and predicted (held-out cycles shaded)")
+            residual.set_title("residuals")
+        if i == rows - 1:
+            signal.set_xlabel("time [s]")
+            residual.set_xlabel("time [s]")
+    ranking = figure.add_subplot(grid[rows, :])
+    labels = [j.fit.name + ("" if j.credible else " (not credible)") for j in d.candidates]
+    gains = [j.score.combined_gain for j in d.candidates]
+    errors = np.array(
+        [
+            [j.score.combined_gain - j.score.combined_ci95[0], j.score.combined_ci95[1] - j.score.combined_gain]
+            for j in d.candidates
+        ]
+    ).T
+    colors = ["C0" if j.fit.name == d.extended.name else "0.6" if j.credible else "0.85" for j in d.candidates]
+    ranking.bar(range(len(labels)), gains, yerr=errors if len(labels) else None, color=colors, capsize=3)
+    ranking.axhline(MIN_GAIN, color="C3", ls="--", lw=1, label=f"needed to name a cause ({MIN_GAIN:.2f})")
+    ranking.set_xticks(range(len(labels)))
+    ranking.set_xticklabels(labels, rotation=20, ha="right", fontsize="small")
+    ranking.set_ylabel("held-out gain (95 % CI)")
+    ranking.set_ylim(min(-0.1, min(gains, default=0) - 0.05), 1.0)
+    ranking.legend(loc="upper right", fontsize="small")
+    ranking.grid(alpha=0.3, axis="y")
+    figure.suptitle(verdict(d), fontsize="medium", wrap=True)
+    return save_figure(figure, path, dpi=100)
+
+
+def _shade(axis, time, mask):
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], mask.astype(int), [0]])))
+    for start, end in zip(edges[::2], edges[1::2]):
+        axis.axvspan(time[start], time[min(end, time.size - 1)], color="C2", alpha=0.08, lw=0)
+
+
+def write(
+    d: Diagnosis | TableDiagnosis | SeriesCampaign,
+    json_path: str | Path | None = None,
+    plot_path: str | Path | None = None,
+) -> None:
+    if json_path:
+        Path(json_path).parent.mkdir(parents=True, exist_ok=True)
+        Path(json_path).write_text(json.dumps(to_json(d), indent=2, default=float) + "\n")
+    if plot_path:
+        plot(d, plot_path)
+
+
+def effect_spec(effect) -> str:
+    """An effect as the catalog parses it back: ``NAME:option=value,...,parameter=value,...``."""
+    items = [f"{k}={v}" for k, v in effect.options().items()]
+    items += [f"{p.name}={p.value!r}" for p in effect.parameters()]
+    return f"{effect.name()}:{','.join(items)}" if items else effect.name()
+
+
+def _extend(params: MuscleParams, effects) -> tuple[MuscleParams, list[str]]:
+    """`params` with the physical effects applied (their fields in [extensions] or [gas]), and the
+    specs of the others: the test rig's fixture and instruments, which are not the muscle."""
+    rig = []
+    for effect in effects:
+        if effect.stage() == EffectStage.physics and not effect.reads_supplied_pressure():
+            params = effect.apply_to_params(params)
+        else:
+            rig.append(effect_spec(effect))
+    return params, rig
+
+
+def diagnosed_muscle(
+    d: Diagnosis | TableDiagnosis | SeriesCampaign, catalog=None
+) -> tuple[MuscleParams, InitialState | None, list[str]]:
+    """The muscle the diagnosis found: the calibrated model with every cause named — the physical
+    ones as the C++ model's parameters (a braid that goes slack, heat exchange, a pressurise/vent
+    hysteresis, ...), the test rig's (a time skew, a load cell's offset) as effect specs — and, for
+    a sealed test, its state at zero elongation at the calibrated inflation pressure. What the
+    extended prediction was computed from: a time series' extended fit (its baseline moved beside
+    the causes); static tables' extended fit with the calibrated unknowns, the same muscle for every
+    table; a campaign of time series: the muscle calibrated on all its tests (with the shared cause),
+    with no [initial], each test being filled to its own pressure.
+
+    Raises:
+        ValueError: for tables whose files declare different muscles.
+    """
+    if isinstance(d, SeriesCampaign):
+        final = d.extended or d.joint
+        params, _ = Baseline(d.diagnoses[0].problem.experiment, d.joint.params).model_params(np.array([]))
+        effects = []
+        if d.extended is not None:
+            effect = (catalog or builtin_catalog()).parse(d.extended.effect)
+            for p in effect.parameters():
+                if p.name in final.params:
+                    effect.set_value(p.name, final.params[p.name])
+            effects = [effect]
+        params, rig = _extend(params, effects)
+        return params, None, rig
+    if isinstance(d, TableDiagnosis):
+        fit = d.extended
+        muscles = [TableModel.params(e, fit.params) for e in d.campaign.experiments]
+        for experiment, muscle in zip(d.campaign.experiments[1:], muscles[1:]):
+            if muscle_signature(muscle) != muscle_signature(muscles[0]):
+                raise ValueError(
+                    f"--params-out: {experiment.path} declares another muscle than {d.campaign.experiments[0].path} "
+                    "(its [muscle], [bladder], [friction] or [gas] differ): diagnose the table whose muscle you want"
+                )
+        params, rig = _extend(muscles[0], fit.effects)
+        return params, None, rig
+    predictor = d.problem.predictor
+    params, pressure_Pa = predictor.baseline.model_params(d.extended.baseline_x)
+    params, rig = _extend(params, d.extended.effects)
+    initial = predictor.initial_state(params, pressure_Pa) if predictor.mode == GasMode.sealed else None
+    return params, initial, rig
+
+
+def write_params(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> None:
+    """Writes the muscle the diagnosis found (:func:`diagnosed_muscle`) as a muscle-parameters
+    TOML file (the C++ reader's, include/pamkit/io/params_file.hpp): the calibrated build with
+    every named cause, an [initial] section for a sealed test, and the rig's effects in [rig].
+
+    Raises:
+        ValueError: for tables that declare different muscles.
+    """
+    params, initial, rig = diagnosed_muscle(d)
+    values = d.joint.params if isinstance(d, SeriesCampaign) else d.extended.params
+    if not isinstance(d, SeriesCampaign) and not isinstance(d, TableDiagnosis):
+        values = {**d.extended.baseline_params, **d.extended.params}
+    fitted = ", ".join(f"{name} = {value:.6g}" for name, value in values.items() if not isinstance(value, str))
+    if isinstance(d, SeriesCampaign):
+        tests = [diagnosis.problem.experiment for diagnosis in d.diagnoses]
+        causes = [d.extended.effect] if d.extended is not None else []
+    else:
+        tests = d.campaign.experiments if isinstance(d, TableDiagnosis) else [d.problem.experiment]
+        causes = [e.name() for e in d.extended.effects]
+    named = f" with {', '.join(causes)}" if causes else " (no cause named: the calibrated baseline)"
+    comment = f"The muscle `pamkit diagnose {' '.join(str(e.path) for e in tests)}` found{named}: {fitted}."
+    if initial is not None:
+        comment += (
+            "\n[initial] is that test's state at zero elongation; a test at another inflation pressure needs it "
+            "removed."
+        )
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    write_muscle_params(path, params, initial, comment)

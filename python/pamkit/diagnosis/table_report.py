@@ -1,0 +1,266 @@
+"""The report of a static table's diagnosis: DESIGN.md's JSON keys (with the calibrated
+unknowns' intervals and the held-out error per unit), the verdict a person reads first, and the
+figure (each channel against the supplied pressure, every unit as predicted held out)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from pamkit.diagnosis.identify import why_undetermined
+from pamkit.diagnosis.table_kinds import test_names
+from pamkit.diagnosis.tables import CHANNEL_UNITS, TableDiagnosis, TableFit, heldout_rmse
+from pamkit.io.columns import value_from_si
+from pamkit.plots import save_figure
+from pamkit.units import MILLIMETRE_PER_METRE
+
+
+def to_json(d: TableDiagnosis) -> dict:
+    measured = {c: d.campaign.columns[c] for c in d.channels}
+    used = ~d.campaign.censored
+
+    def rmse(fit, heldout):
+        if heldout:
+            return {c: heldout_rmse(fit, measured, c) for c in d.channels}
+        return {c: float(np.sqrt(np.mean((fit.predicted[c] - measured[c])[used] ** 2))) for c in d.channels}
+
+    def per_group(fit):
+        out = {}
+        for index, label in enumerate(d.campaign.group_labels):
+            rows = (d.groups == index) & used
+            if rows.any():
+                out[label] = {c: heldout_rmse(fit, measured, c, rows) for c in d.channels}
+        return out
+
+    report = {
+        "kind": d.campaign.kind,
+        "tests": [str(e.path) for e in d.campaign.experiments],
+        "held_out": d.campaign.group_name,
+        "censored_rows": int((~used).sum()),
+        "noise": d.noise,
+        "baseline": {
+            "params": d.baseline.params,
+            "intervals": {k: list(v) for k, v in d.baseline.intervals.items()},
+            "undetermined": _undetermined_json(d.baseline),
+            "rmse": rmse(d.baseline, False),
+            "heldout_rmse": rmse(d.baseline, True),
+            "heldout_rmse_by_group": per_group(d.baseline),
+        },
+        "candidates": [
+            {
+                "effect": j.fit.name,
+                "params": j.fit.params,
+                "heldout_rmse": rmse(j.fit, True),
+                "gain": j.gain,
+                "gain_ci95": {c: list(v) for c, v in j.gain_ci95.items()},
+                "score": j.score,
+                "significant": j.significant,
+                "credible": j.credible,
+                "findings": j.findings,
+            }
+            for j in d.candidates
+        ],
+        "skipped": d.skipped,
+        "cause": d.cause,
+        "reason": d.reason,
+        "extended": {
+            "effects": [e.name() for e in d.extended.effects],
+            "params": d.extended.params,
+            "intervals": {k: list(v) for k, v in d.extended.intervals.items()},
+            "undetermined": _undetermined_json(d.extended),
+            "rmse": rmse(d.extended, False),
+            "heldout_rmse": rmse(d.extended, True),
+            "heldout_rmse_by_group": per_group(d.extended),
+        },
+        "gain": d.extended_candidate.gain if d.extended_candidate else {c: 0.0 for c in d.channels},
+        "gain_ci95": ({c: list(v) for c, v in d.extended_candidate.gain_ci95.items()} if d.extended_candidate else {}),
+        "added": d.added,
+        "causes": causes_json(d),
+        "remainder": ({"channels": d.remainder, "discovered": d.discovered_by_channel} if d.remainder else None),
+        "discovered": d.discovered,
+        "discovered_by_channel": d.discovered_by_channel,
+        "decision": {"cause": d.cause, "reason": d.reason, "margins": d.margins},
+        "warnings": d.warnings,
+    }
+    return report
+
+
+def _undetermined_json(fit: TableFit) -> dict:
+    out = {}
+    for name, partners in fit.undetermined.items():
+        coordinate, x = fit.coordinates[name]
+        out[name] = {"trades_against": partners, "why": why_undetermined(partners, coordinate.at_bound(x) is not None)}
+    return out
+
+
+def _effect_params(fit: TableFit, name: str) -> dict:
+    """One effect's fitted parameters (a pair's are prefixed with the effect's name)."""
+    if len(fit.effects) < 2:
+        names = {p.name for e in fit.effects for p in e.parameters()}
+        return {k: v for k, v in fit.params.items() if k in names}
+    return {k.split(".", 1)[1]: v for k, v in fit.params.items() if k.startswith(f"{name}.")}
+
+
+def causes_json(d: TableDiagnosis) -> list[dict]:
+    """Each cause present, the leading one first, with its own held-out gain: the first over the
+    calibrated baseline, one added beside it over the first alone; an effect between the
+    branches judged on what differs between them (`between`)."""
+    if d.extended_candidate is None:
+        return []
+    lead = next(j for j in d.candidates if j.fit.name == d.cause)
+    out = [
+        {
+            "effect": d.cause,
+            "params": _effect_params(d.extended, d.cause),
+            "gain": lead.gain,
+            "gain_ci95": {c: list(v) for c, v in lead.gain_ci95.items()},
+            "between_branches": lead.between,
+            "over": "baseline",
+            "base_model_strain": lead.strain,
+        }
+    ]
+    for more in d.added:
+        out.append(
+            {
+                "effect": more["effect"],
+                "params": _effect_params(d.extended, more["effect"]),
+                "gain": more["gain"],
+                "gain_ci95": more["gain_ci95"],
+                "between_branches": more.get("between"),
+                "over": d.cause,
+                "base_model_strain": [],
+            }
+        )
+    return out
+
+
+def _calibrated(fit: TableFit) -> str:
+    def one(k, v):
+        if k not in fit.undetermined:
+            return f"{k} = {v:.4g} [{fit.intervals[k][0]:.4g}, {fit.intervals[k][1]:.4g}]"
+        coordinate, x = fit.coordinates[k]
+        why = why_undetermined(fit.undetermined[k], coordinate.at_bound(x) is not None)
+        return f"{k} = {v:.4g} (not determined by the data: {why})"
+
+    return ", ".join(one(k, v) for k, v in fit.params.items())
+
+
+def verdict(d: TableDiagnosis) -> str:
+    """What a person reads first: the calibrated unknowns with their intervals, the held-out
+    error before and after, the cause and its gain, and every parameter at a bound."""
+    measured = {c: d.campaign.columns[c] for c in d.channels}
+    c = d.campaign
+    lines = [f"{c.name}: {c.kind}, {len(c.groups)} rows, each {c.group_name} held out in turn"]
+    if c.censored.any():
+        lines.append(
+            f"{int(c.censored.sum())} row(s) read the pressure transducer's range end: the pressure that drove them "
+            "is unknown; predicted, never fitted or scored"
+        )
+    named = " and ".join([d.cause] + [a["effect"] for a in d.added])
+    models = [("baseline", d.baseline)] + ([(f"with {named}", d.extended)] if d.extended is not d.baseline else [])
+    for name, fit in models:
+        error = ", ".join(
+            f"{c} {heldout_rmse(fit, measured, c):.4g} {CHANNEL_UNITS[c]} (noise {d.noise[c]:.2g})" for c in d.channels
+        )
+        lines.append(f"{name}: held-out RMSE {error}")
+        if fit.params:
+            lines.append(f"  calibrated (jackknife 95 %): {_calibrated(fit)}")
+    if d.extended_candidate is None:
+        lines.append(f"cause: {d.cause} — {d.reason}")
+    else:
+        gain = ", ".join(
+            f"{c} {d.extended_candidate.gain[c]:.2f} [{d.extended_candidate.gain_ci95[c][0]:.2f}, "
+            f"{d.extended_candidate.gain_ci95[c][1]:.2f}]"
+            for c in d.channels
+        )
+        lines.append(f"cause: {d.cause} — held-out gain {gain}")
+        for added in d.added:
+            more = ", ".join(
+                f"{c} {added['gain'][c]:.2f} [{added['gain_ci95'][c][0]:.2f}, {added['gain_ci95'][c][1]:.2f}]"
+                for c in d.channels
+            )
+            lines.append(f"also: {added['effect']} — held-out gain over {d.cause} alone {more}")
+        lead = next(j for j in d.candidates if j.fit.name == d.cause)
+        if lead.between:
+            between = ", ".join(
+                f"{c} {lead.between['gain'][c]:.2f} [{lead.between['gain_ci95'][c][0]:.2f}, "
+                f"{lead.between['gain_ci95'][c][1]:.2f}]"
+                for c in d.channels
+            )
+            lines.append(f"  between the pressurising and venting branches, where it acts: held-out gain {between}")
+        if lead.strain:
+            strained = "; ".join(f"{f['parameter']} = {f['value']:.4g}" for f in lead.strain)
+            lines.append(f"  beside it the base model strains, as without it: {strained}")
+        if d.remainder:
+            left = ", ".join(f"{c} at {r:.1f}x its noise" for c, r in d.remainder.items())
+            lines.append(f"still left: {left}")
+        else:
+            lines.append("nothing is left above the noise")
+    for channel, found in d.discovered_by_channel.items():
+        if found.get("terms"):
+            low, high = found["gain_ci95"][channel]
+            lines.append(
+                f"discovered: {found['equation']} (held-out gain {found['gain'][channel]:.2f} "
+                f"[{low:.2f}, {high:.2f}]); its largest term resembles {found['terms'][0]['resembles']}"
+            )
+        else:
+            lines.append(f"discovered in {channel}: no term beats zero on held-out groups {found.get('error', '')}")
+    for w in d.warnings:
+        if "message" in w:  # the data against the declared test
+            lines.append(f"warning: {w['message']}")
+            continue
+        where = f"at its bound {w['bound']:.4g}" if w["bound"] is not None else "outside its plausible range"
+        lines.append(f"warning: {w['parameter']} = {w['value']:.4g} {where} ({w['source']})")
+    return "\n".join(lines)
+
+
+def plot(d: TableDiagnosis, path: str | Path) -> Path:
+    """Each channel against the supplied pressure: measured points, and each group as the
+    calibrated baseline (dotted) and the named cause's model (solid) predicted it held out. A
+    map draws one curve per held length; a free-inflation table one per test."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    c = d.campaign
+    pressure = value_from_si("gauge_pressure_Pa", c.columns["gauge_pressure_Pa"])  # drawn in kPa
+    by_group = c.kind in ("isometric_map", "isotonic")
+    curves = c.groups if by_group else c.test
+    names = c.group_labels if by_group else test_names(c.experiments)
+    figure, axes = plt.subplots(1, len(d.channels), figsize=(6.5 * len(d.channels), 4.8), squeeze=False)
+    for axis, channel in zip(axes[0], d.channels):
+        unit = CHANNEL_UNITS[channel]
+        scale = MILLIMETRE_PER_METRE if unit == "m" else 1.0
+        shown_unit = "mm" if unit == "m" else unit
+        colors = plt.cm.viridis(np.linspace(0, 0.9, len(np.unique(curves))))
+        for curve, color in zip(np.unique(curves), colors):
+            rows = np.flatnonzero(curves == curve)
+            if c.kind != "isotonic":  # an isotonic sweep is drawn in the order measured: up, then down
+                rows = rows[np.argsort(pressure[rows])]
+            axis.plot(pressure[rows], scale * c.columns[channel][rows], "o", color=color, ms=4, label=names[curve])
+            axis.plot(pressure[rows], scale * d.baseline.heldout[channel][rows], ":", color=color, lw=1)
+            if d.extended is not d.baseline:
+                axis.plot(pressure[rows], scale * d.extended.heldout[channel][rows], "-", color=color, lw=1.5)
+        if c.censored.any():
+            axis.plot(
+                pressure[c.censored],
+                scale * c.columns[channel][c.censored],
+                "x",
+                color="0.5",
+                label="censored: the transducer's range end",
+            )
+        axis.set_xlabel("supplied pressure [kPa]")
+        axis.set_ylabel(f"{channel.rsplit('_', 1)[0]} [{shown_unit}]")
+        axis.grid(alpha=0.3)
+        axis.legend(fontsize=7, loc="best")
+    extended = f"solid: with {d.cause}; " if d.extended is not d.baseline else ""
+    figure.suptitle(
+        f"{', '.join(test_names(c.experiments))}: cause {d.cause}\n"
+        f"points: measured; dotted: calibrated baseline; {extended}\n"
+        f"each {c.group_name} predicted by the model fitted without it",
+        fontsize=8,
+    )
+    figure.tight_layout()
+    return save_figure(figure, path)
