@@ -469,7 +469,7 @@ def diagnosed_muscle(
             effect = (catalog or builtin_catalog()).parse(d.extended.effect)
             for p in effect.parameters():
                 if p.name in final.params:
-                    effect.set_value(p.name, final.params[p.name])
+                    effect.set(p.name, repr(float(final.params[p.name])))
             effects = [effect]
         params, rig = _extend(params, effects)
         return params, None, rig
@@ -518,4 +518,4 @@ def write_params(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Pat
             "removed."
         )
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    write_muscle_params(path, params, initial, comment)
+    write_muscle_params(path, params, initial, comment, rig)

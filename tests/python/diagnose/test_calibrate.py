@@ -16,7 +16,7 @@ def test_cluster_intervals_of_a_mean_are_its_standard_error():
     mean = float(y.mean())
     residual = mean - y
     jacobian = np.ones((y.size, 1))
-    ((low, high),) = cluster_intervals(
+    ((low, high),), _ = cluster_intervals(
         [Coordinate("level", 0.0, 1.0, 0.5)], np.array([mean]), jacobian, residual, np.arange(y.size)
     )
     half = 1.96 * y.std(ddof=1) / np.sqrt(y.size)
@@ -31,8 +31,8 @@ def test_cluster_intervals_widen_for_residuals_correlated_within_a_cluster():
     mean = float(y.mean())
     jacobian = np.ones((y.size, 1))
     space = [Coordinate("level", 0.0, 1.0, 0.5)]
-    ((low, high),) = cluster_intervals(space, np.array([mean]), jacobian, mean - y, np.repeat(np.arange(50), 4))
-    ((naive_low, naive_high),) = cluster_intervals(space, np.array([mean]), jacobian, mean - y, np.arange(y.size))
+    ((low, high),), _ = cluster_intervals(space, np.array([mean]), jacobian, mean - y, np.repeat(np.arange(50), 4))
+    ((naive_low, naive_high),), _ = cluster_intervals(space, np.array([mean]), jacobian, mean - y, np.arange(y.size))
     assert (high - low) / (naive_high - naive_low) == pytest.approx(2.0, rel=0.02)
 
 

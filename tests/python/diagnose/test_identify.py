@@ -8,10 +8,10 @@ import shutil
 import numpy as np
 import pytest
 
-from pamkit.diagnose import diagnose, to_json
-from pamkit.diagnose.calibrate import cluster_intervals
-from pamkit.diagnose.identify import Z95, identify
-from pamkit.diagnose.model import _linear
+from pamkit.diagnosis import diagnose, to_json
+from pamkit.diagnosis.calibrate import cluster_intervals
+from pamkit.diagnosis.identify import Z95, identify
+from pamkit.diagnosis.model import _linear
 from pamkit.io.experiment import load_experiment
 
 rng = np.random.default_rng(3)

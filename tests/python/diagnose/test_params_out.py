@@ -151,12 +151,12 @@ def test_a_tables_calibrated_muscle_is_written_and_simulates_as_the_diagnosis_fi
 
 def diagnosed_with_params(experiment_path, params_path):
     """The diagnosis `pamkit diagnose --params-out` computed (kept by a spy on
-    pamkit.diagnose.diagnose, which the command calls)."""
+    pamkit.diagnosis.diagnose, which the command calls)."""
     computed = []
-    real_diagnose = pamkit.diagnose.diagnose
+    real_diagnose = pamkit.diagnosis.diagnose
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(
-            pamkit.diagnose, "diagnose", lambda *a, **k: computed.append(real_diagnose(*a, **k)) or computed[-1]
+            pamkit.diagnosis, "diagnose", lambda *a, **k: computed.append(real_diagnose(*a, **k)) or computed[-1]
         )
         assert main(["diagnose", str(experiment_path), "--params-out", str(params_path), "--quiet"]) == 0
     return computed[0]
