@@ -2,7 +2,7 @@
 real muscles do, with a catalog cause hidden at three strengths, and nulls.
 
     PYTHONPATH=build/python python3 bench/bench_near_model.py [--seeds 3] [--first-seed 1]
-        [--nulls 10] [--families a,b] [--strengths weak,medium,strong] [--jobs 1] [--threads 1]
+        [--nulls 5] [--families a,b] [--strengths weak,medium,strong] [--jobs 1] [--threads 1]
         [--json OUT.json] [--timeout 900] [--quick]
 
 Every dataset is written by tests/independent/near_families.py (never importing pamkit) and
@@ -17,15 +17,19 @@ those effects; otherwise its ``cause`` unless that is ``none`` or ``unexplained`
 - honest: nothing named (``none``, or ``unexplained`` / a remainder only). For a null this is the
   right answer; for a hidden cause it is a miss.
 
-Printed: the confusion matrix (rows: the family's hidden causes, columns: what was named; a
-report naming two causes counts in both columns), right / wrong / partial / honest per family
-and per strength with the median decision margin (the smallest of ``decision.margins``), the
-median held-out gain pamkit's fit of the hidden cause reached (its candidate's ``score``, named
-or not), the median calibrated baseline's held-out RMSE over the noise for force and pressure
-(F/σ, p/σ), the nulls' verdicts and the distribution of their F/σ and p/σ, the reasons given for
-the misses (``decision.rejected`` and the verdict's first clause), and the seconds per diagnosis.
-``--quick``: the fixed subset near_families.QUICK (every family once at medium strength, four
-nulls), a fast loop. Datasets are written into a temporary directory and deleted.
+Printed: the confusion matrix (rows: the family, which says what is hidden; columns: what was
+named; a report naming two causes counts in both columns), right / wrong / partial / honest per
+family and per strength (``chan``: right by name but on another channel than the hidden one, e.g. a
+lag named on the force for a lagging pressure), the median decision margin (the smallest of
+``decision.margins``), the median held-out gain pamkit's fit of the hidden cause reached (its
+candidate's ``score``, named or not; the smaller of two), the median calibrated baseline's held-out
+RMSE over the noise for force and pressure (F/σ, p/σ), the nulls' verdicts and the distribution of
+their F/σ and p/σ, the reasons given for the misses and the wrong names (``decision.rejected``'s
+first reason, or the verdict's words, numbers blanked so that alike reasons count together), and
+the seconds per diagnosis, wall and CPU (user + system of the diagnosing process: on a shared
+machine the wall time says how busy the others were). ``--quick``: the fixed subset
+near_families.QUICK (every family once at medium strength, four nulls), a fast loop. Datasets are
+written into a temporary directory and deleted.
 """
 
 from __future__ import annotations
@@ -33,20 +37,51 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import re
 import statistics
+import subprocess
 import sys
 import tempfile
+import time
 from collections import Counter
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from bench_families import diagnose, margin_of  # the same command line, run the same way
+from bench_families import margin_of  # the decision's margin, read as bench_families reads it
 from independent.near_families import FAMILIES, QUICK, STRENGTHS
 
 HONEST_CAUSES = ("none", "unexplained")
+
+
+def diagnose(toml: Path, timeout_s: float, threads: int) -> dict:
+    """`python -m pamkit diagnose TOML --json REPORT --quiet`: the report (or the error), its wall
+    seconds and the CPU seconds the process used (user + system, its threads included), which on
+    a shared machine say what the diagnosis costs when its wall time says how busy the others were."""
+    report_path = toml.with_name("report.json")
+    command = [sys.executable, "-m", "pamkit", "diagnose", str(toml), "--json", str(report_path), "--quiet"]
+    started = time.perf_counter()
+    with open(toml.with_name("stderr.txt"), "w+") as stderr:
+        process = subprocess.Popen(command + ["--threads", str(threads)], stdout=subprocess.DEVNULL, stderr=stderr)
+        while True:
+            pid, status, usage = os.wait4(process.pid, os.WNOHANG)
+            if pid:
+                break
+            if time.perf_counter() - started > timeout_s:
+                process.kill()
+                os.wait4(process.pid, 0)
+                return {"error": f"timeout after {timeout_s:.0f} s", "seconds": timeout_s, "cpu_seconds": None}
+            time.sleep(0.05)
+        seconds, cpu = time.perf_counter() - started, usage.ru_utime + usage.ru_stime
+        process.returncode = os.waitstatus_to_exitcode(status)
+        if process.returncode != 0:
+            stderr.seek(0)
+            lines = [line for line in stderr.read().strip().splitlines() if line.strip()]
+            message = lines[-1].replace(str(toml.parent), "DATASET") if lines else f"exit {process.returncode}"
+            return {"error": message, "seconds": seconds, "cpu_seconds": cpu}
+    return {"report": json.loads(report_path.read_text()), "seconds": seconds, "cpu_seconds": cpu}
 
 
 def named_causes(report: dict) -> dict[str, str | None]:
@@ -165,6 +200,7 @@ def summarise(rows: list[dict]) -> dict:
         "median_force_over_noise": ratio("force_N"),
         "median_pressure_over_noise": ratio("pressure_kPa"),
         "median_seconds": median(r["seconds"] for r in rows),
+        "median_cpu_seconds": median(r["cpu_seconds"] for r in rows),
     }
 
 
@@ -243,7 +279,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=3, help="seeds per family and strength")
     parser.add_argument("--first-seed", type=int, default=1)
-    parser.add_argument("--nulls", type=int, default=10, help="seeds per null family")
+    parser.add_argument("--nulls", type=int, default=5, help="seeds per null family (two: sealed, supplied)")
     parser.add_argument("--families", help=f"comma-separated, of: {', '.join(FAMILIES)}")
     parser.add_argument("--strengths", help=f"comma-separated, of: {', '.join(STRENGTHS)}")
     parser.add_argument("--quick", action="store_true", help="the fixed fast subset (near_families.QUICK)")
@@ -253,12 +289,15 @@ def main() -> int:
     parser.add_argument("--json", help="write every dataset's row and the tables")
     arguments = parser.parse_args()
     items = work_list(arguments)
+    started = time.perf_counter()
 
     with tempfile.TemporaryDirectory() as scratch:
 
         def run(item):
             name, seed, strength = item
+            started = time.perf_counter()
             dataset = FAMILIES[name].make(seed, Path(scratch) / f"{name}-{strength}-{seed}", strength)
+            generated = time.perf_counter() - started
             outcome = diagnose(dataset.experiment, arguments.timeout, arguments.threads)
             row = {
                 "family": name,
@@ -267,7 +306,9 @@ def main() -> int:
                 "hidden": list(dataset.hidden),
                 "present": list(dataset.present),
                 "truth": dataset.truth,
+                "generate_seconds": generated,
                 "seconds": outcome["seconds"],
+                "cpu_seconds": outcome["cpu_seconds"],
                 **classify(dataset, outcome),
             }
             print(
@@ -308,7 +349,8 @@ def main() -> int:
     )
     force = quantiles([r.get("baseline_rmse_over_noise", {}).get("force_N") for r in nulls])
     pressure = quantiles([r.get("baseline_rmse_over_noise", {}).get("pressure_kPa") for r in nulls])
-    print(f"nulls ({len(nulls)}): " + ", ".join(f"{k} {v}" for k, v in sorted(null_verdicts.items())))
+    if nulls:
+        print(f"nulls ({len(nulls)}): " + ", ".join(f"{k} {v}" for k, v in sorted(null_verdicts.items())))
     for label, q in (("F/σ", force), ("p/σ", pressure)):
         if q:
             print(f"  nulls' baseline {label}: " + ", ".join(f"{k} {v:.2f}" for k, v in q.items()))
@@ -318,7 +360,14 @@ def main() -> int:
         for why, count in misses.most_common(15):
             print(f"  {count:3d}  {why}")
     seconds = quantiles([r["seconds"] for r in rows])
-    print(f"\nseconds per diagnosis ({len(rows)}): " + ", ".join(f"{k} {v:.1f}" for k, v in seconds.items()))
+    cpu = quantiles([r["cpu_seconds"] for r in rows])
+    print(f"\nseconds per diagnosis ({len(rows)}), wall: " + ", ".join(f"{k} {v:.1f}" for k, v in seconds.items()))
+    if cpu:
+        print("  CPU (user + system): " + ", ".join(f"{k} {v:.1f}" for k, v in cpu.items()))
+        wall, used = sum(r["seconds"] for r in rows), sum(r["cpu_seconds"] or 0 for r in rows)
+        print(f"  all diagnoses: {wall:.0f} s wall, {used:.0f} s CPU")
+    generating = sum(r["generate_seconds"] for r in rows)
+    print(f"writing the datasets: {generating:.0f} s; the bench: {time.perf_counter() - started:.0f} s wall")
     if arguments.json:
         Path(arguments.json).write_text(
             json.dumps(
@@ -333,6 +382,7 @@ def main() -> int:
                     },
                     "misses": dict(misses),
                     "seconds": seconds,
+                    "cpu_seconds": cpu,
                     "rows": rows,
                 },
                 indent=2,

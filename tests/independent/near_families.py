@@ -485,13 +485,13 @@ def _null(name, kind):
 LEVELS = {
     "heat_transfer": {s: {"time_constant_s": v} for s, v in zip(STRENGTHS, (0.15, 1.0, 5.0))},
     "dead_volume": {s: {"volume_fraction": v} for s, v in zip(STRENGTHS, (0.02, 0.1, 0.25))},
-    "leak": {s: {"pressure_loss": v} for s, v in zip(STRENGTHS, (0.005, 0.03, 0.1))},
+    "leak": {s: {"pressure_loss": v} for s, v in zip(STRENGTHS, (0.005, 0.05, 0.1))},
     "bladder_viscoelasticity": {
-        s: {"time_constant": "half a stretch", "strength": v} for s, v in zip(STRENGTHS, (0.2, 0.6, 1.5))
+        s: {"time_constant": "half a stretch", "strength": v} for s, v in zip(STRENGTHS, (0.2, 1.0, 2.0))
     },
     "fiber_compliance": {s: {"stiffness_N": v} for s, v in zip(STRENGTHS, (600.0, 250.0, 100.0))},
     "fixture_slack": {s: {"slack_m": v} for s, v in zip(STRENGTHS, (0.3e-3, 1.2e-3, 2.5e-3))},
-    "sensor_lag": {s: {"channel": "pressure_kPa", "time_constant_s": v} for s, v in zip(STRENGTHS, (0.2, 0.7, 2.0))},
+    "sensor_lag": {s: {"channel": "pressure_kPa", "time_constant_s": v} for s, v in zip(STRENGTHS, (0.05, 0.7, 2.0))},
     "time_skew": {s: {"channel": "pressure_kPa", "offset_s": ("±", v)} for s, v in zip(STRENGTHS, (0.05, 0.5, 1.5))},
     "sensor_offset": {
         s: {"offset_kPa": ("±", o), "gain": g} for s, o, g in zip(STRENGTHS, (1.5, 5.0, 10.0), (1.0, 1.02, 1.05))
@@ -507,7 +507,7 @@ LEVELS = {
         s: {"offset_kPa": ("±", o), "gain": g} for s, o, g in zip(STRENGTHS, (2.0, 8.0, 12.0), (1.0, 0.97, 0.94))
     },
     "supplied_sensor_lag": {
-        s: {"channel": "pressure_kPa", "time_constant_s": v} for s, v in zip(STRENGTHS, (0.1, 0.4, 1.5))
+        s: {"channel": "pressure_kPa", "time_constant_s": v} for s, v in zip(STRENGTHS, (0.05, 0.4, 1.5))
     },
 }
 

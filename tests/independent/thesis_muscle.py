@@ -60,7 +60,7 @@ by segment between the corners of the muscle's piecewise-linear motion.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -329,17 +329,16 @@ def matched_constants(braid: Braid, law: str) -> tuple[float, float]:
 
 @dataclass
 class Forces:
-    """The muscle's state at lengths L for gas at gauge pressure p (arrays)."""
+    """The muscle at lengths L with its gas at gauge pressure p (arrays)."""
 
-    static: np.ndarray  # ∂E_b/∂L − p ∂V/∂L [N]
-    shape: Shape
-    fiber_strain: np.ndarray
+    static: np.ndarray  # ∂E_b/∂L − p ∂V/∂L, no friction [N]
+    shape: Shape  # the braid, at the fibres' stretched length
+    fiber_strain: np.ndarray  # the fibres' stretch T/EA [1] (0: inextensible)
 
 
 class ThesisMuscle:
-    """One muscle: its braid and membrane as built (departures applied) and its physics
-    effects. `static_force` and `gas_volume` are the model's; `SealedTest` and
-    `supplied_force` run tests on it."""
+    """One muscle: its braid and membrane as built (departures applied) and its physics effects.
+    `forces` is the model's static force; `SealedTest` and `supplied_force` run tests on it."""
 
     def __init__(self, build: Build, departures: Departures = Departures(), effects: Effects = Effects()):
         self.build = build
@@ -398,7 +397,7 @@ class ThesisMuscle:
 
 
 # ----------------------------------------------------------------------------------------------
-# tests on the muscle
+# bench tests of the muscle
 
 
 def fixture_play(motion: Motion, slack_m: float) -> Motion:
@@ -460,7 +459,7 @@ class SealedRun:
     force_N: np.ndarray
     gauge_kPa: np.ndarray
     temperature_C: np.ndarray
-    fiber_strain: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    fiber_strain: np.ndarray  # the fibres' stretch (fibre compliance) [1]
 
 
 class SealedTest:
@@ -478,7 +477,6 @@ class SealedTest:
         ):
             raise ValueError("fibre compliance is modelled with a sealed isothermal gas and an elastic bladder only")
         gauge0 = gauge_kPa * 1e3
-        self.gauge0_Pa = gauge0
         if effects.fiber_stiffness_N is None:
             volume0 = float(muscle.braid.shape(np.array([initial_length_m])).gas_volume[0])
         else:
