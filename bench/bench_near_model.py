@@ -275,6 +275,24 @@ def print_table(title: str, groups: dict[str, list[dict]]) -> dict:
     return table
 
 
+def print_grid(rows: list[dict]) -> dict:
+    """right / wrong / honest (partial and errors after a +) per family and strength."""
+    families = list(dict.fromkeys(r["family"] for r in rows if r["hidden"]))
+    strengths = [s for s in STRENGTHS if any(r["strength"] == s for r in rows)]
+    grid = {}
+    width = max([6] + [len(f) for f in families]) + 1
+    print(f"{'right/wrong/honest':{width}s}" + "".join(f"{s:>12s}" for s in strengths))
+    for family in families:
+        cells = []
+        for strength in strengths:
+            counts = Counter(r["outcome"] for r in rows if r["family"] == family and r["strength"] == strength)
+            grid.setdefault(family, {})[strength] = dict(counts)
+            extra = counts["partial"] + counts["error"]
+            cells.append(f"{counts['right']}/{counts['wrong']}/{counts['honest']}" + (f"+{extra}" if extra else ""))
+        print(f"{family:{width}s}" + "".join(f"{c:>12s}" for c in cells))
+    return grid
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=3, help="seeds per family and strength")
@@ -332,6 +350,8 @@ def main() -> int:
     caused = [r for r in rows if r["hidden"]]
     strengths = [s for s in STRENGTHS if any(r["strength"] == s for r in caused)]
     by_strength = print_table("strength", {s: [r for r in caused if r["strength"] == s] for s in strengths})
+    print()
+    grid = print_grid(caused)
     upper = [r for r in caused if r["strength"] in ("medium", "strong")]
     total = Counter(r["outcome"] for r in rows)
     nulls = [r for r in rows if not r["hidden"]]
@@ -375,6 +395,7 @@ def main() -> int:
                     "confusion": confusion,
                     "by_family": by_family,
                     "by_strength": by_strength,
+                    "by_family_and_strength": grid,
                     "nulls": {
                         "verdicts": dict(null_verdicts),
                         "force_over_noise": force,

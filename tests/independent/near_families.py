@@ -17,7 +17,7 @@ inflated to 35-276 kPa, 5-10 triangle cycles to 80-95 % of the free contraction 
 (log-uniform), a 5-20 s hold at the top in a third of them, 20 Hz (50 Hz when a stretch would get
 fewer than 25 samples), load cell noise 0.5-2 N RMS in 0.2 N steps, the Arduino's 10-bit pressure
 and TMP36 channels; supplied isometric sweeps hold a length and step the regulator's pressure up
-and down. One seed draws the same build, departures, protocol and noise in every family (four
+and down. One seed draws the same build, departures, protocol and noise in every family (three
 independent streams spawned from it), so that families differ by their cause only.
 """
 
@@ -104,11 +104,10 @@ class Draws:
     protocol: np.random.Generator
     departures: np.random.Generator
     noise: np.random.Generator
-    effect: np.random.Generator
 
 
 def draws(seed: int) -> Draws:
-    return Draws(*(np.random.default_rng(s) for s in np.random.SeedSequence([seed, 2024]).spawn(4)))
+    return Draws(*(np.random.default_rng(s) for s in np.random.SeedSequence([seed, 2024]).spawn(3)))
 
 
 def _log_uniform(rng, low, high):
@@ -129,15 +128,15 @@ def draw_build(rng: np.random.Generator) -> Build:
     )
 
 
-def draw_departures(rng: np.random.Generator, kind: str, only: tuple[str, ...] | None = None) -> Departures:
-    """One or two departures (`only`: exactly these) at sizes from DEPARTURE_RANGES, and this
-    muscle's friction and bladder levels. A supplied sweep does not move, so no friction law."""
+def draw_departures(rng: np.random.Generator, kind: str) -> Departures:
+    """One or two departures at sizes from DEPARTURE_RANGES, and this muscle's friction and bladder
+    levels. A supplied sweep does not move, so no friction law."""
     friction_scale = _log_uniform(rng, *FRICTION_LEVEL)
     bladder_scale = _log_uniform(rng, *BLADDER_LEVEL)
     pool = [d for d in DEPARTURES if kind == SEALED or d != "friction_share"]
     count = 1 + int(rng.uniform() < 0.5)
-    chosen = list(only) if only is not None else [pool[i] for i in rng.choice(len(pool), size=count, replace=False)]
-    # every draw is made whatever is chosen, so that one seed's other streams stay aligned
+    chosen = [pool[i] for i in rng.choice(len(pool), size=count, replace=False)]
+    # every size is drawn whatever is chosen: one departure's size does not depend on the others
     sizes = {name: rng.uniform(*DEPARTURE_RANGES[name]) for name in DEPARTURE_RANGES}
     signs = {name: _sign(rng) for name in ("wind", "end_flattening")}
     membrane = str(rng.choice(["mooney_rivlin", "neo_hookean"]))
@@ -231,7 +230,7 @@ class Instruments:
     """What the instruments do beyond their noise: the catalog's measurement causes."""
 
     pressure_lag_s: float = 0.0  # first-order lag of the pressure channel (a long hose)
-    pressure_skew_s: float = 0.0  # the pressure channel reads the muscle this much later (> 0)
+    pressure_skew_s: float = 0.0  # the pressure written at t is the muscle's at t + this
     pressure_offset_kPa: float = 0.0  # the transducer's calibration: offset ...
     pressure_gain: float = 1.0  # ... and gain
     force_offset_N: float = 0.0  # the load cell's tare ...
@@ -257,15 +256,14 @@ def sealed_test(
     causes: dict | None = None,
     hidden: tuple[str, ...] = (),
     strength: str | None = None,
-    only: tuple[str, ...] | None = None,
 ) -> NearDataset:
     """One sealed cyclic test of the seed's muscle with `causes` (catalog name -> its parameters,
     :func:`resolve` for those set relative to the test) in its physics, its fixture or its
-    instruments; `only` forces the departures."""
+    instruments."""
     rng = draws(seed)
     build = draw_build(rng.protocol)
     plan = draw_sealed_plan(rng.protocol)
-    departures = draw_departures(rng.departures, SEALED, only)
+    departures = draw_departures(rng.departures, SEALED)
     free = ThesisMuscle(build, departures).free_length(plan.gauge_kPa * 1e3)
     top = round(plan.fraction * (build.length_m - free), 4)  # the machine is programmed in 0.1 mm
     rate = 20.0 if top / plan.speed_m_per_s * 20.0 >= MIN_SAMPLES_PER_STRETCH else 50.0
@@ -365,7 +363,6 @@ def supplied_sweep(
     causes: dict | None = None,
     hidden: tuple[str, ...] = (),
     strength: str | None = None,
-    only: tuple[str, ...] | None = None,
 ) -> NearDataset:
     """The length held at 88-97 % of the deflated length; the regulator's pressure stepped from a
     floor up to 150-300 kPa in 5-8 plateaus of 5-10 s and down the same steps to the floor. The
@@ -382,7 +379,7 @@ def supplied_sweep(
     rng = draws(seed)
     build = draw_build(rng.protocol)
     plan = draw_supplied_plan(rng.protocol)
-    departures = draw_departures(rng.departures, SUPPLIED, only)
+    departures = draw_departures(rng.departures, SUPPLIED)
     muscle = ThesisMuscle(build, departures)
     held = round(build.length_m * plan.held_fraction, 4)
     floor_force = TAUT_FLOOR_N if slack_depth_N is None else -slack_depth_N
