@@ -17,13 +17,15 @@ inflated to 35-276 kPa, 5-10 triangle cycles to 80-95 % of the free contraction 
 (log-uniform), a 5-20 s hold at the top in a third of them, 20 Hz (50 Hz when a stretch would get
 fewer than 25 samples), load cell noise 0.5-2 N RMS in 0.2 N steps, the Arduino's 10-bit pressure
 and TMP36 channels; supplied isometric sweeps hold a length and step the regulator's pressure up
-and down. One seed draws the same build, departures, protocol and noise in every family (three
-independent streams spawned from it), so that families differ by their cause only.
+and down. Each family and seed draws its own build, departures, protocol and noise (three
+independent streams), the same at every strength, so that the strengths differ by the cause's
+size only; `Family.without_cause` writes the same test with nothing hidden.
 """
 
 from __future__ import annotations
 
 import math
+import zlib
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
@@ -90,13 +92,16 @@ class NearDataset:
 
 @dataclass(frozen=True)
 class Family:
-    """A family of datasets: `make(seed, folder, strength)` writes one into `folder`."""
+    """A family of datasets: `make(seed, folder, strength)` writes one into `folder`;
+    `without_cause(seed, folder)` the same test (build, departures, protocol, noise) with nothing
+    hidden, the yardstick of a cause's signature."""
 
     name: str
     hidden: tuple[str, ...]
     kind: str  # SEALED or SUPPLIED
     levels: dict  # strength -> cause -> its parameters there (LEVELS)
     make: Callable[[int, Path, str | None], NearDataset]
+    without_cause: Callable[[int, Path], NearDataset]
 
 
 @dataclass
@@ -106,8 +111,11 @@ class Draws:
     noise: np.random.Generator
 
 
-def draws(seed: int) -> Draws:
-    return Draws(*(np.random.default_rng(s) for s in np.random.SeedSequence([seed, 2024]).spawn(3)))
+def draws(seed: int, family: str) -> Draws:
+    """A family's own streams for `seed`: each family and seed its own build, departures, protocol
+    and noise (the same at every strength)."""
+    key = zlib.crc32(family.encode())
+    return Draws(*(np.random.default_rng(s) for s in np.random.SeedSequence([seed, key]).spawn(3)))
 
 
 def _log_uniform(rng, low, high):
@@ -252,15 +260,16 @@ def first_order_lag(times: np.ndarray, values: np.ndarray, tau_s: float) -> np.n
 def sealed_test(
     seed: int,
     folder: Path,
+    family: str,
     *,
     causes: dict | None = None,
     hidden: tuple[str, ...] = (),
     strength: str | None = None,
 ) -> NearDataset:
-    """One sealed cyclic test of the seed's muscle with `causes` (catalog name -> its parameters,
-    :func:`resolve` for those set relative to the test) in its physics, its fixture or its
-    instruments."""
-    rng = draws(seed)
+    """One sealed cyclic test of the family's muscle for `seed` with `causes` (catalog name -> its
+    parameters, :func:`resolve` for those set relative to the test) in its physics, its fixture or
+    its instruments."""
+    rng = draws(seed, family)
     build = draw_build(rng.protocol)
     plan = draw_sealed_plan(rng.protocol)
     departures = draw_departures(rng.departures, SEALED)
@@ -359,6 +368,7 @@ def pressure_for_force(muscle: ThesisMuscle, length_m: float, force_N: float) ->
 def supplied_sweep(
     seed: int,
     folder: Path,
+    family: str,
     *,
     causes: dict | None = None,
     hidden: tuple[str, ...] = (),
@@ -376,7 +386,7 @@ def supplied_sweep(
     hysteresis = causes.get("pressure_hysteresis", {}).get("coefficient", 0.0)
     hose_lag_s = causes.get("sensor_lag", {}).get("time_constant_s", 0.0)
     instruments = instruments_of(causes)
-    rng = draws(seed)
+    rng = draws(seed, family)
     build = draw_build(rng.protocol)
     plan = draw_supplied_plan(rng.protocol)
     departures = draw_departures(rng.departures, SUPPLIED)
@@ -446,32 +456,23 @@ def _signed_level(value, rng):
     return sign * value[1] if isinstance(value, tuple) and value[0] == "±" else value
 
 
-def _check_strength(name, strength):
-    if strength not in STRENGTHS:
-        raise ValueError(f"family {name}: strength {strength!r}, one of {', '.join(STRENGTHS)}")
-
-
 def _family(name: str, causes: tuple[str, ...], kind: str, level_name: dict[str, str] | None = None) -> Family:
     """A family hiding `causes` (catalog names) at the levels of LEVELS (under `level_name`'s key
-    for a cause whose levels differ by kind)."""
+    for a cause whose levels differ by kind); with no cause, a null."""
     level_name = level_name or {}
-    levels = {s: {c: LEVELS[level_name.get(c, c)][s] for c in causes} for s in STRENGTHS}
+    levels = {s: {c: LEVELS[level_name.get(c, c)][s] for c in causes} for s in STRENGTHS} if causes else {}
+    test = sealed_test if kind == SEALED else supplied_sweep
 
-    def make(seed, folder, strength):
-        _check_strength(name, strength)
+    def make(seed, folder, strength=None):
+        if not causes:
+            return test(seed, folder, name)
+        if strength not in STRENGTHS:
+            raise ValueError(f"family {name}: strength {strength!r}, one of {', '.join(STRENGTHS)}")
         rng = np.random.default_rng([seed, 7, STRENGTHS.index(strength)])
         drawn = {c: {k: _signed_level(v, rng) for k, v in levels[strength][c].items()} for c in causes}
-        test = sealed_test if kind == SEALED else supplied_sweep
-        return test(seed, folder, causes=drawn, hidden=causes, strength=strength)
+        return test(seed, folder, name, causes=drawn, hidden=causes, strength=strength)
 
-    return Family(name, causes, kind, levels, make)
-
-
-def _null(name, kind):
-    def make(seed, folder, strength=None):
-        return (sealed_test if kind == SEALED else supplied_sweep)(seed, folder)
-
-    return Family(name, (), kind, {}, make)
+    return Family(name, causes, kind, levels, make, lambda seed, folder: test(seed, folder, name))
 
 
 # The levels: weak near what the sampling resolves, medium and strong plainly visible (fitted
@@ -570,7 +571,7 @@ PAIRS = (("heat_transfer", "sensor_offset"), ("leak", "time_skew"), ("dead_volum
 
 
 def _families() -> dict[str, Family]:
-    out = {"null": _null("null", SEALED), "supplied_null": _null("supplied_null", SUPPLIED)}
+    out = {"null": _family("null", (), SEALED), "supplied_null": _family("supplied_null", (), SUPPLIED)}
     for cause in SEALED_CAUSES:
         out[cause] = _family(cause, (cause,), SEALED)
     out["braid_slack"] = _family("braid_slack", ("braid_slack",), SUPPLIED)
@@ -583,7 +584,6 @@ def _families() -> dict[str, Family]:
 
 
 FAMILIES: dict[str, Family] = _families()
-NULLS = tuple(name for name, f in FAMILIES.items() if not f.hidden)
 
 # The fast loop: every family once at medium strength and four nulls (seed 1; nulls 1-3 sealed,
 # 1 supplied) - a subset the lead can run in a few minutes and later test as a rate.

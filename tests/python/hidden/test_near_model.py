@@ -377,6 +377,11 @@ def family_data(tmp_path, family, strength, seed=1):
     return dataset, read_csv(dataset.experiment)
 
 
+def without_cause(tmp_path, family, seed=1):
+    """The family's test for `seed` with nothing hidden: same build, departures, protocol, noise."""
+    return read_csv(FAMILIES[family].without_cause(seed, tmp_path / f"{family}-none-{seed}").experiment)
+
+
 def cycles_of(columns):
     """Sample indices of each stretch-return cycle (between the crosshead's returns to zero)."""
     moving = columns["elongation_m"] > 0
@@ -387,7 +392,7 @@ def cycles_of(columns):
 
 def test_a_leaks_peaks_drift_down_cycle_after_cycle(tmp_path):
     _, leak = family_data(tmp_path, "leak", "strong")
-    _, null = family_data(tmp_path, "null", None)
+    null = without_cause(tmp_path, "leak")
     peaks = [leak["pressure_kPa"][c].max() for c in cycles_of(leak)]
     null_peaks = [null["pressure_kPa"][c].max() for c in cycles_of(null)]
     assert np.all(np.diff(peaks) < 0)  # every cycle lower: τ 150 s loses more than an ADC count a cycle
@@ -396,7 +401,7 @@ def test_a_leaks_peaks_drift_down_cycle_after_cycle(tmp_path):
 
 def test_heat_exchange_swings_the_temperature_that_the_null_holds(tmp_path):
     _, heat = family_data(tmp_path, "heat_transfer", "strong")
-    _, null = family_data(tmp_path, "null", None)
+    null = without_cause(tmp_path, "heat_transfer")
     count = 5.0 / 1024 / 0.01  # one ADC count of the TMP36 [°C]
     assert np.ptp(heat["temperature_C"]) > 8 * count
     assert np.ptp(null["temperature_C"]) <= 3 * count + 1e-9  # the isothermal null: 2 mV of noise, a count or so
@@ -404,10 +409,10 @@ def test_heat_exchange_swings_the_temperature_that_the_null_holds(tmp_path):
 
 @pytest.mark.parametrize("strength", ["medium", "strong"])
 def test_a_time_skew_shifts_the_pressures_cross_correlation(tmp_path, strength):
-    """The skewed pressure matches the null's (same seed: same motion) best when shifted by the skew,
+    """The skewed pressure matches the same test's without the skew best when shifted by the skew,
     in samples: the sample the logger wrote at t is the muscle's pressure at t + skew."""
     dataset, skewed = family_data(tmp_path, "time_skew", strength)
-    _, null = family_data(tmp_path, "null", None)
+    null = without_cause(tmp_path, "time_skew")
     skew, rate = dataset.truth["cause"]["time_skew"]["offset_s"], dataset.truth["rate_Hz"]
     a, b = skewed["pressure_kPa"], null["pressure_kPa"]
     lags = np.arange(-80, 81)
@@ -416,18 +421,20 @@ def test_a_time_skew_shifts_the_pressures_cross_correlation(tmp_path, strength):
 
 
 def test_instrument_offsets_read_as_offsets(tmp_path):
-    """Load cell, thermometer and transducer causes shift their channel against the same seed's
-    null by what was hidden (the same noise draws; quantisation leaves a fraction of a step)."""
-    _, null = family_data(tmp_path, "null", None)
+    """Load cell, thermometer and transducer causes shift their channel against the same test without
+    them by what was hidden (the same noise draws; quantisation leaves a fraction of a step)."""
     d, thermo = family_data(tmp_path, "thermometer", "strong")
+    null = without_cause(tmp_path, "thermometer")
     assert np.mean(thermo["temperature_C"] - null["temperature_C"]) == pytest.approx(
         d.truth["cause"]["thermometer"]["offset_C"], abs=0.25
     )
     d, cell = family_data(tmp_path, "load_cell", "strong")
+    null = without_cause(tmp_path, "load_cell")
     tare, c = d.truth["cause"]["load_cell"]["offset_N"], d.truth["cause"]["load_cell"]["nonlinearity_per_kN"] * 1e-3
     f = null["force_N"]
     assert np.mean(cell["force_N"] - (tare + f * (1 + c * f))) == pytest.approx(0.0, abs=0.2)
     d, offset = family_data(tmp_path, "sensor_offset", "strong")
+    null = without_cause(tmp_path, "sensor_offset")
     o, g = d.truth["cause"]["sensor_offset"]["offset_kPa"], d.truth["cause"]["sensor_offset"]["gain"]
     assert np.mean(offset["pressure_kPa"] - (o + g * null["pressure_kPa"])) == pytest.approx(0.0, abs=0.5)
 
@@ -439,7 +446,7 @@ def test_a_slack_braid_reads_zero_where_the_thesis_braid_would_push(tmp_path):
     assert d.truth["slack_rows"] > 50
     low = slack["pressure_kPa"] < d.truth["floor_kPa"] + 1.0
     assert abs(np.mean(slack["force_N"][low])) < 4 * d.truth["force_noise_N"] / math.sqrt(low.sum())
-    n, null = family_data(tmp_path, "supplied_null", None)
+    n, null = family_data(tmp_path, "supplied_null", None)  # a null sweep of its own
     assert n.truth["slack_rows"] == 0 and not n.present
     assert np.min(null["force_N"]) > 10.0 - 5 * n.truth["force_noise_N"]
 
