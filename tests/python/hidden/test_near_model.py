@@ -461,7 +461,7 @@ def test_departure_draws_are_one_or_two_and_within_their_ranges():
     counts = []
     for seed in range(40):
         d, multiple = draw_departures(np.random.default_rng(seed), SEALED)
-        assert 1.5 <= multiple <= 4.5
+        assert 2.0 <= multiple <= 5.0
         on = {
             "wall_held": d.wall_held > 0,
             "wind": d.wind != 0,
