@@ -2,8 +2,9 @@
 ATmega2560 datasheet rather than imported, and the writer of an experiment (TOML + CSV, the
 format of docs/reference/experiment-file.rst).
 
-- Load cell (Instron 4482, 100 kN cell far below its range): white noise of 1 N RMS, recorded
-  in steps of 0.2 N (a 20-bit conversion of ±100 kN).
+- Load cell (Instron 4482, 100 kN cell far below its range): white noise of 1 N RMS (0.5-2 N,
+  a 100 kN cell's floor, in the near-model world), recorded in steps of 0.2 N (a 20-bit
+  conversion of ±100 kN).
 - Crosshead encoder: exported in mm with 3 decimals, i.e. steps of 1 µm.
 - Arduino Mega, 10-bit ADC on a 5 V reference, one conversion per sample: counts =
   round(V · 1024 / 5), with 2 mV RMS of electrical noise at its input.
@@ -37,9 +38,10 @@ def quantise(values, step):
     return np.round(np.asarray(values, dtype=float) / step) * step
 
 
-def load_cell(force_N, rng):
+def load_cell(force_N, rng, noise_N=LOAD_CELL_NOISE_N):
+    """What the load cell records: white noise of `noise_N` RMS, in steps of 0.2 N."""
     force = np.asarray(force_N, dtype=float)
-    return quantise(force + rng.normal(0.0, LOAD_CELL_NOISE_N, force.shape), LOAD_CELL_STEP_N)
+    return quantise(force + rng.normal(0.0, noise_N, force.shape), LOAD_CELL_STEP_N)
 
 
 def encoder(elongation_m, rng=None, noise_m=0.0):
