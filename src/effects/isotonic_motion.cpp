@@ -17,7 +17,23 @@ namespace {
 
 using cvodes::check_flag;
 
-enum MotionState { length_index = 0, velocity_index = 1, motion_state_size = 2 };
+// The length, its rate, and, with Maxwell-slip friction (muscle/slip.hpp), what each element
+// holds. Without it the state is the length and its rate alone: states that never move would
+// dilute the error test's root mean square.
+enum MotionState : int { length_index = 0, velocity_index = 1, slip_index = 2 };
+
+/// The size of the motion's state for these parameters.
+int motion_state_size(const MuscleParams& extended) {
+  return extended.extensions.slip_force_N > 0.0 ? slip_index + static_cast<int>(kSlipElements) : slip_index;
+}
+
+/// The slip elements' forces in the motion's state (all zero without them).
+SlipState slip_of(N_Vector y) {
+  SlipState slip;
+  if (N_VGetLength(y) <= slip_index) return slip;
+  for (std::size_t i = 0; i < kSlipElements; ++i) slip.force_N[i] = NV_Ith_S(y, slip_index + static_cast<int>(i));
+  return slip;
+}
 
 /// Per-run mutable workspace handed to CVODES as user data.
 struct MotionWorkspace {
@@ -57,10 +73,23 @@ int motion_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   // solution itself stops at the roots of motion_limits, inside that range.
   if (!(length > w.geometry.min_length() && length < w.geometry.max_length())) return 1;
   try {
-    const double tension =
-        detail::supplied_force(w.geometry, w.extended, w.geometry.shape(length), w.gauge_Pa(t), velocity, w.branch);
+    const SlipState slip = slip_of(y);
+    const double tension = detail::supplied_force(w.geometry, w.extended, w.geometry.shape(length), w.gauge_Pa(t),
+                                                  velocity, w.branch, slip.total_N());
     NV_Ith_S(ydot, length_index) = velocity;
     NV_Ith_S(ydot, velocity_index) = (w.load_N - tension) / w.mass_kg;
+    // Each element follows the motion with its stiffness until it holds its slip force, and holds
+    // it while the motion goes on the same way.
+    const ModelExtensions& x = w.extended.extensions;
+    if (x.slip_force_N > 0.0) {
+      const double limit = slip_element_force(x.slip_force_N);
+      for (std::size_t i = 0; i < kSlipElements; ++i) {
+        const double force = slip.force_N[i];
+        const bool slipping = std::abs(force) >= limit && force * velocity > 0.0;
+        NV_Ith_S(ydot, slip_index + static_cast<int>(i)) =
+            slipping ? 0.0 : slip_element_stiffness(x.slip_force_N, x.slip_distance_m, i) * velocity;
+      }
+    }
     return 0;
   } catch (...) {
     w.error = std::current_exception();
@@ -103,13 +132,13 @@ void check_inputs(const std::vector<double>& time_s, const std::vector<double>& 
 }
 
 void record(IsotonicMotion& r, const MotionWorkspace& w, std::size_t sample, double length, double velocity,
-            double branch) {
+            double branch, double slip_N) {
   const double gauge = units::pascal_from_kilopascal(w.driving_kPa[sample]);
   r.time_s.push_back(w.time[sample]);
   r.length_m.push_back(length);
   r.velocity_m_per_s.push_back(velocity);
   r.force_N.push_back(
-      detail::supplied_force(w.geometry, w.extended, w.geometry.shape(length), gauge, velocity, branch));
+      detail::supplied_force(w.geometry, w.extended, w.geometry.shape(length), gauge, velocity, branch, slip_N));
   r.gauge_pressure_kPa.push_back(w.driving_kPa[sample]);
   ++r.statistics.output_evaluations;
 }
@@ -141,10 +170,18 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
                             geometry.min_length() + margin,
                             geometry.max_length() - margin,
                             nullptr};
-  const double start =
-      start_length_m ? *start_length_m
-                     : isotonic_lengths(params, {gauge_pressures_kPa.front()}, load_N, params.build.length_m, effects)
-                           .length_m.front();
+  // At rest at the start: given, with nothing in the slip elements; or where the quasi-static
+  // path from the deflated length settles, with what the elements took up on it.
+  SlipState slip;
+  double start = 0.0;
+  if (start_length_m) {
+    start = *start_length_m;
+  } else {
+    const IsotonicLengths settled =
+        isotonic_lengths(params, {gauge_pressures_kPa.front()}, load_N, params.build.length_m, effects);
+    start = settled.length_m.front();
+    slip = settled.slip;
+  }
   if (!(start > workspace.shortest && start < workspace.longest)) {
     throw InvalidInput(detail::message("isotonic_motion: start_length_m = ", start, " m is outside the braid's range (",
                                        geometry.min_length(), ", ", geometry.max_length(), ") m for this build"));
@@ -152,13 +189,23 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
 
   auto context = cvodes::make_context();
   SUNContext ctx = *context;
-  cvodes::Vector y(N_VNew_Serial(motion_state_size, ctx));
-  cvodes::Vector tolerances(N_VNew_Serial(motion_state_size, ctx));
+  const int size = motion_state_size(extended);
+  cvodes::Vector y(N_VNew_Serial(size, ctx));
+  cvodes::Vector tolerances(N_VNew_Serial(size, ctx));
   if (!y || !tolerances) throw SolverError("N_VNew_Serial failed");
   NV_Ith_S(y.get(), length_index) = start;
   NV_Ith_S(y.get(), velocity_index) = 0.0;
   NV_Ith_S(tolerances.get(), length_index) = config.absolute_tolerance_m;
   NV_Ith_S(tolerances.get(), velocity_index) = config.absolute_tolerance_m_per_s;
+  // An element's force to the length's tolerance times its stiffness: the force that much motion
+  // moves it by.
+  const ModelExtensions& extensions = extended.extensions;
+  for (std::size_t i = 0; size > slip_index && i < kSlipElements; ++i) {
+    const int j = slip_index + static_cast<int>(i);
+    NV_Ith_S(y.get(), j) = slip.force_N[i];
+    NV_Ith_S(tolerances.get(), j) =
+        config.absolute_tolerance_m * slip_element_stiffness(extensions.slip_force_N, extensions.slip_distance_m, i);
+  }
 
   // BDF with Newton: the tanh friction of a sharp Kf is stiff; without friction the tight
   // default tolerances keep BDF's numerical damping below them (the energy test measures it).
@@ -172,7 +219,7 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
 
   IsotonicMotion result;
   result.time_s.reserve(time_s.size());
-  record(result, workspace, 0, start, 0.0, branch[0]);
+  record(result, workspace, 0, start, 0.0, branch[0], slip.total_N());
 
   // Segment k (from sample k to k+1) is on the branch of sample k+1. Where that flips, the
   // hysteresis force jumps: CVODES restarts its BDF history at the sample. It stops at every
@@ -206,7 +253,7 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
             too_long ? "outruns what the muscle can carry there" : "is too light to hold the muscle back there"));
       }
       record(result, workspace, sample, NV_Ith_S(y.get(), length_index), NV_Ith_S(y.get(), velocity_index),
-             branch[sample]);
+             branch[sample], slip_of(y.get()).total_N());
     }
     k = end;
   }

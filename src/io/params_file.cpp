@@ -2,8 +2,9 @@
 //
 // Every key of a section is a field of that part's `for_each_field` list, so a field added
 // there is read and written here without a change. Two parts carry what a field list of doubles
-// cannot: the bladder law (a form and coefficient lists) and the gas process (an enum); their keys
-// are BladderLaw's members and GasParams::process, spelled as in the C++ and the bindings.
+// cannot: the bladder law (a form and coefficient lists), the gas process and the build's
+// construction (enums); their keys are BladderLaw's members, GasParams::process and
+// MuscleBuild::construction, spelled as in the C++ and the bindings.
 
 #include "pamkit/io/params_file.hpp"
 
@@ -48,6 +49,10 @@ constexpr const char* kShearModulus = "shear_modulus_Pa";
 constexpr std::array<std::pair<const char*, BladderLaw::Form>, 2> kForms{
     {{"polynomial", BladderLaw::Form::polynomial}, {"neo_hookean", BladderLaw::Form::neo_hookean}}};
 constexpr std::size_t kCoefficients = std::tuple_size<decltype(BladderLaw::longitudinal_Pa)>::value;
+
+// [build]: MuscleBuild::construction, named as to_string(Construction) names it.
+constexpr const char* kConstruction = "construction";
+constexpr std::array<Construction, 2> kConstructions{Construction::sleeve, Construction::embedded};
 
 // [gas]: GasParams::process, named as to_string(GasProcess) names it.
 constexpr const char* kProcess = "process";
@@ -227,6 +232,21 @@ class Reader {
     return law;
   }
 
+  MuscleBuild build() const {
+    MuscleBuild build = part<MuscleBuild>(kBuild, {kConstruction});
+    const toml::node& node = key(section(kBuild), kBuild, kConstruction, "\"sleeve\" or \"embedded\"");
+    const std::string name = text(node, kBuild, kConstruction);
+    const auto* construction = std::find_if(kConstructions.begin(), kConstructions.end(),
+                                            [&](Construction c) { return name == to_string(c); });
+    if (construction == kConstructions.end()) {
+      fail(node.source(),
+           detail::message("[", kBuild, "] ", kConstruction, " = \"", name, "\" must be \"",
+                           to_string(Construction::sleeve), "\" or \"", to_string(Construction::embedded), "\""));
+    }
+    build.construction = *construction;
+    return build;
+  }
+
   GasParams gas() const {
     GasParams gas = part<GasParams>(kGas, {kProcess});
     const toml::node& node = key(section(kGas), kGas, kProcess, "\"polytropic\" or \"heat_transfer\"");
@@ -287,7 +307,7 @@ MuscleParamsFile read_muscle_params_file(const std::string& path) {
   const Reader reader(path, document);
   reader.check_sections({kBuild, kBladder, kFriction, kGas, kExtensions, kInitial});
   MuscleParamsFile file;
-  file.params.build = reader.part<MuscleBuild>(kBuild);
+  file.params.build = reader.build();
   file.params.bladder = reader.bladder();
   file.params.friction = reader.part<FrictionParams>(kFriction);
   file.params.gas = reader.gas();
@@ -312,6 +332,9 @@ void write_muscle_params(const std::string& path, const MuscleParams& params,
   for (std::string line; std::getline(comment_lines, line);) out << "# " << line << "\n";
   out << "# pamkit muscle parameters, SI units; keys are the C++ fields (include/pamkit/io/params_file.hpp)\n";
   write_fields(out, kBuild, params.build);
+  out << kConstruction << " = " << toml::value<std::string>(to_string(params.build.construction)) << "  # "
+      << to_string(Construction::sleeve) << " (a bladder in a braided sleeve) or " << to_string(Construction::embedded)
+      << " (fibres in the membrane: the braid cannot push)\n";
 
   out << "\n[" << kBladder << "]\n";
   if (params.bladder.form == BladderLaw::Form::neo_hookean) {

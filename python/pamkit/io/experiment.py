@@ -28,6 +28,7 @@ except ModuleNotFoundError:  # Python < 3.11
 
 from pamkit._core import (
     BladderLaw,
+    Construction,
     FrictionParams,
     GasParams,
     GasProcess,
@@ -83,6 +84,8 @@ TABLE_DEFAULTS = {"inflation_pressure_kPa": 0.0, "ambient_temperature_C": 20.0}
 GAS_PROCESS_KEY = "process"
 # [muscle] key beyond MuscleBuild's fields: what a datasheet gives instead of fiber_revolutions.
 BRAID_ANGLE_KEY = "braid_angle_deg"
+# [muscle] key beyond MuscleBuild's fields: how fibres and membrane are put together, by name.
+CONSTRUCTION_KEY = "construction"
 # [muscle] dimensions that scale with the braid diameter when a file leaves them out.
 SCALED_WITH_DIAMETER = (
     "bladder_diameter_m",
@@ -218,12 +221,19 @@ def _scaled_defaults(path: Path, table: dict) -> MuscleBuild:
 
 
 def _read_build(path: Path, table: dict) -> MuscleBuild:
-    """[muscle]: MuscleBuild's fields, or braid_angle_deg instead of fiber_revolutions."""
+    """[muscle]: MuscleBuild's fields, or braid_angle_deg instead of fiber_revolutions, and the
+    construction by name ("sleeve", the default, or "embedded")."""
     table = dict(table)
     angle = table.pop(BRAID_ANGLE_KEY, None)
     if angle is not None and "fiber_revolutions" in table:
         raise _fail(path, f"[muscle] gives both {BRAID_ANGLE_KEY} and fiber_revolutions: give one, they say the same")
+    construction = table.pop(CONSTRUCTION_KEY, "sleeve")
+    if construction not in Construction.__members__:
+        raise _fail(
+            path, f"[muscle] {CONSTRUCTION_KEY} = {construction!r} must be one of {', '.join(Construction.__members__)}"
+        )
     build = _scaled_defaults(path, table)
+    build.construction = Construction.__members__[construction]
     if angle is None:
         return _fill_struct(path, "muscle", table, build)
     angle = _number(path, "muscle", BRAID_ANGLE_KEY, angle)
