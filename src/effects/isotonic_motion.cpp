@@ -7,6 +7,7 @@
 #include <nvector/nvector_serial.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <exception>
 
@@ -49,6 +50,9 @@ struct MotionWorkspace {
   double shortest;          // the range the motion may reach before it stops [m]
   double longest;
   std::exception_ptr error;  // an exception thrown inside a callback, rethrown after CVode returns
+  // Each Maxwell-slip element sticks (its force follows the length) or slips (it holds its
+  // limit), fixed between restarts: the switch is a root of motion_limits, where CVODES stops.
+  std::array<bool, kSlipElements> slipping{};
 
   /// The segment [t_k, t_k+1] of the piece that holds time t (CVODES may step past samples).
   std::size_t segment(double t) const {
@@ -81,14 +85,9 @@ int motion_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
     // Each element follows the motion with its stiffness until it holds its slip force, and holds
     // it while the motion goes on the same way.
     const ModelExtensions& x = w.extended.extensions;
-    if (x.slip_force_N > 0.0) {
-      const double limit = slip_element_force(x.slip_force_N);
-      for (std::size_t i = 0; i < kSlipElements; ++i) {
-        const double force = slip.force_N[i];
-        const bool slipping = std::abs(force) >= limit && force * velocity > 0.0;
-        NV_Ith_S(ydot, slip_index + static_cast<int>(i)) =
-            slipping ? 0.0 : slip_element_stiffness(x.slip_force_N, x.slip_distance_m, i) * velocity;
-      }
+    for (std::size_t i = 0; x.slip_force_N > 0.0 && i < kSlipElements; ++i) {
+      NV_Ith_S(ydot, slip_index + static_cast<int>(i)) =
+          w.slipping[i] ? 0.0 : slip_element_stiffness(x.slip_force_N, x.slip_distance_m, i) * velocity;
     }
     return 0;
   } catch (...) {
@@ -97,12 +96,39 @@ int motion_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   }
 }
 
-/// Zero where the length reaches the shortest or the longest length the motion may take.
+/// Zero where the length reaches the shortest or the longest length the motion may take; with
+/// slip elements, also where a sticking element reaches its slip force, and where a slipping one's
+/// motion turns (it sticks again). Each falls through zero (CVodeSetRootDirection -1).
 int motion_limits(sunrealtype, N_Vector y, sunrealtype* g, void* user_data) {
   const auto& w = *static_cast<const MotionWorkspace*>(user_data);
   g[0] = NV_Ith_S(y, length_index) - w.shortest;
   g[1] = w.longest - NV_Ith_S(y, length_index);
+  if (N_VGetLength(y) > slip_index) {
+    const double limit = slip_element_force(w.extended.extensions.slip_force_N);
+    const double velocity = NV_Ith_S(y, velocity_index);
+    for (std::size_t i = 0; i < kSlipElements; ++i) {
+      const double force = NV_Ith_S(y, slip_index + static_cast<int>(i));
+      g[2 + i] = w.slipping[i] ? (force > 0.0 ? velocity : -velocity) : limit - std::abs(force);
+    }
+  }
   return 0;
+}
+
+/// After a root of an element: the one that reached its slip force now slips (held exactly at
+/// it), the one whose motion turned sticks. \returns whether a root was an element's.
+bool switch_slip_elements(void* cv, MotionWorkspace& w, N_Vector y) {
+  std::array<int, 2 + kSlipElements> found{};
+  check_flag(CVodeGetRootInfo(cv, found.data()), "CVodeGetRootInfo", 0.0);
+  bool switched = false;
+  const double limit = slip_element_force(w.extended.extensions.slip_force_N);
+  for (std::size_t i = 0; N_VGetLength(y) > slip_index && i < kSlipElements; ++i) {
+    if (found[2 + i] == 0) continue;
+    switched = true;
+    double& force = NV_Ith_S(y, slip_index + static_cast<int>(i));
+    w.slipping[i] = !w.slipping[i];
+    if (w.slipping[i]) force = force > 0.0 ? limit : -limit;
+  }
+  return switched;
 }
 
 void check_inputs(const std::vector<double>& time_s, const std::vector<double>& gauge_pressures_kPa, double load_N,
@@ -203,6 +229,7 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
   for (std::size_t i = 0; size > slip_index && i < kSlipElements; ++i) {
     const int j = slip_index + static_cast<int>(i);
     NV_Ith_S(y.get(), j) = slip.force_N[i];
+    workspace.slipping[i] = false;  // at rest every element sticks
     NV_Ith_S(tolerances.get(), j) =
         config.absolute_tolerance_m * slip_element_stiffness(extensions.slip_force_N, extensions.slip_distance_m, i);
   }
@@ -213,9 +240,11 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
   const cvodes::BdfSolver solver = cvodes::make_bdf(ctx, motion_rhs, t, y.get(), &workspace, config.relative_tolerance,
                                                     tolerances.get(), config.max_steps, config.max_step_s);
   void* cv = solver.get();
-  check_flag(CVodeRootInit(cv, 2, motion_limits), "CVodeRootInit", t);
-  int leaving[2] = {-1, -1};  // only a length going out of the range stops the motion
-  check_flag(CVodeSetRootDirection(cv, leaving), "CVodeSetRootDirection", t);
+  const int roots = size > slip_index ? 2 + static_cast<int>(kSlipElements) : 2;
+  check_flag(CVodeRootInit(cv, roots, motion_limits), "CVodeRootInit", t);
+  std::array<int, 2 + kSlipElements> falling;  // a length leaving the range, an element switching
+  falling.fill(-1);
+  check_flag(CVodeSetRootDirection(cv, falling.data()), "CVodeSetRootDirection", t);
 
   IsotonicMotion result;
   result.time_s.reserve(time_s.size());
@@ -239,9 +268,18 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
     }
     for (std::size_t sample = k + 1; sample <= end; ++sample) {
       check_flag(CVodeSetStopTime(cv, time_s[sample]), "CVodeSetStopTime", t);
-      const int flag = CVode(cv, time_s[sample], y.get(), &t, CV_NORMAL);
+      int flag = CVode(cv, time_s[sample], y.get(), &t, CV_NORMAL);
       if (workspace.error) std::rethrow_exception(workspace.error);
       check_flag(flag, "CVode", t);
+      // An element switched: its rate jumps, so CVODES restarts there, and goes on to the sample.
+      while (flag == CV_ROOT_RETURN && switch_slip_elements(cv, workspace, y.get())) {
+        cvodes::add_statistics(solver, result.statistics);
+        check_flag(CVodeReInit(cv, t, y.get()), "CVodeReInit", t);
+        ++result.statistics.restarts;
+        flag = CVode(cv, time_s[sample], y.get(), &t, CV_NORMAL);
+        if (workspace.error) std::rethrow_exception(workspace.error);
+        check_flag(flag, "CVode", t);
+      }
       if (flag == CV_ROOT_RETURN) {
         const double length = NV_Ith_S(y.get(), length_index);
         const bool too_long = length > 0.5 * (workspace.shortest + workspace.longest);

@@ -10,6 +10,7 @@
 #include "approx.hpp"
 #include "pamkit/effects/catalog.hpp"
 #include "pamkit/effects/pipeline.hpp"
+#include "pamkit/muscle/realtime.hpp"
 #include "pamkit/sim/simulator.hpp"
 
 namespace {
@@ -60,7 +61,8 @@ double virgin_slip(double slip_force_N, double slip_distance_m, double displacem
 
 }  // namespace
 
-TEST_CASE("End zones: the cylinder between them is Gaylord's, and its force Tondu and Lopez's", "[embedded][geometry]") {
+TEST_CASE("End zones: the cylinder between them is Gaylord's, and its force Tondu and Lopez's",
+          "[embedded][geometry]") {
   // Flat ends, thin walls, no bladder: the force is -p dV/dL of a cylinder of active length
   // L - 2e whose fibres are inextensible, p pi D0^2 / (4 sin^2 theta0) (3 cos^2 theta - 1) with
   // cos theta = cos theta0 (L - 2e) / (L0 - 2e): Gaylord's force contracting k = L0 / (L0 - 2e)
@@ -200,7 +202,8 @@ TEST_CASE("A held length below rest keeps what the slip took up while the slack 
   }
 }
 
-TEST_CASE("Under a load, saturated slip is a load of W + f going up and W - f coming down", "[embedded][slip][isotonic]") {
+TEST_CASE("Under a load, saturated slip is a load of W + f going up and W - f coming down",
+          "[embedded][slip][isotonic]") {
   // Once the elements slip in contraction they hold -f: the muscle then settles where its elastic
   // force carries W + f, as the muscle without slip does under that load; 2 delta after the
   // pressure turns, they hold +f, and the load is W - f. A loop that settled steps leave open.
@@ -239,4 +242,27 @@ TEST_CASE("A supplied test carries the slip along its samples as a table carries
   const Measurement m = simulate_supplied_measurement(p, length, ElongationTrajectory(time, held), pressure, 20.0, {});
   const std::vector<double> table = static_forces(p, std::vector<double>(time.size(), length), pressure);
   for (std::size_t k = 0; k < time.size(); ++k) CHECK(m.force_N[k] == table[k]);
+}
+
+TEST_CASE("A controller's workspace carries the braid as a table's rows do", "[embedded][slip][realtime]") {
+  // RealtimeMuscle's force with a workspace is static_forces' row by row, from rest, bit for bit,
+  // along a path that goes slack and taut.
+  MuscleParams p = dmsp_params(180.0, 0.02);
+  p.bladder = BladderLaw::none();
+  std::vector<double> lengths, pressures_kPa;
+  for (int k = 0; k < 80; ++k) {
+    lengths.push_back(0.24 - 0.02 * std::sin(0.11 * k));
+    pressures_kPa.push_back(300.0 + 280.0 * std::sin(0.23 * k));
+  }
+  const std::vector<double> table = static_forces(p, lengths, pressures_kPa);
+  const RealtimeMuscle muscle(p);
+  RealtimeWorkspace workspace = muscle.rest();
+  int slack = 0;
+  for (std::size_t k = 0; k < lengths.size(); ++k) {
+    INFO("row " << k);
+    const double f = muscle.force(workspace, lengths[k], 1e3 * pressures_kPa[k], 0.0).force_N;
+    CHECK(f == table[k]);
+    if (f < 0.5) ++slack;
+  }
+  CHECK(slack > 0);
 }
