@@ -47,12 +47,12 @@ MuscleParams dmsp_params(double slip_force_N = 0.0, double slip_distance_m = 0.0
 }
 
 // The virgin curve of kSlipElements elements from rest: element i (1..N) springs with stiffness
-// f / (N delta_i), delta_i = delta i / N, and holds at f / N.
+// f / (N delta_i), delta_i = delta (i - 1/2) / N, and holds at f / N.
 double virgin_slip(double slip_force_N, double slip_distance_m, double displacement_m) {
   double sum = 0.0;
   const double n = static_cast<double>(kSlipElements);
   for (std::size_t i = 1; i <= kSlipElements; ++i) {
-    const double break_away = slip_distance_m * static_cast<double>(i) / n;
+    const double break_away = slip_distance_m * (static_cast<double>(i) - 0.5) / n;
     const double x = std::abs(displacement_m) / break_away;
     sum += slip_force_N / n * std::min(x, 1.0);
   }

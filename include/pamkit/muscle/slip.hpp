@@ -8,9 +8,9 @@
 /// (a vented muscle included).
 ///
 /// `kSlipElements` elastic-perfectly-plastic elements in parallel, element i (1..N) with slip
-/// force f / N and break-away displacement delta i / N, stiffness f / (N delta_i): the
+/// force f / N and break-away displacement delta (i - 1/2) / N, stiffness f / (N delta_i): the
 /// Prandtl-Ishlinskii operator with a uniform density of break-away displacements in (0, delta],
-/// in N steps. From rest, a motion x loads the elements along the virgin curve
+/// by the midpoint rule in N steps. From rest, a motion x loads the elements along the virgin curve
 /// f (2 x / delta - (x / delta)^2) (N -> infinity), which reaches f at x = delta; after a
 /// reversal the curve is the virgin one doubled (Masing's rule), so a loop's width is set by two
 /// numbers: the slip force f and the break-away displacement delta.
@@ -23,7 +23,7 @@
 namespace pamkit {
 
 /// Number of Maxwell-slip elements (the Prandtl-Ishlinskii density in that many steps).
-constexpr std::size_t kSlipElements = 8;
+constexpr std::size_t kSlipElements = 16;
 
 /// What the Maxwell-slip elements hold: each element's force [N], > 0 in tension (it adds to the
 /// muscle's pull: the braid lengthened against it). All zero: the muscle at rest, never moved.
@@ -45,10 +45,10 @@ inline double slip_element_force(double slip_force_N) noexcept {
 }
 
 /// Stiffness [N/m] of element `index` (0-based): its slip force over its break-away displacement
-/// slip_distance_m (index + 1) / N.
+/// slip_distance_m (index + 1/2) / N.
 inline double slip_element_stiffness(double slip_force_N, double slip_distance_m, std::size_t index) noexcept {
   return slip_element_force(slip_force_N) * static_cast<double>(kSlipElements) /
-         (slip_distance_m * static_cast<double>(index + 1));
+         (slip_distance_m * (static_cast<double>(index) + 0.5));
 }
 
 /// Moves the elements by a braid displacement `displacement_m` [m] in one direction (> 0:

@@ -31,7 +31,7 @@ struct ModelExtensions {
   double pressure_hysteresis =
       0.0;                        ///< bladder-braid friction under a supplied pressure, as a fraction of p pi D^2/4 [1]
   double slip_force_N = 0.0;      ///< Maxwell-slip friction with memory: the elements' slip force together [N]; 0: none
-  double slip_distance_m = 0.01;  ///< its longest break-away displacement [m] (muscle/slip.hpp)
+  double slip_distance_m = 0.01;  ///< its break-away displacements spread over (0, this] [m] (muscle/slip.hpp)
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
@@ -52,7 +52,7 @@ struct ModelExtensions {
     visit("slip_force_N", &ModelExtensions::slip_force_N,
           FieldInfo{"N", 0.0, 1e5, "Maxwell-slip friction with memory: slip force of its elements together"});
     visit("slip_distance_m", &ModelExtensions::slip_distance_m,
-          FieldInfo{"m", 1e-6, 1.0, "Maxwell-slip friction: the longest break-away displacement"});
+          FieldInfo{"m", 1e-6, 1.0, "Maxwell-slip friction: break-away displacements spread over (0, this]"});
   }
   void validate() const { validate_fields(*this); }
 };

@@ -26,7 +26,7 @@ import numpy as np
 from pamkit._core import EffectCatalog, EffectStage, GasMode
 from pamkit.diagnose.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE, findings
 from pamkit.diagnose.table_discover import discover_table
-from pamkit.diagnose.table_fit import PREDICTED, Fitter, TableFit, TableModel, fit_table, heldout_rmse
+from pamkit.diagnose.table_fit import Fitter, TableFit, TableModel, fit_table, heldout_rmse
 from pamkit.diagnose.table_kinds import Campaign, beyond_reach, campaign_of, noise_of
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.io.experiment import Experiment, ExperimentError
@@ -99,8 +99,9 @@ def _judge(
     draws = rng.integers(0, len(labels), size=(BOOTSTRAP_SAMPLES, len(labels)))
     gain, ci = {}, {}
     for c in channels:
-        base = [float(np.sum((baseline.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index]
-        ext = [float(np.sum((fit.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index]
+        # nansum: a group of a kind that does not predict the channel adds nothing to it.
+        base = [float(np.nansum((baseline.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index]
+        ext = [float(np.nansum((fit.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index]
         base, ext = np.array(base), np.array(ext)
         gain[c] = 1.0 - math.sqrt(ext.sum() / base.sum()) if base.sum() > 0 else 0.0
         samples = 1.0 - np.sqrt(ext[draws].sum(axis=1) / np.maximum(base[draws].sum(axis=1), 1e-300))
@@ -139,7 +140,7 @@ def diagnose_table(
     are too few groups to hold out."""
     progress = progress or (lambda message: None)
     campaign = campaign_of(experiments if isinstance(experiments, list) else [experiments])
-    channels = PREDICTED[campaign.kind]
+    channels = campaign.channels
     groups, group_name = campaign.groups, campaign.group_name
     used = ~campaign.censored
     labels = np.unique(groups[used])
@@ -152,7 +153,7 @@ def diagnose_table(
     measured = {c: campaign.columns[c] for c in channels}
     noise = noise_of(campaign, channels)
     # Residuals of channels with different units are compared in units of their spread.
-    scales = {c: float(np.std(measured[c][used])) or 1.0 for c in channels}
+    scales = {c: float(np.std(measured[c][used & campaign.predicts(c)])) or 1.0 for c in channels}
     seed = _seed(campaign.columns)
     catalog = catalog or builtin_catalog()
     names, skipped = static_candidates(catalog)
@@ -184,7 +185,7 @@ def diagnose_table(
             except ValueError as error:
                 skipped[name] = f"cannot be evaluated on this table: {error}"
                 continue
-            if all(np.array_equal(with_effect[c], without[c]) for c in channels):
+            if all(np.array_equal(with_effect[c], without[c], equal_nan=True) for c in channels):
                 skipped[name] = "does not change a static table's prediction"
                 continue
             progress(f"fitting {name}")
@@ -235,10 +236,10 @@ def _second_effect(first, candidates, baseline, model, catalog, progress, pool, 
     cannot hold both, and `first` alone may fit only with a parameter at a bound. Returns the
     pair judged against the baseline and what was added, with its gain over `first` alone; or
     `first` and nothing."""
-    campaign, channels = model.campaign, PREDICTED[model.kind]
+    campaign, channels = model.campaign, model.channels
     measured = {c: campaign.columns[c] for c in channels}
     used = ~campaign.censored
-    scales = {c: float(np.std(measured[c][used])) or 1.0 for c in channels}
+    scales = {c: float(np.std(measured[c][used & campaign.predicts(c)])) or 1.0 for c in channels}
     best = None
     for other in candidates:
         if other is first:

@@ -23,7 +23,7 @@ struct SlipHysteresisParams {
   static constexpr EffectStage kStage = EffectStage::physics;
   static constexpr bool kHasChannel = false;
   double slip_force_N = 50.0;     ///< what the elements hold when all slip [N]
-  double slip_distance_m = 0.01;  ///< the longest break-away displacement [m]
+  double slip_distance_m = 0.01;  ///< the break-away displacements spread over (0, this] [m]
   template <class V>
   static void for_each_field(V&& visit) {
     visit("slip_force_N", &SlipHysteresisParams::slip_force_N,
@@ -38,7 +38,7 @@ struct SlipHysteresisParams {
                           Resolution::any,
                           0.0});  // no elements; their distance then changes nothing
     visit("slip_distance_m", &SlipHysteresisParams::slip_distance_m,
-          FieldInfo{"m", 1e-6, 1.0, "the longest break-away displacement"},
+          FieldInfo{"m", 1e-6, 1.0, "the break-away displacements spread over (0, this]"},
           EffectFieldInfo{{0.002, 0.02},
                           false,
                           {5e-4, 0.05,
