@@ -14,7 +14,7 @@ import numpy as np
 
 from pamkit._core import BraidGeometry, pressure_branches
 from pamkit.diagnose.kinds import LOCKING_ANGLE_DEG
-from pamkit.io.experiment import BRAID_ANGLE_KEY, Experiment, ExperimentError
+from pamkit.io.experiment import BRAID_ANGLE_KEY, Experiment
 from pamkit.simulate import muscle_params
 
 # [calibrate] fields that move the braid's reach: with one of them unknown, the reach is too.

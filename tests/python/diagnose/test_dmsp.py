@@ -9,7 +9,6 @@ import sys
 import numpy as np
 import pytest
 from conftest import SOURCE_DIR
-from scipy.optimize import least_squares
 
 from pamkit import (
     BladderLaw,
