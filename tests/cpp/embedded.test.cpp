@@ -266,3 +266,27 @@ TEST_CASE("A controller's workspace carries the braid as a table's rows do", "[e
   }
   CHECK(slack > 0);
 }
+
+TEST_CASE("Vented, a held muscle carries its membrane's stretch and what its slip elements hold", "[embedded][slip]") {
+  // Pressurised at its rest length, stretched 3 mm, vented: at zero gauge pressure the gas does
+  // nothing, and the load cell reads the membrane stretched past rest (a neo-Hookean wall on the
+  // braid, stress-free at rest) plus what the elements took up lengthening, virgin(3 mm). The
+  // braid cannot push, so without either the vented muscle reads nothing.
+  const double f = 60.0;
+  const double delta = 0.005;
+  MuscleParams p = dmsp_params(f, delta);
+  p.build.bladder_diameter_m = p.build.diameter_m;  // no pre-stretch: the membrane rests at rest
+  const std::vector<double> lengths{0.250, 0.253, 0.253};
+  const std::vector<double> pressures{300.0, 300.0, 0.0};
+  const double vented = static_forces(p, lengths, pressures).back();
+  const BraidGeometry geometry(p.build);
+  const FrictionParams none{0.0, 0.0, 0.0, 0.0, 0.0};
+  const double membrane =
+      muscle_forces(geometry, geometry.shape(0.253), p.bladder, none, kAtmosphere, kAtmosphere, 0.0).total;
+  REQUIRE(membrane > 2.0 * detail::kEmbeddedSlackBand_N);  // the stretched wall pulls
+  CHECK_REL(vented, membrane + virgin_slip(f, delta, 0.003), 1e-9);
+  MuscleParams bare = p;
+  bare.bladder = BladderLaw::none();
+  bare.extensions.slip_force_N = 0.0;
+  CHECK(static_forces(bare, lengths, pressures).back() == braid_tension(0.0, detail::kEmbeddedSlackBand_N));
+}
