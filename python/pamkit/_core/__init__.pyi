@@ -678,7 +678,7 @@ class ModelExtensions:
     @property
     def slip_distance_m(self) -> float:
         """
-        Maxwell-slip friction: the longest break-away displacement [m], allowed [0.000001, 1.000000]
+        Maxwell-slip friction: break-away displacements spread over (0, this] [m], allowed [0.000001, 1.000000]
         """
     @slip_distance_m.setter
     def slip_distance_m(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
