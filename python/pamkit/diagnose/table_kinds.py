@@ -72,8 +72,8 @@ def test_names(experiments: list[Experiment]) -> list[str]:
 
 def campaign_of(experiments: list[Experiment]) -> Campaign:
     """Joins tables of one muscle, of one kind or several; a map's groups are its held lengths, an
-    isotonic test's its sweeps, a free-inflation table's its rows (DESIGN.md: the held-out unit
-    follows the kind)."""
+    isotonic test's its sweeps, a free-inflation table's its rows: the held-out unit follows the
+    kind."""
     kinds = list(dict.fromkeys(e.kind for e in experiments))
     kind = " + ".join(kinds)
     names_of_columns = list(dict.fromkeys(c for e in experiments for c in e.columns))

@@ -25,9 +25,8 @@ TEST_CASE("slip_hysteresis: a stretch and return at fixed pressure is the elasti
   const double f = 30.0;
   const double delta = 0.004;
   const EffectPtr slip = effect("slip_hysteresis:slip_force_N=30,slip_distance_m=0.004");
-  const double start = free_inflation(BraidGeometry(params.build), params.bladder, params.gas.atmospheric_pressure_Pa,
-                                      200e3)
-                           .length_m;
+  const double start =
+      free_inflation(BraidGeometry(params.build), params.bladder, params.gas.atmospheric_pressure_Pa, 200e3).length_m;
   std::vector<double> stretch;
   for (int k = 0; k <= 20; ++k) stretch.push_back(0.0005 * k);
   for (int k = 19; k >= 0; --k) stretch.push_back(0.0005 * k);

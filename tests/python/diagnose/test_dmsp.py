@@ -26,7 +26,7 @@ from independent.dmsp import DmspTruth, write_dmsp_isometric, write_dmsp_isotoni
 
 FESTO = SOURCE_DIR / "data" / "experiments" / "festo"
 SEEDS = (21, 22, 23)
-# Held-out error within 1.5 times the noise: the issue's bar for data the model can describe.
+# Held-out error within 1.5 times the noise: the bar for data the model can describe.
 WITHIN_NOISE = 1.5
 
 
@@ -82,10 +82,10 @@ def test_isometric_sweeps_name_the_slip_and_carry_to_held_lengths_left_out(tmp_p
 
 
 def test_a_campaign_of_an_isometric_and_an_isotonic_test_calibrates_one_muscle(tmp_path):
-    # Issue "commercial muscles as they are", build 5: one muscle's isometric sweeps and isotonic
-    # sweeps (a weighed 120 N) calibrated at once, each held length and each sweep predicted by the
-    # muscle fitted without it, within 1.5x each channel's noise; the slip named, and every
-    # calibrated number's interval holding its truth, on each seed.
+    # One muscle's isometric sweeps and isotonic sweeps (a weighed 120 N) calibrated at once, each
+    # held length and each sweep predicted by the muscle fitted without it, within 1.5x each
+    # channel's noise; the slip named, and every calibrated number's interval holding its truth,
+    # on each seed.
     for seed in SEEDS:
         t = truth(seed)
         tests = [isometric(tmp_path / f"i{seed}", t, seed), isotonic(tmp_path / f"t{seed}", t, seed)]

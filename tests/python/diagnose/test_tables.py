@@ -1,9 +1,8 @@
 """Static tables (DESIGN.md, "Experiment kinds"): an isometric map is diagnosed on held-out
-lengths. Checked on the published Festo maps (issue "Commercial muscles as they are": held-out
-force RMSE over lengths left out at most 20 N for the DMSP-20-300, and below what the model
-before the embedded construction reached, 15.1 and 21.2 N; no force below 0; a braid angle of
-15-35 degrees) and on maps written by an independent model (tests/independent/static_map.py)
-whose truth is known."""
+lengths. Checked on the published Festo maps (held-out force RMSE over lengths left out at most
+20 N for the DMSP-20-300, and below what the sleeve model with a slack braid reaches, 15.1 and
+21.2 N; no force below 0; a braid angle of 15-35 degrees) and on maps written by an independent
+model (tests/independent/static_map.py) whose truth is known."""
 
 import sys
 
@@ -28,8 +27,8 @@ TRUTH = dict(
 )
 
 
-# The held-out RMSE the sleeve model with a slack braid reached on each map (README before the
-# embedded construction), and the issue's bar where the model now meets it.
+# The held-out RMSE the maps reach declared as the thesis's sleeve with a pre-stretched membrane,
+# braid_slack named (README, "Commercial muscles"); and the 20 N asked of the DMSP-20-300.
 @pytest.mark.parametrize("muscle, limit_N", [("DMSP-10-250", 15.1), ("DMSP-20-300", 20.0)])
 def test_a_festo_map_names_the_friction_the_contracted_muscle_keeps_and_carries_to_lengths_left_out(
     muscle, limit_N, tmp_path

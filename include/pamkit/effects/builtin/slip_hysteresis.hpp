@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The catalog effect `slip_hysteresis` (DESIGN.md, "The effect catalog").
+/// The catalog effect `slip_hysteresis` (docs/effects.md).
 
 #include "pamkit/effects/parametric.hpp"
 
