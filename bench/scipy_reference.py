@@ -55,6 +55,7 @@ DEFAULT_BUILD = {
     "fiber_thickness_m": 0.254e-3,
     "end_diameter_m": 0.013,
     "cone_generator_m": 0.0095,
+    "end_zone_m": 0.0,
 }
 
 #: Table C.4 friction; sharpness Kf of eq. 3.1.21 (keys of pamkit.FrictionParams).
@@ -132,6 +133,8 @@ class ReferenceMuscle:
         bladder=None,
     ):
         b = _merge(DEFAULT_BUILD, build, "build")
+        if b["end_zone_m"] != 0.0:
+            raise ValueError("the reference is the thesis's muscle, its ends cones: it has no flat flanges' end zones")
         f = _merge(DEFAULT_FRICTION, friction, "friction")
         g = _merge(DEFAULT_GAS, gas, "gas")
         if g["process"] not in ("polytropic", "heat_transfer"):

@@ -13,9 +13,14 @@ namespace py = pybind11;
 namespace pamkit::python {
 
 void bind_muscle(py::module_& m) {
+  py::enum_<Construction>(m, "Construction", "How the fibres and the membrane are put together.")
+      .value("sleeve", Construction::sleeve, "a bladder inside a braided sleeve (the thesis's muscle)")
+      .value("embedded", Construction::embedded, "fibres embedded in the membrane: the braid cannot push");
   py::class_<MuscleBuild> build(m, "MuscleBuild",
                                 "The muscle as built and deflated (SI units; thesis tables 3.4, C.4).");
   bind_fields(build);
+  build.def_readwrite("construction", &MuscleBuild::construction,
+                      "sleeve (a bladder in a braided sleeve, the thesis's) or embedded (fibres in the membrane)");
 
   py::class_<BiaxialStress>(m, "BiaxialStress", "Stresses or tangent moduli of the bladder in its two directions [Pa].")
       .def_readonly("longitudinal", &BiaxialStress::longitudinal)

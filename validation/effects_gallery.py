@@ -389,6 +389,41 @@ def pressure_hysteresis() -> Path:
     return save(fig, "pressure_hysteresis")
 
 
+def slip_hysteresis() -> Path:
+    spec = "slip_hysteresis:slip_force_N=150,slip_distance_m=0.02"
+    build = pamkit.MuscleBuild(
+        length_m=0.25,
+        diameter_m=0.01,
+        bladder_diameter_m=0.01,
+        bladder_thickness_m=0.5e-3,
+        fiber_thickness_m=0.0,
+        end_diameter_m=0.005,
+        cone_generator_m=0.0,
+        end_zone_m=0.008,
+    )
+    build.construction = pamkit.Construction.embedded
+    build.fiber_revolutions = pamkit.fiber_revolutions_for_braid_angle(build, 22.0)
+    dmsp = pamkit.MuscleParams(build=build, bladder=pamkit.BladderLaw.none())
+    up = np.linspace(0.0, 600.0, 49)  # [kPa], as drawn
+    fig, (held, loaded) = figure(f"{spec} (a DMSP-10-like muscle, fibres in its membrane)")
+    for specs, style in (((), BASE), ([spec], {"color": COLORS[0]})):
+        effects = parse_effects(list(specs))
+        for length, width in ((0.25, 1.0), (0.235, 2.0)):
+            force = pamkit.static_forces(dmsp, np.full_like(up, length), value_to_si("pressure_kPa", up), effects)
+            held.plot(up, force, **{**style, "lw": width}, label=(specs[0].split(":")[0] if specs else "baseline"))
+        sweep = np.concatenate([np.linspace(150.0, 600.0, 19), np.linspace(575.0, 150.0, 18)])
+        supplied = value_to_si("pressure_kPa", sweep)
+        path = pamkit.isotonic_lengths(dmsp, supplied, 120.0, dmsp.build.length_m, effects)
+        loaded.plot(sweep, path.length_m * 1e3, **style)
+    held.set_title("held at 250 mm (rest, thin) and 235 mm (thick)", fontsize=9)
+    loaded.set_title("under 120 N, settled steps up and down", fontsize=9)
+    handles, labels = held.get_legend_handles_labels()
+    held.legend(handles[::2], labels[::2], fontsize=7)
+    label(held, "supplied pressure [kPa]", "force [N]", legend=False)
+    label(loaded, "supplied pressure [kPa]", "length [mm]", legend=False)
+    return save(fig, "slip_hysteresis")
+
+
 # The catalog's effects with a figure of their own; any other is drawn by `generic`.
 FIGURES = {
     f.__name__: f
@@ -401,6 +436,7 @@ FIGURES = {
         fixture_slack,
         braid_slack,
         pressure_hysteresis,
+        slip_hysteresis,
         sensor_lag,
         load_cell,
         time_skew,

@@ -19,6 +19,7 @@ from pamkit._core import (
     BiaxialStress,
     BladderLaw,
     BraidGeometry,
+    Construction,
     Effect,
     EffectCatalog,
     EffectParameter,

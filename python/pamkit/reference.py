@@ -28,13 +28,22 @@ if sys.version_info >= (3, 11):
 else:
     import tomli as tomllib
 
-from pamkit._core import FrictionParams, GasParams, GasProcess, InitialState, ModelExtensions, MuscleBuild
+from pamkit._core import (
+    Construction,
+    FrictionParams,
+    GasParams,
+    GasProcess,
+    InitialState,
+    ModelExtensions,
+    MuscleBuild,
+)
 from pamkit.io.columns import FILE_OPTIONAL_COLUMNS, REQUIRED_COLUMNS, si_name
 from pamkit.io.experiment import GAS_MODES
 from pamkit.io.schema import CAMPAIGN_SECTIONS, TABLE_COLUMNS, TABLE_DEFAULTS, TEST_CONDITIONS, TEST_KEYS
 from pamkit.io.sections import (
     BLADDER_LAWS,
     BRAID_ANGLE_KEY,
+    CONSTRUCTION_KEY,
     GAS_PROCESS_KEY,
     SCALED_WITH_DIAMETER,
     calibratable_fields,
@@ -226,6 +235,17 @@ def _test_keys() -> list[Key]:
     return keys
 
 
+CONSTRUCTION_MEANING = (
+    "how the fibres and the membrane are put together: a bladder inside a braided sleeve (the thesis's muscle), "
+    "or fibres embedded in the membrane (a Festo fluidic muscle), whose braid cannot push: held shorter than its "
+    "free length it goes slack and carries nothing"
+)
+
+
+def _constructions() -> str:
+    return ", ".join(f'"{name}"' for name in Construction.__members__)
+
+
 def experiment_keys() -> list[Key]:
     """Every key of an experiment file, section by section ([muscle], [bladder], [friction],
     [gas], [calibrate], [test]), and of a campaign file ([campaign])."""
@@ -239,6 +259,16 @@ def experiment_keys() -> list[Key]:
             "from fiber_revolutions",
             "the deflated braid's angle to the axis, what a datasheet gives, instead of fiber_revolutions",
             allowed="(0, 90)",
+        )
+    )
+    muscle.append(
+        Key(
+            "muscle",
+            CONSTRUCTION_KEY,
+            "",
+            '"sleeve"',
+            CONSTRUCTION_MEANING,
+            allowed=_constructions(),
         )
     )
     bladder = [
@@ -385,6 +415,7 @@ def params_file_keys() -> list[Key]:
             Key(section, k.name, k.unit, "", k.meaning, required=KINDS, allowed=k.allowed)
             for k in _struct_keys(section, struct)
         ]
+    keys.append(Key("build", CONSTRUCTION_KEY, "", "", CONSTRUCTION_MEANING, required=KINDS, allowed=_constructions()))
     keys.append(
         Key("gas", "process", "", "", "the gas's process", required=KINDS, allowed='"polytropic", "heat_transfer"')
     )

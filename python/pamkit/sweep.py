@@ -315,6 +315,7 @@ def with_parameters(base: Experiment, parameters: dict[str, float]) -> Experimen
             braid, a braid angle the build cannot reach).
     """
     build: MuscleBuild = _copy_struct(base.build)
+    build.construction = base.build.construction  # an enum, not a field of numbers
     friction = _copy_struct(base.friction)
     gas = _copy_struct(base.gas_params)
     gas.process = base.gas_params.process

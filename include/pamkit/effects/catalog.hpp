@@ -17,6 +17,7 @@
 #include "pamkit/effects/builtin/pressure_hysteresis.hpp"
 #include "pamkit/effects/builtin/sensor_lag.hpp"
 #include "pamkit/effects/builtin/sensor_offset.hpp"
+#include "pamkit/effects/builtin/slip_hysteresis.hpp"
 #include "pamkit/effects/builtin/thermometer.hpp"
 #include "pamkit/effects/builtin/time_skew.hpp"
 #include "pamkit/effects/effect.hpp"
@@ -41,6 +42,7 @@ inline EffectCatalog EffectCatalog::builtin() {
   detail::add_builtin<FixtureSlackEffect>(catalog);
   detail::add_builtin<BraidSlackEffect>(catalog);
   detail::add_builtin<PressureHysteresisEffect>(catalog);
+  detail::add_builtin<SlipHysteresisEffect>(catalog);
   detail::add_builtin<SensorLagEffect>(catalog);
   detail::add_builtin<TimeSkewEffect>(catalog);
   detail::add_builtin<SensorOffsetEffect>(catalog);

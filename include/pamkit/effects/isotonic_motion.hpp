@@ -53,18 +53,21 @@ struct IsotonicMotion {
 /// the length growing while the load wins. F is the tension of `detail::supplied_force`: gas,
 /// bladder and the tanh friction at velocity v, less the pressurise/vent hysteresis on the
 /// branch `pressure_branches` gives (the branch of the sample ending each segment; CVODES
-/// restarts where it flips), through a braid that cannot push when the slack band is on. A
-/// light load on a slack muscle falls freely until the bladder or the gas carries it.
+/// restarts where it flips), plus what the Maxwell-slip elements hold (muscle/slip.hpp: states
+/// of the motion, each following the length with its stiffness until it slips), through a braid
+/// that cannot push when the slack band is on. A light load on a slack muscle falls freely until
+/// the bladder or the gas carries it.
 /// Effects act as in `isotonic_lengths`: physical ones through the parameters, the supplied
 /// pressure's transducer through the pressure.
 /// \param time_s              sample times [s], strictly increasing, at least two
 /// \param gauge_pressures_Pa  supplied gauge pressure at each sample [Pa]
 /// \param load_N              constant load on the muscle [N]
 /// \param mass_kg             moving mass [kg], > 0
-/// \param start_length_m      length at time_s[0], at rest [m]; by default the quasi-static
-///                            equilibrium `isotonic_lengths` finds for the first sample
-///                            (searched from the deflated length; the end of its search
-///                            range if it finds none there)
+/// \param start_length_m      length at time_s[0], at rest, the slip elements empty [m]; by
+///                            default the quasi-static equilibrium `isotonic_lengths` finds for
+///                            the first sample (searched from the deflated length, the slip
+///                            elements as that path leaves them; the end of its search range if
+///                            it finds none there)
 /// \throws InvalidInput for mismatched sizes, times not increasing, a start outside the braid's
 ///         range, or a length that reaches the braid's range (naming the time and the samples
 ///         around it); InvalidParameter for a mass not > 0, a bad config or an effect that

@@ -12,6 +12,7 @@
 #include <boost/math/tools/roots.hpp>
 
 #include "pamkit/effects/effect.hpp"
+#include "pamkit/sim/held_braid.hpp"
 #include "pamkit/sim/simulator.hpp"
 
 namespace pamkit {
@@ -199,19 +200,20 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
   m.temperature_K.assign(time.size(), params.gas.ambient_temperature_K);
   m.force_N.resize(time.size());
   const std::vector<double> branch = pressure_branches(driving);
+  // The muscle was mounted at rest and brought to the test's first length.
+  HeldBraidState braid = braid_at_rest(extended.build);
   for (std::size_t k = 0; k < time.size(); ++k) {
     // The rate of the segment ending at each sample (of the first segment at the start), as
     // the sealed simulation's piecewise-linear trajectory has it.
     const std::size_t j = std::max<std::size_t>(k, 1);
     const double velocity = time.size() > 1 ? (motion[j] - motion[j - 1]) / (time[j] - time[j - 1]) : 0.0;
-    MuscleShape shape;
     try {
-      shape = geometry.shape(length_m + motion[k]);
+      geometry.shape(length_m + motion[k]);
     } catch (const InvalidInput& error) {
       throw InvalidInput(detail::message("sample ", k + 1, " (time ", time[k], " s, elongation ", motion[k], " m): ",
                                          error.what(), "; check the elongation's zero and [test] initial_length_m"));
     }
-    m.force_N[k] = detail::supplied_force(geometry, extended, shape, driving[k], velocity, branch[k]);
+    m.force_N[k] = settle_held_braid(geometry, extended, braid, length_m + motion[k], driving[k], velocity, branch[k]);
   }
   for (const EffectPtr& effect : effects) {
     if (!effect->reads_supplied_pressure()) effect->apply_to_measurement(m);
@@ -221,9 +223,11 @@ inline Measurement simulate_supplied_measurement(const MuscleParams& params, dou
 
 /// The muscle's force at rest [N] at each (length, supplied gauge pressure) of a static table: an
 /// isometric map, a free-inflation or isotonic table of settled steps, rows in the order they
-/// were measured (the pressurise/vent branch follows it). Friction, which needs a velocity, is
-/// zero at rest. Physical effects act through the parameters, the supplied pressure's
-/// transducer through the pressure; a table has no time axis for motion and other instruments.
+/// were measured, one record (the pressurise/vent branch follows it, and so does the braid of
+/// settle_held_braid, from rest at the deflated length: a map's held lengths are records of their
+/// own). Friction, which needs a velocity, is zero at rest. Physical effects act through the
+/// parameters, the supplied pressure's transducer through the pressure; a table has no time axis
+/// for motion and other instruments.
 /// \param lengths_m           muscle length of each row [m]
 /// \param gauge_pressures_Pa  supplied gauge pressure of each row [Pa]
 /// \throws InvalidParameter for an effect that cannot act on a static table; InvalidInput naming
@@ -241,14 +245,14 @@ inline std::vector<double> static_forces(const MuscleParams& params, const std::
   const BraidGeometry geometry(extended.build);
   const std::vector<double> branch = pressure_branches(driving);
   std::vector<double> force(lengths_m.size());
+  HeldBraidState braid = braid_at_rest(extended.build);
   for (std::size_t k = 0; k < lengths_m.size(); ++k) {
-    MuscleShape shape;
     try {
-      shape = geometry.shape(lengths_m[k]);
+      geometry.shape(lengths_m[k]);
     } catch (const InvalidInput& error) {
       throw InvalidInput(detail::message("row ", k + 1, " (length ", lengths_m[k], " m): ", error.what()));
     }
-    force[k] = detail::supplied_force(geometry, extended, shape, driving[k], 0.0, branch[k]);
+    force[k] = settle_held_braid(geometry, extended, braid, lengths_m[k], driving[k], 0.0, branch[k]);
   }
   return force;
 }
@@ -258,6 +262,7 @@ inline std::vector<double> static_forces(const MuscleParams& params, const std::
 struct IsotonicLengths {
   std::vector<double> length_m;
   std::vector<bool> at_limit;
+  SlipState slip;  ///< what the Maxwell-slip elements hold after the last row
 };
 
 /// The length at which the muscle carries `load_N` at each supplied gauge pressure of an
@@ -265,8 +270,9 @@ struct IsotonicLengths {
 /// quasi-static: each row starts from the previous row's length (`start_length_m` for the first)
 /// and moves to the nearest equilibrium in the direction the imbalance drives it, shorter while
 /// the muscle pulls more than the load. Where a light load has several equilibria, the muscle
-/// stays on the branch it is on, as a real one does. The search spans half the deflated length
-/// to 1.2 times it, within the braid's range.
+/// stays on the branch it is on, as a real one does. The Maxwell-slip elements (muscle/slip.hpp)
+/// start empty and follow the path. The search spans half the deflated length to 1.2 times it,
+/// within the braid's range.
 /// \param gauge_pressures_Pa  supplied gauge pressure of each row [Pa]
 /// \param load_N              the load the muscle carries [N]
 /// \param start_length_m      where the first row's search starts [m]
@@ -283,12 +289,15 @@ inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::v
   const double longest = std::min(geometry.max_length() * (1.0 - 1e-6), 1.2 * deflated);
   const double step = (longest - shortest) / 400.0;
   const std::vector<double> branch = pressure_branches(driving);
+  const ModelExtensions& x = extended.extensions;
   IsotonicLengths out;
   double length = std::clamp(start_length_m, shortest, longest);
   for (std::size_t k = 0; k < driving.size(); ++k) {
     const double gauge = driving[k];
+    const double start = length;
     auto imbalance = [&](double L) {
-      return detail::supplied_force(geometry, extended, geometry.shape(L), gauge, 0.0, branch[k]) - load_N;
+      const double slip = slip_total_after(out.slip, x.slip_force_N, x.slip_distance_m, L - start);
+      return detail::supplied_force(geometry, extended, geometry.shape(L), gauge, 0.0, branch[k], slip) - load_N;
     };
     const double here = imbalance(length);
     const double direction = here > 0.0 ? -1.0 : 1.0;  // pulling more than the load: shorten
@@ -308,6 +317,7 @@ inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::v
       from = to;
     }
     if (!found) length = from;
+    slip_move(out.slip, x.slip_force_N, x.slip_distance_m, length - start);
     out.length_m.push_back(length);
     out.at_limit.push_back(!found);
   }

@@ -9,7 +9,8 @@
 /// The file has one section per part of MuscleParams, each key a field of that part's
 /// `for_each_field` list, in SI units:
 ///
-///     [build]        MuscleBuild's fields (length_m, diameter_m, ...)
+///     [build]        MuscleBuild's fields (length_m, diameter_m, ...), and construction = "sleeve" or
+///                    "embedded" (fibres in the membrane: the braid cannot push)
 ///     [bladder]      form = "polynomial" with longitudinal_Pa = [c0, ..., c6] and
 ///                    hoop_Pa = [c0, ..., c6] (BladderLaw's coefficients; fewer than seven leave the
 ///                    higher ones 0), or form = "neo_hookean" with shear_modulus_Pa
@@ -36,8 +37,8 @@ namespace pamkit {
 
 /// What a muscle-parameters file holds.
 struct MuscleParamsFile {
-  MuscleParams params;                  ///< the muscle: [build], [bladder], [friction], [gas], [extensions]
-  std::optional<InitialState> initial;  ///< [initial], if the file has it
+  MuscleParams params;                   ///< the muscle: [build], [bladder], [friction], [gas], [extensions]
+  std::optional<InitialState> initial;   ///< [initial], if the file has it
   std::vector<std::string> rig_effects;  ///< [rig] effects: the test rig's effect specs, if the file has them
 };
 

@@ -3,8 +3,9 @@
 //
 // Every key of a section is a field of that part's `for_each_field` list, so a field added
 // there is read and written here without a change. Two parts carry what a field list of doubles
-// cannot: the bladder law (a form and coefficient lists) and the gas process (an enum); their keys
-// are BladderLaw's members and GasParams::process, spelled as in the C++ and the bindings.
+// cannot: the bladder law (a form and coefficient lists), the gas process and the build's
+// construction (enums); their keys are BladderLaw's members, GasParams::process and
+// MuscleBuild::construction, spelled as in the C++ and the bindings.
 //
 // toml++ is used as its user configured it (its CMake target says header-only or a shared
 // library): this file defines none of its TOML_* settings.
@@ -42,6 +43,10 @@ inline constexpr const char* kShearModulus = "shear_modulus_Pa";
 inline constexpr std::array<std::pair<const char*, BladderLaw::Form>, 2> kForms{
     {{"polynomial", BladderLaw::Form::polynomial}, {"neo_hookean", BladderLaw::Form::neo_hookean}}};
 inline constexpr std::size_t kCoefficients = std::tuple_size<decltype(BladderLaw::longitudinal_Pa)>::value;
+
+// [build]: MuscleBuild::construction, named as to_string(Construction) names it.
+inline constexpr const char* kConstruction = "construction";
+inline constexpr std::array<Construction, 2> kConstructions{Construction::sleeve, Construction::embedded};
 
 // [gas]: GasParams::process, named as to_string(GasProcess) names it.
 inline constexpr const char* kProcess = "process";
@@ -221,6 +226,21 @@ class Reader {
     return law;
   }
 
+  MuscleBuild build() const {
+    MuscleBuild build = part<MuscleBuild>(kBuild, {kConstruction});
+    const toml::node& node = key(section(kBuild), kBuild, kConstruction, "\"sleeve\" or \"embedded\"");
+    const std::string name = text(node, kBuild, kConstruction);
+    const auto* construction = std::find_if(kConstructions.begin(), kConstructions.end(),
+                                            [&](Construction c) { return name == to_string(c); });
+    if (construction == kConstructions.end()) {
+      fail(node.source(),
+           detail::message("[", kBuild, "] ", kConstruction, " = \"", name, "\" must be \"",
+                           to_string(Construction::sleeve), "\" or \"", to_string(Construction::embedded), "\""));
+    }
+    build.construction = *construction;
+    return build;
+  }
+
   GasParams gas() const {
     GasParams gas = part<GasParams>(kGas, {kProcess});
     const toml::node& node = key(section(kGas), kGas, kProcess, "\"polytropic\" or \"heat_transfer\"");
@@ -252,8 +272,8 @@ class Reader {
     const toml::node& node = key(*table, kRig, kRigEffects, "a list of effect specs, \"NAME:key=value,...\"");
     const toml::array* list = node.as_array();
     if (list == nullptr) {
-      fail(node.source(), detail::message("[", kRig, "] ", kRigEffects, " must be a list of strings, not a ",
-                                          type_name(node)));
+      fail(node.source(),
+           detail::message("[", kRig, "] ", kRigEffects, " must be a list of strings, not a ", type_name(node)));
     }
     std::vector<std::string> specs;
     for (const toml::node& item : *list) specs.push_back(text(item, kRig, kRigEffects));
@@ -298,7 +318,7 @@ inline MuscleParamsFile read_muscle_params_file(const std::string& path) {
   reader.check_sections({format::kBuild, format::kBladder, format::kFriction, format::kGas, format::kExtensions,
                          format::kInitial, format::kRig});
   MuscleParamsFile file;
-  file.params.build = reader.part<MuscleBuild>(format::kBuild);
+  file.params.build = reader.build();
   file.params.bladder = reader.bladder();
   file.params.friction = reader.part<FrictionParams>(format::kFriction);
   file.params.gas = reader.gas();
@@ -326,6 +346,9 @@ inline void write_muscle_params(const std::string& path, const MuscleParams& par
   for (std::string line; std::getline(comment_lines, line);) out << "# " << line << "\n";
   out << "# pamkit muscle parameters, SI units; keys are the C++ fields (include/pamkit/io/params_file.hpp)\n";
   format::write_fields(out, format::kBuild, params.build);
+  out << format::kConstruction << " = " << toml::value<std::string>(to_string(params.build.construction)) << "  # "
+      << to_string(Construction::sleeve) << " (a bladder in a braided sleeve) or " << to_string(Construction::embedded)
+      << " (fibres in the membrane: the braid cannot push)\n";
 
   out << "\n[" << format::kBladder << "]\n";
   if (params.bladder.form == BladderLaw::Form::neo_hookean) {

@@ -6,6 +6,22 @@
 
 namespace pamkit {
 
+/// How the fibres and the membrane are put together.
+enum class Construction {
+  /// A bladder inside a braided sleeve (the thesis's muscle): the thesis's model, whose braid
+  /// pushes as readily as it pulls.
+  sleeve,
+  /// Fibres embedded in the membrane (a Festo fluidic muscle): no bladder-braid gap, and a braid
+  /// that cannot push. Held shorter than its free length the muscle goes slack and carries
+  /// nothing: the force passes through `braid_tension` (muscle/force.hpp) in every prediction.
+  embedded
+};
+
+/// The name a file gives a construction ("sleeve", "embedded").
+inline const char* to_string(Construction construction) {
+  return construction == Construction::sleeve ? "sleeve" : "embedded";
+}
+
 /// The muscle as built and deflated (thesis section 3.2, tables 3.4 and C.4). The defaults
 /// are PAM 2 of table 3.4, the muscle of the high-pressure tests.
 struct MuscleBuild {
@@ -20,6 +36,18 @@ struct MuscleBuild {
   double fiber_thickness_m = 0.254e-3;    ///< thickness of one fiber tf [m] (table C.4)
   double end_diameter_m = 0.013;          ///< diameter d of the end caps [m] (Dend, table C.4)
   double cone_generator_m = 0.0095;       ///< slant length Lz of each end cone [m] (table C.4); 0 = flat ends
+  double end_zone_m = 0.0;  ///< flat ends: length of braid at each flange that keeps its deflated shape [m]; 0 = none
+  Construction construction = Construction::sleeve;  ///< fibres in a sleeve (thesis) or in the membrane
+
+  // Note on end_zone_m: pressed onto a flat flange, the braid cannot reach its cylinder's diameter
+  // near the flange. Tondu and Lopez (2000) correct Gaylord's force for it by contracting the
+  // muscle k = L0 / (L0 - 2 e) times faster; here each end zone keeps its deflated diameter and
+  // length (it neither contracts nor changes volume), and the braid between them is the cylinder
+  // of the thesis. The two published Festo maps give e = 0.7-0.9 braid diameters
+  // (data/experiments/festo).
+  //
+  // The construction is not in the field list below (a field list of numbers): the experiment
+  // reader and the muscle-parameters file read it by name, `construction = "embedded"`.
 
   // Note on bladder_thickness_m: section 3.1.2 measured the butyl tube at 0.9 mm, table C.4
   // ran the model with 0.254 mm. With the stress laws of eqs. 3.1.12-13 a 0.9 mm bladder
@@ -41,10 +69,13 @@ struct MuscleBuild {
     visit("end_diameter_m", &MuscleBuild::end_diameter_m, FieldInfo{"m", 1e-4, 0.5, "end cap diameter d"});
     visit("cone_generator_m", &MuscleBuild::cone_generator_m,
           FieldInfo{"m", 0.0, 0.5, "slant length of each end cone Lz (0: flat ends)"});
+    visit("end_zone_m", &MuscleBuild::end_zone_m,
+          FieldInfo{"m", 0.0, 0.5, "flat ends: braid at each flange that keeps its deflated shape (0: none)"});
   }
 
   /// Checks each field's range, then the relations between fields (the bladder fits inside
-  /// the braid, the end caps are narrower than the braid, the cones fit in the length).
+  /// the braid, the end caps are narrower than the braid, the cones or the end zones fit in the
+  /// length, end zones only with flat ends).
   /// \throws InvalidParameter naming the field.
   void validate() const;
 };

@@ -4,6 +4,19 @@ namespace pamkit {
 
 inline void MuscleBuild::validate() const {
   validate_fields(*this);
+  if (construction != Construction::sleeve && construction != Construction::embedded) {
+    PAMKIT_THROW(InvalidParameter(detail::message("MuscleBuild.construction = ", static_cast<int>(construction),
+                                                  " is neither sleeve nor embedded")));
+  }
+  if (end_zone_m > 0.0 && cone_generator_m > 0.0) {
+    PAMKIT_THROW(InvalidParameter(detail::message(
+        "MuscleBuild.end_zone_m = ", end_zone_m, " m with cone_generator_m = ", cone_generator_m,
+        " m: end zones belong to flat flanges; the thesis's cones are their own end model (give one)")));
+  }
+  if (2.0 * end_zone_m >= length_m) {
+    PAMKIT_THROW(InvalidParameter(detail::message("MuscleBuild.end_zone_m = ", end_zone_m,
+                                                  " m: two end zones do not fit in length_m = ", length_m, " m")));
+  }
   if (bladder_diameter_m > diameter_m) {
     PAMKIT_THROW(InvalidParameter(detail::message("MuscleBuild.bladder_diameter_m = ", bladder_diameter_m,
                                                   " m is larger than the braid diameter_m = ", diameter_m,

@@ -2,7 +2,8 @@
 /// \file
 /// Braid kinematics and volumes of the muscle as functions of its length (thesis 3.1.1-3.1.3,
 /// 3.1.9-3.1.11): a cylinder of braided, inextensible fibers between two end cones of fixed
-/// slant length, closed by end caps of fixed diameter.
+/// slant length, closed by end caps of fixed diameter; or, with flat ends, between two end zones
+/// that keep their deflated shape (MuscleBuild::end_zone_m).
 
 #include "pamkit/muscle/build.hpp"
 
@@ -35,7 +36,7 @@ struct MuscleShape {
   double length;             ///< L, between the end caps
   double diameter;           ///< D, braid diameter of the cylinder
   double cylinder_length;    ///< Lm = L - 2 LL
-  double cone_length;        ///< LL, axial length of one end cone
+  double cone_length;        ///< LL, axial length of one end: its cone, or a flat end's zone
   double braid_angle;        ///< theta of the cylinder, from the axis (eq. 3.1.9-3.1.10)
   double end_braid_angle;    ///< theta_e at the end cap: sin(theta_e) = (d / D) sin(theta)
   double cone_angle;         ///< beta, inclination of the cone's slant from the axis
@@ -94,7 +95,8 @@ class BraidGeometry {
   /// \throws InvalidInput if `length_m` is outside `(min_length(), max_length())`.
   MuscleShape shape_from(ShapeHint& hint, double length_m, ShapeParts parts) const;
 
-  /// Shortest length the model allows [m]: the cones flatten (D = d + 2 Lz) there.
+  /// Shortest length the model allows [m]: the cones flatten (D = d + 2 Lz) there; with flat
+  /// ends the cylinder between the end zones shrinks to nothing.
   double min_length() const { return min_length_; }
   /// Longest length the model allows [m]: the braid closes onto the end diameter.
   double max_length() const { return max_length_; }

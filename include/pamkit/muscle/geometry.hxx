@@ -32,10 +32,14 @@ inline double braid_fiber_length(double cylinder_length_m, double diameter_m, do
 }
 
 namespace detail {
-inline double deflated_cylinder_length(const MuscleBuild& build) {
+/// Axial length of one end [m]: a cone's, or a flat flange's end zone (0 without one).
+inline double deflated_end_length(const MuscleBuild& build) {
   const bool has_cones = build.cone_generator_m > 0.0;
-  return build.length_m -
-         2.0 * (has_cones ? cone_axial_length(build.cone_generator_m, build.diameter_m, build.end_diameter_m) : 0.0);
+  return has_cones ? cone_axial_length(build.cone_generator_m, build.diameter_m, build.end_diameter_m)
+                   : build.end_zone_m;
+}
+inline double deflated_cylinder_length(const MuscleBuild& build) {
+  return build.length_m - 2.0 * deflated_end_length(build);
 }
 }  // namespace detail
 
@@ -74,8 +78,9 @@ inline BraidGeometry::BraidGeometry(const MuscleBuild& build) : build_(build) {
     }
     max_length_ = 2.0 * lz + std::sqrt(fiber_length_ * fiber_length_ - turns * turns * d * d);
   } else {
-    min_length_ = 0.0;
-    max_length_ = fiber_length_;
+    // Flat ends: the end zones keep their length, the cylinder between them spans 0 to Lym.
+    min_length_ = 2.0 * build_.end_zone_m;
+    max_length_ = fiber_length_ + 2.0 * build_.end_zone_m;
   }
 }
 
@@ -137,8 +142,9 @@ inline MuscleShape BraidGeometry::solve(ShapeHint& hint, double length_m, ShapeP
                                                    upper, std::numeric_limits<double>::digits - 6, iterations);
     s.cone_length = detail::cone_axial_length(lz, s.diameter, d);
   } else {
-    s.diameter = std::sqrt((lym * lym - length_m * length_m) / k2);
-    s.cone_length = 0.0;
+    const double cylinder = length_m - 2.0 * build_.end_zone_m;
+    s.diameter = std::sqrt((lym * lym - cylinder * cylinder) / k2);
+    s.cone_length = build_.end_zone_m;
   }
   const double D = s.diameter;
   const double ll = s.cone_length;
@@ -165,13 +171,21 @@ inline MuscleShape BraidGeometry::solve(ShapeHint& hint, double length_m, ShapeP
   s.d_cylinder_length = 1.0 - 2.0 * d_cone_length;
   hint = ShapeHint{length_m, D, s.d_diameter};
 
-  // Eq. 3.1.1: two frusta and a cylinder.
-  const double frustum = 0.25 * (D * D + d * d + d * D);
-  const double d_frustum = 0.25 * (2.0 * D + d) * s.d_diameter;
   const double pi = detail::kPi;
-  s.total_volume = (2.0 / 3.0) * pi * ll * frustum + 0.25 * pi * D * D * lm;
-  s.d_total_volume = (2.0 / 3.0) * pi * (d_cone_length * frustum + ll * d_frustum) +
-                     0.25 * pi * (2.0 * D * s.d_diameter * lm + D * D * s.d_cylinder_length);
+  const double cylinder_volume = 0.25 * pi * D * D * lm;
+  const double d_cylinder_volume = 0.25 * pi * (2.0 * D * s.d_diameter * lm + D * D * s.d_cylinder_length);
+  if (lz > 0.0) {
+    // Eq. 3.1.1: two frusta and a cylinder.
+    const double frustum = 0.25 * (D * D + d * d + d * D);
+    const double d_frustum = 0.25 * (2.0 * D + d) * s.d_diameter;
+    s.total_volume = (2.0 / 3.0) * pi * ll * frustum + cylinder_volume;
+    s.d_total_volume = (2.0 / 3.0) * pi * (d_cone_length * frustum + ll * d_frustum) + d_cylinder_volume;
+  } else {
+    // Flat ends: each end zone keeps its deflated diameter and length, so its volume.
+    const double d0 = build_.diameter_m;
+    s.total_volume = 0.5 * pi * d0 * d0 * build_.end_zone_m + cylinder_volume;
+    s.d_total_volume = d_cylinder_volume;
+  }
   // The wall conserves its volume: rubber is incompressible. Eq. 3.1.3 (a tube of the full
   // length, the braid's diameter and a fixed thickness) gives that volume on the deflated build;
   // evaluated at every length, as the thesis does, it would let the rubber's volume follow the

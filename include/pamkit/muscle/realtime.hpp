@@ -8,11 +8,12 @@
 /// The force is the library's, not a copy of it: BraidGeometry::shape_unchecked (the shape that
 /// BraidGeometry::shape returns after its range check) and detail::supplied_force (muscle_forces'
 /// total through the braid's slack, what static_forces reports), so inside the range it equals
-/// `braid_tension(muscle_forces(geometry, geometry.shape(L), ...).total, slack_band_N)` bit for bit.
+/// `braid_tension(muscle_forces(geometry, geometry.shape(L), ...).total, detail::slack_band_N(params))`
+/// bit for bit.
 
 #include <cmath>
 
-#include "pamkit/sim/model.hpp"
+#include "pamkit/sim/held_braid.hpp"
 
 namespace pamkit {
 
@@ -30,8 +31,15 @@ struct RealtimeForce {
   ForceStatus status;  ///< ok, or why there is no force
 };
 
+/// What a controller carries from one RealtimeMuscle::force call to the next when the muscle has
+/// friction with memory (`extensions.slip_force_N` > 0): where the braid is and what its
+/// Maxwell-slip elements hold (sim/held_braid.hpp). One per muscle in the loop, never shared.
+struct RealtimeWorkspace {
+  HeldBraidState braid;  ///< at rest until the first call
+};
+
 /// A muscle whose force a controller evaluates in its loop. Immutable and cheap to copy; `force`
-/// may be called from many threads at once.
+/// may be called from many threads at once (each with its own workspace).
 class RealtimeMuscle {
  public:
   /// Validates `params` and precomputes the braid (fiber length, length range). Build it once,
@@ -44,10 +52,12 @@ class RealtimeMuscle {
   /// Axial force [N] of the muscle at length `length_m` [m], supplied gauge pressure
   /// `gauge_pressure_Pa` [Pa] and elongation rate `velocity_m_per_s` [m/s] (> 0 stretching,
   /// for friction): gas, bladder and friction, through a braid that cannot push when
-  /// `extensions.slack_band_N` > 0. The pressurise/vent hysteresis
-  /// (`extensions.pressure_hysteresis`) needs the pressure's history and is left out: the force
-  /// lies between its two branches. Outside (min_length_m(), max_length_m()), or for input that
-  /// is not finite, the force is 0 N and the status says why. No exception, no allocation.
+  /// `extensions.slack_band_N` > 0 or the fibres are embedded in the membrane. The
+  /// pressurise/vent hysteresis (`extensions.pressure_hysteresis`) needs the pressure's history
+  /// and is left out: the force lies between its two branches. So are the Maxwell-slip elements,
+  /// which need the motion's: the overload with a RealtimeWorkspace carries it. Outside (min_length_m(),
+  /// max_length_m()), or for input that is not finite, the force is 0 N and the status says why. No exception, no
+  /// allocation.
   RealtimeForce force(double length_m, double gauge_pressure_Pa, double velocity_m_per_s) const noexcept {
     if (std::isnan(length_m) || !std::isfinite(gauge_pressure_Pa) || !std::isfinite(velocity_m_per_s)) {
       return {0.0, ForceStatus::not_finite};
@@ -56,6 +66,24 @@ class RealtimeMuscle {
     if (!(length_m < geometry_.max_length())) return {0.0, ForceStatus::too_long};
     const MuscleShape shape = geometry_.shape_unchecked(length_m);
     return {detail::supplied_force(geometry_, params_, shape, gauge_pressure_Pa, velocity_m_per_s, 0.0),
+            ForceStatus::ok};
+  }
+
+  /// A workspace at rest: the braid at the deflated length, the slip elements empty.
+  RealtimeWorkspace rest() const noexcept { return {braid_at_rest(params_.build)}; }
+
+  /// `force`, with the friction that remembers the motion: the braid settled from `workspace`
+  /// (settle_held_braid at branch 0), which it updates. Without slip elements it equals `force`
+  /// bit for bit. Out of range or not finite, the status says so and the workspace is left as
+  /// it was. No exception, no allocation.
+  RealtimeForce force(RealtimeWorkspace& workspace, double length_m, double gauge_pressure_Pa,
+                      double velocity_m_per_s) const noexcept {
+    if (std::isnan(length_m) || !std::isfinite(gauge_pressure_Pa) || !std::isfinite(velocity_m_per_s)) {
+      return {0.0, ForceStatus::not_finite};
+    }
+    if (!(length_m > geometry_.min_length())) return {0.0, ForceStatus::too_short};
+    if (!(length_m < geometry_.max_length())) return {0.0, ForceStatus::too_long};
+    return {settle_held_braid(geometry_, params_, workspace.braid, length_m, gauge_pressure_Pa, velocity_m_per_s, 0.0),
             ForceStatus::ok};
   }
 

@@ -11,6 +11,7 @@
 #include "pamkit/gas/air.hpp"
 #include "pamkit/muscle/force.hpp"
 #include "pamkit/muscle/free_inflation.hpp"
+#include "pamkit/muscle/slip.hpp"
 
 namespace pamkit {
 
@@ -28,7 +29,9 @@ struct ModelExtensions {
   double fiber_compliance_per_N = 0.0;        ///< 1 / axial stiffness EA of one fiber [1/N]; 0: inextensible
   double slack_band_N = 0.0;  ///< the braid cannot push: width of its smooth slack transition [N]; 0: it can (thesis)
   double pressure_hysteresis =
-      0.0;  ///< bladder-braid friction under a supplied pressure, as a fraction of p pi D^2/4 [1]
+      0.0;                        ///< bladder-braid friction under a supplied pressure, as a fraction of p pi D^2/4 [1]
+  double slip_force_N = 0.0;      ///< Maxwell-slip friction with memory: the elements' slip force together [N]; 0: none
+  double slip_distance_m = 0.01;  ///< its break-away displacements spread over (0, this] [m] (muscle/slip.hpp)
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
@@ -46,6 +49,10 @@ struct ModelExtensions {
           FieldInfo{"N", 0.0, 1e4, "width of the slack braid's smooth transition (0: the braid pushes)"});
     visit("pressure_hysteresis", &ModelExtensions::pressure_hysteresis,
           FieldInfo{"1", 0.0, 10.0, "pressurise/vent friction over the pressure force p pi D^2/4"});
+    visit("slip_force_N", &ModelExtensions::slip_force_N,
+          FieldInfo{"N", 0.0, 1e5, "Maxwell-slip friction with memory: slip force of its elements together"});
+    visit("slip_distance_m", &ModelExtensions::slip_distance_m,
+          FieldInfo{"m", 1e-6, 1.0, "Maxwell-slip friction: break-away displacements spread over (0, this]"});
   }
   void validate() const { validate_fields(*this); }
 };
@@ -68,21 +75,44 @@ struct MuscleParams {
 };
 
 namespace detail {
-/// What the load cell reads of a muscle under a supplied pressure on one branch: gas, bladder
-/// and friction, less the rate-independent bladder-braid friction, through a braid that cannot
-/// push. The friction resists the motion the pressure drives: raising the pressure contracts the
-/// muscle, so the tension it shows is lower than the elastic force; lowering it, higher.
-/// `branch` is +1 pressurising, -1 venting (pressure_branches, effects/pipeline.hpp); 0 leaves the
-/// hysteresis out, as RealtimeMuscle::force (muscle/realtime.hpp) does.
-inline double supplied_force(const BraidGeometry& geometry, const MuscleParams& extended, const MuscleShape& shape,
-                             double gauge_Pa, double velocity_m_per_s, double branch) noexcept {
+/// Width of the smooth slack transition [N] of fibres embedded in the membrane when no
+/// `braid_slack` effect sets one: the width a diagnosis holds that effect at.
+constexpr double kEmbeddedSlackBand_N = 1.0;
+
+/// The width of the braid's slack transition [N] that this muscle's force passes through
+/// (`braid_tension`): the extension's when set (the catalog's braid_slack), else
+/// kEmbeddedSlackBand_N for fibres embedded in the membrane, whose braid cannot push as base
+/// physics, else 0: the thesis's braid, which pushes.
+inline double slack_band_N(const MuscleParams& params) noexcept {
+  if (params.extensions.slack_band_N > 0.0) return params.extensions.slack_band_N;
+  return params.build.construction == Construction::embedded ? kEmbeddedSlackBand_N : 0.0;
+}
+
+/// What the muscle under a supplied pressure would carry on one branch before the braid's slack:
+/// gas, bladder and friction, less the rate-independent bladder-braid friction, plus what the
+/// Maxwell-slip elements hold (`slip_N`, SlipState::total_N). The pressure hysteresis resists
+/// the motion the pressure drives: raising the pressure contracts the muscle, so the tension it
+/// shows is lower than the elastic force; lowering it, higher. `branch` is +1 pressurising, -1
+/// venting (pressure_branches, effects/pipeline.hpp); 0 leaves the hysteresis out.
+inline double unslackened_supplied_force(const BraidGeometry& geometry, const MuscleParams& extended,
+                                         const MuscleShape& shape, double gauge_Pa, double velocity_m_per_s,
+                                         double branch, double slip_N) noexcept {
   const double atmosphere = extended.gas.atmospheric_pressure_Pa;
   const double elastic = muscle_forces(geometry, shape, extended.bladder, extended.friction, atmosphere + gauge_Pa,
                                        atmosphere, velocity_m_per_s)
                              .total;
   const double hysteresis = extended.extensions.pressure_hysteresis * std::max(gauge_Pa, 0.0) * 0.25 * detail::kPi *
                             shape.diameter * shape.diameter;
-  return braid_tension(elastic - branch * hysteresis, extended.extensions.slack_band_N);
+  return elastic - branch * hysteresis + slip_N;
+}
+
+/// What the load cell reads of a muscle under a supplied pressure: `unslackened_supplied_force`
+/// through a braid that cannot push (slack_band_N).
+inline double supplied_force(const BraidGeometry& geometry, const MuscleParams& extended, const MuscleShape& shape,
+                             double gauge_Pa, double velocity_m_per_s, double branch, double slip_N = 0.0) noexcept {
+  return braid_tension(
+      unslackened_supplied_force(geometry, extended, shape, gauge_Pa, velocity_m_per_s, branch, slip_N),
+      slack_band_N(extended));
 }
 }  // namespace detail
 

@@ -50,7 +50,7 @@ inline double MuscleModel::elastic_force(double braid_length, const State& y, Sh
   const BladderState b = bladder_state(geometry_, shape, params_.bladder);
   return braid_tension(f.total + rubber_volume_ * (y[State::viscous_stress_l_Pa] * b.d_longitudinal_strain +
                                                    y[State::viscous_stress_h_Pa] * b.d_hoop_strain),
-                       params_.extensions.slack_band_N);
+                       detail::slack_band_N(params_));
 }
 
 inline double MuscleModel::elastic_slope(double braid_length, const State& y, ShapeHint& hint) const {
@@ -188,7 +188,7 @@ inline void MuscleModel::complete_outputs(MuscleOutputs& out, double velocity_m_
   const double viscous = rubber_volume_ * (y[State::viscous_stress_l_Pa] * b.d_longitudinal_strain +
                                            y[State::viscous_stress_h_Pa] * b.d_hoop_strain);
   out.forces.bladder += viscous;
-  out.forces.total = braid_tension(out.forces.total + viscous, x.slack_band_N);
+  out.forces.total = braid_tension(out.forces.total + viscous, detail::slack_band_N(params_));
   const double relaxation = 1.0 / x.viscoelastic_time_constant_s;
   const BiaxialStress modulus = params_.bladder.tangent_moduli(b.longitudinal_strain, b.hoop_strain);
   rate[State::viscous_stress_l_Pa] =

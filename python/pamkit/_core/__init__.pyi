@@ -9,7 +9,7 @@ import os
 import typing
 from . import logger
 from . import units
-__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'IntegrationMethod', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SensitivityResult', 'ShapeTable', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'StiffnessEstimate', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'estimate_stiffness', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_measurement_blocks', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
+__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'Construction', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'IntegrationMethod', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SensitivityResult', 'ShapeTable', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'StiffnessEstimate', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'estimate_stiffness', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_measurement_blocks', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
 class Error(RuntimeError):
     pass
 class SolverError(RuntimeError):
@@ -18,6 +18,53 @@ class InvalidInput(ValueError):
     pass
 class InvalidParameter(ValueError):
     pass
+class Construction:
+    """
+    How the fibres and the membrane are put together.
+    
+    Members:
+    
+      sleeve : a bladder inside a braided sleeve (the thesis's muscle)
+    
+      embedded : fibres embedded in the membrane: the braid cannot push
+    """
+    __members__: typing.ClassVar[dict[str, Construction]]
+    embedded: typing.ClassVar[Construction]
+    sleeve: typing.ClassVar[Construction]
+    @typing.overload
+    def __eq__(self, other: Construction) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: Construction) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class MuscleBuild:
     """
     The muscle as built and deflated (SI units; thesis tables 3.4, C.4).
@@ -64,6 +111,14 @@ class MuscleBuild:
     def cone_generator_m(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def construction(self) -> Construction:
+        """
+        sleeve (a bladder in a braided sleeve, the thesis's) or embedded (fibres in the membrane)
+        """
+    @construction.setter
+    def construction(self, arg0: Construction) -> None:
+        ...
+    @property
     def diameter_m(self) -> float:
         """
         deflated braid diameter [m], allowed [0.001000, 0.500000]
@@ -78,6 +133,14 @@ class MuscleBuild:
         """
     @end_diameter_m.setter
     def end_diameter_m(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def end_zone_m(self) -> float:
+        """
+        flat ends: braid at each flange that keeps its deflated shape (0: none) [m], allowed [0.000000, 0.500000]
+        """
+    @end_zone_m.setter
+    def end_zone_m(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def fiber_count(self) -> float:
@@ -611,6 +674,22 @@ class ModelExtensions:
         """
     @slack_band_N.setter
     def slack_band_N(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def slip_distance_m(self) -> float:
+        """
+        Maxwell-slip friction: break-away displacements spread over (0, this] [m], allowed [0.000001, 1.000000]
+        """
+    @slip_distance_m.setter
+    def slip_distance_m(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def slip_force_N(self) -> float:
+        """
+        Maxwell-slip friction with memory: slip force of its elements together [N], allowed [0.000000, 100000.000000]
+        """
+    @slip_force_N.setter
+    def slip_force_N(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def viscoelastic_strength(self) -> float:

@@ -273,6 +273,7 @@ def muscle_signature(params: MuscleParams) -> tuple:
     gas = {k: v for k, v in params.gas.to_dict().items() if k != "ambient_temperature_K"}
     return (
         *(part.to_dict() for part in (params.build, params.friction, params.extensions)),
+        params.build.construction,
         gas,
         params.gas.process,
         law.form,

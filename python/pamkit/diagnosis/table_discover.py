@@ -76,7 +76,9 @@ def discover_table(campaign, channels, noise: dict[str, float], fit, seed: int) 
 
     ranked = sorted((c for c in channels if above_noise(c) > NOISE_FACTOR), key=above_noise, reverse=True)
     return {
-        c: _discover_channel(campaign, c, noise[c], measured[c] - fit.predicted[c], fit.predicted[c], seed)
+        c: _discover_channel(
+            campaign, c, noise[c], np.nan_to_num(measured[c] - fit.predicted[c]), fit.predicted[c], seed
+        )
         for c in ranked
     }
 
@@ -85,7 +87,7 @@ def _discover_channel(campaign, channel: str, noise: float, residual, predicted,
     from pamkit.diagnosis.discover import discover
     from pamkit.diagnosis.table_kinds import test_names
 
-    used = ~campaign.censored
+    used = ~campaign.censored & campaign.predicts(channel)  # a campaign's other kinds do not predict it
     labels = np.unique(campaign.groups[used])
     fitted_labels = labels[::2]
     fit_mask = used & np.isin(campaign.groups, fitted_labels)
@@ -93,7 +95,7 @@ def _discover_channel(campaign, channel: str, noise: float, residual, predicted,
     names = test_names(campaign.experiments) if len(campaign.experiments) > 1 else ()
     try:
         features = table_features(
-            campaign.kind, campaign.columns, campaign.test, campaign.branch, channel, predicted, names
+            campaign.kind, campaign.columns, campaign.test, campaign.branch, channel, np.nan_to_num(predicted), names
         )
         # A table of a few rows affords fewer terms than rows fitted: the first ones, in the
         # library's order (simplest first).

@@ -13,13 +13,10 @@ from scipy.optimize import least_squares
 from pamkit._core import Effect, MuscleParams
 from pamkit.diagnosis.identify import identify
 from pamkit.diagnosis.model import Coordinate, configure, effect_space, unknown_coordinate, with_unknowns
-from pamkit.diagnosis.table_kinds import Campaign, test_names
+from pamkit.diagnosis.table_kinds import PREDICTED, Campaign, test_names
 from pamkit.io.experiment import Experiment
 from pamkit.io.guards import ExperimentError
 from pamkit.simulation import muscle_params, simulate_table
-
-# The channels each kind predicts.
-PREDICTED = {"isometric_map": ("force_N",), "free_inflation": ("length_m", "diameter_m"), "isotonic": ("length_m",)}
 
 # [calibrate] names each test of a campaign has its own value of (the rest are shared).
 PER_TEST = ("load_N",)
@@ -42,7 +39,7 @@ class TableFit:
     effects: list[Effect]
     params: dict[str, float]
     coordinates: dict[str, tuple[Coordinate, float]]
-    predicted: dict[str, np.ndarray]
+    predicted: dict[str, np.ndarray]  # NaN on rows whose kind does not predict the channel
     heldout: dict[str, np.ndarray]
     intervals: dict[str, tuple[float, float]]  # jackknife 95 % over held-out groups
     x: np.ndarray | None = None  # the fitted coordinates, to start a larger model from
@@ -57,7 +54,9 @@ class TableModel:
     def __init__(self, campaign: Campaign):
         self.campaign = campaign
         self.kind = campaign.kind
+        self.channels = campaign.channels
         self.columns = campaign.columns
+        self.predicts = {c: campaign.predicts(c) for c in self.channels}
         self.test_names = test_names(campaign.experiments)
         declared: dict[str, tuple[tuple[float, float], Experiment]] = {}
         for e in campaign.experiments:
@@ -85,7 +84,8 @@ class TableModel:
         return with_unknowns(muscle_params(experiment), values)
 
     def predict(self, values: dict[str, float], effects: list[Effect], rows: np.ndarray) -> dict[str, np.ndarray]:
-        out = {c: np.empty(len(rows)) for c in PREDICTED[self.kind]}
+        """Each channel at `rows`; NaN where the row's kind does not predict it."""
+        out = {c: np.full(len(rows), np.nan) for c in self.channels}
         for i, experiment in enumerate(self.campaign.experiments):
             mine = np.flatnonzero(self.campaign.test[rows] == i)
             if len(mine) == 0:
@@ -93,7 +93,7 @@ class TableModel:
             local = rows[mine] - int(np.flatnonzero(self.campaign.test == i)[0])
             load = values.get(self.unknown_of("load_N", experiment))
             predicted = simulate_table(experiment, self.params(experiment, values), effects, local, load)
-            for channel in out:
+            for channel in PREDICTED[experiment.kind]:
                 out[channel][mine] = predicted[channel]
         return out
 
@@ -137,8 +137,13 @@ class Fitter:
             predicted = self.predict(x, rows)
         except ValueError:
             # A trial outside the braid's range: a large, finite residual steers the search back.
-            return np.full(len(rows) * len(self.channels), 1e3)
-        return np.concatenate([(predicted[c] - self.model.columns[c][rows]) / self.scales[c] for c in self.channels])
+            return np.full(sum(int(self.model.predicts[c][rows].sum()) for c in self.channels), 1e3)
+        return np.concatenate(
+            [
+                (predicted[c] - self.model.columns[c][rows])[self.model.predicts[c][rows]] / self.scales[c]
+                for c in self.channels
+            ]
+        )
 
     def fit(self, rows: np.ndarray, starts: list[np.ndarray]) -> np.ndarray:
         if not self.space:

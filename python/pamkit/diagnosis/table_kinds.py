@@ -1,7 +1,8 @@
 """The units of a static table (DESIGN.md, "Experiment kinds"): a campaign of one or more
 tables of one muscle, the held-out group of each row (a map's held lengths, an isotonic test's
 pressurise/vent sweeps, a free-inflation table's rows) and the noise, estimated without the
-model."""
+model. A campaign may join tables of different kinds (an isometric map and an isotonic test of
+one muscle): each row then predicts its own kind's channels."""
 
 from __future__ import annotations
 
@@ -15,13 +16,16 @@ from pamkit._core import BraidGeometry, pressure_branches
 from pamkit.diagnosis.kinds import LOCKING_ANGLE_DEG
 from pamkit.io.columns import value_from_si
 from pamkit.io.experiment import Experiment
-from pamkit.io.guards import ExperimentError
 from pamkit.io.sections import BRAID_ANGLE_KEY
 from pamkit.simulation import muscle_params
 from pamkit.units import MILLIMETRE_PER_METRE
 
 # [calibrate] fields that move the braid's reach: with one of them unknown, the reach is too.
 REACH_FIELDS = ("length_m", "diameter_m", "fiber_revolutions", BRAID_ANGLE_KEY, "end_diameter_m", "cone_generator_m")
+# The channels each kind predicts.
+PREDICTED = {"isometric_map": ("force_N",), "free_inflation": ("length_m", "diameter_m"), "isotonic": ("length_m",)}
+# What each kind holds out.
+GROUP_NAMES = {"isometric_map": "held length", "isotonic": "sweep", "free_inflation": "row"}
 
 
 @dataclass
@@ -30,8 +34,8 @@ class Campaign:
     its own build and rows; the [calibrate] unknowns are shared."""
 
     experiments: list[Experiment]
-    kind: str
-    columns: dict[str, np.ndarray]  # every test's rows, concatenated
+    kind: str  # the tests' kind, or their kinds joined by " + "
+    columns: dict[str, np.ndarray]  # every test's rows, concatenated (NaN where a test has no such column)
     test: np.ndarray  # the test of each row
     groups: np.ndarray  # the held-out group of each row (an index into group_labels)
     group_labels: list[str]
@@ -43,6 +47,23 @@ class Campaign:
     def name(self) -> str:
         return " + ".join(str(e.path) for e in self.experiments)
 
+    @property
+    def channels(self) -> tuple[str, ...]:
+        """What the campaign predicts: its kinds' channels, in the order the tests give them."""
+        out: list[str] = []
+        for e in self.experiments:
+            out += [c for c in PREDICTED[e.kind] if c not in out]
+        return tuple(out)
+
+    def predicts(self, channel: str) -> np.ndarray:
+        """The rows whose test's kind predicts `channel`."""
+        kinds = np.array([self.experiments[t].kind for t in range(len(self.experiments))])
+        return np.isin(kinds[self.test], [k for k, channels in PREDICTED.items() if channel in channels])
+
+    def of_kind(self, kind: str) -> Campaign:
+        """The campaign's tests of one kind, as a campaign of their own."""
+        return campaign_of([e for e in self.experiments if e.kind == kind])
+
 
 def test_names(experiments: list[Experiment]) -> list[str]:
     """A short name for each test of a campaign: its file's stem, with its folder where stems repeat."""
@@ -53,13 +74,16 @@ def test_names(experiments: list[Experiment]) -> list[str]:
 
 
 def campaign_of(experiments: list[Experiment]) -> Campaign:
-    """Joins tables of one kind; a map's groups are its held lengths, a free-inflation table's its
-    rows (DESIGN.md: the held-out unit follows the kind)."""
-    kinds = {e.kind for e in experiments}
-    if len(kinds) != 1:
-        raise ExperimentError(f"a campaign's tables must be of one kind; found {', '.join(sorted(kinds))}")
-    kind = kinds.pop()
-    columns = {c: np.concatenate([e.columns[c] for e in experiments]) for c in experiments[0].columns}
+    """Joins tables of one muscle, of one kind or several; a map's groups are its held lengths, an
+    isotonic test's its sweeps, a free-inflation table's its rows: the held-out unit follows the
+    kind."""
+    kinds = list(dict.fromkeys(e.kind for e in experiments))
+    kind = " + ".join(kinds)
+    names_of_columns = list(dict.fromkeys(c for e in experiments for c in e.columns))
+    columns = {
+        c: np.concatenate([e.columns.get(c, np.full(len(e.columns["gauge_pressure_Pa"]), np.nan)) for e in experiments])
+        for c in names_of_columns
+    }
     test = np.concatenate([np.full(len(e.columns["gauge_pressure_Pa"]), i) for i, e in enumerate(experiments)])
     labels: list[str] = []
     groups = np.empty(len(test), dtype=int)
@@ -67,11 +91,11 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
     prefix = (lambda i: f"{names[i]} ") if len(experiments) > 1 else (lambda i: "")
     for i, e in enumerate(experiments):
         rows = np.flatnonzero(test == i)
-        if kind == "isometric_map":
+        if e.kind == "isometric_map":
             for length in np.unique(np.round(e.columns["length_m"], 9)):
                 groups[rows[np.round(e.columns["length_m"], 9) == length]] = len(labels)
                 labels.append(f"{prefix(i)}L={length:g}")
-        elif kind == "isotonic":
+        elif e.kind == "isotonic":
             # A sweep: pressurised, then vented; the next starts where the pressure rises again.
             branch = pressure_branches(e.columns["gauge_pressure_Pa"])
             sweep = np.concatenate([[0], np.cumsum((branch[1:] > 0) & (branch[:-1] < 0))])
@@ -82,9 +106,11 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
             for row, pressure in zip(rows, value_from_si("gauge_pressure_Pa", e.columns["gauge_pressure_Pa"])):
                 groups[row] = len(labels)
                 labels.append(f"{prefix(i)}p={pressure:g}")  # in kPa, as the file gives it
-    name = {"isometric_map": "held length", "isotonic": "sweep"}.get(kind, "row")
+    name = " or ".join(GROUP_NAMES[k] for k in kinds)
     censored = np.concatenate([e.censored for e in experiments])
-    records = groups if kind == "isometric_map" else test
+    maps = np.isin(test, [i for i, e in enumerate(experiments) if e.kind == "isometric_map"])
+    # A branch runs along a record: a map's held length, another kind's whole test.
+    records = np.where(maps, groups, len(labels) + test)
     branch = np.empty(len(test))
     for record in np.unique(records):
         rows = np.flatnonzero(records == record)
@@ -98,11 +124,9 @@ def beyond_reach(campaign: Campaign) -> list[dict]:
     b sin(54.7°) / (n π) for fibre length b and n revolutions, and calipers
     on the braid add at most its two crossing fibres. Each such test is a warning (a measurement
     over a bulge, or a build other than the one declared), not a cause to fit."""
-    if campaign.kind != "free_inflation":
-        return []
     out = []
     for e in campaign.experiments:
-        if any(field in e.calibrate for field in REACH_FIELDS):
+        if e.kind != "free_inflation" or any(field in e.calibrate for field in REACH_FIELDS):
             continue
         build = muscle_params(e).build
         reach = (
@@ -141,34 +165,51 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
     branch of several isotonic sweeps, the same length and pressure in several maps), the pooled
     spread of the repeats; otherwise the residual of a cubic in pressure fitted to each held
     length's loaded rows (force > 0) of a map or to each free-inflation table. Either leaves
-    what the instruments add, not what the model misses."""
+    what the instruments add, not what the model misses. A slack muscle's force reads exactly
+    zero, with no noise in it: such rows are left out. An isotonic test's first sweep starts from
+    rest, and friction with memory makes it no repeat of the sweeps after it: the repeats are
+    looked for among those."""
+    if len({e.kind for e in campaign.experiments}) > 1:  # each channel from the tests that predict it
+        return {
+            c: noise_of(campaign.of_kind(next(e.kind for e in campaign.experiments if c in PREDICTED[e.kind])), (c,))[c]
+            for c in channels
+        }
     pressure = campaign.columns["gauge_pressure_Pa"]
     branch = campaign.branch if campaign.kind == "isotonic" else np.ones(len(pressure))
     used = ~campaign.censored
     key = np.column_stack([campaign.test, branch, np.round(pressure, 3)])  # to a mPa: a file's 1e-6 kPa
     if campaign.kind == "isometric_map":
         key = np.column_stack([key, np.round(campaign.columns["length_m"], 9)])
-    pressure, key = pressure[used], key[used]
-    _, repeat, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-    repeat = repeat.ravel()
+    if campaign.kind == "isotonic":
+        first_sweep = {test: campaign.groups[campaign.test == test].min() for test in np.unique(campaign.test)}
+        first = campaign.groups == np.array([first_sweep[test] for test in campaign.test])
+        # Each row of a first sweep a key of its own: no repeat of anything.
+        key = np.column_stack([key, np.where(first, np.arange(len(pressure)), -1)])
     out = {}
     for channel in channels:
-        values = campaign.columns[channel][used]
+        rows = used & (campaign.columns[channel] > 0) if channel == "force_N" else used
+        values = campaign.columns[channel][rows]
+        _, repeat, counts = np.unique(key[rows], axis=0, return_inverse=True, return_counts=True)
+        repeat = repeat.ravel()
         if np.sum(counts - 1) >= 5:
             means = np.bincount(repeat, weights=values) / counts
             squares = float(np.sum((values - means[repeat]) ** 2))
             out[channel] = math.sqrt(squares / float(np.sum(counts - 1)))
             continue
-        units = (campaign.groups if campaign.kind == "isometric_map" else campaign.test)[used]
+        # A map's held lengths; an isotonic test's pressurising and venting rows apart (a loop
+        # between them is no noise); a free-inflation table.
+        if campaign.kind == "isometric_map":
+            units = campaign.groups[rows]
+        else:
+            units = (2 * campaign.test + (branch > 0))[rows]
+        at = pressure[rows]
         squares, dof = 0.0, 0
         for unit in np.unique(units):
-            rows = units == unit
-            if channel == "force_N":
-                rows &= values > 0
-            if rows.sum() < 6:
+            mine = units == unit
+            if mine.sum() < 6:
                 continue
-            coefficients = np.polyfit(pressure[rows], values[rows], 3)
-            squares += float(np.sum((np.polyval(coefficients, pressure[rows]) - values[rows]) ** 2))
-            dof += int(rows.sum()) - 4
+            coefficients = np.polyfit(at[mine], values[mine], 3)
+            squares += float(np.sum((np.polyval(coefficients, at[mine]) - values[mine]) ** 2))
+            dof += int(mine.sum()) - 4
         out[channel] = math.sqrt(squares / dof) if dof > 0 else float("nan")
     return out

@@ -23,15 +23,19 @@ def to_json(d: TableDiagnosis) -> dict:
     def rmse(fit, heldout):
         if heldout:
             return {c: heldout_rmse(fit, measured, c) for c in d.channels}
-        return {c: float(np.sqrt(np.mean((fit.predicted[c] - measured[c])[used] ** 2))) for c in d.channels}
+        return {c: float(np.sqrt(np.nanmean((fit.predicted[c] - measured[c])[used] ** 2))) for c in d.channels}
 
     def per_group(fit):
         out = {}
         for index, label in enumerate(d.campaign.group_labels):
             rows = (d.groups == index) & used
             if rows.any():
-                out[label] = {c: heldout_rmse(fit, measured, c, rows) for c in d.channels}
+                errors = {c: heldout_rmse(fit, measured, c, rows) for c in d.channels}
+                out[label] = {c: e for c, e in errors.items() if np.isfinite(e)}  # the channels its kind predicts
         return out
+
+    def largest(fit):
+        return {c: float(np.nanmax(np.abs(fit.heldout[c] - measured[c])[used])) for c in d.channels}
 
     report = {
         "kind": d.campaign.kind,
@@ -45,6 +49,7 @@ def to_json(d: TableDiagnosis) -> dict:
             "undetermined": _undetermined_json(d.baseline),
             "rmse": rmse(d.baseline, False),
             "heldout_rmse": rmse(d.baseline, True),
+            "heldout_max_error": largest(d.baseline),
             "heldout_rmse_by_group": per_group(d.baseline),
         },
         "candidates": [
@@ -71,6 +76,7 @@ def to_json(d: TableDiagnosis) -> dict:
             "undetermined": _undetermined_json(d.extended),
             "rmse": rmse(d.extended, False),
             "heldout_rmse": rmse(d.extended, True),
+            "heldout_max_error": largest(d.extended),
             "heldout_rmse_by_group": per_group(d.extended),
         },
         "gain": d.extended_candidate.gain if d.extended_candidate else {c: 0.0 for c in d.channels},
@@ -159,9 +165,12 @@ def verdict(d: TableDiagnosis) -> str:
         )
     named = " and ".join([d.cause] + [a["effect"] for a in d.added])
     models = [("baseline", d.baseline)] + ([(f"with {named}", d.extended)] if d.extended is not d.baseline else [])
+    used = ~c.censored
     for name, fit in models:
         error = ", ".join(
-            f"{c} {heldout_rmse(fit, measured, c):.4g} {CHANNEL_UNITS[c]} (noise {d.noise[c]:.2g})" for c in d.channels
+            f"{ch} {heldout_rmse(fit, measured, ch):.4g} {CHANNEL_UNITS[ch]} (noise {d.noise[ch]:.2g}; largest "
+            f"{np.nanmax(np.abs(fit.heldout[ch] - measured[ch])[used]):.4g})"
+            for ch in d.channels
         )
         lines.append(f"{name}: held-out RMSE {error}")
         if fit.params:
@@ -226,7 +235,7 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
 
     c = d.campaign
     pressure = value_from_si("gauge_pressure_Pa", c.columns["gauge_pressure_Pa"])  # drawn in kPa
-    by_group = c.kind in ("isometric_map", "isotonic")
+    by_group = all(e.kind in ("isometric_map", "isotonic") for e in c.experiments)
     curves = c.groups if by_group else c.test
     names = c.group_labels if by_group else test_names(c.experiments)
     figure, axes = plt.subplots(1, len(d.channels), figsize=(6.5 * len(d.channels), 4.8), squeeze=False)
@@ -234,19 +243,21 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
         unit = CHANNEL_UNITS[channel]
         scale = MILLIMETRE_PER_METRE if unit == "m" else 1.0
         shown_unit = "mm" if unit == "m" else unit
-        colors = plt.cm.viridis(np.linspace(0, 0.9, len(np.unique(curves))))
-        for curve, color in zip(np.unique(curves), colors):
-            rows = np.flatnonzero(curves == curve)
-            if c.kind != "isotonic":  # an isotonic sweep is drawn in the order measured: up, then down
+        mine = c.predicts(channel)
+        drawn = np.unique(curves[mine])
+        colors = plt.cm.viridis(np.linspace(0, 0.9, len(drawn)))
+        for curve, color in zip(drawn, colors):
+            rows = np.flatnonzero((curves == curve) & mine)
+            if c.experiments[c.test[rows[0]]].kind != "isotonic":  # an isotonic sweep is drawn as measured: up, down
                 rows = rows[np.argsort(pressure[rows])]
             axis.plot(pressure[rows], scale * c.columns[channel][rows], "o", color=color, ms=4, label=names[curve])
             axis.plot(pressure[rows], scale * d.baseline.heldout[channel][rows], ":", color=color, lw=1)
             if d.extended is not d.baseline:
                 axis.plot(pressure[rows], scale * d.extended.heldout[channel][rows], "-", color=color, lw=1.5)
-        if c.censored.any():
+        if (c.censored & mine).any():
             axis.plot(
-                pressure[c.censored],
-                scale * c.columns[channel][c.censored],
+                pressure[c.censored & mine],
+                scale * c.columns[channel][c.censored & mine],
                 "x",
                 color="0.5",
                 label="censored: the transducer's range end",

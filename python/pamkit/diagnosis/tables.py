@@ -26,7 +26,7 @@ import numpy as np
 from pamkit._core import EffectCatalog, EffectStage, GasMode
 from pamkit.diagnosis.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE, findings
 from pamkit.diagnosis.table_discover import discover_table
-from pamkit.diagnosis.table_fit import PREDICTED, Fitter, TableFit, TableModel, fit_table, heldout_rmse
+from pamkit.diagnosis.table_fit import Fitter, TableFit, TableModel, fit_table, heldout_rmse
 from pamkit.diagnosis.table_kinds import Campaign, beyond_reach, campaign_of, noise_of
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.io.experiment import Experiment
@@ -108,6 +108,12 @@ def branch_difference(residual: np.ndarray, pressure: np.ndarray, branch: np.nda
     return residual[inside] - np.interp(pressure[inside], p_up, r_up)
 
 
+def _squares(residual: np.ndarray) -> float:
+    """A group's sum of squared residuals; NaN (a row of a kind that does not predict the channel)
+    adds nothing."""
+    return float(np.nansum(residual**2))
+
+
 def _gains(base: np.ndarray, ext: np.ndarray, draws: np.ndarray) -> tuple[float, tuple[float, float]]:
     """Held-out gain from per-group sums of squares, and its bootstrap interval over groups."""
     gain = 1.0 - math.sqrt(ext.sum() / base.sum()) if base.sum() > 0 else 0.0
@@ -140,8 +146,8 @@ def _judge(
     draws = rng.integers(0, len(labels), size=(BOOTSTRAP_SAMPLES, len(labels)))
     gain, ci = {}, {}
     for c in channels:
-        base = np.array([float(np.sum((baseline.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index])
-        ext = np.array([float(np.sum((fit.heldout[c][rows] - measured[c][rows]) ** 2)) for rows in index])
+        base = np.array([_squares(baseline.heldout[c][rows] - measured[c][rows]) for rows in index])
+        ext = np.array([_squares(fit.heldout[c][rows] - measured[c][rows]) for rows in index])
         gain[c], ci[c] = _gains(base, ext, draws)
     between = campaign is not None and any(e.shows_between_branches() for e in (acting or fit.effects))
     judged_gain, judged_ci = gain, ci
@@ -150,8 +156,8 @@ def _judge(
         judged_gain, judged_ci = {}, {}
         for c in channels:
             r_base, r_fit = baseline.heldout[c] - measured[c], fit.heldout[c] - measured[c]
-            base = np.array([float(np.sum(branch_difference(r_base, pressure, branch, rows) ** 2)) for rows in index])
-            ext = np.array([float(np.sum(branch_difference(r_fit, pressure, branch, rows) ** 2)) for rows in index])
+            base = np.array([_squares(branch_difference(r_base, pressure, branch, rows)) for rows in index])
+            ext = np.array([_squares(branch_difference(r_fit, pressure, branch, rows)) for rows in index])
             judged_gain[c], judged_ci[c] = _gains(base, ext, draws)
     score = float(np.mean([judged_gain[c] for c in channels]))
     significant = all(judged_gain[c] >= MIN_GAIN and judged_ci[c][0] > 0.0 for c in channels)
@@ -197,7 +203,7 @@ def diagnose_table(
     are too few groups to hold out."""
     progress = progress or (lambda message: None)
     campaign = campaign_of(experiments if isinstance(experiments, list) else [experiments])
-    channels = PREDICTED[campaign.kind]
+    channels = campaign.channels
     groups, group_name = campaign.groups, campaign.group_name
     used = ~campaign.censored
     labels = np.unique(groups[used])
@@ -210,7 +216,7 @@ def diagnose_table(
     measured = {c: campaign.columns[c] for c in channels}
     noise = noise_of(campaign, channels)
     # Residuals of channels with different units are compared in units of their spread.
-    scales = {c: float(np.std(measured[c][used])) or 1.0 for c in channels}
+    scales = {c: float(np.std(measured[c][used & campaign.predicts(c)])) or 1.0 for c in channels}
     seed = _seed(campaign.columns)
     catalog = catalog or builtin_catalog()
     names, skipped = static_candidates(catalog)
@@ -242,7 +248,7 @@ def diagnose_table(
             except ValueError as error:
                 skipped[name] = f"cannot be evaluated on this table: {error}"
                 continue
-            if all(np.array_equal(with_effect[c], without[c]) for c in channels):
+            if all(np.array_equal(with_effect[c], without[c], equal_nan=True) for c in channels):
                 skipped[name] = "does not change a static table's prediction"
                 continue
             progress(f"fitting {name}")
@@ -298,10 +304,10 @@ def _second_effect(first, candidates, baseline, model, catalog, progress, pool, 
     cannot hold both, and `first` alone may fit only with a parameter at a bound. Returns the
     pair judged against the baseline and what was added, with its gain over `first` alone; or
     `first` and nothing."""
-    campaign, channels = model.campaign, PREDICTED[model.kind]
+    campaign, channels = model.campaign, model.channels
     measured = {c: campaign.columns[c] for c in channels}
     used = ~campaign.censored
-    scales = {c: float(np.std(measured[c][used])) or 1.0 for c in channels}
+    scales = {c: float(np.std(measured[c][used & campaign.predicts(c)])) or 1.0 for c in channels}
     best = None
     for other in candidates:
         if other is first:

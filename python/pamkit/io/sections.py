@@ -11,6 +11,7 @@ from pathlib import Path
 
 from pamkit._core import (
     BladderLaw,
+    Construction,
     FrictionParams,
     GasParams,
     GasProcess,
@@ -24,6 +25,8 @@ from pamkit.io.guards import check_keys, fail, number
 GAS_PROCESS_KEY = "process"
 # [muscle] key beyond MuscleBuild's fields: what a datasheet gives instead of fiber_revolutions.
 BRAID_ANGLE_KEY = "braid_angle_deg"
+# [muscle] key beyond MuscleBuild's fields: how fibres and membrane are put together, by name.
+CONSTRUCTION_KEY = "construction"
 # [muscle] dimensions that scale with the braid diameter when a file leaves them out.
 SCALED_WITH_DIAMETER = (
     "bladder_diameter_m",
@@ -66,14 +69,23 @@ def _scaled_defaults(path: Path, table: dict) -> MuscleBuild:
 
 
 def read_build(path: Path, table: dict) -> MuscleBuild:
-    """[muscle]: MuscleBuild's fields, or braid_angle_deg instead of fiber_revolutions."""
+    """[muscle]: MuscleBuild's fields, or braid_angle_deg instead of fiber_revolutions, and the
+    construction by name ("sleeve", the default, or "embedded")."""
     table = dict(table)
     angle = table.pop(BRAID_ANGLE_KEY, None)
     if angle is not None and "fiber_revolutions" in table:
         raise fail(path, f"[muscle] gives both {BRAID_ANGLE_KEY} and fiber_revolutions: give one, they say the same")
+    construction = table.pop(CONSTRUCTION_KEY, "sleeve")
+    if construction not in Construction.__members__:
+        raise fail(
+            path, f"[muscle] {CONSTRUCTION_KEY} = {construction!r} must be one of {', '.join(Construction.__members__)}"
+        )
     build = _scaled_defaults(path, table)
+    build.construction = Construction.__members__[construction]
+    # The keys beyond the build's fields, taken out above, are named among the known ones.
+    named = (BRAID_ANGLE_KEY, CONSTRUCTION_KEY)
     if angle is None:
-        return fill_struct(path, "muscle", table, build)
+        return fill_struct(path, "muscle", table, build, named)
     angle = number(path, f"[muscle] {BRAID_ANGLE_KEY}", angle)
     for key, value in table.items():  # the angle converts through the other dimensions
         if key in type(build).fields():
@@ -82,7 +94,7 @@ def read_build(path: Path, table: dict) -> MuscleBuild:
         build.fiber_revolutions = fiber_revolutions_for_braid_angle(build, angle)
     except ValueError as error:
         raise fail(path, f"[muscle] {error}") from None
-    return fill_struct(path, "muscle", table, build)
+    return fill_struct(path, "muscle", table, build, named)
 
 
 def read_bladder(path: Path, table: dict) -> BladderLaw:

@@ -234,3 +234,57 @@ TEST_CASE("isotonic_motion: bad inputs are named", "[effects][isotonic_motion]")
                     Contains("isotonic_motion: at t = ") && Contains("between samples 1 and 2") &&
                         Contains("the longest the braid allows") && Contains("outruns"));
 }
+
+TEST_CASE("isotonic_motion: Maxwell-slip elements take the energy they dissipate, and no more",
+          "[effects][isotonic_motion][slip]") {
+  // A displaced mass on a muscle whose only friction is Maxwell-slip (muscle/slip.hpp) rings
+  // down. Its mechanical energy, m v^2 / 2 + integral of (F_elastic - load) dL + the elements'
+  // spring energy, falls by exactly what the elements dissipate slipping: replayed along the
+  // recorded lengths with slip_move (the motion between samples is one way but at the turns,
+  // where the samples cut the slip by at most one sample's travel). The ODE's elements are states
+  // of the motion: the same replay gives back the force the motion records.
+  MuscleParams params = conservative();
+  params.extensions.slip_force_N = 20.0;
+  params.extensions.slip_distance_m = 0.002;
+  MuscleParams elastic = params;
+  elastic.extensions.slip_force_N = 0.0;
+  const double load = 100.0;
+  const double pressure = 300e3;
+  const double mass = 1.0;
+  const double equilibrium = isotonic_lengths(elastic, {pressure}, load, params.build.length_m).length_m.front();
+  const double start = equilibrium + 0.008;
+  auto imbalance = [&](double length) { return force_at_rest(elastic, length, pressure) - load; };
+  const std::vector<double> time = uniform_times(0.45, 9001);
+  const std::vector<double> pressures(time.size(), pressure);
+  IsotonicMotionConfig config;
+  config.relative_tolerance = 1e-10;
+  config.absolute_tolerance_m = 1e-13;
+  config.absolute_tolerance_m_per_s = 1e-12;
+  const IsotonicMotion motion = isotonic_motion(params, time, pressures, load, mass, start, {}, config);
+  SlipState replay;
+  double dissipated = 0.0;
+  double largest_energy_error = 0.0;
+  const double f = params.extensions.slip_force_N;
+  const double delta = params.extensions.slip_distance_m;
+  const BraidGeometry geometry(params.build);
+  for (std::size_t j = 0; j < time.size(); ++j) {
+    if (j > 0) dissipated += slip_move(replay, f, delta, motion.length_m[j] - motion.length_m[j - 1]);
+    const double v = motion.velocity_m_per_s[j];
+    const double potential =
+        boost::math::quadrature::gauss_kronrod<double, 31>::integrate(imbalance, start, motion.length_m[j], 0);
+    const double energy = 0.5 * mass * v * v + potential + slip_stored_energy(replay, f, delta);
+    largest_energy_error = std::max(largest_energy_error, std::abs(energy + dissipated));
+    const double recorded_slip = motion.force_N[j] - force_at_rest(elastic, motion.length_m[j], pressure);
+    INFO("sample " << j + 1);
+    CHECK(std::abs(recorded_slip - replay.total_N()) <= 0.01 * f);
+  }
+  const double initial_energy =
+      boost::math::quadrature::gauss_kronrod<double, 31>::integrate(imbalance, start, equilibrium, 0);
+  INFO("dissipated " << dissipated << " J of " << -initial_energy << " J; largest energy error " << largest_energy_error
+                     << " J");
+  // The slip takes most of the energy; the elements that stick at the end are springs, in whose
+  // stick zone the mass rings on with what is left.
+  CHECK(dissipated > 0.9 * -initial_energy);
+  CHECK(largest_energy_error <= 0.01 * dissipated);
+  CHECK(motion.statistics.restarts > 10);  // the elements switched, each switch a restart
+}

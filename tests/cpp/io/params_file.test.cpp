@@ -64,6 +64,10 @@ MuscleParams awkward_params(const BladderLaw& bladder) {
   perturb(params.gas);
   perturb(params.extensions);
   params.gas.process = GasProcess::heat_transfer;
+  // End zones belong to flat flanges: the perturbed end zone with the cones taken off, on the
+  // construction that is not the default.
+  params.build.cone_generator_m = 0.0;
+  params.build.construction = Construction::embedded;
   params.bladder = bladder;
   return params;
 }
@@ -81,6 +85,7 @@ void check_same(const MuscleParamsFile& read, const MuscleParams& written) {
   check_same_fields(read.params.gas, written.gas);
   check_same_fields(read.params.extensions, written.extensions);
   CHECK(read.params.gas.process == written.gas.process);
+  CHECK(read.params.build.construction == written.build.construction);
   CHECK(read.params.bladder.form == written.bladder.form);
   CHECK(read.params.bladder.longitudinal_Pa == written.bladder.longitudinal_Pa);
   CHECK(read.params.bladder.hoop_Pa == written.bladder.hoop_Pa);
@@ -157,6 +162,7 @@ TEST_CASE("a written parameters file reads back as the same MuscleParams", "[io]
       CHECK_THAT(text, Contains(std::string("\n") + name + " = ") && Contains(info.description));
     });
     CHECK_THAT(text, Contains("process = 'polytropic'"));
+    CHECK_THAT(text, Contains("construction = 'sleeve'"));
   }
 }
 
@@ -250,6 +256,13 @@ TEST_CASE("a bad parameters file is refused naming file, line, column and key", 
     CHECK_THROWS_WITH(read_muscle_params(file.path()),
                       Contains(at(file, line_of(text, "process"), 11) +
                                "[gas] process = \"adiabatic\" must be \"polytropic\" or \"heat_transfer\""));
+  }
+  SECTION("an unknown construction") {
+    const std::string text = edited_defaults(
+        file, [](std::string t) { return replace_line(t, "construction =", "construction = \"woven\""); });
+    CHECK_THROWS_WITH(read_muscle_params(file.path()),
+                      Contains(at(file, line_of(text, "construction"), 16) +
+                               "[build] construction = \"woven\" must be \"sleeve\" or \"embedded\""));
   }
   SECTION("fields in range that do not fit together: MuscleParams::validate, with the file's name") {
     edited_defaults(file,

@@ -203,3 +203,59 @@ TEST_CASE("Construction validates the parameters", "[realtime]") {
   params.friction.sharpness_s_per_m = -1.0;
   CHECK_THROWS_AS(RealtimeMuscle(params), InvalidParameter);
 }
+
+namespace {
+
+/// An embedded DMSP-10-like muscle with Maxwell-slip friction and no membrane.
+MuscleParams slipping_dmsp() {
+  MuscleParams params;
+  params.build.length_m = 0.25;
+  params.build.diameter_m = 0.01;
+  params.build.bladder_diameter_m = 0.01;
+  params.build.bladder_thickness_m = 0.5e-3;
+  params.build.fiber_thickness_m = 0.0;
+  params.build.end_diameter_m = 0.005;
+  params.build.cone_generator_m = 0.0;
+  params.build.end_zone_m = 0.008;
+  params.build.construction = Construction::embedded;
+  params.build.fiber_revolutions = fiber_revolutions_for_braid_angle(params.build, 22.0);
+  params.bladder = BladderLaw::none();
+  params.extensions.slip_force_N = 180.0;
+  params.extensions.slip_distance_m = 0.02;
+  return params;
+}
+
+}  // namespace
+
+TEST_CASE("With friction that remembers, the workspace's force allocates nothing and throws nothing",
+          "[realtime][slip]") {
+  // Lengths and pressures that take the muscle slack and taut: the slack braid's search runs too.
+  // (That this force is static_forces' row by row is tests/cpp/embedded.test.cpp's.)
+  const MuscleParams params = slipping_dmsp();
+  const RealtimeMuscle muscle(params);
+  RealtimeWorkspace workspace = muscle.rest();
+  STATIC_REQUIRE(noexcept(muscle.force(workspace, 0.2, 0.0, 0.0)));
+  const long before = allocations.load();
+  long slack = 0;
+  long taut = 0;
+  for (int k = 0; k < 600; ++k) {
+    const RealtimeForce f =
+        muscle.force(workspace, 0.24 - 0.02 * std::sin(0.011 * k), 300e3 + 280e3 * std::sin(0.023 * k), 0.0);
+    REQUIRE(f.status == ForceStatus::ok);
+    (f.force_N < 0.5 ? slack : taut) += 1;
+  }
+  CHECK(allocations.load() == before);
+  CHECK(slack > 0);
+  CHECK(taut > 0);
+  // Out of range: a status, and the workspace as it was.
+  const HeldBraidState kept = workspace.braid;
+  CHECK(muscle.force(workspace, muscle.max_length_m() * 1.5, 300e3, 0.0).status == ForceStatus::too_long);
+  CHECK(workspace.braid.braid_length_m == kept.braid_length_m);
+  // Without slip elements the workspace changes nothing: the memoryless force.
+  MuscleParams memoryless = params;
+  memoryless.extensions.slip_force_N = 0.0;
+  const RealtimeMuscle plain(memoryless);
+  RealtimeWorkspace unused = plain.rest();
+  for (double L : {0.2, 0.23, 0.245})
+    CHECK(plain.force(unused, L, 300e3, 0.01).force_N == plain.force(L, 300e3, 0.01).force_N);
+}

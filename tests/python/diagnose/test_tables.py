@@ -1,8 +1,8 @@
 """Static tables (docs/experiments.md): an isometric map is diagnosed on held-out
-lengths. Checked on the published Festo maps (the targets: held-out
-force RMSE over lengths left out <= 25 N for the DMSP-10-250 and <= 60 N for the DMSP-20-300, no
-force below -2 N, a braid angle of 15-35 degrees) and on maps written by an independent model
-(tests/independent/static_map.py) whose truth is known."""
+lengths. Checked on the published Festo maps (held-out force RMSE over lengths left out at most
+20 N for the DMSP-20-300, and below what the sleeve model with a slack braid reaches, 15.1 and
+21.2 N; no force below 0; a braid angle of 15-35 degrees) and on maps written by an independent
+model (tests/independent/static_map.py) whose truth is known."""
 
 import sys
 
@@ -27,20 +27,27 @@ TRUTH = dict(
 )
 
 
-@pytest.mark.parametrize("muscle, limit_N", [("DMSP-10-250", 25.0), ("DMSP-20-300", 60.0)])
-def test_a_festo_map_calibrates_a_slack_braid_that_carries_to_lengths_left_out(muscle, limit_N, tmp_path):
+# The held-out RMSE the maps reach declared as the thesis's sleeve with a pre-stretched membrane,
+# braid_slack named (README, "Commercial muscles"); and the 20 N asked of the DMSP-20-300.
+@pytest.mark.parametrize("muscle, limit_N", [("DMSP-10-250", 15.1), ("DMSP-20-300", 20.0)])
+def test_a_festo_map_names_the_friction_the_contracted_muscle_keeps_and_carries_to_lengths_left_out(
+    muscle, limit_N, tmp_path
+):
     d = diagnose(FESTO / f"{muscle}.toml", threads=2)
     report = to_json(d)
-    assert d.cause == "braid_slack", verdict(d)
-    assert report["extended"]["heldout_rmse"]["force_N"] <= limit_N, verdict(d)
-    # The thesis's braid pushes where the muscle reads zero: the baseline is far worse.
-    assert report["baseline"]["heldout_rmse"]["force_N"] > 2 * report["extended"]["heldout_rmse"]["force_N"]
-    assert d.extended.heldout["force_N"].min() >= -2.0
+    assert d.cause == "slip_hysteresis", verdict(d)
+    assert report["extended"]["heldout_rmse"]["force_N"] < limit_N, verdict(d)
+    # Without the friction the contracted lengths' constant offset is left: far worse.
+    assert report["baseline"]["heldout_rmse"]["force_N"] > 5 * report["extended"]["heldout_rmse"]["force_N"]
+    # The braid cannot push: no prediction below zero, held out or not.
+    assert np.nanmin(d.extended.heldout["force_N"]) >= 0.0 and np.nanmin(d.extended.predicted["force_N"]) >= 0.0
     assert 15.0 <= report["extended"]["params"]["braid_angle_deg"] <= 35.0
     low, high = report["extended"]["intervals"]["braid_angle_deg"]
     assert low < report["extended"]["params"]["braid_angle_deg"] < high
     lengths = d.campaign.columns["length_m"]
     assert set(report["extended"]["heldout_rmse_by_group"]) == {f"L={length:g}" for length in set(lengths)}
+    largest = np.nanmax(np.abs(d.extended.heldout["force_N"] - d.campaign.columns["force_N"]))
+    assert report["extended"]["heldout_max_error"]["force_N"] == pytest.approx(largest)
 
 
 def test_an_independent_map_gives_back_its_braid_angle_and_membrane(tmp_path):
@@ -116,7 +123,7 @@ def test_the_command_line_writes_the_table_report_and_plot(tmp_path, capsys):
         == 0
     )
     out = capsys.readouterr().out
-    assert "cause: braid_slack" in out and "calibrated (jackknife 95 %)" in out
+    assert "cause: slip_hysteresis" in out and "calibrated (jackknife 95 %)" in out
     assert (tmp_path / "r.png").read_bytes()[:4] == b"\x89PNG"
 
 

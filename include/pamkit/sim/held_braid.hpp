@@ -1,0 +1,84 @@
+#pragma once
+/// \file
+/// A muscle whose ends a rig holds at a length while the supplied pressure moves, settled at each
+/// step: an isometric map's held length, a supplied test's crosshead, a controller's linkage.
+/// Where the braid can go slack and the Maxwell-slip elements (muscle/slip.hpp) remember its
+/// motion, where the braid is matters, not only where the ends are: pulled taut it lies at the
+/// held length; slack (it would push there) it is free and settles where it carries nothing,
+/// shorter or longer than its last place as the pressure drives it, and the elements follow that
+/// motion. An isometric map's muscle, held shorter than its rest length, contracts that way while
+/// the pressure rises until it pulls taut, and keeps what the elements took up on the way.
+
+#include <algorithm>
+#include <cstdint>
+
+#include <boost/math/tools/roots.hpp>
+
+#include "pamkit/sim/model.hpp"
+
+namespace pamkit {
+
+/// Where a held muscle's braid is and what its slip elements hold. Mutable: one per run, or one
+/// per controller (RealtimeMuscle's workspace).
+struct HeldBraidState {
+  double braid_length_m = 0.0;  ///< the braid's length [m]: the held length when taut, longer or shorter when slack
+  SlipState slip;               ///< what the Maxwell-slip elements hold
+};
+
+/// The held braid at rest: at the deflated length, nothing in the slip elements.
+inline HeldBraidState braid_at_rest(const MuscleBuild& build) noexcept { return {build.length_m, {}}; }
+
+/// The force [N] a load cell reads of a muscle whose ends are held at `length_m` (inside the
+/// braid's range, which the caller checked) at supplied gauge pressure `gauge_Pa`, elongation
+/// rate `velocity_m_per_s` (the tanh friction's) and pressure `branch` (+1 pressurising, -1
+/// venting, 0 neither: detail::supplied_force), the braid settled from `state`, which it updates.
+///
+/// Without slip elements the braid's place carries no memory, and this is
+/// `detail::supplied_force` at the held length, operation for operation. With them: taut (the
+/// force at the held length, the elements moved there, is not below zero, or the braid can push)
+/// the braid lies at the held length; slack, it moves from where it was to where its force,
+/// elements included, is zero, between the held length and the braid's longest length, and the
+/// load cell reads the slack force (through `braid_tension`, at most a quarter of its band).
+inline double settle_held_braid(const BraidGeometry& geometry, const MuscleParams& extended, HeldBraidState& state,
+                                double length_m, double gauge_Pa, double velocity_m_per_s, double branch) noexcept {
+  const ModelExtensions& x = extended.extensions;
+  const double band = detail::slack_band_N(extended);
+  const double from = state.braid_length_m;
+  const auto carried = [&](double braid) {
+    return detail::unslackened_supplied_force(
+        geometry, extended, geometry.shape_unchecked(braid), gauge_Pa, velocity_m_per_s, branch,
+        slip_total_after(state.slip, x.slip_force_N, x.slip_distance_m, braid - from));
+  };
+  const double taut = carried(length_m);
+  if (x.slip_force_N <= 0.0 || band <= 0.0 || taut >= 0.0) {
+    slip_move(state.slip, x.slip_force_N, x.slip_distance_m, length_m - from);
+    state.braid_length_m = length_m;
+    return braid_tension(taut, band);
+  }
+  // Slack: the free braid carries nothing. Its force rises with its length (the gas's and the
+  // membrane's, and the elements'), and is below zero at the held length.
+  double lower = length_m;
+  double upper = from;
+  if (!(from > length_m && carried(from) >= 0.0)) {
+    lower = std::max(length_m, from);
+    const double top = geometry.max_length() * (1.0 - 1e-9);
+    const double step = 0.0025 * (top - geometry.min_length());
+    upper = lower;
+    while (upper < top && carried(upper) < 0.0) {
+      lower = upper;
+      upper = std::min(upper + step, top);
+    }
+  }
+  double braid = upper;
+  if (upper > lower && carried(upper) >= 0.0) {
+    std::uintmax_t iterations = 100;
+    const auto root = boost::math::tools::toms748_solve(carried, lower, upper,
+                                                        boost::math::tools::eps_tolerance<double>(40), iterations);
+    braid = 0.5 * (root.first + root.second);
+  }
+  slip_move(state.slip, x.slip_force_N, x.slip_distance_m, braid - from);
+  state.braid_length_m = braid;
+  return braid_tension(taut, band);
+}
+
+}  // namespace pamkit
