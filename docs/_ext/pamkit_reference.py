@@ -41,7 +41,7 @@ def _kinds(kinds: tuple[str, ...]) -> str:
 def experiment_file() -> list[str]:
     lines: list[str] = []
     keys = reference.experiment_keys()
-    for section in ("muscle", "bladder", "friction", "gas", "calibrate", "test", "campaign"):
+    for section in ("muscle", "bladder", "friction", "gas", "calibrate", "uncertain", "test", "campaign"):
         title = f"[{section}]"
         lines += [title, "-" * len(title), ""]
         rows = [
@@ -83,7 +83,7 @@ def data_columns() -> list[str]:
 def params_file() -> list[str]:
     lines: list[str] = []
     keys = reference.params_file_keys()
-    for section in ("build", "bladder", "friction", "gas", "extensions", "initial"):
+    for section in ("build", "bladder", "friction", "gas", "extensions", "initial", "rig"):
         title = f"[{section}]"
         lines += [title, "-" * len(title), ""]
         rows = [

@@ -44,7 +44,9 @@ from pamkit.io.sections import (
     BLADDER_LAWS,
     BRAID_ANGLE_KEY,
     CONSTRUCTION_KEY,
+    DEFAULT_WIND_TOLERANCE,
     GAS_PROCESS_KEY,
+    NOT_BUILD,
     SCALED_WITH_DIAMETER,
     calibratable_fields,
 )
@@ -248,7 +250,7 @@ def _constructions() -> str:
 
 def experiment_keys() -> list[Key]:
     """Every key of an experiment file, section by section ([muscle], [bladder], [friction],
-    [gas], [calibrate], [test]), and of a campaign file ([campaign])."""
+    [gas], [calibrate], [uncertain], [test]), and of a campaign file ([campaign])."""
     scaled = "scales with diameter_m from PAM 2's when left out"
     muscle = _struct_keys("muscle", MuscleBuild, {name: scaled for name in SCALED_WITH_DIAMETER})
     muscle.append(
@@ -323,6 +325,20 @@ def experiment_keys() -> list[Key]:
                 allowed="[lower, upper]",
             )
         )
+    uncertain = [
+        Key(
+            "uncertain",
+            name,
+            unit if unit != "1" else "",
+            f"{DEFAULT_WIND_TOLERANCE:.0%} of the declared revolutions" if name == "fiber_revolutions" else "exact",
+            "how far the built muscle may be from the declared value (±, in its unit): the diagnosis checks each "
+            "cause with the build free within it; without the section the braid's wind is uncertain by "
+            f"{DEFAULT_WIND_TOLERANCE:.0%}, an empty section declares the build exact",
+            allowed="> 0",
+        )
+        for name, (_, _, unit) in calibratable_fields().items()
+        if name not in NOT_BUILD
+    ]
     campaign = [
         Key(
             "campaign",
@@ -335,7 +351,7 @@ def experiment_keys() -> list[Key]:
             required=KINDS,
         )
     ]
-    return muscle + bladder + friction + gas + calibrate + _test_keys() + campaign
+    return muscle + bladder + friction + gas + calibrate + uncertain + _test_keys() + campaign
 
 
 @dataclass(frozen=True)
@@ -408,7 +424,7 @@ def data_columns(kind: str) -> list[Column]:
 def params_file_keys() -> list[Key]:
     """Every key of a muscle-parameters file (C++ pamkit/io/params_file.hpp, ``pamkit diagnose
     --params-out``): the parts of MuscleParams by their C++ field lists, every key required but
-    [initial]'s section."""
+    [initial]'s and [rig]'s sections."""
     keys = []
     for section, struct in (("build", MuscleBuild), ("friction", FrictionParams), ("gas", GasParams)):
         keys += [
@@ -455,6 +471,17 @@ def params_file_keys() -> list[Key]:
         )
         for k in _struct_keys("initial", InitialState)
     ]
+    keys.append(
+        Key(
+            "rig",
+            "effects",
+            "",
+            "",
+            "the optional section: what a diagnosis found in the test rig's fixture and instruments, as the effect "
+            "catalog parses them; a controller leaves them out, `pamkit simulate --params` applies them",
+            allowed='["NAME:key=value,...", ...]',
+        )
+    )
     return keys
 
 

@@ -31,7 +31,7 @@ from pamkit.reference import (
     template,
 )
 
-SECTIONS = ("muscle", "bladder", "friction", "gas", "calibrate", "test")
+SECTIONS = ("muscle", "bladder", "friction", "gas", "calibrate", "uncertain", "test")
 
 # Rows each kind's data CSV may hold, made to be read (not to be physical beyond it): a short
 # stretch of PAM 2 for a time series, a few settled rows of a 10 mm datasheet muscle for a table.
@@ -130,7 +130,7 @@ def test_the_campaign_template_names_its_tests_and_shares_its_muscle(tmp_path):
     assert {t.build.length_m for t in tests} == {tomllib.loads(template("campaign"))["muscle"]["length_m"]}
 
 
-@pytest.mark.parametrize("section", ["muscle", "friction", "gas", "bladder", "calibrate", "test"])
+@pytest.mark.parametrize("section", ["muscle", "friction", "gas", "bladder", "calibrate", "uncertain", "test"])
 def test_every_key_a_section_takes_is_documented(tmp_path, section):
     path = written(tmp_path, "sealed")
     text = path.read_text().replace(f"[{section}]\n", f"[{section}]\nno_such_key = 1\n")
@@ -231,7 +231,7 @@ def test_the_parameters_files_keys_are_documented(tmp_path, neo_hookean):
     params = pamkit.MuscleParams()
     if neo_hookean:
         params.bladder = pamkit.BladderLaw.neo_hookean(1e6)
-    pamkit.write_muscle_params(tmp_path / "muscle.toml", params, pamkit.InitialState())
+    pamkit.write_muscle_params(tmp_path / "muscle.toml", params, pamkit.InitialState(), rig_effects=["time_skew"])
     document = tomllib.loads((tmp_path / "muscle.toml").read_text())
     written_keys = {(section, key) for section, table in document.items() for key in table}
     reference = {(k.section, k.name) for k in params_file_keys()}
