@@ -143,7 +143,7 @@ def test_a_notebook_shows_the_verdict_and_the_ranking(thesis_dir):
     report = pamkit.diagnose(thesis_dir.parent / "festo" / "DMSP-10-250.toml", threads=2)
     shown = report._repr_html_()
     assert html.escape(report.verdict()) in shown
-    assert "<table" in shown and "braid_slack" in shown and f"{len(report.candidates)} candidates" in shown
+    assert "<table" in shown and "slip_hysteresis" in shown and f"{len(report.candidates)} candidates" in shown
 
 
 def test_a_campaign_of_tables_is_one_report(thesis_dir):
@@ -276,5 +276,5 @@ def test_the_readmes_python_runs(tmp_path, monkeypatch):
     matplotlib.use("Agg")
     namespace: dict = {}
     exec(compile(script, "README.md", "exec"), namespace)
-    assert namespace["report"].cause == "braid_slack"  # the README's Festo line, which its comment quotes
+    assert namespace["report"].cause == "slip_hysteresis"  # the README's Festo line, which its comment quotes
     assert (tmp_path / "report.json").is_file() and (tmp_path / "report.png").read_bytes()[:4] == b"\x89PNG"

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import pamkit.diagnosis
-from pamkit._core import inflated_and_sealed, read_muscle_params_file
+from pamkit._core import Construction, inflated_and_sealed, read_muscle_params_file, static_forces
 from pamkit.cli import main
 from pamkit.io.experiment import load_experiment
 from pamkit.io.series import read_series
@@ -162,26 +162,35 @@ def diagnosed_with_params(experiment_path, params_path):
     return computed[0]
 
 
-def test_a_diagnosed_festo_map_is_written_with_its_slack_braid_and_never_pushes(tmp_path, capsys):
-    """The published DMSP-10-250 map (Martens and Boblan 2017): held shorter than its free length
-    the muscle carries nothing, and the diagnosis names the braid that goes slack. The muscle it
-    writes carries that braid, so that simulated from the file it pushes nowhere, as measured."""
+def test_a_diagnosed_festo_map_is_written_embedded_with_its_friction_and_never_pushes(tmp_path, capsys):
+    """The published DMSP-10-250 map (Martens and Boblan 2017), declared as the embedded build it is:
+    held shorter than its free length the muscle carries nothing, and the diagnosis names the
+    friction with memory its contracted lengths keep (slip_hysteresis). The muscle it writes carries
+    both, so that simulated from the file it pushes nowhere and predicts what the diagnosis did."""
     from conftest import SOURCE_DIR
 
     experiment_path = SOURCE_DIR / "data" / "experiments" / "festo" / "DMSP-10-250.toml"
     params_path = tmp_path / "dmsp10.toml"
     d = diagnosed_with_params(experiment_path, params_path)
-    assert d.cause == "braid_slack"
+    assert d.cause == "slip_hysteresis"
     written = read_muscle_params_file(params_path)
-    assert written.params.extensions.slack_band_N > 0.0 and written.rig_effects == []
+    assert written.params.build.construction == Construction.embedded and written.rig_effects == []
+    assert written.params.extensions.slip_force_N == d.extended.params["slip_force_N"]
+    assert written.params.extensions.slip_distance_m == d.extended.params["slip_distance_m"]
     output = tmp_path / "simulated.csv"
     assert main(["simulate", str(experiment_path), "--params", str(params_path), "-o", str(output)]) == 0
     simulated = np.genfromtxt(output, delimiter=",", names=True)["force_N"]
+    # Static forces, no integration: equal to the CSV's ten significant digits.
     np.testing.assert_allclose(simulated, d.extended.predicted["force_N"], rtol=1e-9, atol=1e-9)
-    # A braid cannot push: the smooth slack transition leaves at most a tenth of its width (1 N) of
-    # compression, where the baseline's braid pushed with tens of newtons.
-    assert simulated.min() >= -0.1 * written.params.extensions.slack_band_N
-    assert d.baseline.predicted["force_N"].min() < -10.0
+    # A braid that cannot push reads no compression anywhere, the smooth slack band included.
+    assert simulated.min() >= 0.0
+    # The friction is in what was simulated: without it the file's muscle pulls more where it
+    # contracted to its held length, by about the slip force (195 N) the map shows.
+    experiment = load_experiment(experiment_path)
+    frictionless = written.params
+    frictionless.extensions.slip_force_N = 0.0
+    elastic = static_forces(frictionless, experiment.columns["length_m"], experiment.columns["gauge_pressure_Pa"])
+    assert np.max(elastic - simulated) > 0.5 * d.extended.params["slip_force_N"]
 
 
 @pytest.mark.parametrize(
