@@ -1,4 +1,4 @@
-"""The units of a static table (DESIGN.md, "Experiment kinds"): a campaign of one or more
+"""The units of a static table (docs/experiments.md, its kinds): a campaign of one or more
 tables of one muscle, the held-out group of each row (a map's held lengths, an isotonic test's
 pressurise/vent sweeps, a free-inflation table's rows) and the noise, estimated without the
 model. A campaign may join tables of different kinds (an isometric map and an isotonic test of
@@ -30,7 +30,7 @@ GROUP_NAMES = {"isometric_map": "held length", "isotonic": "sweep", "free_inflat
 
 @dataclass
 class Campaign:
-    """One or more tables of one muscle (DESIGN.md, "Campaigns"), as one table: each test keeps
+    """One or more tables of one muscle (docs/experiments.md, "Campaigns"), as one table: each test keeps
     its own build and rows; the [calibrate] unknowns are shared."""
 
     experiments: list[Experiment]

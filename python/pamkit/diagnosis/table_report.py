@@ -1,4 +1,4 @@
-"""The report of a static table's diagnosis: DESIGN.md's JSON keys (with the calibrated
+"""The report of a static table's diagnosis: the JSON keys of docs/reference/report.md (with the calibrated
 unknowns' intervals and the held-out error per unit), the verdict a person reads first, and the
 figure (each channel against the supplied pressure, every unit as predicted held out)."""
 

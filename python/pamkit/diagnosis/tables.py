@@ -1,5 +1,5 @@
 """Diagnosis of static tables: isometric maps, isotonic tests of settled steps and
-free-inflation tables, as DESIGN.md's experiment kinds describe them; their units and noise are
+free-inflation tables, the kinds docs/experiments.md describes; their units and noise are
 in table_kinds.py, their fits in table_fit.py, the search of what is left in table_discover.py,
 their report in table_report.py.
 
@@ -74,7 +74,7 @@ class TableDiagnosis:
 
     @property
     def discovered(self) -> dict:
-        """DESIGN.md's `discovered`: the terms of the channel furthest above its noise."""
+        """The report's `discovered` (docs/reference/report.md): the terms of the channel furthest above its noise."""
         return next(iter(self.discovered_by_channel.values()), {})
 
     @property
