@@ -3,9 +3,10 @@ A Festo isometric map: calibrate a commercial muscle and name what its model lac
 ==================================================================================
 
 A Festo DMSP-10-250 held at five lengths while the supplied pressure is stepped up: the isometric
-force map Martens and Boblan (2017) published. Festo publishes no braid angle, fibre count or
-membrane law, so the experiment file declares them unknown in ``[calibrate]``; the diagnosis
-calibrates them and predicts each held length from the other four.
+force map Martens and Boblan (2017) published. Its fibres are embedded in the membrane
+(``construction = "embedded"``: the braid cannot push). Festo publishes no braid angle, so the
+experiment file declares it unknown in ``[calibrate]``, beside the rest length within 1 % of the
+nominal; the diagnosis calibrates them and predicts each held length from the other four.
 """
 
 # %%
