@@ -6,7 +6,7 @@ cannot drift from the code: ``.. pamkit-reference:: NAME`` with NAME one of
     params-file       every key of a muscle-parameters file (pamkit.reference.params_file_keys)
     effect-catalog    every effect of the built-in catalog, with its parameters (pamkit.effects.catalog)
     cli               every command's --help (pamkit.reference.cli_commands)
-    templates         `pamkit template KIND` of each kind
+    templates         `pamkit template KIND` of each kind (pamkit.templates.template)
 
 The tables are written as reStructuredText and parsed in place.
 """
@@ -20,6 +20,7 @@ from sphinx.util.nodes import nested_parse_with_titles
 
 from pamkit import reference
 from pamkit.effects import catalog
+from pamkit.templates import TEMPLATE_KINDS, template
 
 
 def _cell(text: str) -> str:
@@ -137,10 +138,10 @@ def cli() -> list[str]:
 
 def templates() -> list[str]:
     lines: list[str] = []
-    for kind in reference.TEMPLATE_KINDS:
+    for kind in TEMPLATE_KINDS:
         title = f"pamkit template {kind}"
         lines += [title, "-" * len(title), "", ".. code-block:: toml", ""]
-        lines += ["   " + line if line else "" for line in reference.template(kind).splitlines()]
+        lines += ["   " + line if line else "" for line in template(kind).splitlines()]
         lines.append("")
     return lines
 

@@ -6,9 +6,9 @@ The field lists come from where they are declared: the C++ structs' ``fields()``
 ``[friction]``, ``[gas]`` and the parameters file), the experiment file's schema
 (:mod:`pamkit.io.schema`: the [test] keys, the kinds and their columns),
 :func:`pamkit.io.sections.calibratable_fields` and the columns of :mod:`pamkit.io.columns`. The
-documentation (its "Reference" pages) and ``pamkit template`` are generated from this module, and
-the tests check it against what the readers accept, so a key the readers take cannot go
-undocumented.
+documentation (its "Reference" pages) and ``pamkit template`` (:mod:`pamkit.templates`) are
+generated from this module, and the tests check it against what the readers accept, so a key the
+readers take cannot go undocumented.
 
 Keys and columns are named as a file gives them, in its units (``inflation_pressure_kPa``, a CSV's
 ``pressure_kPa``); a data column also carries its SI name inside pamkit (``gauge_pressure_Pa`` in
@@ -18,15 +18,8 @@ Keys and columns are named as a file gives them, in its units (``inflation_press
 from __future__ import annotations
 
 import argparse
-import sys
-import textwrap
 from dataclasses import dataclass
 from typing import Any
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:
-    import tomli as tomllib
 
 from pamkit._core import (
     Construction,
@@ -131,7 +124,8 @@ class Key:
     allowed: str = ""
 
 
-def _number(value: float) -> str:
+def number_text(value: float) -> str:
+    """A number as the reference and the templates show it: six significant digits."""
     return f"{value:.6g}"
 
 
@@ -149,9 +143,9 @@ def _struct_keys(section: str, struct: Any, meanings: dict[str, str] | None = No
                 section,
                 name,
                 info["unit"] if info["unit"] != "1" else "",
-                _number(getattr(defaults, name)),
+                number_text(getattr(defaults, name)),
                 meaning,
-                allowed=f"[{_number(info['min'])}, {_number(info['max'])}]",
+                allowed=f"[{number_text(info['min'])}, {number_text(info['max'])}]",
             )
         )
     return keys
@@ -221,7 +215,7 @@ def _test_keys() -> list[Key]:
             required = ("isotonic",)  # unless declared unknown in [calibrate]
         default = defaults.get(name, "")
         if name in TABLE_DEFAULTS:
-            default = f"a table: {_number(TABLE_DEFAULTS[name])}"
+            default = f"a table: {number_text(TABLE_DEFAULTS[name])}"
         keys.append(
             Key(
                 "test",
@@ -319,8 +313,8 @@ def experiment_keys() -> list[Key]:
                 name,
                 unit if unit != "1" else "",
                 "known (as declared)",
-                f"unknown: [lower, upper] bounds within [{_number(low)}, {_number(high)}]; the diagnosis calibrates "
-                "it and reports it with a 95 % interval",
+                f"unknown: [lower, upper] bounds within [{number_text(low)}, {number_text(high)}]; the diagnosis "
+                "calibrates it and reports it with a 95 % interval",
                 kinds,
                 allowed="[lower, upper]",
             )
@@ -495,124 +489,3 @@ def cli_commands() -> list[tuple[str, str]]:
         if isinstance(action, argparse._SubParsersAction):
             commands += [(f"pamkit {name}", sub.format_help()) for name, sub in sorted(action.choices.items())]
     return commands
-
-
-# What each template sets (the rest of its keys are written commented out, with their defaults).
-# A commercial muscle is declared as its datasheet gives it (length, diameter, a braid angle and a
-# membrane to calibrate), as data/experiments/festo/ does; a thesis-style muscle by its build.
-_DATASHEET_MUSCLE: dict[str, dict[str, Any]] = {
-    "muscle": {
-        "length_m": 0.25,
-        "diameter_m": 0.01,
-        BRAID_ANGLE_KEY: 20.0,
-        "fiber_thickness_m": 0.0,
-        "cone_generator_m": 0.0,
-    },
-    "bladder": {"law": "neo_hookean", "shear_modulus_Pa": 1.0e6},
-    "calibrate": {BRAID_ANGLE_KEY: [10.0, 45.0], "bladder.shear_modulus_Pa": [1.0e4, 2.0e7]},
-}
-_BUILT_MUSCLE: dict[str, dict[str, Any]] = {"muscle": {"length_m": 0.225, "diameter_m": 0.02}}
-TEMPLATE_VALUES: dict[str, dict[str, dict[str, Any]]] = {
-    SEALED: {**_BUILT_MUSCLE, "test": {"inflation_pressure_kPa": 207.0, "ambient_temperature_C": 20.0}},
-    SUPPLIED: {
-        **_BUILT_MUSCLE,
-        "test": {"gas": "supplied", "inflation_pressure_kPa": 0.0, "ambient_temperature_C": 20.0},
-    },
-    "isometric_map": {**_DATASHEET_MUSCLE, "test": {"kind": "isometric_map"}},
-    "isotonic": {**_DATASHEET_MUSCLE, "test": {"kind": "isotonic", "load_N": 100.0}},
-    "free_inflation": {**_BUILT_MUSCLE, "test": {"kind": "free_inflation"}},
-}
-TEMPLATE_KINDS = (*KINDS, "campaign")
-
-
-def _toml(value: Any) -> str:
-    if isinstance(value, str):
-        return f'"{value}"'
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml(v) for v in value) + "]"
-    return _number(value)
-
-
-def _explained(key: Key) -> str:
-    unit = f"[{key.unit}] " if key.unit else ""
-    notes = [f"default {key.default}" if key.default else "", f"allowed {key.allowed}" if key.allowed else ""]
-    extra = "; ".join(n for n in notes if n)
-    return f"{unit}{key.meaning}" + (f" ({extra})" if extra else "")
-
-
-def _comment(text: str, width: int = 100) -> list[str]:
-    return ["# " + line for line in textwrap.wrap(text, width - 2)]
-
-
-def _is_value(text: str) -> bool:
-    """Whether a default as the reference shows it is a TOML value (and not a sentence)."""
-    try:
-        tomllib.loads(f"value = {text}")
-    except tomllib.TOMLDecodeError:
-        return False
-    return True
-
-
-def template(kind: str, data: str = "run.csv") -> str:
-    """An experiment file of a kind of test with every key it may give, explained: the values a
-    test of that kind needs set to examples to replace, the others commented out with their
-    defaults (``pamkit template KIND``).
-
-    Parameters
-    ----------
-    kind : str
-        One of :data:`TEMPLATE_KINDS`: ``sealed``, ``supplied``, ``isometric_map``, ``isotonic``,
-        ``free_inflation``, or ``campaign`` (a campaign file naming two tests).
-    data : str
-        The data CSV ``[test] data`` names.
-
-    Returns
-    -------
-    str
-        The TOML text.
-
-    Raises
-    ------
-    ValueError
-        For an unknown kind, naming the known ones.
-    """
-    if kind not in TEMPLATE_KINDS:
-        raise ValueError(f"no template for {kind!r} (known: {', '.join(TEMPLATE_KINDS)})")
-    keys = experiment_keys()
-    if kind == "campaign":
-        lines = [
-            "# A pamkit campaign: several tests of one muscle, diagnosed together (pamkit diagnose THIS.toml).",
-            "# Each test is an experiment file of its own (pamkit template KIND); the sections below are shared by",
-            "# all of them, and a test may then not give them again.",
-            "",
-            "[campaign]",
-            *_comment(_explained(next(k for k in keys if k.section == "campaign"))),
-            'tests = ["test_1.toml", "test_2.toml"]',
-            "",
-            "[muscle]",
-        ]
-        for name, value in _BUILT_MUSCLE["muscle"].items():
-            lines += _comment(_explained(next(k for k in keys if k.section == "muscle" and k.name == name)))
-            lines.append(f"{name} = {_toml(value)}")
-        return "\n".join(lines) + "\n"
-    values = {section: dict(table) for section, table in TEMPLATE_VALUES[kind].items()}
-    values.setdefault("test", {})["data"] = data
-    columns = ", ".join(f"{c.name}{'' if c.required else ' (optional)'}" for c in data_columns(kind))
-    lines = _comment(
-        f"A pamkit experiment: {KIND_MEANINGS[kind]}. Written by `pamkit template {kind}`: replace the example "
-        f"values, put the measured rows in {data} (columns: {columns}), and check the file with `pamkit simulate "
-        "THIS.toml -o predicted.csv`. Above each key: its unit, meaning, default and allowed values; a key left "
-        "commented out keeps its default."
-    )
-    for section in ("muscle", "bladder", "friction", "gas", "calibrate", "test"):
-        given = values.get(section, {})
-        lines += ["", f"[{section}]"]
-        for key in (k for k in keys if k.section == section and kind in k.kinds):
-            lines += _comment(_explained(key))
-            if key.name in given:
-                lines.append(f"{key.name} = {_toml(given[key.name])}")
-            elif section == "calibrate":
-                lines.append(f"# {key.name} = [lower, upper]")
-            else:
-                lines.append(f"# {key.name} = {key.default if _is_value(key.default) else '...'}")
-    return "\n".join(lines) + "\n"

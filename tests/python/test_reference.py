@@ -22,14 +22,13 @@ from pamkit.reference import (
     KINDS,
     SERIES_KINDS,
     SUPPLIED,
-    TEMPLATE_KINDS,
     TEST_KEY_MEANINGS,
     cli_commands,
     data_columns,
     experiment_keys,
     params_file_keys,
-    template,
 )
+from pamkit.templates import TEMPLATE_KINDS, template
 
 SECTIONS = ("muscle", "bladder", "friction", "gas", "calibrate", "uncertain", "test")
 

@@ -10,7 +10,8 @@ import numpy as np
 import pandas as pd
 
 import pamkit
-from pamkit.reference import data_columns, experiment_keys, template
+from pamkit.reference import data_columns, experiment_keys
+from pamkit.templates import template
 
 
 def first_hour(folder: Path) -> str:

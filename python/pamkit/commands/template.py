@@ -8,7 +8,8 @@ from pathlib import Path
 
 
 def register(subparsers) -> None:
-    from pamkit.reference import KIND_MEANINGS, TEMPLATE_KINDS
+    from pamkit.reference import KIND_MEANINGS
+    from pamkit.templates import TEMPLATE_KINDS
 
     kinds = "; ".join(f"{kind}: {KIND_MEANINGS.get(kind, 'several tests of one muscle')}" for kind in TEMPLATE_KINDS)
     parser = subparsers.add_parser(
@@ -28,7 +29,8 @@ def register(subparsers) -> None:
 
 
 def run(arguments: argparse.Namespace) -> int:
-    from pamkit.reference import data_columns, template
+    from pamkit.reference import data_columns
+    from pamkit.templates import template
 
     if arguments.output is None:
         sys.stdout.write(template(arguments.kind))
