@@ -46,7 +46,8 @@ def register(subparsers) -> None:
 
 def run(arguments: argparse.Namespace) -> int:
     from pamkit.diagnosis import diagnose, verdict
-    from pamkit.diagnosis.report import write, write_params
+    from pamkit.diagnosis.params_out import write_params
+    from pamkit.diagnosis.report import write
 
     def progress(message: str) -> None:
         if not arguments.quiet:

@@ -20,7 +20,8 @@ from pamkit import deflated_braid_angle_deg, read_muscle_params_file  # noqa: E4
 from pamkit.diagnosis import diagnose, verdict  # noqa: E402
 from pamkit.diagnosis.campaign import campaign_of_series  # noqa: E402
 from pamkit.diagnosis.joint import DISAGREES, calibrate_jointly  # noqa: E402
-from pamkit.diagnosis.report import write, write_params  # noqa: E402
+from pamkit.diagnosis.params_out import write_params  # noqa: E402
+from pamkit.diagnosis.report import write  # noqa: E402
 from pamkit.effects import catalog  # noqa: E402
 from pamkit.io.experiment import load_tests  # noqa: E402
 from pamkit.io.guards import ExperimentError  # noqa: E402

@@ -134,7 +134,7 @@ def test_no_prediction_of_an_embedded_muscle_pushes_and_the_written_muscle_keeps
     # A Festo map's diagnosis, its calibrated muscle written out (`--params-out`), read back: held
     # anywhere in the braid's range at any pressure, slack or taut, it never pushes.
     from pamkit import BraidGeometry, read_muscle_params
-    from pamkit.diagnosis.report import write_params
+    from pamkit.diagnosis.params_out import write_params
 
     d = diagnose(FESTO / "DMSP-10-250.toml", threads=2)
     assert np.nanmin(d.extended.heldout["force_N"]) >= 0.0
