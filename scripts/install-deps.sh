@@ -15,7 +15,7 @@ if [ "${1:-}" = "--latest" ]; then latest=true; fi
 apt_packages=(
   build-essential cmake ninja-build pkg-config python3 python3-dev python3-venv
   libeigen3-dev libboost-dev libsundials-dev catch2 libserialport-dev
-  libtomlplusplus-dev  # the muscle-parameters file (src/io/params_file.cpp), headers only
+  libtomlplusplus-dev  # the muscle-parameters file (include/pamkit/io/params_file.hxx), headers only
   gcc-avr avr-libc arduino-core-avr avrdude simavr libsimavr-dev clang libclang-rt-14-dev arduino-builder  # logger firmware, upload, tests
   clang-format  # scripts/format.sh and lint.sh (Debian 12's 14)
   doxygen  # scripts/docs.sh: the C++ API from the headers
