@@ -193,3 +193,19 @@ def test_an_exoskeleton_sweep_gives_the_clutch_timing_on_dask(cluster, tmp_path)
         math.isnan(with_play["release_pct"])
         and with_play["engaged_share_of_stride"] > fitted["engaged_share_of_stride"]
     )
+
+
+def test_a_swept_experiment_keeps_its_muscles_construction():
+    # The construction is an enum beside the build's numbers: a swept copy of an embedded Festo
+    # muscle must stay embedded (its braid cannot push), whatever field the sweep moves.
+    from conftest import SOURCE_DIR
+
+    from pamkit import Construction
+    from pamkit.io.experiment import load_experiment
+    from pamkit.sweep import with_parameters
+
+    base = load_experiment(SOURCE_DIR / "data" / "experiments" / "festo" / "DMSP-20-300.toml")
+    assert base.build.construction == Construction.embedded
+    swept = with_parameters(base, {"length_m": 0.29})
+    assert swept.build.length_m == 0.29 and swept.build.construction == Construction.embedded
+    assert base.build.length_m == 0.3  # the base left as it was
