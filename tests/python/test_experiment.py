@@ -10,6 +10,7 @@ except ModuleNotFoundError:  # Python < 3.11
     import tomli as tomllib
 
 import pamkit
+from pamkit import Construction
 from pamkit.io.experiment import load_experiment
 from pamkit.io.guards import ExperimentError, ExperimentWarning
 from pamkit.io.series import read_series
@@ -142,6 +143,19 @@ def test_a_datasheet_braid_angle_becomes_fiber_revolutions(tmp_path):
         load_experiment(_commercial(tmp_path, "braid_angle_deg = 21.0\nfiber_revolutions = 1.0"))
     with pytest.raises(ExperimentError, match="between 0 and 90"):
         load_experiment(_commercial(tmp_path, "braid_angle_deg = 95.0"))
+
+
+def test_the_construction_is_read_by_name_and_a_sleeve_by_default(tmp_path):
+    # Festo's fibres are in the membrane: `construction = "embedded"`; a file that says nothing is
+    # the thesis's bladder in a braided sleeve. Any other name is refused, naming the key and the
+    # names it takes.
+    assert load_experiment(_commercial(tmp_path, "braid_angle_deg = 21.0")).build.construction == Construction.sleeve
+    embedded = load_experiment(_commercial(tmp_path, 'braid_angle_deg = 21.0\nconstruction = "embedded"'))
+    assert embedded.build.construction == Construction.embedded
+    with pytest.raises(
+        ExperimentError, match="map.toml: \\[muscle\\] construction = 'woven' must be one of sleeve, embedded"
+    ):
+        load_experiment(_commercial(tmp_path, 'braid_angle_deg = 21.0\nconstruction = "woven"'))
 
 
 @pytest.mark.parametrize(
