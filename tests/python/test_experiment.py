@@ -156,6 +156,8 @@ def test_the_construction_is_read_by_name_and_a_sleeve_by_default(tmp_path):
         ExperimentError, match="map.toml: \\[muscle\\] construction = 'woven' must be one of sleeve, embedded"
     ):
         load_experiment(_commercial(tmp_path, 'braid_angle_deg = 21.0\nconstruction = "woven"'))
+    with pytest.raises(ExperimentError, match="construction = \\['embedded'\\] must be one of"):
+        load_experiment(_commercial(tmp_path, 'braid_angle_deg = 21.0\nconstruction = ["embedded"]'))
 
 
 @pytest.mark.parametrize(

@@ -76,7 +76,7 @@ def read_build(path: Path, table: dict) -> MuscleBuild:
     if angle is not None and "fiber_revolutions" in table:
         raise fail(path, f"[muscle] gives both {BRAID_ANGLE_KEY} and fiber_revolutions: give one, they say the same")
     construction = table.pop(CONSTRUCTION_KEY, "sleeve")
-    if construction not in Construction.__members__:
+    if not isinstance(construction, str) or construction not in Construction.__members__:
         raise fail(
             path, f"[muscle] {CONSTRUCTION_KEY} = {construction!r} must be one of {', '.join(Construction.__members__)}"
         )
