@@ -223,6 +223,13 @@ class Finding:
         )
 
 
+def baseline_findings(baseline: Fit) -> list[Finding]:
+    """The calibrated baseline's parameters at a bound or implausible, less those the data do not
+    determine (a friction scale in a test that never moves: where it ends says nothing of the
+    model; it is reported among the undetermined values instead)."""
+    return [f for f in findings(baseline) if f.parameter not in getattr(baseline, "undetermined", {})]
+
+
 def findings(fit: Fit) -> list[Finding]:
     """Every parameter of `fit` (anything with `coordinates`: a Fit, a table's or a campaign's)
     at a bound of its search or outside its plausible range, with how far beyond the bound the
@@ -342,22 +349,34 @@ def _same(a: Finding, b: Finding) -> bool:
     return a.parameter == b.parameter and a.bound == b.bound
 
 
+def _corrects_output(problem: Problem, effect) -> bool:
+    """An effect that edits what the instruments read of the model (a load cell's offset), not what
+    drives it: a supplied test's transducer error changes the pressure the muscle is driven with,
+    whose force then follows the physics."""
+    supplied_input = problem.experiment.gas == GasMode.supplied and effect.reads_supplied_pressure()
+    return effect.stage() == EffectStage.measurement and not supplied_input
+
+
 def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
     """`fit` scored by `s` against the calibrated `baseline`: significant, and credible unless
     its own parameters, or a baseline parameter it moved to a bound or out of its plausible range,
     say otherwise (rule 3). A baseline parameter that the calibrated baseline leaves there too is
     the base model's strain, reported beside the candidate and not held against it: the cause
     neither made nor cured it (a hysteresis, seen between the branches of an isotonic sweep, is
-    not refused for a membrane straining to fit the branches' mean). Except for an effect on the
-    measurement that changes every channel measured: with no other channel to check it against, it
-    would be a corrector of whatever the straining base model misses."""
-    calibrated = findings(baseline)
-    corrector = all(e.stage() == EffectStage.measurement for e in fit.effects) and set(
-        credited_channels(problem, fit)
-    ) == set(problem.channels)
+    not refused for a membrane straining to fit the branches' mean); one the data do not determine
+    in this fit says nothing wherever it ends (identify.py). Except for an effect on the
+    measurement's output that changes every channel measured: with no other channel to check it
+    against, it would be a corrector of whatever the straining base model misses."""
+    calibrated = baseline_findings(baseline)
+    corrector = all(_corrects_output(problem, e) for e in fit.effects) and set(credited_channels(problem, fit)) == set(
+        problem.channels
+    )
     own, strain = [], []
     for finding in findings(fit):
-        inherited = finding.parameter in baseline.coordinates and any(_same(finding, f) for f in calibrated)
+        in_baseline = finding.parameter in baseline.coordinates
+        if in_baseline and finding.parameter in fit.undetermined:
+            continue  # not determined by the data: its bound says nothing (identify.py)
+        inherited = in_baseline and any(_same(finding, f) for f in calibrated)
         (strain if inherited and not corrector else own).append(finding)
     if corrector:  # fitted on the calibrated baseline, whose strain it then corrects
         own += [f for f in calibrated if not any(_same(f, mine) for mine in own)]
