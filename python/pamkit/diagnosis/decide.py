@@ -291,25 +291,33 @@ class Judgement:
         return [f.sentence() for f in self.findings] + self.objections
 
 
+def stands_out(problem: Problem, before: Fit, s: Score, credited: list[str]) -> list[str]:
+    """Why what an effect explains on its channels `credited` may be the base model's misfit: on the
+    coupled channels, its own stood less than STANDS_OUT times as far above the noise in `before`
+    (the model without it) as the other stays with it (`s`), beyond NONE_WITHIN_NOISE."""
+    others = [c for c in problem.channels if c not in credited and c in COUPLED]
+    if not (others and set(credited) & COUPLED):
+        return []
+    ratios = noise_ratios(problem, before)
+    left = max(others, key=lambda c: s.rmse[c] / problem.sigma[c])
+    worst = s.rmse[left] / problem.sigma[left]
+    own = max(ratios[c] for c in credited if c in COUPLED)
+    if worst > NONE_WITHIN_NOISE and own < STANDS_OUT * worst:
+        return [
+            f"what it explains on {', '.join(credited)} ({own:.1f}x the noise before it) does not stand out "
+            f"from what the base model leaves on {left} ({worst:.1f}x), which it cannot change: one misfit of "
+            "the base model may show on both"
+        ]
+    return []
+
+
 def uncredited(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> list[str]:
     """Why a fit's gain is not its effects' own: it does not gain significantly on the channels
     its effects change (the gain comes from the baseline moving on channels they cannot touch),
     it makes one of those other channels worse, or what it explains does not stand out from the
-    structure the base model leaves on the channels it cannot change (STANDS_OUT)."""
+    structure the base model leaves on the channels it cannot change (stands_out)."""
     credited = credited_channels(problem, fit)
-    out = []
-    others = [c for c in problem.channels if c not in credited and c in COUPLED]
-    if others and set(credited) & COUPLED:
-        before = noise_ratios(problem, baseline)
-        left = max(others, key=lambda c: s.rmse[c] / problem.sigma[c])
-        worst = s.rmse[left] / problem.sigma[left]
-        own = max(before[c] for c in credited if c in COUPLED)
-        if worst > NONE_WITHIN_NOISE and own < STANDS_OUT * worst:
-            out.append(
-                f"what it explains on {', '.join(credited)} ({own:.1f}x the noise before it) does not stand out "
-                f"from what the base model leaves on {left} ({worst:.1f}x), which it cannot change: one misfit of "
-                "the base model may show on both"
-            )
+    out = stands_out(problem, baseline, s, credited)
     if set(credited) != set(problem.channels) and (s.credited_gain < MIN_GAIN or s.credited_ci95[0] <= 0.0):
         out.append(
             f"its gain on the channels it changes ({', '.join(credited)}) is only {s.credited_gain:.3f}; "

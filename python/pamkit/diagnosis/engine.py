@@ -30,12 +30,13 @@ from pamkit.diagnosis.decide import (
     Finding,
     Judgement,
     baseline_findings,
+    credited_channels,
     decide,
     judge,
     keeps_gain,
     noise_ratios,
     score,
-    significant,
+    stands_out,
     structured,
 )
 from pamkit.diagnosis.kinds import Problem, build_problem
@@ -185,10 +186,12 @@ def _add_cause(
                 continue
             own = score(problem, single.fit, pair, np.random.default_rng(seed), credit=pair.effects[1:])
             candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
+            # The second's own channels, beside the first, must stand out from what the base model
+            # leaves on the channels it cannot change, as a single cause's must (decide.stands_out).
+            second = credited_channels(problem, pair, pair.effects[1:])
             if (
-                significant(own)
-                and own.credited_gain >= MIN_GAIN
-                and own.credited_ci95[0] > 0.0
+                keeps_gain(own)
+                and not stands_out(problem, single.fit, own, second)
                 and candidate.credible
                 and (best is None or candidate.score.combined_gain > best.judgement.score.combined_gain)
             ):
