@@ -311,13 +311,34 @@ def stands_out(problem: Problem, before: Fit, s: Score, credited: list[str]) -> 
     return []
 
 
+def unfounded(problem: Problem, before: Fit, effects) -> list[str]:
+    """Why an instrument's error is not established: an effect that edits what an instrument reads
+    (a load cell's tare, a transducer's offset in a sealed test) names an error only where its
+    channel is off by more than the noise allows under the model without it (`before`:
+    NONE_WITHIN_NOISE, the factor of `none`). Within it the model already explains that channel, and
+    such an effect, free to bend its channel, would fit what the base model leaves there."""
+    out = []
+    ratios = noise_ratios(problem, before)
+    for effect in effects:
+        if not _corrects_output(problem, effect):
+            continue
+        channels = [c for c in credited_channels(problem, before, [effect])]
+        if channels and max(ratios[c] for c in channels) <= NONE_WITHIN_NOISE:
+            worst = max(channels, key=lambda c: ratios[c])
+            out.append(
+                f"{worst} was within the noise before it ({ratios[worst]:.1f}x, {NONE_WITHIN_NOISE:g}x allowed): "
+                "no error of its instrument is needed there"
+            )
+    return out
+
+
 def uncredited(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> list[str]:
     """Why a fit's gain is not its effects' own: it does not gain significantly on the channels
     its effects change (the gain comes from the baseline moving on channels they cannot touch),
     it makes one of those other channels worse, or what it explains does not stand out from the
     structure the base model leaves on the channels it cannot change (stands_out)."""
     credited = credited_channels(problem, fit)
-    out = stands_out(problem, baseline, s, credited)
+    out = unfounded(problem, baseline, fit.effects) + stands_out(problem, baseline, s, credited)
     if set(credited) != set(problem.channels) and (s.credited_gain < MIN_GAIN or s.credited_ci95[0] <= 0.0):
         out.append(
             f"its gain on the channels it changes ({', '.join(credited)}) is only {s.credited_gain:.3f}; "

@@ -38,6 +38,7 @@ from pamkit.diagnosis.decide import (
     score,
     stands_out,
     structured,
+    unfounded,
 )
 from pamkit.diagnosis.kinds import Problem, build_problem
 from pamkit.diagnosis.tables import TableDiagnosis, diagnose_table
@@ -192,6 +193,7 @@ def _add_cause(
             if (
                 keeps_gain(own)
                 and not stands_out(problem, single.fit, own, second)
+                and not unfounded(problem, single.fit, pair.effects[1:])
                 and candidate.credible
                 and (best is None or candidate.score.combined_gain > best.judgement.score.combined_gain)
             ):
