@@ -1,4 +1,4 @@
-"""A campaign of time series: several bench tests of one muscle (DESIGN.md, "Campaigns").
+"""A campaign of time series: several bench tests of one muscle (docs/diagnosis.md, "campaigns").
 
 Each test is diagnosed alone first (its baseline calibrated on its own cycles: the inflation
 pressure, friction and bladder scales are per-test nuisances). A cause must then hold across the

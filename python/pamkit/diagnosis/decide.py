@@ -1,7 +1,7 @@
 """Decisions: held-out gain with its interval, the information criterion, credibility
 (plausible, not at a bound, resolvable), and the verdict with its margins.
 
-The rules (DESIGN.md, "The diagnosis report"; issue "Diagnosis decisions"):
+The rules (docs/diagnosis.md gives them in full, with the measurements behind each):
 1. A candidate is *significant* when its combined held-out gain (every channel, weighted by its
    noise: one yardstick for all) is at least MIN_GAIN with the 95 % interval above zero and the
    BIC falls by more than MIN_BIC_DROP.
@@ -494,11 +494,34 @@ def outdone(problem: Problem, candidate: Judgement, judged: list[Judgement]) -> 
     return []
 
 
+# A value outside its plausible range by less than this factor of the range's end is a near miss:
+# plausible ranges are a physicist's bounds, not sharp ones, and a base model that strains moves a
+# fitted value by tens of per cent (a fibre stiffness fitted at 46 N where the muscle's was 100 N).
+NEAR_PLAUSIBLE = 2.0
+
+
+def marginal(j: Judgement) -> bool:
+    """A candidate that cannot be named only because a parameter lies just outside its plausible
+    range (within NEAR_PLAUSIBLE of its end; none at a search bound, no other objection): not a
+    cause, but a rival that explains the data as well as a cause is one the data do not rule out."""
+    if j.objections or not j.findings:
+        return False
+    for f in j.findings:
+        if f.bound is not None:
+            return False
+        low, high = f.plausible
+        end = low if f.value < low else high
+        if end == 0.0 or not math.isfinite(end) or not 1.0 / NEAR_PLAUSIBLE <= f.value / end <= NEAR_PLAUSIBLE:
+            return False
+    return True
+
+
 def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision:
     """The leading cause (rules 3-6 of the module docstring), `judged` sorted by held-out gain,
     best first: the best candidate that is significant and credible. Its rivals are the other
-    significant, credible candidates that act on a channel it acts on: one that explains the
-    held-out units as well (rule 6) leaves the two untold apart. A better candidate that is not
+    significant candidates acting on a channel it acts on that are credible, or miss credibility
+    only by a parameter just outside its plausible range (marginal): one that explains the held-out
+    units as well (rule 6) leaves the two untold apart. A better candidate that is not
     credible is reported (`rejected`) beside the cause, not in its place: what it fits with an
     implausible parameter is part of the remainder."""
     best = next((j for j in judged if j.significant), None)
@@ -514,7 +537,18 @@ def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision
     present = [j for j in present if j.credible]
     lead = present[0] if present else None
     if lead is not None:
-        rival = next((j for j in present[1:] if _overlap(problem, lead.fit, j.fit)), None)
+        rivals = [
+            j
+            for j in judged
+            if j is not lead
+            and j.significant
+            and (j in present or marginal(j))
+            and _overlap(problem, lead.fit, j.fit)
+        ]
+        closest = [
+            (float(np.percentile(lead.score.combined_samples - j.score.combined_samples, 2.5)), j) for j in rivals
+        ]
+        rival = min(closest, key=lambda pair: pair[0])[1] if closest else None
         if rival is not None:
             low, high = np.percentile(lead.score.combined_samples - rival.score.combined_samples, [2.5, 97.5])
             margins["over_rival"] = float(low)
