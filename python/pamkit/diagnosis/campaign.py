@@ -1,4 +1,4 @@
-"""A campaign of time series: several bench tests of one muscle (DESIGN.md, "Campaigns").
+"""A campaign of time series: several bench tests of one muscle (docs/diagnosis.md, "campaigns").
 
 Each test is diagnosed alone first (its baseline calibrated on its own cycles: the inflation
 pressure, friction and bladder scales are per-test nuisances). A cause must then hold across the
@@ -190,6 +190,20 @@ def to_json(c: SeriesCampaign, test_report) -> dict:
         "reason": c.reason,
         "baseline": _joint_json(c.joint),
         "extended": ({"effects": [c.extended.effect], **_joint_json(c.extended)} if c.extended else None),
+        # The cause carried to every test, with its gain on each; what each test leaves is its own
+        # report's remainder (per_test[].remainder).
+        "causes": (
+            [
+                {
+                    "effect": c.cause,
+                    "params": {k: v for k, v in c.extended.params.items() if k in c.transfers[c.cause][0].params},
+                    "gain_by_test": {x.test: x.gain for x in c.transfers[c.cause]},
+                    "gain_ci95_by_test": {x.test: x.gain_ci95 for x in c.transfers[c.cause]},
+                }
+            ]
+            if c.extended is not None and c.cause in c.transfers
+            else []
+        ),
         "warnings": [f.to_json() for f in c.warnings],
         "carried": {
             label: [

@@ -7,8 +7,8 @@ then refitted with the baseline free too, since the baseline's calibration has a
 them (an offset pulls the inflation pressure to its bound). Such a refit could make the effect a
 general corrector — the inflation pressure and bladder scale move to fit the force while a
 pressure offset undoes that on the pressure channel — so its gain is counted only on the
-channels the effect changes, and it must not make the others worse (decide.py; DESIGN.md, "An
-effect earns credit only where it acts").
+channels the effect changes, and it must not make the others worse (decide.py: an effect earns
+credit only where it acts).
 """
 
 from __future__ import annotations

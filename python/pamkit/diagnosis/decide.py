@@ -1,7 +1,7 @@
 """Decisions: held-out gain with its interval, the information criterion, credibility
 (plausible, not at a bound, resolvable), and the verdict with its margins.
 
-The rules (DESIGN.md, "The diagnosis report"; issue "Diagnosis decisions"):
+The rules (docs/diagnosis.md gives them in full, with the measurements behind each):
 1. A candidate is *significant* when its combined held-out gain (every channel, weighted by its
    noise: one yardstick for all) is at least MIN_GAIN with the 95 % interval above zero and the
    BIC falls by more than MIN_BIC_DROP.
@@ -223,6 +223,13 @@ class Finding:
         )
 
 
+def baseline_findings(baseline: Fit) -> list[Finding]:
+    """The calibrated baseline's parameters at a bound or implausible, less those the data do not
+    determine (a friction scale in a test that never moves: where it ends says nothing of the
+    model; it is reported among the undetermined values instead)."""
+    return [f for f in findings(baseline) if f.parameter not in getattr(baseline, "undetermined", {})]
+
+
 def findings(fit: Fit) -> list[Finding]:
     """Every parameter of `fit` (anything with `coordinates`: a Fit, a table's or a campaign's)
     at a bound of its search or outside its plausible range, with how far beyond the bound the
@@ -284,25 +291,54 @@ class Judgement:
         return [f.sentence() for f in self.findings] + self.objections
 
 
+def stands_out(problem: Problem, before: Fit, s: Score, credited: list[str]) -> list[str]:
+    """Why what an effect explains on its channels `credited` may be the base model's misfit: on the
+    coupled channels, its own stood less than STANDS_OUT times as far above the noise in `before`
+    (the model without it) as the other stays with it (`s`), beyond NONE_WITHIN_NOISE."""
+    others = [c for c in problem.channels if c not in credited and c in COUPLED]
+    if not (others and set(credited) & COUPLED):
+        return []
+    ratios = noise_ratios(problem, before)
+    left = max(others, key=lambda c: s.rmse[c] / problem.sigma[c])
+    worst = s.rmse[left] / problem.sigma[left]
+    own = max(ratios[c] for c in credited if c in COUPLED)
+    if worst > NONE_WITHIN_NOISE and own < STANDS_OUT * worst:
+        return [
+            f"what it explains on {', '.join(credited)} ({own:.1f}x the noise before it) does not stand out "
+            f"from what the base model leaves on {left} ({worst:.1f}x), which it cannot change: one misfit of "
+            "the base model may show on both"
+        ]
+    return []
+
+
+def unfounded(problem: Problem, before: Fit, effects) -> list[str]:
+    """Why an instrument's error is not established: an effect that edits what an instrument reads
+    (a load cell's tare, a transducer's offset in a sealed test) names an error only where its
+    channel is off by more than the noise allows under the model without it (`before`:
+    NONE_WITHIN_NOISE, the factor of `none`). Within it the model already explains that channel, and
+    such an effect, free to bend its channel, would fit what the base model leaves there."""
+    out = []
+    ratios = noise_ratios(problem, before)
+    for effect in effects:
+        if not _corrects_output(problem, effect):
+            continue
+        channels = [c for c in credited_channels(problem, before, [effect])]
+        if channels and max(ratios[c] for c in channels) <= NONE_WITHIN_NOISE:
+            worst = max(channels, key=lambda c: ratios[c])
+            out.append(
+                f"{worst} was within the noise before it ({ratios[worst]:.1f}x, {NONE_WITHIN_NOISE:g}x allowed): "
+                "no error of its instrument is needed there"
+            )
+    return out
+
+
 def uncredited(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> list[str]:
     """Why a fit's gain is not its effects' own: it does not gain significantly on the channels
     its effects change (the gain comes from the baseline moving on channels they cannot touch),
     it makes one of those other channels worse, or what it explains does not stand out from the
-    structure the base model leaves on the channels it cannot change (STANDS_OUT)."""
+    structure the base model leaves on the channels it cannot change (stands_out)."""
     credited = credited_channels(problem, fit)
-    out = []
-    others = [c for c in problem.channels if c not in credited and c in COUPLED]
-    if others and set(credited) & COUPLED:
-        before = noise_ratios(problem, baseline)
-        left = max(others, key=lambda c: s.rmse[c] / problem.sigma[c])
-        worst = s.rmse[left] / problem.sigma[left]
-        own = max(before[c] for c in credited if c in COUPLED)
-        if worst > NONE_WITHIN_NOISE and own < STANDS_OUT * worst:
-            out.append(
-                f"what it explains on {', '.join(credited)} ({own:.1f}x the noise before it) does not stand out "
-                f"from what the base model leaves on {left} ({worst:.1f}x), which it cannot change: one misfit of "
-                "the base model may show on both"
-            )
+    out = unfounded(problem, baseline, fit.effects) + stands_out(problem, baseline, s, credited)
     if set(credited) != set(problem.channels) and (s.credited_gain < MIN_GAIN or s.credited_ci95[0] <= 0.0):
         out.append(
             f"its gain on the channels it changes ({', '.join(credited)}) is only {s.credited_gain:.3f}; "
@@ -342,22 +378,34 @@ def _same(a: Finding, b: Finding) -> bool:
     return a.parameter == b.parameter and a.bound == b.bound
 
 
+def _corrects_output(problem: Problem, effect) -> bool:
+    """An effect that edits what the instruments read of the model (a load cell's offset), not what
+    drives it: a supplied test's transducer error changes the pressure the muscle is driven with,
+    whose force then follows the physics."""
+    supplied_input = problem.experiment.gas == GasMode.supplied and effect.reads_supplied_pressure()
+    return effect.stage() == EffectStage.measurement and not supplied_input
+
+
 def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
     """`fit` scored by `s` against the calibrated `baseline`: significant, and credible unless
     its own parameters, or a baseline parameter it moved to a bound or out of its plausible range,
     say otherwise (rule 3). A baseline parameter that the calibrated baseline leaves there too is
     the base model's strain, reported beside the candidate and not held against it: the cause
     neither made nor cured it (a hysteresis, seen between the branches of an isotonic sweep, is
-    not refused for a membrane straining to fit the branches' mean). Except for an effect on the
-    measurement that changes every channel measured: with no other channel to check it against, it
-    would be a corrector of whatever the straining base model misses."""
-    calibrated = findings(baseline)
-    corrector = all(e.stage() == EffectStage.measurement for e in fit.effects) and set(
-        credited_channels(problem, fit)
-    ) == set(problem.channels)
+    not refused for a membrane straining to fit the branches' mean); one the data do not determine
+    in this fit says nothing wherever it ends (identify.py). Except for an effect on the
+    measurement's output that changes every channel measured: with no other channel to check it
+    against, it would be a corrector of whatever the straining base model misses."""
+    calibrated = baseline_findings(baseline)
+    corrector = all(_corrects_output(problem, e) for e in fit.effects) and set(credited_channels(problem, fit)) == set(
+        problem.channels
+    )
     own, strain = [], []
     for finding in findings(fit):
-        inherited = finding.parameter in baseline.coordinates and any(_same(finding, f) for f in calibrated)
+        in_baseline = finding.parameter in baseline.coordinates
+        if in_baseline and finding.parameter in fit.undetermined:
+            continue  # not determined by the data: its bound says nothing (identify.py)
+        inherited = in_baseline and any(_same(finding, f) for f in calibrated)
         (strain if inherited and not corrector else own).append(finding)
     if corrector:  # fitted on the calibrated baseline, whose strain it then corrects
         own += [f for f in calibrated if not any(_same(f, mine) for mine in own)]
@@ -446,11 +494,34 @@ def outdone(problem: Problem, candidate: Judgement, judged: list[Judgement]) -> 
     return []
 
 
+# A value outside its plausible range by less than this factor of the range's end is a near miss:
+# plausible ranges are a physicist's bounds, not sharp ones, and a base model that strains moves a
+# fitted value by tens of per cent (a fibre stiffness fitted at 46 N where the muscle's was 100 N).
+NEAR_PLAUSIBLE = 2.0
+
+
+def marginal(j: Judgement) -> bool:
+    """A candidate that cannot be named only because a parameter lies just outside its plausible
+    range (within NEAR_PLAUSIBLE of its end; none at a search bound, no other objection): not a
+    cause, but a rival that explains the data as well as a cause is one the data do not rule out."""
+    if j.objections or not j.findings:
+        return False
+    for f in j.findings:
+        if f.bound is not None:
+            return False
+        low, high = f.plausible
+        end = low if f.value < low else high
+        if end == 0.0 or not math.isfinite(end) or not 1.0 / NEAR_PLAUSIBLE <= f.value / end <= NEAR_PLAUSIBLE:
+            return False
+    return True
+
+
 def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision:
     """The leading cause (rules 3-6 of the module docstring), `judged` sorted by held-out gain,
     best first: the best candidate that is significant and credible. Its rivals are the other
-    significant, credible candidates that act on a channel it acts on: one that explains the
-    held-out units as well (rule 6) leaves the two untold apart. A better candidate that is not
+    significant candidates acting on a channel it acts on that are credible, or miss credibility
+    only by a parameter just outside its plausible range (marginal): one that explains the held-out
+    units as well (rule 6) leaves the two untold apart. A better candidate that is not
     credible is reported (`rejected`) beside the cause, not in its place: what it fits with an
     implausible parameter is part of the remainder."""
     best = next((j for j in judged if j.significant), None)
@@ -466,7 +537,18 @@ def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision
     present = [j for j in present if j.credible]
     lead = present[0] if present else None
     if lead is not None:
-        rival = next((j for j in present[1:] if _overlap(problem, lead.fit, j.fit)), None)
+        rivals = [
+            j
+            for j in judged
+            if j is not lead
+            and j.significant
+            and (j in present or marginal(j))
+            and _overlap(problem, lead.fit, j.fit)
+        ]
+        closest = [
+            (float(np.percentile(lead.score.combined_samples - j.score.combined_samples, 2.5)), j) for j in rivals
+        ]
+        rival = min(closest, key=lambda pair: pair[0])[1] if closest else None
         if rival is not None:
             low, high = np.percentile(lead.score.combined_samples - rival.score.combined_samples, [2.5, 97.5])
             margins["over_rival"] = float(low)

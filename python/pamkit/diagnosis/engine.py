@@ -29,14 +29,16 @@ from pamkit.diagnosis.decide import (
     Decision,
     Finding,
     Judgement,
+    baseline_findings,
+    credited_channels,
     decide,
-    findings,
     judge,
     keeps_gain,
     noise_ratios,
     score,
-    significant,
+    stands_out,
     structured,
+    unfounded,
 )
 from pamkit.diagnosis.kinds import Problem, build_problem
 from pamkit.diagnosis.tables import TableDiagnosis, diagnose_table
@@ -124,18 +126,38 @@ def _better(refit: Judgement, fit: Judgement) -> bool:
     return refit.score.combined_gain > fit.score.combined_gain
 
 
+def _partners(problem: Problem, baseline: Fit, single: Judgement, others: list[Judgement]) -> list[Judgement]:
+    """The PAIR_PARTNERS candidates most likely to explain what `single` leaves: each candidate's
+    change of the prediction (its fit against the calibrated baseline) projected on that remainder,
+    on the fitted units, every channel in units of its noise — the share of the remainder a step of
+    it would take. Credible alone or not, significant alone or not: beside a first cause one may
+    be what it could not be alone (a slow leak under a logger's time skew that dwarfs it; a pressure
+    offset whose channel did not stand out from a heat exchange's misfit). The pair is judged."""
+    mask = problem.fit_mask
+
+    def stacked(values):
+        return np.concatenate([values[c][mask] / problem.sigma[c] for c in problem.channels])
+
+    left = stacked({c: problem.measured[c] - single.fit.predicted[c] for c in problem.channels})
+    shares = []
+    for j in others:
+        change = stacked({c: j.fit.predicted[c] - baseline.predicted[c] for c in problem.channels})
+        size = float(change @ change)
+        shares.append((float(change @ left) ** 2 / size / float(left @ left)) if size > 0 else 0.0)
+    order = np.argsort(shares)[::-1]
+    return [others[i] for i in order[:PAIR_PARTNERS] if shares[i] > 0.0]
+
+
 def _add_cause(
     problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, threads, report
 ) -> Decision:
-    """The causes named leave structure: try each next significant, credible candidate beside
-    them, and add the one that gains most, if it gains significantly on its own channels over the
-    causes alone (rule 6 of docs/diagnosis.md) with every parameter of the pair credible. A real rig
-    has more than one thing wrong; what no partner explains stays the remainder."""
+    """The causes named leave structure: try the next candidates beside them, and add the one that
+    gains most, if it gains significantly on its own channels over the causes alone (rule 6 of
+    docs/diagnosis.md) with every parameter of the pair credible. A real rig has more than one thing
+    wrong; what no partner explains stays the remainder."""
     single = decision.causes[-1].judgement
     taken = {e.name() for e in single.fit.effects}
-    partners = [j for j in judged if j.significant and j.credible and j.fit.effects[0].name() not in taken][
-        :PAIR_PARTNERS
-    ]
+    partners = _partners(problem, baseline, single, [j for j in judged if j.fit.effects[0].name() not in taken])
     if not partners:
         return decision
     report(
@@ -165,10 +187,13 @@ def _add_cause(
                 continue
             own = score(problem, single.fit, pair, np.random.default_rng(seed), credit=pair.effects[1:])
             candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
+            # The second's own channels, beside the first, must stand out from what the base model
+            # leaves on the channels it cannot change, as a single cause's must (decide.stands_out).
+            second = credited_channels(problem, pair, pair.effects[1:])
             if (
-                significant(own)
-                and own.credited_gain >= MIN_GAIN
-                and own.credited_ci95[0] > 0.0
+                keeps_gain(own)
+                and not stands_out(problem, single.fit, own, second)
+                and not unfounded(problem, single.fit, pair.effects[1:])
                 and candidate.credible
                 and (best is None or candidate.score.combined_gain > best.judgement.score.combined_gain)
             ):
@@ -179,6 +204,8 @@ def _add_cause(
     # second (a load cell's offset for a viscoelastic bladder's hysteresis), which then leads alone.
     first = score(problem, alone.fit, best.judgement.fit, np.random.default_rng(seed), credit=single.fit.effects)
     if not keeps_gain(first):
+        if not (alone.significant and alone.credible):
+            return decision  # the pair's second cannot be named alone, nor the first beside it
         report(f"{single.fit.name} adds nothing significant beside {alone.fit.name}: {alone.fit.name} leads alone")
         left = structured(problem, alone.fit, NONE_WITHIN_NOISE)
         return replace(
@@ -379,7 +406,7 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     named = decision.named
     extended = named.fit if named is not None else baseline
     # The base model's strain and the rejected best candidate's findings (why it is not a cause).
-    warnings = findings(baseline)
+    warnings = baseline_findings(baseline)
     if decision.rejected is not None:
         warnings += [
             replace(f, parameter=f"{decision.rejected.fit.name}: {f.parameter}") for f in decision.rejected.findings

@@ -1,5 +1,5 @@
-"""One muscle calibrated on every test of a campaign of time series at once (DESIGN.md,
-"Campaigns": build parameters are shared and calibrated jointly).
+"""One muscle calibrated on every test of a campaign of time series at once (a campaign's
+build is one muscle's: its parameters are shared and calibrated jointly).
 
 Shared: the `[calibrate]` unknowns and the model's friction and bladder scales — one braid, one
 bladder. Each test's own: its inflation pressure within the transducer's tolerance (a nuisance of

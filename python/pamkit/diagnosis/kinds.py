@@ -110,9 +110,9 @@ SMALLEST_TRAVEL_M = 1e-3
 
 def check_consistency(experiment: Experiment) -> None:
     """Raises ExperimentError when the data contradict the declared test before anything is
-    fitted (DESIGN.md, issue "Diagnosis that holds outside its own world", item 8): a sealed
-    test whose pressure at t = 0 is not its inflation pressure, a time column that counts
-    milliseconds, a braid wound past its locking angle."""
+    fitted: a sealed test whose pressure is its inflation pressure neither at its start nor at its
+    rest in the first cycle, a time column that counts milliseconds, a braid wound past its locking
+    angle."""
     angle = deflated_braid_angle_deg(experiment.build)
     if angle >= LOCKING_ANGLE_DEG:
         raise ExperimentError(

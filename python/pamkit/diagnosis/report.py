@@ -56,7 +56,7 @@ def _residual_evidence(d: Diagnosis, fit: Fit) -> dict:
 
 
 def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
-    """The report, with DESIGN.md's keys (and a few more: noise, evidence, verdict, timing)."""
+    """The report as JSON, with the keys docs/reference/report.md defines."""
     if isinstance(d, TableDiagnosis):
         return table_report.to_json(d)
     if isinstance(d, SeriesCampaign):

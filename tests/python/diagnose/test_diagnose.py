@@ -12,7 +12,7 @@ from pamkit.diagnosis.evidence import ljung_box_p, noise_scale
 from pamkit.io.guards import ExperimentError
 from pamkit.synth.dataset import synthesize
 
-DESIGN_KEYS = {"baseline", "candidates", "cause", "extended", "gain", "gain_ci95", "residuals"}
+REPORT_KEYS = {"baseline", "candidates", "cause", "extended", "gain", "gain_ci95", "residuals"}
 
 
 @pytest.fixture(scope="module")
@@ -28,7 +28,7 @@ def test_report_has_the_design_keys_and_names_the_leak(leak_dataset, tmp_path, r
     assert "leak" in done.stdout and "gain" in done.stdout  # the one-line verdict
     assert "calibrating the baseline" in done.stderr  # progress on stderr
     report = json.loads(report_path.read_text())
-    assert DESIGN_KEYS <= set(report)
+    assert REPORT_KEYS <= set(report)
     assert report["cause"] == "leak"
     assert report["extended"]["effects"] == ["leak"]
     channels = set(report["baseline"]["rmse"])

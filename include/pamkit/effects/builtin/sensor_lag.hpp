@@ -54,6 +54,24 @@ struct SensorLagParams {
 };
 class SensorLagEffect : public detail::ParametricEffect<SensorLagParams> {
  public:
+  /// A strain-gauge load cell and its amplifier settle within milliseconds, and a tensile machine
+  /// filters its force at 10 Hz or faster (a time constant of 16 ms at most): a force that lags
+  /// by more than a tenth of a second is no instrument's, but a hose's lag of the supplied
+  /// pressure seen through the muscle.
+  static constexpr double kLoadCellResponse_s = 0.1;
+
+  /// The declared parameters, the time constant's plausible range narrowed on the force.
+  std::vector<EffectParameter> parameters() const override {
+    std::vector<EffectParameter> out = ParametricEffect::parameters();
+    if (params_.channel == "force_N") {
+      out.front().plausible_max = kLoadCellResponse_s;
+      out.front().plausible_source =
+          "a load cell and its amplifier settle within milliseconds; a tensile machine filters its force at "
+          "10 Hz or faster (16 ms)";
+    }
+    return out;
+  }
+
   /// On the pressure of a supplied test the lag sits between the transducer and the muscle:
   /// the reading is the regulator's, and the muscle's gas follows it through the hose.
   bool reads_supplied_pressure() const override { return params_.channel == "gauge_pressure_Pa"; }
