@@ -8,7 +8,16 @@ import pytest
 
 from pamkit._core import EffectStage, GasMode
 from pamkit.diagnosis.calibrate import Fit
-from pamkit.diagnosis.decide import NONE_WITHIN_NOISE, STANDS_OUT, Judgement, Score, decide, noise_ratios, uncredited
+from pamkit.diagnosis.decide import (
+    NONE_WITHIN_NOISE,
+    STANDS_OUT,
+    Judgement,
+    Score,
+    decide,
+    noise_ratios,
+    uncredited,
+    unfounded,
+)
 
 SAMPLES = 1000
 rng = np.random.default_rng(7)
@@ -159,3 +168,16 @@ def test_structure_within_the_noise_beside_an_instrument_is_no_objection():
     # The force it cannot change ends within NONE_WITHIN_NOISE: nothing to compare it with.
     reasons, _ = instrument_case(own_before=2.5, other_after=0.9 * NONE_WITHIN_NOISE)
     assert reasons == []
+
+
+def test_an_instruments_error_beside_a_first_cause_needs_its_channel_off():
+    # As a second cause, an instrument effect is founded only where the first cause leaves its
+    # channel beyond NONE_WITHIN_NOISE; one that edits the model (a dead volume) is not held to it.
+    channels = ("force_N", "gauge_pressure_Pa")
+    p = problem(channels)
+    sensor = effect("sensor_offset", ["gauge_pressure_Pa"], EffectStage.measurement)
+    volume = effect("dead_volume", ["gauge_pressure_Pa"], EffectStage.physics)
+    for pressure, founded in ((0.95 * NONE_WITHIN_NOISE, False), (1.05 * NONE_WITHIN_NOISE, True)):
+        first = fit("leak", {"force_N": np.full(ROWS, 5.0), "gauge_pressure_Pa": np.full(ROWS, pressure)}, [])
+        assert (unfounded(p, first, [sensor]) == []) is founded
+        assert unfounded(p, first, [volume]) == []
