@@ -542,10 +542,7 @@ def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision
         rivals = [
             j
             for j in judged
-            if j is not lead
-            and j.significant
-            and (j in present or marginal(j))
-            and _overlap(problem, lead.fit, j.fit)
+            if j is not lead and j.significant and (j in present or marginal(j)) and _overlap(problem, lead.fit, j.fit)
         ]
         closest = [
             (float(np.percentile(lead.score.combined_samples - j.score.combined_samples, 2.5)), j) for j in rivals

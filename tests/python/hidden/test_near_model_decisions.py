@@ -13,8 +13,8 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 
 import pytest
-
 from conftest import SOURCE_DIR
+
 from pamkit.diagnosis import diagnose, to_json
 from pamkit.io.experiment import load_experiment
 
