@@ -12,8 +12,7 @@ The rules (docs/diagnosis.md gives them in full, with the measurements behind ea
    they change, and no other channel made worse (a measurement effect refitted with the
    baseline free moves the baseline to fit the channels it cannot touch; that part is not its),
    and the channels it cannot change end within the noise (structure left there is another
-   cause, which may be what its own channel shows: a travel scale reads as a pressure gain);
-   and it explains at least half of what a perfect explanation would (MIN_SHARE).
+   cause, which may be what its own channel shows: a travel scale reads as a pressure gain).
 3. The best significant candidate by held-out gain is named only if it is credible. If it is
    not, the cause is "unexplained" and the verdict says what the rejected fit looks like —
    never the runner-up, which explains less — unless the baseline already reaches the noise on
@@ -34,9 +33,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from pamkit._core import EffectStage, GasMode, Resolution
+from pamkit._core import EffectStage, GasMode
 from pamkit.diagnosis import evidence
 from pamkit.diagnosis.calibrate import Fit
+from pamkit.diagnosis.findings import Finding, baseline_findings, findings, unresolved
 from pamkit.diagnosis.kinds import Problem
 
 # 0.03 is ten times what fitting extra parameters to noise gains on held-out cycles (a few
@@ -51,11 +51,6 @@ BOOTSTRAP_SAMPLES = 1000
 # another instrument's clock and interpolated, by up to half. Twice the noise leaves a model
 # error of at most sqrt(3) sigma unexplained, and is not reached by any null.
 NONE_WITHIN_NOISE = 2.0
-# A cause must explain at least this share of the gain a perfect explanation would reach ...
-MIN_SHARE = 0.5
-# ... one that leaves each channel where the calibrated baseline leaves pamkit's own nulls: up to
-# 1.5x the noise estimate (seeds 1000-1011; see NONE_WITHIN_NOISE).
-NULL_NOISE_RATIO = 1.5
 # An effect on one instrument's channels is a cause beside structure the base model leaves on the
 # channels it cannot change only if its own channel stood this many times further above the noise:
 # a base model that misfits one channel by r noise sigmas misfits the channels coupled to it by
@@ -163,112 +158,6 @@ def significance_margin(s: Score) -> float:
     return float(min(s.combined_gain - MIN_GAIN, s.combined_ci95[0], (-s.delta_bic - MIN_BIC_DROP) / MIN_BIC_DROP))
 
 
-def sample_interval(problem: Problem) -> float:
-    return float(np.median(np.diff(problem.experiment.time_s)))
-
-
-def travel_per_sample(problem: Problem) -> float:
-    steps = np.abs(np.diff(problem.experiment.elongation_m))
-    moving = steps[steps > 0.1 * steps.max()] if steps.max() > 0 else steps
-    return float(np.median(moving)) if moving.size else 0.0
-
-
-def _resolution_limit(problem: Problem, resolution: Resolution) -> tuple[float, str]:
-    # An effect smaller than one sample resolves mimics a sub-sample shift of the channels: a
-    # clock drifting by 50 ppm over a 400 s test is 20 ms.
-    if resolution == Resolution.sample_interval:
-        return sample_interval(problem), "the sample interval"
-    if resolution == Resolution.travel_per_sample:
-        return travel_per_sample(problem), "the crosshead's travel between samples"
-    return 0.0, ""
-
-
-@dataclass
-class Finding:
-    """One fitted parameter that ended at a bound or outside its plausible range."""
-
-    parameter: str
-    value: float
-    bound: float | None
-    plausible: list[float]
-    source: str
-    # at a bound: where the fit would take the parameter without it, and how much lower the
-    # fitted RMSE would be there (calibrate.strain_at_bounds), when known
-    beyond: float | None = None
-    rmse_drop: float | None = None
-
-    def to_json(self) -> dict:
-        return {
-            "parameter": self.parameter,
-            "value": self.value,
-            "bound": self.bound,
-            "plausible": self.plausible,
-            "source": self.source,
-            "beyond_bound": self.beyond,
-            "rmse_drop_beyond_bound": self.rmse_drop,
-        }
-
-    def sentence(self) -> str:
-        if self.bound is not None:
-            strain = (
-                f" (unbounded, the fit would take it to {self.beyond:.4g}, its fitted RMSE "
-                f"{100 * self.rmse_drop:.2g} % lower)"
-                if self.beyond is not None
-                else ""
-            )
-            return f"{self.parameter} = {self.value:.4g} ended at its search bound {self.bound:.4g}{strain}"
-        return (
-            f"{self.parameter} = {self.value:.4g} is outside its plausible range "
-            f"[{self.plausible[0]:.4g}, {self.plausible[1]:.4g}]"
-        )
-
-
-def baseline_findings(baseline: Fit) -> list[Finding]:
-    """The calibrated baseline's parameters at a bound or implausible, less those the data do not
-    determine (a friction scale in a test that never moves: where it ends says nothing of the
-    model; it is reported among the undetermined values instead)."""
-    return [f for f in findings(baseline) if f.parameter not in getattr(baseline, "undetermined", {})]
-
-
-def findings(fit: Fit) -> list[Finding]:
-    """Every parameter of `fit` (anything with `coordinates`: a Fit, a table's or a campaign's)
-    at a bound of its search or outside its plausible range, with how far beyond the bound the
-    fit strains where it knows (`strain`)."""
-    out = []
-    strain = getattr(fit, "strain", {})
-    for key, (coordinate, x) in fit.coordinates.items():
-        value = float(coordinate.value(x))
-        side = coordinate.at_bound(x)
-        if side is None and not coordinate.implausible(value):
-            continue
-        beyond, drop = strain.get(key, (None, None)) if side else (None, None)
-        out.append(
-            Finding(
-                key,
-                value,
-                coordinate.bound_value(side) if side else None,
-                [float(coordinate.plausible[0]), float(coordinate.plausible[1])],
-                coordinate.source,
-                beyond,
-                drop,
-            )
-        )
-    return out
-
-
-def unresolved(problem: Problem, fit: Fit) -> list[str]:
-    """Parameters whose fitted size is below what one sample resolves, as sentences."""
-    out = []
-    for effect in fit.effects:
-        prefix = f"{effect.name()}." if len(fit.effects) > 1 else ""
-        for p in effect.parameters():
-            limit, what = _resolution_limit(problem, p.resolution)
-            value = fit.params.get(prefix + p.name)
-            if limit > 0 and value is not None and abs(value) < limit:
-                out.append(f"{prefix + p.name} = {value:.3g} is below {what} ({limit:.3g})")
-    return out
-
-
 @dataclass
 class Judgement:
     """A candidate's score and whether it may be named."""
@@ -352,28 +241,6 @@ def uncredited(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> list[str]
         if c not in credited and s.gain[c] < -MIN_GAIN
     ]
     return out
-
-
-def attainable_gain(problem: Problem, baseline: Fit) -> float:
-    """The combined held-out gain of a perfect explanation, one that leaves each channel at the
-    noise a correct model reaches (NULL_NOISE_RATIO times the estimate, or where the baseline
-    already is): 1 - sqrt(sum of min(r, NULL_NOISE_RATIO)^2 / sum of r^2), r = RMSE / noise."""
-    ratios = list(noise_ratios(problem, baseline).values())
-    total = sum(r * r for r in ratios)
-    floor = sum(min(r, NULL_NOISE_RATIO) ** 2 for r in ratios)
-    return float(1.0 - math.sqrt(floor / total)) if total > 0 else 0.0
-
-
-def partial(s: Score, attainable: float) -> list[str]:
-    """A fit that explains less than MIN_SHARE of what a perfect one would is a part of a
-    cause, not the cause: Coulomb friction at alternating rates is fitted a quarter of the way
-    by a viscoelastic bladder, which is not what the data show."""
-    if attainable > 0.0 and s.combined_gain < MIN_SHARE * attainable:
-        return [
-            f"it explains only a part of what is wrong (held-out gain {s.combined_gain:.2f} of the "
-            f"{attainable:.2f} a perfect explanation would reach)"
-        ]
-    return []
 
 
 def _same(a: Finding, b: Finding) -> bool:

@@ -27,9 +27,7 @@ from pamkit.diagnosis.decide import (
     PAIR_TRIGGER,
     Cause,
     Decision,
-    Finding,
     Judgement,
-    baseline_findings,
     credited_channels,
     decide,
     judge,
@@ -40,6 +38,7 @@ from pamkit.diagnosis.decide import (
     structured,
     unfounded,
 )
+from pamkit.diagnosis.findings import Finding, baseline_findings
 from pamkit.diagnosis.kinds import Problem, build_problem
 from pamkit.diagnosis.tables import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog

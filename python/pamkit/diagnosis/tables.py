@@ -24,7 +24,8 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from pamkit._core import EffectCatalog, EffectStage, GasMode
-from pamkit.diagnosis.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE, findings
+from pamkit.diagnosis.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
+from pamkit.diagnosis.findings import findings
 from pamkit.diagnosis.table_discover import discover_table
 from pamkit.diagnosis.table_fit import Fitter, TableFit, TableModel, fit_table, heldout_rmse
 from pamkit.diagnosis.table_kinds import Campaign, beyond_reach, campaign_of, noise_of
@@ -83,7 +84,7 @@ class TableDiagnosis:
 
 
 def _findings(fit: TableFit) -> list[dict]:
-    """decide.py's findings (parameters at a search bound or implausible), as report rows."""
+    """findings.py's findings (parameters at a search bound or implausible), as report rows."""
     return [asdict(f) for f in findings(fit)]
 
 
