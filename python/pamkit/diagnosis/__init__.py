@@ -10,7 +10,8 @@ functions below are the implementation and stay importable:
     print(verdict(d)); to_json(d)
 """
 
-from pamkit.diagnosis.engine import MIN_GAIN, Diagnosis, diagnose
+from pamkit.diagnosis.engine import MIN_GAIN, diagnose
 from pamkit.diagnosis.report import plot, to_json, verdict
+from pamkit.diagnosis.result import Diagnosis
 
 __all__ = ["MIN_GAIN", "Diagnosis", "diagnose", "plot", "to_json", "verdict"]

@@ -24,9 +24,9 @@ import numpy as np
 
 from pamkit.diagnosis.calibrate import Fit, one_blas_thread
 from pamkit.diagnosis.decide import MIN_GAIN, score
-from pamkit.diagnosis.engine import Diagnosis
 from pamkit.diagnosis.findings import Finding, findings
 from pamkit.diagnosis.joint import DISAGREES, JointFit, calibrate_jointly
+from pamkit.diagnosis.result import Diagnosis
 from pamkit.diagnosis.table_kinds import test_names
 from pamkit.plots import save_figure
 

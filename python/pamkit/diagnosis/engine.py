@@ -11,7 +11,7 @@ import os
 import time as clock
 import warnings as python_warnings
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -19,6 +19,7 @@ import numpy as np
 from pamkit._core import EffectCatalog, EffectStage
 from pamkit.diagnosis.buildcheck import check_build
 from pamkit.diagnosis.calibrate import Fit, fit_baseline, one_blas_thread
+from pamkit.diagnosis.campaign import MIN_TESTS, campaign_of_series
 from pamkit.diagnosis.candidates import candidates, fit_candidate, fit_pair
 from pamkit.diagnosis.decide import (
     MIN_GAIN,
@@ -38,15 +39,17 @@ from pamkit.diagnosis.decide import (
     structured,
     unfounded,
 )
-from pamkit.diagnosis.findings import Finding, baseline_findings
+from pamkit.diagnosis.findings import baseline_findings
+from pamkit.diagnosis.joint import check_one_muscle
 from pamkit.diagnosis.kinds import Problem, build_problem
+from pamkit.diagnosis.result import Diagnosis
 from pamkit.diagnosis.tables import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.io.columns import OPTIONAL_COLUMNS
 from pamkit.io.experiment import Experiment, load_tests
 from pamkit.io.guards import ExperimentError
 
-__all__ = ["MIN_GAIN", "MAX_DIAGNOSED_ROWS", "Diagnosis", "ThinningWarning", "diagnose", "data_seed"]
+__all__ = ["MIN_GAIN", "MAX_DIAGNOSED_ROWS", "ThinningWarning", "diagnose", "data_seed"]
 
 REFIT_LEADERS = 3  # leading measurement candidates refitted with the baseline free
 # A time series longer than this is diagnosed on every k-th row (the fewest k that fits), as if
@@ -79,27 +82,6 @@ def thinned(experiment: Experiment, max_rows: int | None = None) -> tuple[Experi
     )
     note = {"thinned": message, "step": step, "rows_read": rows, "rows_diagnosed": int(kept.time_s.size)}
     return kept, note
-
-
-@dataclass
-class Diagnosis:
-    """Everything the report says; see report.py for the JSON, text and plot."""
-
-    problem: Problem
-    baseline: Fit
-    candidates: list[Judgement]  # every fitted candidate, best held-out gain first
-    skipped: dict[str, str]  # candidates that could not act or whose fit failed, and why
-    decision: Decision
-    extended: Fit  # the named cause's model, or the baseline
-    extended_judgement: Judgement | None
-    warnings: list[Finding]  # baseline and extended parameters at a bound or implausible
-    discovered: dict = field(default_factory=dict)
-    seconds: dict[str, float] = field(default_factory=dict)
-    data_notes: list[dict] = field(default_factory=list)  # what was done to the data first (thinned)
-
-    @property
-    def cause(self) -> str:
-        return self.decision.cause
 
 
 def data_seed(problem: Problem) -> int:
@@ -429,9 +411,6 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
 
 def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress, threads, seed):
     """Each time series alone, then the causes carried from the others to each (campaign.py)."""
-    from pamkit.diagnosis.campaign import MIN_TESTS, campaign_of_series
-    from pamkit.diagnosis.joint import check_one_muscle
-
     if any(e.is_table for e in tests):
         raise ExperimentError(
             f"{tests[0].path}: a campaign is of one kind: static tables together, or time series together"

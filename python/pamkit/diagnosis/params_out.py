@@ -10,8 +10,8 @@ import numpy as np
 
 from pamkit._core import EffectStage, GasMode, InitialState, MuscleParams, write_muscle_params
 from pamkit.diagnosis.campaign import SeriesCampaign
-from pamkit.diagnosis.engine import Diagnosis
 from pamkit.diagnosis.model import Baseline, muscle_signature
+from pamkit.diagnosis.result import Diagnosis
 from pamkit.diagnosis.table_fit import TableModel
 from pamkit.diagnosis.tables import TableDiagnosis
 from pamkit.effects import catalog as builtin_catalog

@@ -20,8 +20,8 @@ from pamkit.diagnosis.decide import (
     noise_ratios,
 )
 from pamkit.diagnosis.engine import CHANNEL_UNITS as UNITS
-from pamkit.diagnosis.engine import Diagnosis
 from pamkit.diagnosis.identify import why_undetermined
+from pamkit.diagnosis.result import Diagnosis
 from pamkit.diagnosis.tables import TableDiagnosis
 from pamkit.io.columns import difference_from_si, file_name, file_unit, value_from_si
 from pamkit.plots import save_figure

@@ -1,0 +1,32 @@
+"""What the diagnosis of one time series found: the record report.py writes as JSON, as a
+sentence and as a figure, and campaign.py gathers test by test."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from pamkit.diagnosis.calibrate import Fit
+from pamkit.diagnosis.decide import Decision, Judgement
+from pamkit.diagnosis.findings import Finding
+from pamkit.diagnosis.kinds import Problem
+
+
+@dataclass
+class Diagnosis:
+    """Everything the report says; see report.py for the JSON, text and plot."""
+
+    problem: Problem
+    baseline: Fit
+    candidates: list[Judgement]  # every fitted candidate, best held-out gain first
+    skipped: dict[str, str]  # candidates that could not act or whose fit failed, and why
+    decision: Decision
+    extended: Fit  # the named cause's model, or the baseline
+    extended_judgement: Judgement | None
+    warnings: list[Finding]  # baseline and extended parameters at a bound or implausible
+    discovered: dict = field(default_factory=dict)
+    seconds: dict[str, float] = field(default_factory=dict)
+    data_notes: list[dict] = field(default_factory=list)  # what was done to the data first (thinned)
+
+    @property
+    def cause(self) -> str:
+        return self.decision.cause
