@@ -181,3 +181,26 @@ def test_an_instruments_error_beside_a_first_cause_needs_its_channel_off():
         first = fit("leak", {"force_N": np.full(ROWS, 5.0), "gauge_pressure_Pa": np.full(ROWS, pressure)}, [])
         assert (unfounded(p, first, [sensor]) == []) is founded
         assert unfounded(p, first, [volume]) == []
+
+
+def test_a_strained_inflation_pressure_founds_a_transducers_error():
+    # The calibrated inflation pressure at the end of its search (the declared value within the
+    # transducer's 5 %): the data start at another pressure than the file declares, and a pressure
+    # transducer's error is founded even with its channel within the noise.
+    p = problem(("force_N", "gauge_pressure_Pa"))
+    sensor = effect("sensor_offset", ["gauge_pressure_Pa"], EffectStage.measurement)
+    load_cell = effect("load_cell", ["force_N"], EffectStage.measurement)
+    within = {"force_N": np.full(ROWS, 1.0), "gauge_pressure_Pa": np.full(ROWS, 1.5)}
+    for side, founded in ((None, False), ("upper", True)):
+        baseline = fit("none", within, [])
+        coordinate = SimpleNamespace(
+            value=lambda x: 1.05,
+            at_bound=lambda x, side=side: side,
+            implausible=lambda value: False,
+            bound_value=lambda side: 1.05,
+            plausible=(0.95, 1.05),
+            source="the declared inflation pressure within the transducer's 5 %",
+        )
+        baseline.coordinates = {"inflation_gauge_pressure_Pa": (coordinate, 0.0)}
+        assert (unfounded(p, baseline, [sensor]) == []) is founded
+        assert unfounded(p, baseline, [load_cell]) != []  # the force's instrument is not founded by it
