@@ -53,6 +53,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from bench_families import margin_of  # the decision's margin, read as bench_families reads it
 from independent.near_families import FAMILIES, QUICK, STRENGTHS
 
+from pamkit.io.columns import si_name  # the truth names a file's column, the report pamkit's
+
 HONEST_CAUSES = ("none", "unexplained")
 
 
@@ -156,7 +158,8 @@ def classify(dataset, outcome: dict) -> dict:
         return {"outcome": "error", "named": [], "message": outcome["error"]}
     report = outcome["report"]
     named = named_causes(report)
-    channels = {c: (dataset.truth.get("cause", {}).get(c) or {}).get("channel") for c in dataset.hidden}
+    declared = {c: (dataset.truth.get("cause", {}).get(c) or {}).get("channel") for c in dataset.hidden}
+    channels = {c: si_name(channel) if channel else None for c, channel in declared.items()}
     rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
     row = {
         "cause": report.get("cause"),
