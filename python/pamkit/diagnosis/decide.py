@@ -173,13 +173,16 @@ class Judgement:
     # the baseline's parameters at a bound or implausible in this fit as in the calibrated baseline
     # alone: the base model straining, which the candidate neither caused nor cured (reported)
     strain: list[Finding] = field(default_factory=list)
+    # an instrument's error where its channel was within the noise (unfounded): not named, but as
+    # good a reading of the data as a cause it ties with
+    unneeded: list[str] = field(default_factory=list)
 
     @property
     def credible(self) -> bool:
-        return not self.findings and not self.objections
+        return not self.findings and not self.objections and not self.unneeded
 
     def reasons(self) -> list[str]:
-        return [f.sentence() for f in self.findings] + self.objections
+        return [f.sentence() for f in self.findings] + self.unneeded + self.objections
 
 
 def stands_out(problem: Problem, before: Fit, s: Score, credited: list[str]) -> list[str]:
@@ -240,7 +243,7 @@ def uncredited(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> list[str]
     it makes one of those other channels worse, or what it explains does not stand out from the
     structure the base model leaves on the channels it cannot change (stands_out)."""
     credited = credited_channels(problem, fit)
-    out = unfounded(problem, baseline, fit.effects) + stands_out(problem, baseline, s, credited)
+    out = stands_out(problem, baseline, s, credited)
     if set(credited) != set(problem.channels) and (s.credited_gain < MIN_GAIN or s.credited_ci95[0] <= 0.0):
         out.append(
             f"its gain on the channels it changes ({', '.join(credited)}) is only {s.credited_gain:.3f}; "
@@ -290,7 +293,13 @@ def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
     if corrector:  # fitted on the calibrated baseline, whose strain it then corrects
         own += [f for f in calibrated if not any(_same(f, mine) for mine in own)]
     return Judgement(
-        fit, s, significant(s), own, unresolved(problem, fit) + uncredited(problem, fit, s, baseline), strain
+        fit,
+        s,
+        significant(s),
+        own,
+        unresolved(problem, fit) + uncredited(problem, fit, s, baseline),
+        strain,
+        unneeded=unfounded(problem, baseline, fit.effects),
     )
 
 
@@ -382,9 +391,15 @@ NEAR_PLAUSIBLE = 2.0
 
 def marginal(j: Judgement) -> bool:
     """A candidate that cannot be named only because a parameter lies just outside its plausible
-    range (within NEAR_PLAUSIBLE of its end; none at a search bound, no other objection): not a
-    cause, but a rival that explains the data as well as a cause is one the data do not rule out."""
-    if j.objections or not j.findings:
+    range (within NEAR_PLAUSIBLE of its end; none at a search bound, no other objection), or only
+    because it is an instrument's error on a channel the base model already fits within the noise
+    (unneeded): not a cause, but a rival that explains the data as well as a cause is one the data
+    do not rule out. Naming the cause beside it would read a tie as a win."""
+    if j.objections:
+        return False
+    if j.unneeded:
+        return not j.findings
+    if not j.findings:
         return False
     for f in j.findings:
         if f.bound is not None:

@@ -96,6 +96,19 @@ def test_a_rival_that_is_not_credible_does_not_block_a_cause():
     assert decision.cause == "dead_volume" and "over_rival" not in decision.margins
 
 
+def test_an_unneeded_instrument_that_ties_leaves_the_cause_untold():
+    # A load cell refused only because the force was within the noise before it is no cause, but
+    # as good a reading as the viscoelastic bladder it ties with: neither is named. Beaten on the
+    # same draws, it does not stand in the cause's way.
+    for rival_gain, named in ((0.29, False), (0.20, True)):
+        best = candidate("bladder_viscoelasticity", 0.30, 0.30 + SHARED + rng.normal(0, 0.02, SAMPLES))
+        rival = candidate("load_cell", rival_gain, rival_gain + SHARED + rng.normal(0, 0.02, SAMPLES))
+        rival.unneeded = ["force_N was within the noise before it"]
+        decision = decide(problem(), BASELINE, [best, rival])
+        assert (decision.cause == "bladder_viscoelasticity") is named
+        assert (decision.cause == "unexplained") is not named
+
+
 def test_a_part_of_what_a_better_fit_explains_is_not_named():
     # A candidate that cannot be named (a parameter at its bound) explains the same channel 0.15
     # better on the same draws: the credible one behind it may be fitting a piece of that.
