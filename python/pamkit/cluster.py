@@ -71,7 +71,7 @@ def client(workers: int | None = None, scheduler: str | None = None) -> Iterator
     """A ``distributed.Client``: on the scheduler at `scheduler` (tcp://host:port), else on a
     LocalCluster of `workers` processes (default: the cores) with one thread each."""
     require("distributed")
-    from distributed import Client, LocalCluster
+    from distributed import Client, LocalCluster  # optional (pamkit[scale]): imported where a cluster runs
 
     if scheduler:
         with Client(scheduler) as connected:
@@ -175,7 +175,7 @@ def run_all(
 
 
 def _run_chunks(function, chunks, journal: Journal, total: int, connected, label: str, progress) -> None:
-    from distributed import as_completed
+    from distributed import as_completed  # optional (pamkit[scale]): imported where a cluster runs
 
     started = time.perf_counter()
     last_shown = -math.inf

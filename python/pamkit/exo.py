@@ -346,7 +346,7 @@ def plot_exo(path: str | Path, study: ExoStudy, title: str = "") -> Path:
     """Device torque against the target share of the biological moment over the gait cycle
     with the clutch's mode shaded; and, if run, force, pressure and gas temperature of the
     muscle at walking cadence next to the slow bench test."""
-    import matplotlib
+    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -13,7 +13,7 @@ from pamkit.units import MILLIMETRE_PER_METRE
 
 def save_figure(figure, path: str | Path, dpi: int = 110) -> Path:
     """Writes `figure` to `path` (its folder made if missing), closes it and returns the path."""
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # imported where a figure is drawn: it adds a third of a second to every start
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -36,7 +36,7 @@ def plot_simulation(
     """Writes a 2x2 figure: force, pressure and temperature against time, and force against
     elongation (the hysteresis loop); measured channels, when given, are drawn under the
     prediction."""
-    import matplotlib
+    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -75,7 +75,7 @@ def plot_supplied(
     """A supplied-pressure test: the force against time, the supplied pressure (the model's input)
     against time, and the force against the pressure with its pressurise and vent branches apart
     (the isometric user's curve); the force against elongation only when the length moved."""
-    import matplotlib
+    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -130,7 +130,7 @@ def plot_table(path: str | Path, experiment, predicted: dict[str, np.ndarray], t
     curve per held length of an isometric map; the length of an isotonic test in the order
     measured (its pressurise and vent branches); free length and diameter of a free-inflation
     table."""
-    import matplotlib
+    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

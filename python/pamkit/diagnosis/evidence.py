@@ -5,8 +5,9 @@ velocity, |velocity|, time and cycle index)."""
 from __future__ import annotations
 
 import numpy as np
-from scipy.signal import correlate, savgol_coeffs, savgol_filter
-from scipy.stats import chi2
+from scipy.special import chdtrc
+
+from pamkit.diagnosis.filters import cross_correlation, savgol_filter, savgol_weights
 
 NOISE_WINDOW = 9  # samples in the local cubic that stands for the signal
 NOISE_POLYORDER = 3
@@ -24,7 +25,7 @@ def noise_scale(values: np.ndarray) -> float:
         return max(float(np.std(v)), 1e-12)
     residual = v - savgol_filter(v, NOISE_WINDOW, NOISE_POLYORDER)
     # The cubic follows its centre weight's share of white noise's variance at each point.
-    followed = float(savgol_coeffs(NOISE_WINDOW, NOISE_POLYORDER)[NOISE_WINDOW // 2])
+    followed = float(savgol_weights(NOISE_WINDOW, NOISE_POLYORDER)[NOISE_WINDOW // 2])
     typical = 1.4826 * float(np.median(np.abs(residual)))
     if typical == 0.0:
         typical = float(np.sqrt(np.mean(residual**2)))
@@ -56,7 +57,7 @@ def ljung_box_p(residual: np.ndarray, lags: int = 20) -> float:
     k = np.arange(1, lags + 1)
     rho = np.array([np.dot(r[:-j], r[j:]) for j in k]) / denominator
     q = n * (n + 2) * float(np.sum(rho**2 / (n - k)))
-    return float(chi2.sf(q, lags))
+    return float(chdtrc(lags, q))  # the chi-squared distribution's survival function
 
 
 def correlations(residual: np.ndarray, regressors: dict[str, np.ndarray]) -> dict[str, float]:
@@ -77,7 +78,7 @@ def lagged_correlations(residual: np.ndarray, signal: np.ndarray, max_lag: int) 
     normalised by the overlap's own sums of squares (0 where one is zero); both series are
     centred on their whole means first.
 
-    The products at every lag come from one FFT correlation (scipy.signal.correlate), the
+    The products at every lag come from one FFT correlation (filters.cross_correlation), the
     overlap norms from cumulative sums: O(n log n) instead of O(lags x n).
     """
     r = np.asarray(residual, dtype=float)
@@ -86,8 +87,8 @@ def lagged_correlations(residual: np.ndarray, signal: np.ndarray, max_lag: int) 
     x = x - x.mean()
     n = r.size
     lags = np.arange(-max_lag, max_lag + 1)
-    # correlate(r, x)[n - 1 + k] = sum_i r[i + k] x[i]: residual[k:] against signal[:n - k].
-    products = correlate(r, x, mode="full", method="fft")[n - 1 + lags]
+    # cross_correlation(r, x)[n - 1 + k] = sum_i r[i + k] x[i]: residual[k:] against signal[:n - k].
+    products = cross_correlation(r, x)[n - 1 + lags]
     # Sums of squares of a prefix (cumulative from the start) and a suffix (from the end).
     r_prefix = np.concatenate([[0.0], np.cumsum(r * r)])
     x_prefix = np.concatenate([[0.0], np.cumsum(x * x)])

@@ -14,8 +14,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import savgol_coeffs, savgol_filter
 
+from pamkit.diagnosis.filters import savgol_filter, savgol_weights
 from pamkit.units import MILLIMETRE_PER_METRE
 
 DERIVATIVE_WINDOW_S = 0.05  # a tensile machine turns round within tens of ms
@@ -83,7 +83,7 @@ def _derivative(values: np.ndarray, time_s: np.ndarray, window: int) -> np.ndarr
     """Savitzky-Golay derivative (local quadratic): encoder counts and transducer noise are
     averaged over the window instead of being differenced sample to sample."""
     dt = float(np.median(np.diff(time_s)))
-    return savgol_filter(values, window, 2, deriv=1, delta=dt, mode="interp")
+    return savgol_filter(values, window, 2, deriv=1, delta=dt)
 
 
 def _coulomb_scale(speed_mm_s: np.ndarray, elongation_noise_mm: float, window: int, dt: float) -> float:
@@ -95,7 +95,7 @@ def _coulomb_scale(speed_mm_s: np.ndarray, elongation_noise_mm: float, window: i
     fast = float(np.percentile(speed_mm_s, 99))
     moving = speed_mm_s[speed_mm_s > 0.1 * fast]
     typical = float(np.median(moving)) if moving.size else fast
-    speed_noise = elongation_noise_mm * float(np.linalg.norm(savgol_coeffs(window, 2, deriv=1, delta=dt)))
+    speed_noise = elongation_noise_mm * float(np.linalg.norm(savgol_weights(window, 2, deriv=1, delta=dt)))
     return max(COULOMB_FRACTION * typical, 3.0 * speed_noise)
 
 

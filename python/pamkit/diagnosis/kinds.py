@@ -13,11 +13,11 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import median_filter
 
 from pamkit._core import GasMode, deflated_braid_angle_deg
 from pamkit.diagnosis import evidence
 from pamkit.diagnosis.cycles import Cycles, find_cycles, split_cycles
+from pamkit.diagnosis.filters import running_median
 from pamkit.diagnosis.model import Predictor
 from pamkit.io.columns import file_name, value_from_si
 from pamkit.io.experiment import Experiment
@@ -184,7 +184,7 @@ def plateaus(signal: np.ndarray) -> Cycles:
     """The plateaus of a stepped sweep (each with the transition that leads to it), from the
     signal's levels: a new one starts where the median-smoothed signal leaves the current
     level by more than the larger of PLATEAU_NOISE noise sigmas and PLATEAU_SPAN of the span."""
-    smooth = median_filter(np.asarray(signal, dtype=float), size=5, mode="nearest")
+    smooth = running_median(signal, 5)
     threshold = max(PLATEAU_NOISE * evidence.noise_scale(signal), PLATEAU_SPAN * float(np.ptp(smooth)))
     starts, level = [0], smooth[0]
     for k, value in enumerate(smooth):

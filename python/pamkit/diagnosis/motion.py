@@ -13,9 +13,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import savgol_filter
 
 from pamkit.diagnosis.evidence import noise_scale
+from pamkit.diagnosis.filters import savgol_filter
 
 STILL = 0.25  # a sample whose smoothed rate is below this share of the largest is holding
 SMOOTHING = 9  # samples in the window that smooths the rate

@@ -347,7 +347,7 @@ def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Pa
         return table_report.plot(d, path)
     if isinstance(d, SeriesCampaign):
         return campaign.plot(d, path)
-    import matplotlib
+    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -228,7 +228,7 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
     """Each channel against the supplied pressure: measured points, and each group as the
     calibrated baseline (dotted) and the named cause's model (solid) predicted it held out. A
     map draws one curve per held length; a free-inflation table one per test."""
-    import matplotlib
+    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
