@@ -379,11 +379,19 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
 
     report("deciding on held-out units")
     decision = decide(problem, baseline, judged)
-    if decision.causes:
+    while decision.causes:
         if structured(problem, decision.named.fit, PAIR_TRIGGER):
             decision = _add_cause(problem, baseline, decision, judged, factories, seed, threads, report)
         with _pool(threads) as pool:
-            decision = _check_the_build(problem, baseline, decision, judged, factories, seed, pool, report)
+            checked = _check_the_build(problem, baseline, decision, judged, factories, seed, pool, report)
+        # A lead the build explains as well carries that objection now: a candidate that acts on
+        # other channels (a thermometer beside a pressure offset a wind explains) may still be a
+        # cause. Each pass refuses one more lead, so the loop ends.
+        retry = decide(problem, baseline, judged) if not checked.causes else None
+        if retry is None or not retry.causes:
+            decision = checked
+            break
+        decision = retry
     named = decision.named
     extended = named.fit if named is not None else baseline
     # The base model's strain and the rejected best candidate's findings (why it is not a cause).

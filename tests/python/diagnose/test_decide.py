@@ -14,6 +14,7 @@ from pamkit.diagnosis.decide import (
     Judgement,
     Score,
     decide,
+    judge,
     noise_ratios,
     uncredited,
     unfounded,
@@ -43,6 +44,7 @@ def effect(name: str, channels=(), stage=EffectStage.physics):
         channels_changed=lambda: list(channels),
         stage=lambda: stage,
         reads_supplied_pressure=lambda: False,
+        parameters=lambda: [],
     )
 
 
@@ -206,14 +208,53 @@ def test_a_strained_inflation_pressure_founds_a_transducers_error():
     within = {"force_N": np.full(ROWS, 1.0), "gauge_pressure_Pa": np.full(ROWS, 1.5)}
     for side, founded in ((None, False), ("upper", True)):
         baseline = fit("none", within, [])
-        coordinate = SimpleNamespace(
-            value=lambda x: 1.05,
-            at_bound=lambda x, side=side: side,
-            implausible=lambda value: False,
-            bound_value=lambda side: 1.05,
-            plausible=(0.95, 1.05),
-            source="the declared inflation pressure within the transducer's 5 %",
-        )
-        baseline.coordinates = {"inflation_gauge_pressure_Pa": (coordinate, 0.0)}
+        baseline.coordinates = inflation_at_bound(side)
         assert (unfounded(p, baseline, [sensor]) == []) is founded
         assert unfounded(p, baseline, [load_cell]) != []  # the force's instrument is not founded by it
+
+
+def inflation_at_bound(side):
+    """The sealed gas's calibrated inflation pressure as a coordinate, at `side` of its search."""
+    coordinate = SimpleNamespace(
+        value=lambda x: 1.05,
+        at_bound=lambda x: side,
+        implausible=lambda value: False,
+        bound_value=lambda side: 1.05,
+        plausible=(0.95, 1.05),
+        source="the declared inflation pressure within the transducer's 5 %",
+    )
+    return {"inflation_gauge_pressure_Pa": (coordinate, 0.0)}
+
+
+def test_a_transducers_correction_is_not_bound_by_the_pressure_it_read():
+    # The declared inflation pressure was read on the pressure transducer: a fit that corrects that
+    # transducer and ends with the inflation pressure at the end of its 5 % box is not refused for
+    # it (the base model's strain, reported); a dead volume that does is.
+    channels = ("force_N", "gauge_pressure_Pa")
+    p = problem(channels)
+    p.experiment.time_s = np.arange(ROWS, dtype=float)
+    off = {"force_N": np.full(ROWS, 1.0), "gauge_pressure_Pa": np.full(ROWS, 5.0)}
+    baseline = fit("none", off, [])
+    score = Score(
+        rmse={c: 1.0 for c in channels},
+        gain={"force_N": 0.0, "gauge_pressure_Pa": 0.8},
+        gain_ci95={"force_N": [-0.01, 0.01], "gauge_pressure_Pa": [0.7, 0.9]},
+        combined_gain=0.5,
+        combined_ci95=[0.4, 0.6],
+        delta_bic=-100.0,
+        credited_gain=0.8,
+        credited_ci95=[0.7, 0.9],
+    )
+    for effect_, stage, refused in (
+        ("sensor_offset", EffectStage.measurement, False),
+        ("dead_volume", EffectStage.physics, True),
+    ):
+        candidate_fit = fit(
+            effect_,
+            {"force_N": np.ones(ROWS), "gauge_pressure_Pa": np.ones(ROWS)},
+            [effect(effect_, ["gauge_pressure_Pa"], stage)],
+        )
+        candidate_fit.coordinates = inflation_at_bound("upper")
+        j = judge(p, candidate_fit, score, baseline)
+        assert any(f.parameter == "inflation_gauge_pressure_Pa" for f in j.findings) is refused
+        assert any(f.parameter == "inflation_gauge_pressure_Pa" for f in j.strain) is not refused
