@@ -5,7 +5,7 @@ cannot drift from the code: ``.. pamkit-reference:: NAME`` with NAME one of
     data-columns      the data CSV's columns of each kind of test (pamkit.reference.data_columns)
     params-file       every key of a muscle-parameters file (pamkit.reference.params_file_keys)
     effect-catalog    every effect of the built-in catalog, with its parameters (pamkit.effects.catalog)
-    cli               every command's --help (pamkit.reference.cli_commands)
+    cli               every command's --help (pamkit.cli.command_help)
     templates         `pamkit template KIND` of each kind (pamkit.templates.template)
 
 The tables are written as reStructuredText and parsed in place.
@@ -19,6 +19,7 @@ from sphinx.util.docutils import SphinxDirective
 from sphinx.util.nodes import nested_parse_with_titles
 
 from pamkit import reference
+from pamkit.cli import command_help
 from pamkit.effects import catalog
 from pamkit.templates import TEMPLATE_KINDS, template
 
@@ -129,7 +130,7 @@ def effect_catalog() -> list[str]:
 
 def cli() -> list[str]:
     lines: list[str] = []
-    for name, text in reference.cli_commands():
+    for name, text in command_help():
         lines += [f"``{name}``", "-" * (len(name) + 4), "", ".. code-block:: text", ""]
         lines += ["   " + line if line else "" for line in text.splitlines()]
         lines.append("")

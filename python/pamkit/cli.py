@@ -66,5 +66,15 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_BUG
 
 
+def command_help() -> list[tuple[str, str]]:
+    """Each ``pamkit`` command with its ``--help`` text, ``pamkit`` itself first (from argparse)."""
+    parser = build_parser()
+    commands = [("pamkit", parser.format_help())]
+    for action in parser._actions:  # argparse keeps subcommands in its private action list only
+        if isinstance(action, argparse._SubParsersAction):
+            commands += [(f"pamkit {name}", sub.format_help()) for name, sub in sorted(action.choices.items())]
+    return commands
+
+
 if __name__ == "__main__":
     sys.exit(main())

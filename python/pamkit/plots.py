@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from pamkit._core import pressure_branches
 from pamkit.io.columns import value_from_si
 from pamkit.units import MILLIMETRE_PER_METRE
 
@@ -79,8 +80,6 @@ def plot_supplied(
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-
-    from pamkit._core import pressure_branches
 
     measured = measured or {}
     moved = np.ptp(predicted["elongation_m"]) > 0

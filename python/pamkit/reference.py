@@ -17,7 +17,6 @@ Keys and columns are named as a file gives them, in its units (``inflation_press
 
 from __future__ import annotations
 
-import argparse
 from dataclasses import dataclass
 from typing import Any
 
@@ -477,15 +476,3 @@ def params_file_keys() -> list[Key]:
         )
     )
     return keys
-
-
-def cli_commands() -> list[tuple[str, str]]:
-    """Each ``pamkit`` command with its ``--help`` text, ``pamkit`` itself first (from argparse)."""
-    from pamkit.cli import build_parser
-
-    parser = build_parser()
-    commands = [("pamkit", parser.format_help())]
-    for action in parser._actions:  # argparse keeps subcommands in its private action list only
-        if isinstance(action, argparse._SubParsersAction):
-            commands += [(f"pamkit {name}", sub.format_help()) for name, sub in sorted(action.choices.items())]
-    return commands

@@ -13,11 +13,12 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Union
 
+from pamkit.io.experiment import Experiment
+
 if TYPE_CHECKING:
     import pandas as pd
 
     from pamkit._core import EffectCatalog
-    from pamkit.io.experiment import Experiment
 
 # What diagnose() takes: an experiment's TOML path or a loaded Experiment, or several of them.
 ExperimentLike = Union[str, Path, "Experiment"]
@@ -156,7 +157,7 @@ class Report:
         """
         if self.diagnosis is None:
             raise ValueError("a report read from JSON holds no predictions to draw: diagnose the data again")
-        from pamkit.diagnosis.report import plot
+        from pamkit.diagnosis.report import plot  # imported here: see diagnose()
 
         return plot(self.diagnosis, path)  # type: ignore[arg-type]
 
@@ -293,9 +294,9 @@ def diagnose(
     >>> report = pamkit.diagnose("data/experiments/festo/DMSP-10-250.toml")  # doctest: +SKIP
     >>> print(report.verdict())  # doctest: +SKIP
     """
+    # Imported here: `import pamkit` (and `pamkit simulate`) starts without the diagnosis package.
     from pamkit.diagnosis.engine import diagnose as run
     from pamkit.diagnosis.report import to_json, verdict
-    from pamkit.io.experiment import Experiment
 
     what: ExperimentLike | list[ExperimentLike]
     if isinstance(path_or_experiments, (str, Path, Experiment)):

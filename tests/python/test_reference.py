@@ -13,7 +13,7 @@ import pytest
 import tomllib
 
 import pamkit
-from pamkit.cli import main
+from pamkit.cli import command_help, main
 from pamkit.io.columns import file_name
 from pamkit.io.experiment import load_experiment, load_tests
 from pamkit.io.guards import ExperimentError
@@ -23,7 +23,6 @@ from pamkit.reference import (
     SERIES_KINDS,
     SUPPLIED,
     TEST_KEY_MEANINGS,
-    cli_commands,
     data_columns,
     experiment_keys,
     params_file_keys,
@@ -241,7 +240,7 @@ def test_the_parameters_files_keys_are_documented(tmp_path, neo_hookean):
 
 
 def test_the_command_line_reference_holds_every_command():
-    commands = dict(cli_commands())
+    commands = dict(command_help())
     for name in ("simulate", "diagnose", "synth", "effects", "exo", "log", "align", "flash", "sweep", "template"):
         assert f"pamkit {name}" in commands and commands[f"pamkit {name}"].startswith(f"usage: pamkit {name}")
     assert "--version" in commands["pamkit"]

@@ -15,6 +15,9 @@ import warnings
 from pathlib import Path
 
 from pamkit._core import Error, SolverError
+from pamkit.cluster import check_output, run_all, work_key
+from pamkit.diagnosis.engine import diagnose
+from pamkit.diagnosis.report import to_json
 
 
 def batch_files(directory: str | Path) -> list[Path]:
@@ -50,8 +53,6 @@ def summary_row(path: Path, report: dict) -> dict:
 def diagnose_file(path: str | Path) -> dict:
     """One file's row; a file that cannot be read or diagnosed gives its message in `error`. The
     warnings Python raises while reading (repaired data) are counted with the report's."""
-    from pamkit.diagnosis import diagnose, to_json
-
     path = Path(path)
     started = time.perf_counter()
     with warnings.catch_warnings(record=True) as raised:
@@ -75,8 +76,6 @@ def diagnose_batch(directory: str | Path, output: str | Path, client, progress=N
     """Diagnoses every experiment TOML in `directory` on the Dask `client`, each file its own
     task, writes the rows to `output` (.parquet or .csv) and returns them in file order. Rows are
     journaled as they complete: after a crash the same call resumes."""
-    from pamkit.cluster import check_output, run_all, work_key
-
     output = check_output(output)
     files = [str(path.resolve()) for path in batch_files(directory)]
     return run_all(

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 import pamkit
+from pamkit.diagnosis.cycles import find_cycles
 from pamkit.diagnosis.discover import _equation
 from pamkit.diagnosis.features import MOTION_TERMS, DiscoveryError, _feature_columns
 
@@ -38,8 +39,6 @@ TERM_NAMES = (
 
 
 def _default_cycle_index(time_s: np.ndarray, elongation_m: np.ndarray) -> np.ndarray:
-    from pamkit.diagnosis.cycles import find_cycles
-
     return find_cycles(elongation_m).index(elongation_m.size).astype(float)
 
 

@@ -39,6 +39,7 @@ from pamkit.diagnosis.decide import (
     structured,
     unfounded,
 )
+from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
 from pamkit.diagnosis.findings import baseline_findings
 from pamkit.diagnosis.joint import check_one_muscle
 from pamkit.diagnosis.kinds import Problem, build_problem
@@ -228,8 +229,6 @@ CHANNEL_UNITS = {"force_N": "N", "gauge_pressure_Pa": "Pa", "temperature_K": "K"
 def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
     """Sparse regression of what `fit` leaves in the channel furthest above its noise, on the
     physical feature library (discover.py): what the catalog lacks, as an equation."""
-    from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
-
     ratios = noise_ratios(problem, fit)
     channel = max(problem.channels, key=lambda c: ratios[c])
     experiment = problem.experiment

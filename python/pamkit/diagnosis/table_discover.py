@@ -12,7 +12,9 @@ from __future__ import annotations
 import numpy as np
 
 from pamkit.diagnosis.decide import NONE_WITHIN_NOISE
+from pamkit.diagnosis.discover import discover
 from pamkit.diagnosis.features import DiscoveryError, Term
+from pamkit.diagnosis.table_kinds import test_names
 from pamkit.io.columns import value_from_si
 
 UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
@@ -84,9 +86,6 @@ def discover_table(campaign, channels, noise: dict[str, float], fit, seed: int) 
 
 
 def _discover_channel(campaign, channel: str, noise: float, residual, predicted, seed: int) -> dict:
-    from pamkit.diagnosis.discover import discover
-    from pamkit.diagnosis.table_kinds import test_names
-
     used = ~campaign.censored & campaign.predicts(channel)  # a campaign's other kinds do not predict it
     labels = np.unique(campaign.groups[used])
     fitted_labels = labels[::2]
