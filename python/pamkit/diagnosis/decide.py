@@ -10,20 +10,23 @@ The rules (docs/diagnosis.md gives them in full, with the measurements behind ea
    resolve it (a skew or lag of at least one sample interval, a slack of at least the travel
    between samples), and its effects earn their gain where they act: significant on the channels
    they change, and no other channel made worse (a measurement effect refitted with the
-   baseline free moves the baseline to fit the channels it cannot touch; that part is not its),
-   and the channels it cannot change end within the noise (structure left there is another
-   cause, which may be what its own channel shows: a travel scale reads as a pressure gain).
-3. The best significant candidate by held-out gain is named only if it is credible. If it is
-   not, the cause is "unexplained" and the verdict says what the rejected fit looks like —
-   never the runner-up, which explains less — unless the baseline already reaches the noise on
-   every channel (rule 4): then it is "none", and the report keeps the rejected fit.
+   baseline free moves the baseline to fit the channels it cannot touch; that part is not its);
+   what they explain stands out from the base model's misfit on the channels coupled to theirs
+   (stands_out), and an instrument's error is needed where it acts (unfounded).
+3. The best significant, credible candidate is named, and every cause present beside it (the
+   engine adds a second cause and checks the build). A better candidate that cannot be named is
+   reported beside it (`rejected`); when that one explains a channel both explain significantly
+   better on the same draws, the lesser is likely a piece of it and is not named either
+   (outdone). With nothing named the verdict says what the best rejected fit looks like, and the
+   cause is "none" if the baseline already reaches the noise on every channel (rule 4).
 4. With no significant candidate the cause is "none" only if every channel's held-out RMSE is
    within NONE_WITHIN_NOISE of its noise; otherwise "unexplained".
 5. Every decision carries its margin: how far the deciding number is from its threshold.
-6. A credible best is named only when it beats every other significant, credible candidate on
-   the same bootstrap draws (the paired difference of combined held-out gains, its 95 % interval
-   above zero; margin `over_rival`). Otherwise two mechanisms explain the data alike, and naming
-   either would be a guess: "unexplained", the verdict naming both.
+6. The named cause must beat every other significant candidate that is credible, or misses
+   credibility only narrowly (marginal), on the same bootstrap draws (the paired difference of
+   combined held-out gains, its 95 % interval above zero; margin `over_rival`). Otherwise two
+   mechanisms explain the data alike, and naming either would be a guess: "unexplained", the
+   verdict naming both.
 """
 
 from __future__ import annotations
