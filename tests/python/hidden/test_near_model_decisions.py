@@ -76,11 +76,10 @@ def lines(rows) -> str:
 def test_the_hidden_causes_are_named(world):
     rows = [r for r in world if r["hidden"]]
     right = [r for r in rows if r["hidden"] <= r["named"] and not wrong(r)]
-    # Measured when this test was written (seeds 1-3): 79 of 108 right (73 %; the
-    # supplied transducer's offset, 0 of 6, is degenerate with the braid's uncertain wind and stays
-    # `unexplained`). The floor is that rate less two binomial standard deviations
-    # (sqrt(108 * 0.73 * 0.27) = 4.6). The aim, 86 % (31 of 36 on the private suite before
-    # the decision core turned timid), is not reached yet: docs/validation.md lists the misses.
+    # The floor: the measured rate, 79 of 108 right (73 %; bench_near_model's medium and strong
+    # strengths, seeds 1-3), less two binomial standard deviations (sqrt(108 * 0.73 * 0.27) = 4.6).
+    # The aim, 90 %, is not reached: docs/validation.md lists the misses (a supplied transducer's
+    # offset, 0 of 6, is degenerate with the braid's uncertain wind and stays `unexplained`).
     assert len(right) >= MIN_RIGHT, f"{len(right)} of {len(rows)} named right; the others:\n" + lines(
         [r for r in rows if r not in right]
     )
