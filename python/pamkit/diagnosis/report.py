@@ -227,6 +227,24 @@ def _phrase(j: Judgement, channel: str) -> str:
     return phrase.format(channel=options.get("channel", channel))
 
 
+def _looks_unsettled(d: Diagnosis) -> str:
+    """What the best candidate looks like when it gains enough and drops the BIC but its interval
+    over the held-out units holds zero: a gain that rests on a few units (a braid's slack on the one
+    zero-pressure plateau of a sweep) is shown, not left out."""
+    best = d.candidates[0] if d.candidates else None
+    if best is None or best.score.combined_gain < MIN_GAIN or -best.score.delta_bic <= MIN_BIC_DROP:
+        return "no catalog effect gains significantly on the held-out units"
+    p = d.problem
+    channel = max(p.channels, key=lambda c: best.score.gain[c])
+    low, high = best.score.combined_ci95
+    held = np.unique(p.half_cycle[p.held_mask]).size
+    return (
+        f"it looks like {_phrase(best, channel)} ({best.fit.name} gains {best.score.combined_gain:.2f}, the BIC "
+        f"down by {-best.score.delta_bic:.3g}), but its 95 % interval over the {held} held-out "
+        f"{p.unit_name}s, [{low:.2f}, {high:.2f}], holds zero: some of them gain, others lose"
+    )
+
+
 def _error(channel: str, value: float, digits: str = ".3g") -> str:
     """An error of a channel as a person reads it: in its file's unit (kPa, °C)."""
     return f"{difference_from_si(channel, value):{digits}}"
@@ -290,7 +308,7 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
                 f"{'; '.join(j.reasons())}"
             )
         else:
-            looks = "no catalog effect gains significantly on the held-out units"
+            looks = _looks_unsettled(d)
         found = d.discovered.get("terms") if d.discovered else None
         discovered = (
             (
