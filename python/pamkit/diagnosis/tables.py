@@ -324,6 +324,9 @@ def heldout_by_test(model: TableModel, channels, scales, fit: TableFit, catalog:
             continue
         others = np.flatnonzero(used & (campaign.test != index))
         mine = np.flatnonzero(used & (campaign.test == index))
+        if mine.size == 0:
+            out[name] = {"error": "every row of this test is censored: nothing of it is scored"}
+            continue
         x = fitter.fit(others, [fit.x])
         predicted = fitter.predict(x, mine)
         kind_noise = noise_of(campaign_of([experiment]), tuple(c for c in channels if campaign.predicts(c)[mine[0]]))
