@@ -9,7 +9,7 @@ GasProcess.polytropic with n = 1 (isothermal: dT/dt = 0, only the energy integra
 integrated).
 
 pamkit runs each case with each integration method (SimulatorConfig.method): bdf (the default),
-adams, dopri5 and auto (the stiffness test's pick, named in the report), side by side.
+adams, dopri5, rosenbrock4 and auto (the stiffness test's pick, named in the report), side by side.
 
 It prints ratios only (absolute times go to --json):
   speed ratio         SciPy time / pamkit time, each the best of several runs, run alternately,
@@ -20,12 +20,13 @@ It prints ratios only (absolute times go to --json):
                       at 1e-11, for each method
   binding overhead    Python Simulator.run time / the same run timed inside C++ - 1
                       (bench/bench_simulate.cpp, target pamkit_bench_simulate)
-  RHS bound           C++ wall time / (CVODE RHS evaluations x the cost of one
-                      MuscleModel::evaluate); also against every model evaluation the run makes
-                      (RHS + quadrature RHS ~ one per step + one per output sample), with the
-                      evaluation timed cold and as the simulator makes it (warm-started braid
-                      solve, no angles: MuscleModel::evaluate_with), the run's evaluation floor; these
-                      three for each method
+  RHS bound           C++ wall time / (RHS evaluations x the cost of one MuscleModel::evaluate);
+                      also against every model evaluation the run makes (the RHS ones, Jacobian
+                      columns included, and one per output sample: callgrind counts exactly these
+                      calls), with the evaluation timed cold and as the simulator makes it
+                      (warm-started braid solve, no angles: MuscleModel::evaluate_with), the run's
+                      evaluation floor; these three for each method, with the solver's own counters
+                      (steps, RHS evaluations, Jacobians, LU factorisations, Newton iterations)
   explicit RK         the same test by Dormand-Prince 5(4) with dense output (Boost.Odeint) on the
                       same right-hand side and output path, restarted at the same corners
                       (pamkit_bench_simulate --integrator dopri5): pamkit's C++ time over its time,
@@ -70,7 +71,7 @@ TARGETS = {
 }
 TIGHT = 1e-11
 DEFAULT = pamkit.SimulatorConfig().relative_tolerance  # 1e-8
-METHODS = ("bdf", "adams", "dopri5", "auto")  # pamkit.IntegrationMethod's names; bdf is the default
+METHODS = ("bdf", "adams", "dopri5", "rosenbrock4", "auto")  # pamkit.IntegrationMethod's names; bdf is the default
 TRACES = ("force_N", "gauge_pressure_Pa", "temperature_K")
 INITIAL = {"length_m": 0.167, "gauge_pressure_Pa": 236.63e3}
 MAX_ELONGATION_M = 0.0523
@@ -209,6 +210,8 @@ def measure(case, exe, rounds, repeats, methods):
             "steps": st.steps,
             "rhs_evaluations": st.rhs_evaluations,
             "jacobian_evaluations": st.jacobian_evaluations,
+            "linear_solver_setups": st.linear_solver_setups,
+            "nonlinear_iterations": st.nonlinear_iterations,
             "error_test_failures": st.error_test_failures,
             "nonlinear_convergence_failures": st.nonlinear_convergence_failures,
             "restarts": st.restarts,
@@ -291,9 +294,9 @@ def measure(case, exe, rounds, repeats, methods):
         res["evaluation_floor"] = {}
         for run in runs:
             c = cxx[run]
-            # Every evaluate() of a run: the RHS (the counter), with CVODES the quadrature RHS (one
-            # per step, within ~1 %: checked once with callgrind), and one per output sample.
-            all_evals = c["rhs_evaluations"] + (0 if c["method"] == "dopri5" else c["steps"]) + c["samples"]
+            # Every evaluate() of a run: the RHS (the counter, difference-quotient Jacobians
+            # included) and one per output sample, as callgrind counts them.
+            all_evals = c["rhs_evaluations"] + c["samples"]
             res["rhs_bound"][key(run)] = c["simulate_s"] / (c["rhs_evaluations"] * evaluate_cxx)
             res["model_eval_bound"][key(run)] = c["simulate_s"] / (all_evals * evaluate_cxx)
             res["evaluation_floor"][key(run)] = (
@@ -314,6 +317,10 @@ def measure(case, exe, rounds, repeats, methods):
         }
         res["over_dopri5"] = {key(run): cxx[run]["simulate_s"] / dopri5[run[1]]["simulate_s"] for run in runs}
     return res
+
+
+def jacobians_lu_newton(s):
+    return f"{s['jacobian_evaluations']} / {s['linear_solver_setups']} / {s['nonlinear_iterations']}"
 
 
 def fmt_ratio(x):
@@ -380,7 +387,8 @@ def report(results, methods, exe):
             ):
                 lines.append(f"{label:{w}}{cell(explicit[d]):>16}{cell(explicit[t]):>16}   (info)")
         st = res["statistics"]
-        row("CVODE steps / RHS evals", st, lambda s: f"{s['steps']} / {s['rhs_evaluations']}")
+        row("steps / RHS evals", st, lambda s: f"{s['steps']} / {s['rhs_evaluations']}")
+        row("Jacobians / LU / Newton iterations", st, jacobians_lu_newton)
         lines.append(
             f"{'output evaluations (one per sample)':{w}}{st['bdf@' + d]['output_evaluations']:>16}"
             f"{st['bdf@' + t]['output_evaluations']:>16}"

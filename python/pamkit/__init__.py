@@ -16,6 +16,7 @@ The implementations live in :mod:`pamkit.simulation` and the :mod:`pamkit.diagno
 """
 
 from pamkit._core import (
+    BatchResult,
     BiaxialStress,
     BladderLaw,
     BraidGeometry,
@@ -49,6 +50,7 @@ from pamkit._core import (
     MuscleParams,
     MuscleParamsFile,
     MuscleShape,
+    ParameterSets,
     Resolution,
     SimulationResult,
     Simulator,
@@ -90,6 +92,7 @@ from pamkit.report import Report, diagnose
 from pamkit.simulation import simulate
 
 __all__ = [
+    "BatchResult",
     "BiaxialStress",
     "BladderLaw",
     "BraidGeometry",
@@ -124,6 +127,7 @@ __all__ = [
     "MuscleParams",
     "MuscleParamsFile",
     "MuscleShape",
+    "ParameterSets",
     "Report",
     "Resolution",
     "SimulationResult",
