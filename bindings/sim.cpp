@@ -271,6 +271,14 @@ void bind_sim(py::module_& m) {
            "Run `run`'s (MuscleParams, InitialState), as run_batch makes them. ValueError for a value its field or "
            "the muscle refuses, IndexError past the last run.");
 
+  py::enum_<RunFailure>(m, "RunFailure", "Why a run of Simulator.run_batch failed.")
+      .value("none", RunFailure::none, "it ran")
+      .value("parameters", RunFailure::parameters,
+             "its parameters were refused before a model was built (a field out of its range, a braid angle the "
+             "build cannot reach, a pressure it cannot inflate to freely)")
+      .value("input", RunFailure::input, "the model could not follow the trajectory (outside the braid's range)")
+      .value("solver", RunFailure::solver, "the integrator failed");
+
   py::class_<BatchResult>(m, "BatchResult",
                           "The runs of Simulator.run_batch, in the order given; arrays have one row per run.")
       .def_readonly("runs", &BatchResult::runs, "how many runs")
@@ -345,16 +353,26 @@ void bind_sim(py::module_& m) {
           },
           "(runs,) bool: the run failed (its message in errors)")
       .def_property_readonly(
+          "failures",
+          [](const BatchResult& r) {
+            py::array_t<std::uint8_t> out(static_cast<py::ssize_t>(r.runs));
+            auto kind = out.mutable_unchecked<1>();
+            for (std::size_t i = 0; i < r.runs; ++i)
+              kind(static_cast<py::ssize_t>(i)) = static_cast<std::uint8_t>(r.failures[i]);
+            return out;
+          },
+          "(runs,) RunFailure values: why each run failed (0 none: it ran)")
+      .def_property_readonly(
           "rejected",
           [](const BatchResult& r) {
             py::array_t<bool> out(static_cast<py::ssize_t>(r.runs));
             auto flag = out.mutable_unchecked<1>();
-            for (std::size_t i = 0; i < r.runs; ++i) flag(static_cast<py::ssize_t>(i)) = r.rejected[i] != 0;
+            for (std::size_t i = 0; i < r.runs; ++i) {
+              flag(static_cast<py::ssize_t>(i)) = r.failures[i] == RunFailure::parameters;
+            }
             return out;
           },
-          "(runs,) bool: its parameters were refused before a model was built (a field out of range, a braid angle "
-          "the build cannot reach, a pressure it cannot inflate to freely); a run the model could not follow is "
-          "failed, not rejected");
+          "(runs,) bool: failures == RunFailure.parameters, its parameters refused before a model was built");
 
   py::class_<Simulator>(m, "Simulator", "Integrates a MuscleModel along a trajectory with CVODES. Re-entrant.")
       .def(py::init<SimulatorConfig>(), py::arg("config") = SimulatorConfig{})
@@ -409,7 +427,7 @@ void bind_sim(py::module_& m) {
           py::arg("rows") = py::none(), py::arg("threads") = 0,
           "run_batch over the runs of a ParameterSets, each run's muscle made on the C++ thread that runs it "
           "(ParameterSets.at): a design sweep with no Python per run. A run whose parameters are refused is marked "
-          "in BatchResult.rejected.")
+          "in BatchResult.failures as RunFailure.parameters.")
       .def_property_readonly("config", &Simulator::config);
 }
 

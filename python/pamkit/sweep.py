@@ -49,6 +49,7 @@ from pamkit._core import (
     InitialState,
     MuscleBuild,
     ParameterSets,
+    RunFailure,
     Simulator,
     SimulatorConfig,
     SolverError,
@@ -239,8 +240,8 @@ def batch_rows(spec: SweepSpec, runs: list[int], threads: int = 1) -> list[dict]
     """The rows of `runs` of a sealed test's sweep from one batch of C++ runs on `threads` threads
     (Simulator.run_batch over parameter_sets): METRICS from each run's extremes and its force over
     the first stretch, read through the base's instruments as summarize reads them, the same
-    numbers bit for bit. A run the muscle's checks refuse keeps their message; one the model cannot
-    follow keeps it after the data file's name, as simulate_experiment says it."""
+    numbers bit for bit. A failed run keeps its message, after the data file's name where the model
+    could not follow the test (RunFailure.input), as simulate_experiment says it."""
     base = base_experiment(spec.experiment, spec.cycles)
     elongation = base.read("elongation_m", base.elongation_m)
     end = first_stretch_end(elongation) + 1
@@ -254,12 +255,13 @@ def batch_rows(spec: SweepSpec, runs: list[int], threads: int = 1) -> list[dict]
     highest = {name: base.read(name, values) for name, values in result.maximum.items()}
     lowest = {name: base.read(name, values) for name, values in result.minimum.items()}
     stored = trapezoid(base.read("force_N", result.values["force_N"]), elongation[:end], axis=-1)
+    not_followed = result.failures == int(RunFailure.input)
     rows = []
     for i, run in enumerate(runs):
         row = {"run": run, **spec.parameters(run)}
         if result.failed[i]:
             row.update(dict.fromkeys(METRICS, math.nan))
-            row["error"] = result.errors[i] if result.rejected[i] else f"{base.data_path}: {result.errors[i]}"
+            row["error"] = f"{base.data_path}: {result.errors[i]}" if not_followed[i] else result.errors[i]
         else:
             row["peak_force_N"] = float(highest["force_N"][i])
             row["force_range_N"] = float(highest["force_N"][i] - lowest["force_N"][i])

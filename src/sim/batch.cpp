@@ -156,7 +156,7 @@ struct CheckedRequest {
     result.minimum.assign(channels, std::vector<double>(runs, kNaN));
     result.statistics.resize(runs);
     result.errors.resize(runs);
-    result.rejected.assign(runs, 0);
+    result.failures.assign(runs, RunFailure::none);
     return result;
   }
 };
@@ -178,8 +178,11 @@ class BatchWorkspace {
     const auto sink = [this](std::size_t first, const SimulationResult& block) { record(first, block); };
     try {
       result_.statistics[r] = simulator.run_blocks(model, motion, kBatchBlockSize, sink, shapes);
+    } catch (const SolverError& error) {
+      fail(r, error.what(), RunFailure::solver);
+      return;
     } catch (const Error& error) {
-      fail(r, error.what(), false);
+      fail(r, error.what(), RunFailure::input);
       return;
     }
     for (std::size_t c = 0; c < channels; ++c) {
@@ -189,7 +192,7 @@ class BatchWorkspace {
   }
 
   /// Marks run r failed with `message`: NaN where it wrote, zero counters.
-  void fail(std::size_t r, const std::string& message, bool rejected) {
+  void fail(std::size_t r, const std::string& message, RunFailure failure) {
     const std::size_t width = checked_.request.rows.size();
     for (std::vector<double>& values : result_.values) {
       std::fill(values.begin() + static_cast<std::ptrdiff_t>(r * width),
@@ -197,7 +200,7 @@ class BatchWorkspace {
     }
     result_.statistics[r] = SolverStatistics{};
     result_.errors[r] = message;
-    result_.rejected[r] = rejected ? 1 : 0;
+    result_.failures[r] = failure;
   }
 
  private:
@@ -323,14 +326,14 @@ BatchResult Simulator::run_batch(const ParameterSets& sets, const ElongationTraj
         try {
           muscle = sets.at(r);
         } catch (const Error& error) {
-          workspace.fail(r, error.what(), true);
+          workspace.fail(r, error.what(), RunFailure::parameters);
           return;
         }
         std::optional<MuscleModel> model;
         try {
           model.emplace(muscle->first, muscle->second);
         } catch (const Error& error) {
-          workspace.fail(r, error.what(), false);  // a start outside the braid's range, as one run meets it
+          workspace.fail(r, error.what(), RunFailure::input);  // a start outside the braid's range
           return;
         }
         workspace.run(*this, r, *model, trajectory, nullptr);

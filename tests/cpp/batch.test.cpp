@@ -82,7 +82,7 @@ void check_same(const BatchResult& a, const BatchResult& b) {
     CHECK(same(a.minimum[c], b.minimum[c]));
   }
   CHECK(a.errors == b.errors);
-  CHECK(a.rejected == b.rejected);
+  CHECK(a.failures == b.failures);
   for (std::size_t r = 0; r < a.runs; ++r) CHECK(a.statistics[r].steps == b.statistics[r].steps);
 }
 
@@ -128,7 +128,7 @@ TEST_CASE("run_batch: a run the model cannot follow fails alone, with its messag
   const BatchResult batch = simulator.run_batch(models, trajectory, request({0, 100}, 3));
   CHECK(batch.errors[0].empty());
   CHECK_THAT(batch.errors[1], Catch::Contains("outside the braid's range"));
-  CHECK(batch.rejected[1] == 0);
+  CHECK(batch.failures == std::vector<RunFailure>{RunFailure::none, RunFailure::input, RunFailure::none});
   for (std::size_t c = 0; c < batch.channels.size(); ++c) {
     CHECK(std::isnan(batch.maximum[c][1]));
     CHECK(std::isnan(batch.values[c][1 * 2 + 0]));
@@ -220,7 +220,8 @@ TEST_CASE("ParameterSets: each run's muscle is the one a caller makes by hand", 
   check_run(batch, 1, simulator.run(MuscleModel(second, second_start), trajectory));
   CHECK_THAT(batch.errors[2], Catch::Contains("braid_angle_deg = 95"));
   CHECK_THAT(batch.errors[3], Catch::Contains("sharpness_s_per_m"));
-  CHECK(batch.rejected == std::vector<std::uint8_t>{0, 0, 1, 1});
+  CHECK(batch.failures ==
+        std::vector<RunFailure>{RunFailure::none, RunFailure::none, RunFailure::parameters, RunFailure::parameters});
 }
 
 TEST_CASE("ParameterSets: a sealed start inflated freely to each run's pressure", "[sim][batch]") {

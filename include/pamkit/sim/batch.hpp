@@ -30,6 +30,16 @@ struct BatchRequest {
   std::size_t threads = 0;
 };
 
+/// Why a run of a batch failed.
+enum class RunFailure : std::uint8_t {
+  none,        ///< it ran
+  parameters,  ///< its parameters were refused before a model was built (ParameterSets::at: a field out of its
+               ///< range, a braid angle the build cannot reach, a pressure it cannot inflate to freely)
+  input,       ///< the model could not follow the trajectory (InvalidInput or InvalidParameter on the way: a
+               ///< start or a sample outside the braid's range)
+  solver,      ///< the integrator failed (SolverError)
+};
+
 /// The runs of a batch, in the order given. Each run's numbers are `Simulator::run`'s for its
 /// muscle, bit for bit, whatever the number of threads.
 struct BatchResult {
@@ -45,10 +55,7 @@ struct BatchResult {
   std::vector<std::vector<double>> minimum;  ///< per channel: each run's smallest value, likewise
   std::vector<SolverStatistics> statistics;  ///< per run: the solver's counters (zero for a run that failed)
   std::vector<std::string> errors;           ///< per run: why it failed (empty: it ran)
-  /// Per run: 1 where its parameters were refused before a model was built (a field out of its
-  /// range, a braid angle the build cannot reach, a pressure it cannot inflate to freely), 0
-  /// where it ran or where the model could not follow the trajectory.
-  std::vector<std::uint8_t> rejected;
+  std::vector<RunFailure> failures;          ///< per run: which kind of failure that was
 };
 
 /// One muscle's parameters and sealed start, varied run by run: each run sets its own values of

@@ -231,7 +231,7 @@ class Simulator {
 
   /// `run_batch` over the runs of `sets`, each run's muscle made on the thread that runs it
   /// (ParameterSets::at): a design sweep with no work per run outside C++. A run whose parameters
-  /// are refused is marked BatchResult::rejected.
+  /// are refused fails with RunFailure::parameters.
   /// \throws InvalidInput as the other overload.
   BatchResult run_batch(const ParameterSets& sets, const ElongationTrajectory& trajectory,
                         const BatchRequest& request = {}) const;

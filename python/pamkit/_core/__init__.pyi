@@ -9,7 +9,7 @@ import os
 import typing
 from . import logger
 from . import units
-__all__: list[str] = ['BatchResult', 'BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'Construction', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'IntegrationMethod', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'ParameterSets', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SensitivityResult', 'ShapeTable', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'StiffnessEstimate', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'estimate_stiffness', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_measurement_blocks', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
+__all__: list[str] = ['BatchResult', 'BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'Construction', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'IntegrationMethod', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'ParameterSets', 'PlayParams', 'Resolution', 'RunFailure', 'ScriptKinematics', 'SensitivityResult', 'ShapeTable', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'StiffnessEstimate', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'estimate_stiffness', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_measurement_blocks', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
 class Error(RuntimeError):
     pass
 class SolverError(RuntimeError):
@@ -1261,6 +1261,59 @@ class ParameterSets:
         """
         how many runs
         """
+class RunFailure:
+    """
+    Why a run of Simulator.run_batch failed.
+    
+    Members:
+    
+      none : it ran
+    
+      parameters : its parameters were refused before a model was built (a field out of its range, a braid angle the build cannot reach, a pressure it cannot inflate to freely)
+    
+      input : the model could not follow the trajectory (outside the braid's range)
+    
+      solver : the integrator failed
+    """
+    __members__: typing.ClassVar[dict[str, RunFailure]]
+    input: typing.ClassVar[RunFailure]
+    none: typing.ClassVar[RunFailure]
+    parameters: typing.ClassVar[RunFailure]
+    solver: typing.ClassVar[RunFailure]
+    @typing.overload
+    def __eq__(self, other: RunFailure) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: RunFailure) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class BatchResult:
     """
     The runs of Simulator.run_batch, in the order given; arrays have one row per run.
@@ -1281,6 +1334,11 @@ class BatchResult:
         (runs,) bool: the run failed (its message in errors)
         """
     @property
+    def failures(self) -> numpy.typing.NDArray[numpy.uint8]:
+        """
+        (runs,) RunFailure values: why each run failed (0 none: it ran)
+        """
+    @property
     def maximum(self) -> dict:
         """
         channel name -> (runs,) array of each run's largest value over every sample (NaN for a failed run)
@@ -1293,7 +1351,7 @@ class BatchResult:
     @property
     def rejected(self) -> numpy.typing.NDArray[numpy.bool]:
         """
-        (runs,) bool: its parameters were refused before a model was built (a field out of range, a braid angle the build cannot reach, a pressure it cannot inflate to freely); a run the model could not follow is failed, not rejected
+        (runs,) bool: failures == RunFailure.parameters, its parameters refused before a model was built
         """
     @property
     def rows(self) -> numpy.typing.NDArray[numpy.uint64]:
@@ -1333,7 +1391,7 @@ class Simulator:
     @typing.overload
     def run_batch(self, sets: ParameterSets, trajectory: ElongationTrajectory, channels: collections.abc.Sequence[str] = ['force_N', 'gauge_pressure_Pa', 'temperature_K'], rows: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None = None, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> BatchResult:
         """
-        run_batch over the runs of a ParameterSets, each run's muscle made on the C++ thread that runs it (ParameterSets.at): a design sweep with no Python per run. A run whose parameters are refused is marked in BatchResult.rejected.
+        run_batch over the runs of a ParameterSets, each run's muscle made on the C++ thread that runs it (ParameterSets.at): a design sweep with no Python per run. A run whose parameters are refused is marked in BatchResult.failures as RunFailure.parameters.
         """
     def run_sensitivities(self, model: MuscleModel, moved: collections.abc.Sequence[MuscleModel], steps: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], trajectory: ElongationTrajectory, shapes: ShapeTable = None, moved_motions: collections.abc.Sequence[ElongationTrajectory] = []) -> SensitivityResult:
         """
