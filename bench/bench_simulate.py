@@ -329,14 +329,15 @@ def fmt_ratio(x):
 
 def report(results, methods, exe):
     lines = []
-    w = 50
+    w = 52
+    c = 20  # a column: "2132 / 2132 / 0" and the like
     d, t = f"{DEFAULT:g}", f"{TIGHT:g}"
 
     def row(label, values, fmt, target=""):
         """One line per method: values["method@tol"] formatted by `fmt`, at both tolerances."""
         for method in METHODS:
             a, b = fmt(values[f"{method}@{d}"]), fmt(values[f"{method}@{t}"])
-            lines.append(f"{label + ', ' + method:{w}}{a:>16}{b:>16}   {target}")
+            lines.append(f"{label + ', ' + method:{w}}{a:>{c}}{b:>{c}}   {target}")
 
     for res in results:
         ran = {tol: res["statistics"][f"auto@{tol}"]["method"] for tol in (d, t)}
@@ -345,13 +346,13 @@ def report(results, methods, exe):
             f"\n== {res['case']}  ({res['samples']} samples; auto ran {ran[d]} at {d}, {ran[t]} at {t}: "
             f"stiffness ratio {stiffness[d]:.3g}, {stiffness[t]:.3g})"
         )
-        lines.append(f"{'':{w}}{'rtol ' + d:>16}{'rtol ' + t:>16}   target")
+        lines.append(f"{'':{w}}{'rtol ' + d:>{c}}{'rtol ' + t:>{c}}   target")
         for m in methods:
             tgt = f">= {TARGETS['speed_ratio']:.0f}x at {d}" if m == "LSODA" else "(info)"
             row(f"speed ratio SciPy {m} / pamkit", res["speed_ratio"][m], fmt_ratio, tgt)
         mixed = res["times_s"]["scipy"]["LSODA@" + t] / res["times_s"]["pamkit_python"]["bdf@" + d]
         lines.append(
-            f"{'speed ratio SciPy LSODA@' + t + ' / pamkit bdf@' + d:{w}}{fmt_ratio(mixed):>16}{'':>16}   (info)"
+            f"{'speed ratio SciPy LSODA@' + t + ' / pamkit bdf@' + d:{w}}{fmt_ratio(mixed):>{c}}{'':>{c}}   (info)"
         )
         for k in TRACES:
             by_run = {run: diffs[k] for run, diffs in res["max_rel_diff"].items() if not run.startswith("SciPy")}
@@ -363,7 +364,7 @@ def report(results, methods, exe):
             )
         for m in methods[1:]:
             worst = max(res["max_rel_diff"][f"SciPy {m} vs LSODA"].values())
-            lines.append(f"{'max rel diff SciPy ' + m + ' vs LSODA (F, p, T)':{w}}{'':>16}{worst:>16.1e}   (info)")
+            lines.append(f"{'max rel diff SciPy ' + m + ' vs LSODA (F, p, T)':{w}}{'':>{c}}{worst:>{c}.1e}   (info)")
         if exe:
             percent = "{:.2%}".format
             times = "{:.2f}x".format
@@ -375,8 +376,8 @@ def report(results, methods, exe):
                 floor = f"<= {TARGETS['evaluation_floor']:.1f}x"
                 row("wall / (all evaluate calls x one warm evaluate)", res["evaluation_floor"], times, floor)
             lines.append(
-                f"{'one evaluate: SciPy reference / C++':{w}}{fmt_ratio(res['per_evaluation_ratio']):>16}"
-                f"{'':>16}   (info)"
+                f"{'one evaluate: SciPy reference / C++':{w}}{fmt_ratio(res['per_evaluation_ratio']):>{c}}"
+                f"{'':>{c}}   (info)"
             )
             row("wall, pamkit / DOPRI5 on the same RHS", res["over_dopri5"], times, "(info)")
             explicit = res["dopri5"]
@@ -385,17 +386,17 @@ def report(results, methods, exe):
                 ("DOPRI5 wall / (all evaluate calls x warm one)", lambda e: f"{e['evaluation_floor']:.2f}x"),
                 ("DOPRI5 steps / RHS evals", lambda e: f"{e['steps']} / {e['rhs_evaluations']}"),
             ):
-                lines.append(f"{label:{w}}{cell(explicit[d]):>16}{cell(explicit[t]):>16}   (info)")
+                lines.append(f"{label:{w}}{cell(explicit[d]):>{c}}{cell(explicit[t]):>{c}}   (info)")
         st = res["statistics"]
         row("steps / RHS evals", st, lambda s: f"{s['steps']} / {s['rhs_evaluations']}")
         row("Jacobians / LU / Newton iterations", st, jacobians_lu_newton)
         lines.append(
-            f"{'output evaluations (one per sample)':{w}}{st['bdf@' + d]['output_evaluations']:>16}"
-            f"{st['bdf@' + t]['output_evaluations']:>16}"
+            f"{'output evaluations (one per sample)':{w}}{st['bdf@' + d]['output_evaluations']:>{c}}"
+            f"{st['bdf@' + t]['output_evaluations']:>{c}}"
         )
         lines.append(
-            f"{'SciPy LSODA RHS evals (4 states at once)':{w}}{res['scipy_nfev']['LSODA@' + d]:>16}"
-            f"{res['scipy_nfev']['LSODA@' + t]:>16}"
+            f"{'SciPy LSODA RHS evals (4 states at once)':{w}}{res['scipy_nfev']['LSODA@' + d]:>{c}}"
+            f"{res['scipy_nfev']['LSODA@' + t]:>{c}}"
         )
     return "\n".join(lines)
 

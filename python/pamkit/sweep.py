@@ -55,7 +55,7 @@ from pamkit._core import (
     SolverError,
     fiber_revolutions_for_braid_angle,
 )
-from pamkit.cluster import check_output, run_all
+from pamkit.cluster import MAX_CHUNK, check_output, run_all
 from pamkit.diagnosis.cycles import cycle_starts
 from pamkit.exo import exo_study
 from pamkit.io.columns import value_to_si
@@ -90,8 +90,10 @@ __all__ = [
     "with_parameters",
 ]
 
-#: Most runs of one batch in run_in_process: each keeps its force over the first stretch.
-IN_PROCESS_BATCH = 4096
+#: Most runs of one batch, in this process or in a Dask task: each keeps its force over the first
+#: stretch. A batched run costs a tenth of a millisecond, so a task of MAX_CHUNK runs would be
+#: little more than Dask's own cost per task.
+LARGEST_BATCH = 4096
 
 
 def _copy_struct(struct):
@@ -290,13 +292,13 @@ def run_chunk(spec: SweepSpec, runs: list[int], threads: int = 1) -> list[dict]:
 
 
 def run_in_process(spec: SweepSpec, threads: int = 1) -> list[dict]:
-    """Every run in this process, in order, in batches of at most IN_PROCESS_BATCH runs (the
+    """Every run in this process, in order, in batches of at most LARGEST_BATCH runs (the
     kept force over the first stretch bounds the memory): what a sweep on Dask must reproduce."""
     runs = range(len(spec.runs))
     return [
         row
-        for start in range(0, len(runs), IN_PROCESS_BATCH)
-        for row in run_chunk(spec, list(runs[start : start + IN_PROCESS_BATCH]), threads)
+        for start in range(0, len(runs), LARGEST_BATCH)
+        for row in run_chunk(spec, list(runs[start : start + LARGEST_BATCH]), threads)
     ]
 
 
@@ -317,4 +319,5 @@ def sweep(spec: SweepSpec, output: str | Path, client, progress=None) -> list[di
         connected=client,
         label="sweep",
         progress=progress,
+        largest_chunk=LARGEST_BATCH if batched(spec) else MAX_CHUNK,
     )
