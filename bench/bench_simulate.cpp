@@ -40,7 +40,7 @@ struct Options {
   double rtol = 1e-8;                     ///< SimulatorConfig.relative_tolerance [1]
   double atol_K = 1e-8;                   ///< SimulatorConfig.absolute_tolerance_K [K]
   double atol_J = 1e-8;                   ///< SimulatorConfig.absolute_tolerance_J [J]
-  std::string method = "bdf";             ///< SimulatorConfig.method: bdf, adams, dopri5 or auto
+  std::string method = "bdf";             ///< SimulatorConfig.method: bdf, adams, dopri5, rosenbrock4 or auto
   std::string integrator = "pamkit";      ///< pamkit (Simulator::run) or dopri5 (Boost.Odeint, same RHS)
   int repeats = 7;                        ///< timed simulations; the best is reported
   long evaluations = 200000;              ///< evaluate() calls per timed batch
@@ -62,7 +62,7 @@ Options parse(int argc, char** argv) {
       std::puts(
           "pamkit_bench_simulate [--length L] [--gauge P] [--max-elongation E] [--speed V] [--cycles N]\n"
           "  [--sample-period S] [--process heat_transfer|polytropic] [--tau T] [--polytropic-index N]\n"
-          "  [--sharpness K] [--rtol R] [--atol-K A] [--atol-J A] [--method bdf|adams|dopri5|auto]\n"
+          "  [--sharpness K] [--rtol R] [--atol-K A] [--atol-J A] [--method bdf|adams|dopri5|rosenbrock4|auto]\n"
           "  [--integrator pamkit|dopri5] [--repeats N] [--evaluations N]"
           " [--evaluation-batches N]\nPrints one JSON object; times in seconds.");
       std::exit(0);
@@ -93,8 +93,9 @@ Options parse(int argc, char** argv) {
   if (o.process != "heat_transfer" && o.process != "polytropic") {
     throw std::invalid_argument("--process must be heat_transfer or polytropic, got " + o.process);
   }
-  if (o.method != "bdf" && o.method != "adams" && o.method != "dopri5" && o.method != "auto") {
-    throw std::invalid_argument("--method must be bdf, adams, dopri5 or auto, got " + o.method);
+  if (o.method != "bdf" && o.method != "adams" && o.method != "dopri5" && o.method != "rosenbrock4" &&
+      o.method != "auto") {
+    throw std::invalid_argument("--method must be bdf, adams, dopri5, rosenbrock4 or auto, got " + o.method);
   }
   if (o.integrator != "pamkit" && o.integrator != "dopri5") {
     throw std::invalid_argument("--integrator must be pamkit or dopri5, got " + o.integrator);
@@ -135,10 +136,11 @@ int main(int argc, char** argv) try {
   config.relative_tolerance = o.rtol;
   config.absolute_tolerance_K = o.atol_K;
   config.absolute_tolerance_J = o.atol_J;
-  config.method = o.method == "bdf"      ? pamkit::IntegrationMethod::bdf
-                  : o.method == "adams"  ? pamkit::IntegrationMethod::adams
-                  : o.method == "dopri5" ? pamkit::IntegrationMethod::dopri5
-                                         : pamkit::IntegrationMethod::automatic;
+  config.method = o.method == "bdf"           ? pamkit::IntegrationMethod::bdf
+                  : o.method == "adams"       ? pamkit::IntegrationMethod::adams
+                  : o.method == "dopri5"      ? pamkit::IntegrationMethod::dopri5
+                  : o.method == "rosenbrock4" ? pamkit::IntegrationMethod::rosenbrock4
+                                              : pamkit::IntegrationMethod::automatic;
   const pamkit::Simulator simulator(config);
 
   if (o.integrator == "dopri5") {
@@ -211,13 +213,14 @@ int main(int argc, char** argv) try {
   std::printf(
       "{\"simulate_s\": %.9g, \"evaluate_s\": %.9g, \"evaluate_warm_s\": %.9g, \"samples\": %zu, \"steps\": %ld, "
       "\"rhs_evaluations\": %ld, \"output_evaluations\": %ld, "
-      "\"jacobian_evaluations\": %ld, \"error_test_failures\": %ld, \"nonlinear_convergence_failures\": %ld, "
+      "\"jacobian_evaluations\": %ld, \"linear_solver_setups\": %ld, \"nonlinear_iterations\": %ld, "
+      "\"error_test_failures\": %ld, \"nonlinear_convergence_failures\": %ld, "
       "\"restarts\": %ld, \"final_force_N\": %.17g, \"final_temperature_K\": %.17g, \"process\": \"%s\", "
       "\"method\": \"%s\", \"rtol\": %.3g, \"repeats\": %d, \"sink\": %.6g}\n",
       best_run, best_evaluation, best_warm_evaluation, samples, s.steps, s.rhs_evaluations, s.output_evaluations,
-      s.jacobian_evaluations, s.error_test_failures, s.nonlinear_convergence_failures, s.restarts,
-      result.force_N.back(), result.temperature_K.back(), o.process.c_str(), pamkit::to_string(s.method), o.rtol,
-      o.repeats, sink);
+      s.jacobian_evaluations, s.linear_solver_setups, s.nonlinear_iterations, s.error_test_failures,
+      s.nonlinear_convergence_failures, s.restarts, result.force_N.back(), result.temperature_K.back(),
+      o.process.c_str(), pamkit::to_string(s.method), o.rtol, o.repeats, sink);
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "pamkit_bench_simulate: %s\n", e.what());

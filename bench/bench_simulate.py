@@ -9,7 +9,7 @@ GasProcess.polytropic with n = 1 (isothermal: dT/dt = 0, only the energy integra
 integrated).
 
 pamkit runs each case with each integration method (SimulatorConfig.method): bdf (the default),
-adams, dopri5 and auto (the stiffness test's pick, named in the report), side by side.
+adams, dopri5, rosenbrock4 and auto (the stiffness test's pick, named in the report), side by side.
 
 It prints ratios only (absolute times go to --json):
   speed ratio         SciPy time / pamkit time, each the best of several runs, run alternately,
@@ -20,12 +20,13 @@ It prints ratios only (absolute times go to --json):
                       at 1e-11, for each method
   binding overhead    Python Simulator.run time / the same run timed inside C++ - 1
                       (bench/bench_simulate.cpp, target pamkit_bench_simulate)
-  RHS bound           C++ wall time / (CVODE RHS evaluations x the cost of one
-                      MuscleModel::evaluate); also against every model evaluation the run makes
-                      (RHS + quadrature RHS ~ one per step + one per output sample), with the
-                      evaluation timed cold and as the simulator makes it (warm-started braid
-                      solve, no angles: MuscleModel::evaluate_with), the run's evaluation floor; these
-                      three for each method
+  RHS bound           C++ wall time / (RHS evaluations x the cost of one MuscleModel::evaluate);
+                      also against every model evaluation the run makes (the RHS ones, Jacobian
+                      columns included, and one per output sample: callgrind counts exactly these
+                      calls), with the evaluation timed cold and as the simulator makes it
+                      (warm-started braid solve, no angles: MuscleModel::evaluate_with), the run's
+                      evaluation floor; these three for each method, with the solver's own counters
+                      (steps, RHS evaluations, Jacobians, LU factorisations, Newton iterations)
   explicit RK         the same test by Dormand-Prince 5(4) with dense output (Boost.Odeint) on the
                       same right-hand side and output path, restarted at the same corners
                       (pamkit_bench_simulate --integrator dopri5): pamkit's C++ time over its time,
@@ -70,7 +71,7 @@ TARGETS = {
 }
 TIGHT = 1e-11
 DEFAULT = pamkit.SimulatorConfig().relative_tolerance  # 1e-8
-METHODS = ("bdf", "adams", "dopri5", "auto")  # pamkit.IntegrationMethod's names; bdf is the default
+METHODS = ("bdf", "adams", "dopri5", "rosenbrock4", "auto")  # pamkit.IntegrationMethod's names; bdf is the default
 TRACES = ("force_N", "gauge_pressure_Pa", "temperature_K")
 INITIAL = {"length_m": 0.167, "gauge_pressure_Pa": 236.63e3}
 MAX_ELONGATION_M = 0.0523
@@ -209,6 +210,8 @@ def measure(case, exe, rounds, repeats, methods):
             "steps": st.steps,
             "rhs_evaluations": st.rhs_evaluations,
             "jacobian_evaluations": st.jacobian_evaluations,
+            "linear_solver_setups": st.linear_solver_setups,
+            "nonlinear_iterations": st.nonlinear_iterations,
             "error_test_failures": st.error_test_failures,
             "nonlinear_convergence_failures": st.nonlinear_convergence_failures,
             "restarts": st.restarts,
@@ -291,9 +294,9 @@ def measure(case, exe, rounds, repeats, methods):
         res["evaluation_floor"] = {}
         for run in runs:
             c = cxx[run]
-            # Every evaluate() of a run: the RHS (the counter), with CVODES the quadrature RHS (one
-            # per step, within ~1 %: checked once with callgrind), and one per output sample.
-            all_evals = c["rhs_evaluations"] + (0 if c["method"] == "dopri5" else c["steps"]) + c["samples"]
+            # Every evaluate() of a run: the RHS (the counter, difference-quotient Jacobians
+            # included) and one per output sample, as callgrind counts them.
+            all_evals = c["rhs_evaluations"] + c["samples"]
             res["rhs_bound"][key(run)] = c["simulate_s"] / (c["rhs_evaluations"] * evaluate_cxx)
             res["model_eval_bound"][key(run)] = c["simulate_s"] / (all_evals * evaluate_cxx)
             res["evaluation_floor"][key(run)] = (
@@ -316,20 +319,25 @@ def measure(case, exe, rounds, repeats, methods):
     return res
 
 
+def jacobians_lu_newton(s):
+    return f"{s['jacobian_evaluations']} / {s['linear_solver_setups']} / {s['nonlinear_iterations']}"
+
+
 def fmt_ratio(x):
     return "n/a" if x is None else (f"{x:,.0f}x" if x >= 100 else f"{x:.1f}x")
 
 
 def report(results, methods, exe):
     lines = []
-    w = 50
+    w = 52
+    c = 20  # a column: "2132 / 2132 / 0" and the like
     d, t = f"{DEFAULT:g}", f"{TIGHT:g}"
 
     def row(label, values, fmt, target=""):
         """One line per method: values["method@tol"] formatted by `fmt`, at both tolerances."""
         for method in METHODS:
             a, b = fmt(values[f"{method}@{d}"]), fmt(values[f"{method}@{t}"])
-            lines.append(f"{label + ', ' + method:{w}}{a:>16}{b:>16}   {target}")
+            lines.append(f"{label + ', ' + method:{w}}{a:>{c}}{b:>{c}}   {target}")
 
     for res in results:
         ran = {tol: res["statistics"][f"auto@{tol}"]["method"] for tol in (d, t)}
@@ -338,13 +346,13 @@ def report(results, methods, exe):
             f"\n== {res['case']}  ({res['samples']} samples; auto ran {ran[d]} at {d}, {ran[t]} at {t}: "
             f"stiffness ratio {stiffness[d]:.3g}, {stiffness[t]:.3g})"
         )
-        lines.append(f"{'':{w}}{'rtol ' + d:>16}{'rtol ' + t:>16}   target")
+        lines.append(f"{'':{w}}{'rtol ' + d:>{c}}{'rtol ' + t:>{c}}   target")
         for m in methods:
             tgt = f">= {TARGETS['speed_ratio']:.0f}x at {d}" if m == "LSODA" else "(info)"
             row(f"speed ratio SciPy {m} / pamkit", res["speed_ratio"][m], fmt_ratio, tgt)
         mixed = res["times_s"]["scipy"]["LSODA@" + t] / res["times_s"]["pamkit_python"]["bdf@" + d]
         lines.append(
-            f"{'speed ratio SciPy LSODA@' + t + ' / pamkit bdf@' + d:{w}}{fmt_ratio(mixed):>16}{'':>16}   (info)"
+            f"{'speed ratio SciPy LSODA@' + t + ' / pamkit bdf@' + d:{w}}{fmt_ratio(mixed):>{c}}{'':>{c}}   (info)"
         )
         for k in TRACES:
             by_run = {run: diffs[k] for run, diffs in res["max_rel_diff"].items() if not run.startswith("SciPy")}
@@ -356,7 +364,7 @@ def report(results, methods, exe):
             )
         for m in methods[1:]:
             worst = max(res["max_rel_diff"][f"SciPy {m} vs LSODA"].values())
-            lines.append(f"{'max rel diff SciPy ' + m + ' vs LSODA (F, p, T)':{w}}{'':>16}{worst:>16.1e}   (info)")
+            lines.append(f"{'max rel diff SciPy ' + m + ' vs LSODA (F, p, T)':{w}}{'':>{c}}{worst:>{c}.1e}   (info)")
         if exe:
             percent = "{:.2%}".format
             times = "{:.2f}x".format
@@ -368,8 +376,8 @@ def report(results, methods, exe):
                 floor = f"<= {TARGETS['evaluation_floor']:.1f}x"
                 row("wall / (all evaluate calls x one warm evaluate)", res["evaluation_floor"], times, floor)
             lines.append(
-                f"{'one evaluate: SciPy reference / C++':{w}}{fmt_ratio(res['per_evaluation_ratio']):>16}"
-                f"{'':>16}   (info)"
+                f"{'one evaluate: SciPy reference / C++':{w}}{fmt_ratio(res['per_evaluation_ratio']):>{c}}"
+                f"{'':>{c}}   (info)"
             )
             row("wall, pamkit / DOPRI5 on the same RHS", res["over_dopri5"], times, "(info)")
             explicit = res["dopri5"]
@@ -378,16 +386,17 @@ def report(results, methods, exe):
                 ("DOPRI5 wall / (all evaluate calls x warm one)", lambda e: f"{e['evaluation_floor']:.2f}x"),
                 ("DOPRI5 steps / RHS evals", lambda e: f"{e['steps']} / {e['rhs_evaluations']}"),
             ):
-                lines.append(f"{label:{w}}{cell(explicit[d]):>16}{cell(explicit[t]):>16}   (info)")
+                lines.append(f"{label:{w}}{cell(explicit[d]):>{c}}{cell(explicit[t]):>{c}}   (info)")
         st = res["statistics"]
-        row("CVODE steps / RHS evals", st, lambda s: f"{s['steps']} / {s['rhs_evaluations']}")
+        row("steps / RHS evals", st, lambda s: f"{s['steps']} / {s['rhs_evaluations']}")
+        row("Jacobians / LU / Newton iterations", st, jacobians_lu_newton)
         lines.append(
-            f"{'output evaluations (one per sample)':{w}}{st['bdf@' + d]['output_evaluations']:>16}"
-            f"{st['bdf@' + t]['output_evaluations']:>16}"
+            f"{'output evaluations (one per sample)':{w}}{st['bdf@' + d]['output_evaluations']:>{c}}"
+            f"{st['bdf@' + t]['output_evaluations']:>{c}}"
         )
         lines.append(
-            f"{'SciPy LSODA RHS evals (4 states at once)':{w}}{res['scipy_nfev']['LSODA@' + d]:>16}"
-            f"{res['scipy_nfev']['LSODA@' + t]:>16}"
+            f"{'SciPy LSODA RHS evals (4 states at once)':{w}}{res['scipy_nfev']['LSODA@' + d]:>{c}}"
+            f"{res['scipy_nfev']['LSODA@' + t]:>{c}}"
         )
     return "\n".join(lines)
 

@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
-"""Times one sweep three ways (and a control), side by side in one run: a plain loop in this process
-(pamkit.sweep.run_in_process), and `pamkit.sweep.sweep` on a Dask LocalCluster of 1 and of 2
-worker processes (one thread each, journal and Parquet written as the command does).
+"""Times one sweep three ways (and a control), side by side in one run: in this process
+(pamkit.sweep.run_in_process: the runs as C++ batches on one thread), and `pamkit.sweep.sweep` on
+a Dask LocalCluster of 1 and of 2 worker processes (one thread each, a batch per task, journal and
+Parquet written as the command does).
 
 The sweep: a Latin hypercube (seed 1) of --runs runs over inflation pressure (100-300 kPa) and
 braid angle (27-35 deg, around PAM 2's own 31.2) of the thesis's PAM 2 test at 207 kPa, 80 %
 (table C.2), cut to its first --cycles cycles (1 by default: 372 samples, 1-2 ms a run).
 
 It prints ratios (no absolute pass/fail; the times are in --json):
-  dask 1 worker / loop     the cost of going through Dask with no parallelism
+  dask 1 worker / loop     the cost of going through Dask with no parallelism ("loop": run_in_process)
   overhead per run         (dask 1 worker - loop) / runs: what Dask, the journal and the table add to a run
   speed-up 1 -> 2 workers  dask 1 worker / dask 2 workers
   loop / dask 2 workers    what a 2-core machine gains over the plain loop
@@ -20,12 +21,14 @@ timed apart and left out of the ratios: a command pays it once.
 
 With --jax (needs bench/requirements-jax.txt, e.g. in .venv-bench), the same runs also go through
 JAX + diffrax (Tsit5, jit, vmap over the runs: bench/jax_reference.py, the same equations written
-apart from pamkit), side by side with pamkit's Simulator.run on each run's model:
-  CPU per run             process CPU time / runs (every thread counted), pamkit's plain loop of
-                          Simulator.run and JAX's one vectorised call (its compilation timed apart);
-                          and the sweep's own per-run wall time, loop and 2 Dask workers (without
-                          --jax-tau, when the sweep and the side-by-side run the same gas)
-  JAX / pamkit            the ratio of those CPU times
+apart from pamkit), side by side with pamkit on each run's model:
+  CPU per run             process CPU time / runs (every thread counted): pamkit's loop of
+                          Simulator.run (one run at a time from Python), pamkit's Simulator.run_batch
+                          of the same models on one thread, the sweep's own rows
+                          (run_in_process: the ParameterSets batch and the rows built from it;
+                          without --jax-tau, when the sweep and the side-by-side run the same gas),
+                          and JAX's one vectorised call (its compilation timed apart)
+  JAX / pamkit            the ratio of those CPU times: below 1, JAX spends less CPU per run
   agreement               max |F_jax - F_pamkit| / max |F_pamkit| over every run (pamkit by bdf, its
                           default, and by auto, the stiffness test's pick), all at rtol 1e-8
                           (pamkit's default): at most 1e-6, the bound bench_simulate.py holds pamkit
@@ -118,6 +121,7 @@ def jax_side_by_side(spec, rows: list[dict], repeats: int, tau_s: float | None) 
 
     # pamkit: each run's model along the same crosshead, the sweep's own configuration.
     trajectory = pamkit.ElongationTrajectory(base.time_s, base.elongation_m)
+    rows = np.arange(len(base.time_s))
     simulators = {
         name: pamkit.Simulator(pamkit.SimulatorConfig(method=getattr(pamkit.IntegrationMethod, name)))
         for name in ("bdf", "auto")  # the default, and the stiffness test's pick
@@ -131,11 +135,22 @@ def jax_side_by_side(spec, rows: list[dict], repeats: int, tau_s: float | None) 
         initial = pamkit.InitialState(length_m=base.initial_length_m, gauge_pressure_Pa=p)
         models.append(pamkit.MuscleModel(params, initial))
     pamkit_cpu, forces = dict.fromkeys(simulators, float("inf")), {}
+    batch_cpu = dict.fromkeys(simulators, float("inf"))
+    sweep_cpu = float("inf")
     for _ in range(repeats):
         for name, simulator in simulators.items():
             started = time.process_time()
             forces[name] = [np.asarray(simulator.run(model, trajectory).force_N) for model in models]
             pamkit_cpu[name] = min(pamkit_cpu[name], time.process_time() - started)
+            started = time.process_time()
+            batched = simulator.run_batch(models, trajectory, channels=["force_N"], rows=rows, threads=1)
+            batch_cpu[name] = min(batch_cpu[name], time.process_time() - started)
+            if not np.array_equal(batched.values["force_N"], np.array(forces[name])):
+                raise SystemExit(f"run_batch ({name}) differs from Simulator.run")
+        if tau_s is None:
+            started = time.process_time()
+            run_in_process(spec)
+            sweep_cpu = min(sweep_cpu, time.process_time() - started)
     auto_ran = simulators["auto"].run(models[0], trajectory).statistics.method.name
 
     batch = muscle.batch(rtol=pamkit.SimulatorConfig().relative_tolerance)
@@ -159,6 +174,9 @@ def jax_side_by_side(spec, rows: list[dict], repeats: int, tau_s: float | None) 
         "jax_version": jax.__version__,
         "pamkit_cpu_per_run_s": pamkit_cpu["bdf"] / runs,
         "pamkit_auto_cpu_per_run_s": pamkit_cpu["auto"] / runs,
+        "pamkit_batch_cpu_per_run_s": batch_cpu["bdf"] / runs,
+        "pamkit_batch_auto_cpu_per_run_s": batch_cpu["auto"] / runs,
+        "sweep_cpu_per_run_s": sweep_cpu / len(spec.runs),
         "pamkit_auto_ran": auto_ran,
         "jax_cpu_per_run_s": jax_cpu / runs,
         "jax_wall_per_run_s": jax_wall / runs,
@@ -237,27 +255,29 @@ def main(argv: list[str] | None = None) -> int:
     print(f"  {'cluster start-up (1, 2 workers)':34} {startup} (not in the ratios)")
     if arguments.jax:
         times.update(jax_side_by_side(spec, reference, arguments.rounds, arguments.jax_tau))
-        ms = {name: 1e3 * times[name] for name in ("pamkit_cpu_per_run_s", "jax_cpu_per_run_s", "jax_wall_per_run_s")}
         gas = "the base's gas" if arguments.jax_tau is None else f"heat exchange in {arguments.jax_tau:g} s"
         print(
             f"side by side with JAX {times['jax_version']} + diffrax (Tsit5, jit, vmap over {times['jax_runs']} runs; "
-            f"{gas}):"
+            f"{gas}), CPU per run, ms, and JAX's over it:"
         )
-        print(f"  {'pamkit Simulator.run, CPU per run, ms':42} {ms['pamkit_cpu_per_run_s']:8.2f}")
-        auto = f"pamkit method=auto ({times['pamkit_auto_ran']}), CPU per run, ms"
-        print(f"  {auto:42} {1e3 * times['pamkit_auto_cpu_per_run_s']:8.2f}")
+        auto = times["pamkit_auto_ran"]
+        ways = {
+            "pamkit Simulator.run, one at a time": "pamkit_cpu_per_run_s",
+            f"pamkit Simulator.run, method=auto ({auto})": "pamkit_auto_cpu_per_run_s",
+            "pamkit Simulator.run_batch, 1 thread": "pamkit_batch_cpu_per_run_s",
+            f"pamkit run_batch, method=auto ({auto})": "pamkit_batch_auto_cpu_per_run_s",
+        }
         if arguments.jax_tau is None:  # the sweep above ran the base's gas
-            print(f"  {'pamkit sweep loop, wall per run, ms':42} {1e3 * times['loop_s'] / runs:8.2f}")
-            print(f"  {'pamkit sweep, 2 Dask workers, wall per run, ms':42} {1e3 * times['dask_2_s'] / runs:8.2f}")
-        print(f"  {'JAX + diffrax vectorised, CPU per run, ms':42} {ms['jax_cpu_per_run_s']:8.2f}")
-        print(f"  {'JAX + diffrax vectorised, wall per run, ms':42} {ms['jax_wall_per_run_s']:8.2f}")
-        print(f"  {'JAX CPU / pamkit CPU, per run':42} {ms['jax_cpu_per_run_s'] / ms['pamkit_cpu_per_run_s']:8.2f}")
-        auto_ratio = times["jax_cpu_per_run_s"] / times["pamkit_auto_cpu_per_run_s"]
-        print(f"  {'JAX CPU / pamkit auto CPU, per run':42} {auto_ratio:8.2f}")
+            ways["pamkit sweep's own rows (run_in_process)"] = "sweep_cpu_per_run_s"
+        jax_cpu = times["jax_cpu_per_run_s"]
+        for label, key in ways.items():
+            print(f"  {label:48} {1e3 * times[key]:8.3f}   JAX / it {jax_cpu / times[key]:6.2f}")
+        print(f"  {'JAX + diffrax vectorised':48} {1e3 * jax_cpu:8.3f}")
+        print(f"  {'JAX + diffrax vectorised, wall per run, ms':48} {1e3 * times['jax_wall_per_run_s']:8.3f}")
         agreement = times["jax_agreement"]
         verdict = "ok" if agreement <= AGREEMENT else "DISAGREE"
-        print(f"  {'max |F_jax - F_pamkit| / max |F|, worst run':42} {agreement:8.1e}  <= {AGREEMENT:.0e}: {verdict}")
-        print(f"  {'JAX compilation, s':42} {times['jax_compile_s']:8.2f}  (not in the ratios)")
+        print(f"  {'max |F_jax - F_pamkit| / max |F|, worst run':48} {agreement:8.1e}  <= {AGREEMENT:.0e}: {verdict}")
+        print(f"  {'JAX compilation, s':48} {times['jax_compile_s']:8.2f}  (not in the ratios)")
         if agreement > AGREEMENT:
             return 1
     if arguments.json:

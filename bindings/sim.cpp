@@ -5,7 +5,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "bind_fields.hpp"
 #include "pamkit/sim/simulator.hpp"
@@ -125,12 +128,15 @@ void bind_sim(py::module_& m) {
 
   py::enum_<IntegrationMethod>(m, "IntegrationMethod",
                                "How a run is integrated: bdf (CVODES, dense Newton), adams (CVODES, fixed-point "
-                               "iteration), dopri5 (explicit Dormand-Prince 5(4) with dense output, Boost.Odeint), or "
-                               "auto (dopri5 where estimate_stiffness finds the run non-stiff, bdf otherwise).")
+                               "iteration), dopri5 (explicit Dormand-Prince 5(4) with dense output, Boost.Odeint), "
+                               "rosenbrock4 (Boost.Odeint's Rosenbrock 4(3), linearly implicit, on the states that "
+                               "move and the energies), or auto (dopri5 where estimate_stiffness finds the run "
+                               "non-stiff, else rosenbrock4, or bdf at a relative tolerance below 1e-9).")
       .value("auto", IntegrationMethod::automatic)
       .value("bdf", IntegrationMethod::bdf)
       .value("adams", IntegrationMethod::adams)
-      .value("dopri5", IntegrationMethod::dopri5);
+      .value("dopri5", IntegrationMethod::dopri5)
+      .value("rosenbrock4", IntegrationMethod::rosenbrock4);
 
   py::class_<SimulatorConfig> config(m, "SimulatorConfig", "Integrator settings.");
   bind_fields(config);
@@ -145,7 +151,8 @@ void bind_sim(py::module_& m) {
       .def_readonly("expected_step_s", &StiffnessEstimate::expected_step_s,
                     "longest_piece_s * rtol^(1/6), at most max_step_s [s]")
       .def_property_readonly("ratio", &StiffnessEstimate::ratio, "fastest_rate_per_s * expected_step_s [1]")
-      .def_property_readonly("stiff", &StiffnessEstimate::stiff, "ratio > 1: auto runs bdf")
+      .def_property_readonly("stiff", &StiffnessEstimate::stiff,
+                             "ratio > 1: auto runs rosenbrock4 (bdf below a relative tolerance of 1e-9)")
       .def("__repr__", [](const StiffnessEstimate& e) {
         std::ostringstream out;
         out << "StiffnessEstimate(fastest_rate_per_s=" << e.fastest_rate_per_s
@@ -157,50 +164,27 @@ void bind_sim(py::module_& m) {
         py::arg("config") = SimulatorConfig{},
         "The stiffness test SimulatorConfig(method=IntegrationMethod.auto) makes before a run.");
 
-  py::class_<SolverStatistics>(m, "SolverStatistics", "The integrator's counters over one run.")
-      .def_readonly("method", &SolverStatistics::method, "the method that ran: bdf, adams or dopri5")
-      .def_readonly("steps", &SolverStatistics::steps)
-      .def_readonly("rhs_evaluations", &SolverStatistics::rhs_evaluations)
-      .def_readonly("jacobian_evaluations", &SolverStatistics::jacobian_evaluations)
-      .def_readonly("linear_solver_setups", &SolverStatistics::linear_solver_setups)
-      .def_readonly("error_test_failures", &SolverStatistics::error_test_failures)
-      .def_readonly("nonlinear_iterations", &SolverStatistics::nonlinear_iterations)
-      .def_readonly("nonlinear_convergence_failures", &SolverStatistics::nonlinear_convergence_failures)
-      .def_readonly("restarts", &SolverStatistics::restarts)
-      .def_readonly("output_evaluations", &SolverStatistics::output_evaluations)
-      .def_readonly("tabulated_shapes", &SolverStatistics::tabulated_shapes,
-                    "output evaluations whose braid shape a ShapeTable gave (0: none, or it did not apply)")
-      .def_readonly("sensitivity_rhs_evaluations", &SolverStatistics::sensitivity_rhs_evaluations,
-                    "moved models' right-hand sides for the sensitivities (Simulator.run_sensitivities; 0 otherwise)")
-      .def("__repr__", [](const SolverStatistics& s) {
-        return std::string("SolverStatistics(method=") + to_string(s.method) + ", steps=" + std::to_string(s.steps) +
-               ", rhs_evaluations=" + std::to_string(s.rhs_evaluations) +
-               ", jacobian_evaluations=" + std::to_string(s.jacobian_evaluations) +
-               ", error_test_failures=" + std::to_string(s.error_test_failures) +
-               ", nonlinear_convergence_failures=" + std::to_string(s.nonlinear_convergence_failures) +
-               ", restarts=" + std::to_string(s.restarts) + ")";
-      });
+  py::class_<SolverStatistics> statistics(m, "SolverStatistics", "The integrator's counters over one run.");
+  statistics.def_readonly("method", &SolverStatistics::method, "the method that ran: never auto");
+  SolverStatistics::for_each_counter([&](const char* name, long SolverStatistics::*counter, const char* meaning) {
+    statistics.def_readonly(name, counter, meaning);
+  });
+  statistics.def("__repr__", [](const SolverStatistics& s) {
+    std::string out = std::string("SolverStatistics(method=") + to_string(s.method);
+    SolverStatistics::for_each_counter([&](const char* name, long SolverStatistics::*counter, const char*) {
+      out += std::string(", ") + name + "=" + std::to_string(s.*counter);
+    });
+    return out + ")";
+  });
 
   py::class_<SimulationResult> result(m, "SimulationResult",
                                       "Time series of one run, one entry per trajectory sample.");
-#define PAMKIT_RESULT_COLUMN(name, doc) \
-  result.def_property_readonly(         \
-      #name, [](py::object self) { return view(self.cast<const SimulationResult&>().name, self); }, doc)
-  PAMKIT_RESULT_COLUMN(time_s, "sample times [s]");
-  PAMKIT_RESULT_COLUMN(elongation_m, "prescribed elongation [m]");
-  PAMKIT_RESULT_COLUMN(length_m, "muscle length [m]");
-  PAMKIT_RESULT_COLUMN(force_N, "axial force, tension > 0, friction included [N]");
-  PAMKIT_RESULT_COLUMN(friction_force_N, "friction part of the force [N]");
-  PAMKIT_RESULT_COLUMN(gauge_pressure_Pa, "gas pressure above ambient [Pa]");
-  PAMKIT_RESULT_COLUMN(temperature_K, "gas temperature [K]");
-  PAMKIT_RESULT_COLUMN(gas_volume_m3, "gas volume, dead volume included [m^3]");
-  PAMKIT_RESULT_COLUMN(gas_mass_kg, "mass of air inside [kg]");
-  PAMKIT_RESULT_COLUMN(braid_angle_rad, "braid angle of the cylinder [rad]");
-  PAMKIT_RESULT_COLUMN(diameter_m, "braid diameter [m]");
-  PAMKIT_RESULT_COLUMN(work_J, "work done on the muscle since the start [J]");
-  PAMKIT_RESULT_COLUMN(heat_lost_J, "heat from gas to wall since the start [J]");
-  PAMKIT_RESULT_COLUMN(friction_dissipated_J, "friction work since the start [J]");
-#undef PAMKIT_RESULT_COLUMN
+  SimulationResult::for_each_column([&](const char* name, std::vector<double> SimulationResult::*column,
+                                        const char* unit, const char* meaning, bool) {
+    result.def_property_readonly(
+        name, [column](py::object self) { return view(self.cast<const SimulationResult&>().*column, self); },
+        (std::string(meaning) + " [" + unit + "]").c_str());
+  });
   result.def_readonly("statistics", &SimulationResult::statistics);
 
   py::class_<ShapeTable>(
@@ -260,6 +244,136 @@ void bind_sim(py::module_& m) {
           "parameter); elongation_m is the muscle's motion's (zero unless moved_motions moves it), statistics empty. "
           "Views into this result, which they keep alive.");
 
+  py::class_<ParameterSets>(m, "ParameterSets",
+                            "One muscle's parameters and sealed start, varied run by run: each run sets its own "
+                            "values of the named fields on a shared base (Simulator.run_batch).")
+      .def(py::init([](const MuscleParams& base, const InitialState& start, const std::vector<std::string>& names,
+                       const py::array_t<double, py::array::c_style | py::array::forcecast>& values,
+                       bool inflated_start) {
+             if (values.ndim() != 2 || static_cast<std::size_t>(values.shape(1)) != names.size()) {
+               throw py::value_error("ParameterSets: values must be a 2-D array of one column per name (" +
+                                     std::to_string(names.size()) + "), one row per run");
+             }
+             return ParameterSets(base, start, inflated_start, names,
+                                  std::vector<double>(values.data(), values.data() + values.size()));
+           }),
+           py::arg("base"), py::arg("start"), py::arg("names"), py::arg("values"), py::arg("inflated_start") = false,
+           "base: MuscleParams every run starts from; start: the InitialState every run shares but for the fields "
+           "it sets; names: the fields each run sets, 'build.<MuscleBuild field>', 'build.braid_angle_deg' (the "
+           "revolutions that give the deflated build this angle [deg], as fiber_revolutions_for_braid_angle takes "
+           "it), 'bladder.shear_modulus_Pa' (a neo-Hookean bladder), 'friction.<field>', 'gas.<field>', "
+           "'extensions.<field>', 'initial.length_m', 'initial.gauge_pressure_Pa'; values: (runs, len(names)), each "
+           "in its field's unit; inflated_start: a run starts at the free length its pressure inflates the muscle to "
+           "(inflated_and_sealed) unless it sets initial.length_m. ValueError for an unknown or repeated name.")
+      .def_property_readonly("runs", &ParameterSets::runs, "how many runs")
+      .def_property_readonly("names", &ParameterSets::names, "the fields each run sets, in the values' column order")
+      .def("at", &ParameterSets::at, py::arg("run"),
+           "Run `run`'s (MuscleParams, InitialState), as run_batch makes them. ValueError for a value its field or "
+           "the muscle refuses, IndexError past the last run.");
+
+  py::enum_<RunFailure>(m, "RunFailure", "Why a run of Simulator.run_batch failed.")
+      .value("none", RunFailure::none, "it ran")
+      .value("parameters", RunFailure::parameters,
+             "its parameters were refused before a model was built (a field out of its range, a braid angle the "
+             "build cannot reach, a pressure it cannot inflate to freely)")
+      .value("input", RunFailure::input, "the model could not follow the trajectory (outside the braid's range)")
+      .value("solver", RunFailure::solver, "the integrator failed");
+
+  py::class_<BatchResult>(m, "BatchResult",
+                          "The runs of Simulator.run_batch, in the order given; arrays have one row per run.")
+      .def_readonly("runs", &BatchResult::runs, "how many runs")
+      .def_readonly("channels", &BatchResult::channels, "the channels kept, in the order asked")
+      .def_property_readonly(
+          "rows",
+          [](const BatchResult& r) {
+            return py::array_t<std::size_t>(static_cast<py::ssize_t>(r.rows.size()), r.rows.data());
+          },
+          "the sample indices each channel is kept at")
+      .def_property_readonly(
+          "values",
+          [](py::object self) {
+            const auto& r = self.cast<const BatchResult&>();
+            py::dict out;
+            const auto shape =
+                std::vector<py::ssize_t>{static_cast<py::ssize_t>(r.runs), static_cast<py::ssize_t>(r.rows.size())};
+            for (std::size_t c = 0; c < r.channels.size(); ++c) {
+              py::array_t<double> array(shape, r.values[c].data(), self);
+              array.attr("setflags")(py::arg("write") = false);
+              out[py::str(r.channels[c])] = array;
+            }
+            return out;
+          },
+          "channel name -> (runs, len(rows)) array of its values at the rows (NaN for a failed run); views into "
+          "this result")
+      .def_property_readonly(
+          "maximum",
+          [](py::object self) {
+            const auto& r = self.cast<const BatchResult&>();
+            py::dict out;
+            for (std::size_t c = 0; c < r.channels.size(); ++c) out[py::str(r.channels[c])] = view(r.maximum[c], self);
+            return out;
+          },
+          "channel name -> (runs,) array of each run's largest value over every sample (NaN for a failed run)")
+      .def_property_readonly(
+          "minimum",
+          [](py::object self) {
+            const auto& r = self.cast<const BatchResult&>();
+            py::dict out;
+            for (std::size_t c = 0; c < r.channels.size(); ++c) out[py::str(r.channels[c])] = view(r.minimum[c], self);
+            return out;
+          },
+          "channel name -> (runs,) array of each run's smallest value over every sample")
+      .def_property_readonly(
+          "statistics",
+          [](const BatchResult& r) {
+            py::dict out;
+            py::array_t<int> methods(static_cast<py::ssize_t>(r.runs));
+            auto method = methods.mutable_unchecked<1>();
+            for (std::size_t i = 0; i < r.runs; ++i)
+              method(static_cast<py::ssize_t>(i)) = static_cast<int>(r.statistics[i].method);
+            out["method"] = methods;
+            SolverStatistics::for_each_counter([&](const char* name, long SolverStatistics::*counter, const char*) {
+              py::array_t<long> values(static_cast<py::ssize_t>(r.runs));
+              auto value = values.mutable_unchecked<1>();
+              for (std::size_t i = 0; i < r.runs; ++i) value(static_cast<py::ssize_t>(i)) = r.statistics[i].*counter;
+              out[name] = values;
+            });
+            return out;
+          },
+          "counter name (SolverStatistics's) -> (runs,) array of each run's count, and 'method': each run's "
+          "IntegrationMethod as its integer value (zero counters for a failed run)")
+      .def_readonly("errors", &BatchResult::errors, "per run, why it failed; '' where it ran")
+      .def_property_readonly(
+          "failed",
+          [](const BatchResult& r) {
+            py::array_t<bool> out(static_cast<py::ssize_t>(r.runs));
+            auto flag = out.mutable_unchecked<1>();
+            for (std::size_t i = 0; i < r.runs; ++i) flag(static_cast<py::ssize_t>(i)) = !r.errors[i].empty();
+            return out;
+          },
+          "(runs,) bool: the run failed (its message in errors)")
+      .def_property_readonly(
+          "failures",
+          [](const BatchResult& r) {
+            py::array_t<std::uint8_t> out(static_cast<py::ssize_t>(r.runs));
+            auto kind = out.mutable_unchecked<1>();
+            for (std::size_t i = 0; i < r.runs; ++i)
+              kind(static_cast<py::ssize_t>(i)) = static_cast<std::uint8_t>(r.failures[i]);
+            return out;
+          },
+          "(runs,) RunFailure values: why each run failed (0 none: it ran)")
+      .def_property_readonly(
+          "rejected",
+          [](const BatchResult& r) {
+            py::array_t<bool> out(static_cast<py::ssize_t>(r.runs));
+            auto flag = out.mutable_unchecked<1>();
+            for (std::size_t i = 0; i < r.runs; ++i) {
+              flag(static_cast<py::ssize_t>(i)) = r.failures[i] == RunFailure::parameters;
+            }
+            return out;
+          },
+          "(runs,) bool: failures == RunFailure.parameters, its parameters refused before a model was built");
+
   py::class_<Simulator>(m, "Simulator", "Integrates a MuscleModel along a trajectory with CVODES. Re-entrant.")
       .def(py::init<SimulatorConfig>(), py::arg("config") = SimulatorConfig{})
       .def("run", &Simulator::run, py::arg("model"), py::arg("trajectory"), py::arg("shapes") = nullptr,
@@ -281,6 +395,39 @@ void bind_sim(py::module_& m) {
            "empty: every moved model follows the trajectory. Returns a SensitivityResult; releases the GIL. "
            "ValueError for mismatched sizes, a zero step, a moved motion on other times or a moved model whose "
            "motion leaves its braid's range.")
+      .def(
+          "run_batch",
+          [](const Simulator& simulator, const std::vector<MuscleModel>& models, const ElongationTrajectory& trajectory,
+             const std::vector<std::string>& channels, const std::optional<std::vector<std::size_t>>& rows,
+             std::size_t threads, const ShapeTable* shapes, const std::vector<ElongationTrajectory>& motions) {
+            const BatchRequest request{channels, rows.value_or(std::vector<std::size_t>{}), threads};
+            py::gil_scoped_release release;
+            return simulator.run_batch(models, trajectory, request, shapes, motions);
+          },
+          py::arg("models"), py::arg("trajectory"), py::arg("channels") = BatchRequest{}.channels,
+          py::arg("rows") = py::none(), py::arg("threads") = 0, py::arg("shapes") = nullptr,
+          py::arg("motions") = std::vector<ElongationTrajectory>{},
+          "Runs every model along the trajectory on `threads` C++ threads (0: one per hardware thread), the GIL "
+          "released, and keeps of each run the channels (SimulationResult's output columns, by name) at the sample "
+          "indices `rows` (increasing; None: none) and their largest and smallest values over every sample: a "
+          "BatchResult, each run's numbers Simulator.run's bit for bit whatever the threads. A run that fails keeps "
+          "its message and NaN; the others run. shapes: a ShapeTable for every run it applies to; motions: run i "
+          "follows motions[i] (on the trajectory's times). ValueError for an unknown channel, rows that do not "
+          "increase or pass the end, or motions that are neither empty nor one per model.")
+      .def(
+          "run_batch",
+          [](const Simulator& simulator, const ParameterSets& sets, const ElongationTrajectory& trajectory,
+             const std::vector<std::string>& channels, const std::optional<std::vector<std::size_t>>& rows,
+             std::size_t threads) {
+            const BatchRequest request{channels, rows.value_or(std::vector<std::size_t>{}), threads};
+            py::gil_scoped_release release;
+            return simulator.run_batch(sets, trajectory, request);
+          },
+          py::arg("sets"), py::arg("trajectory"), py::arg("channels") = BatchRequest{}.channels,
+          py::arg("rows") = py::none(), py::arg("threads") = 0,
+          "run_batch over the runs of a ParameterSets, each run's muscle made on the C++ thread that runs it "
+          "(ParameterSets.at): a design sweep with no Python per run. A run whose parameters are refused is marked "
+          "in BatchResult.failures as RunFailure.parameters.")
       .def_property_readonly("config", &Simulator::config);
 }
 

@@ -44,7 +44,7 @@ from pamkit.diagnosis.cycles import cycle_starts
 from pamkit.effects import catalog
 from pamkit.io.experiment import Experiment, load_experiment
 from pamkit.simulation import initial_length, muscle_params, simulate_experiment
-from pamkit.sweep import thesis_directory
+from pamkit.sweep_spec import thesis_directory
 
 TABLE_3_6_SOURCE = (
     "thesis table 3.6 'Temperature fluctuation of gas inside PAM' (section 3.2, Temperature validation, "

@@ -16,6 +16,7 @@ The implementations live in :mod:`pamkit.simulation` and the :mod:`pamkit.diagno
 """
 
 from pamkit._core import (
+    BatchResult,
     BiaxialStress,
     BladderLaw,
     BraidGeometry,
@@ -49,7 +50,9 @@ from pamkit._core import (
     MuscleParams,
     MuscleParamsFile,
     MuscleShape,
+    ParameterSets,
     Resolution,
+    RunFailure,
     SimulationResult,
     Simulator,
     SimulatorConfig,
@@ -90,6 +93,7 @@ from pamkit.report import Report, diagnose
 from pamkit.simulation import simulate
 
 __all__ = [
+    "BatchResult",
     "BiaxialStress",
     "BladderLaw",
     "BraidGeometry",
@@ -124,8 +128,10 @@ __all__ = [
     "MuscleParams",
     "MuscleParamsFile",
     "MuscleShape",
+    "ParameterSets",
     "Report",
     "Resolution",
+    "RunFailure",
     "SimulationResult",
     "Simulator",
     "SimulatorConfig",

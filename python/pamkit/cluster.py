@@ -29,7 +29,8 @@ from pathlib import Path
 SCALE_EXTRA_HINT = "pip install 'pamkit[scale]'"
 OUTPUT_FORMATS = (".parquet", ".csv")
 # Chunks per worker: enough that the workers finish together and the progress moves, few enough
-# that Dask's per-task cost (about a millisecond) stays small against a chunk's runs.
+# that Dask's per-task cost (about a millisecond, tens on a loaded machine) stays small against a
+# chunk's runs. A run in Python costs a millisecond or more: 256 of them, a quarter second or more.
 CHUNKS_PER_WORKER = 4
 MAX_CHUNK = 256
 PROGRESS_INTERVAL_S = 1.0
@@ -59,10 +60,11 @@ def check_output(path: str | Path) -> Path:
     return path
 
 
-def chunked(items: Sequence, workers: int, size: int | None = None) -> list[list]:
-    """`items` cut into consecutive chunks of `size`, by default about CHUNKS_PER_WORKER per worker."""
+def chunked(items: Sequence, workers: int, size: int | None = None, largest: int = MAX_CHUNK) -> list[list]:
+    """`items` cut into consecutive chunks of `size`, by default about CHUNKS_PER_WORKER per worker
+    and at most `largest`."""
     if size is None:
-        size = max(1, min(MAX_CHUNK, len(items) // max(1, workers * CHUNKS_PER_WORKER)))
+        size = max(1, min(largest, len(items) // max(1, workers * CHUNKS_PER_WORKER)))
     return [list(items[start : start + size]) for start in range(0, len(items), size)]
 
 
@@ -149,18 +151,19 @@ def run_all(
     label: str,
     progress: Callable[[str], None] | None = None,
     chunk_size: int | None = None,
+    largest_chunk: int = MAX_CHUNK,
 ) -> list[dict]:
-    """Runs `function` on chunks of `items` (of `chunk_size`, by default sized by chunked) on the
-    cluster and returns every row, sorted by `row_key`; `item_key(item)` is the row_key value of
-    the row an item gives. Rows already in the output's journal are not run again. The table is
-    written to `output` at the end."""
+    """Runs `function` on chunks of `items` (of `chunk_size`, by default sized by chunked, at most
+    `largest_chunk` items) on the cluster and returns every row, sorted by `row_key`;
+    `item_key(item)` is the row_key value of the row an item gives. Rows already in the output's
+    journal are not run again. The table is written to `output` at the end."""
     journal = Journal(output, work)
     try:
         done = {row[row_key] for row in journal.rows}
         todo = [item for item in items if item_key(item) not in done]
         if done and progress:
             progress(f"{label}: resuming from {journal.path}: {len(done)} of {len(items)} done")
-        chunks = chunked(todo, worker_count(connected), chunk_size)
+        chunks = chunked(todo, worker_count(connected), chunk_size, largest_chunk)
         _run_chunks(function, chunks, journal, len(items), connected, label, progress)
     except BaseException:  # interrupted, or a bug in a run: say what is kept, then let it go on
         if progress:

@@ -346,8 +346,8 @@ def simulate(
         temperature_K [K]; a static table its own (length_m [m], gauge_pressure_Pa, force_N,
         diameter_m). ``df.attrs`` holds "experiment", "data" (paths, str), "kind", "gas" (its
         name), "effects" (list of str), "units" (column -> unit) and "solver_statistics" (a dict of
-        the integrator's counters and the method that ran, "bdf", "adams" or "dopri5", for a sealed
-        time series; None where no ODE is integrated).
+        the integrator's counters and the method that ran, "bdf", "adams", "dopri5" or
+        "rosenbrock4", for a sealed time series; None where no ODE is integrated).
 
     Raises
     ------
@@ -383,7 +383,7 @@ def simulate(
         columns = _channels(experiment, measurement)
         if experiment.gas == GasMode.sealed:
             statistics = {name: int(getattr(measurement.statistics, name)) for name in STATISTICS_FIELDS}
-            statistics["method"] = measurement.statistics.method.name  # the method that ran: "bdf", "adams" or "dopri5"
+            statistics["method"] = measurement.statistics.method.name  # the method that ran: "bdf", "dopri5", ...
     frame = pd.DataFrame(columns)
     frame.attrs.update(
         experiment=str(experiment.path),

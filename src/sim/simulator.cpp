@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <type_traits>
@@ -151,9 +152,13 @@ std::size_t piece_end(const ElongationTrajectory& trajectory, std::size_t k, dou
 template <class Result>
 auto outputs(Result& r) {
   using Column = std::conditional_t<std::is_const_v<Result>, const std::vector<double>, std::vector<double>>;
-  return std::array<Column*, 12>{&r.length_m,      &r.force_N,       &r.friction_force_N, &r.gauge_pressure_Pa,
-                                 &r.temperature_K, &r.gas_volume_m3, &r.gas_mass_kg,      &r.braid_angle_rad,
-                                 &r.diameter_m,    &r.work_J,        &r.heat_lost_J,      &r.friction_dissipated_J};
+  std::array<Column*, 12> columns{};
+  std::size_t next = 0;
+  SimulationResult::for_each_column(
+      [&](const char*, std::vector<double> SimulationResult::*member, const char*, const char*, bool output) {
+        if (output) columns.at(next++) = &(r.*member);
+      });
+  return columns;
 }
 
 /// Collects samples, recorded in order, into blocks of a SimulationResult and hands each full
@@ -422,54 +427,87 @@ State absolute_tolerances(const SimulatorConfig& config, const MuscleModel& mode
   return out;
 }
 
-/// The run loop of IntegrationMethod::dopri5: Dormand-Prince 5(4), explicit, with its dense
-/// output (Boost.Odeint's controlled runge_kutta_dopri5), piece by piece between the corners as
-/// the CVODES loop goes, each sample read off the step that passed it. The state is integrated
-/// in units of each component's absolute tolerance over the temperature's, so odeint's one
-/// absolute tolerance is the CVODES path's per component (the relative one is scale-free). A
-/// piece's last step is shortened to end on its corner: the right-hand side is never evaluated
-/// past it.
-SolverStatistics integrate_explicit(const SimulatorConfig& config, const MuscleModel& model,
-                                    const ElongationTrajectory& trajectory, std::size_t block_size,
-                                    const SampleSink& sink, const ShapeTable* shapes) {
-  namespace odeint = boost::numeric::odeint;
-  using Vector = std::array<double, State::size>;
-  const auto& time = trajectory.time();
-  check_lengths(model, trajectory);
+/// Whether state `j` moves in a run of `model`: the energies always; the gas temperature unless
+/// the gas is isothermal (a polytropic index of 1, or a heat exchange that is instant); the gas
+/// mass through a leak; the viscous stresses when the bladder's Maxwell branch has a strength. A
+/// state that does not move has a rate of exactly zero wherever the run goes (the rates of
+/// MuscleModel::evaluate: each is a product with the zero index, leak rate or strength), so
+/// holding it where it starts is the run itself.
+bool moves(const MuscleModel& model, int j) {
+  const MuscleParams& params = model.params();
+  switch (j) {
+    case State::temperature_K:
+      return params.gas.process == GasProcess::heat_transfer ? params.gas.heat_transfer_time_constant_s > 0.0
+                                                             : params.gas.polytropic_index != 1.0;
+    case State::gas_mass_kg:
+      return params.extensions.leak_rate_per_s > 0.0;
+    case State::viscous_stress_l_Pa:
+    case State::viscous_stress_h_Pa:
+      return params.extensions.viscoelastic_strength > 0.0;
+    default:
+      return true;
+  }
+}
 
-  const State absolute = absolute_tolerances(config, model);
-  Vector unit;  // one unit of the integrated variable, per component
-  for (int j = 0; j < State::size; ++j) unit[static_cast<std::size_t>(j)] = absolute[j] / config.absolute_tolerance_K;
-  const auto to_state = [&unit](const Vector& z) {
-    State y;
-    for (int j = 0; j < State::size; ++j) y[j] = z[static_cast<std::size_t>(j)] * unit[static_cast<std::size_t>(j)];
-    return y;
-  };
-
-  SolverStatistics statistics;
-  statistics.method = IntegrationMethod::dopri5;
-  RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}, nullptr};
-  const auto rhs = [&](const Vector& z, Vector& dzdt, double t) {
-    const std::size_t k = workspace.segment(t);
-    const MuscleOutputs out = model.evaluate_with(workspace.rhs, RunWorkspace::length(model, trajectory, t, k),
-                                                  trajectory.segment_velocity(k), to_state(z), ShapeParts::kinematics);
+/// The components of the state a Boost.Odeint method integrates, each in units of its absolute
+/// tolerance over the temperature's, so that odeint's one absolute tolerance is the CVODES path's
+/// per component (the relative one is scale-free); the others are held where the run starts.
+class ScaledState {
+ public:
+  /// Every component, or (`moving_only`) those that `moves` in a run of `model`, in State's order.
+  ScaledState(const SimulatorConfig& config, const MuscleModel& model, bool moving_only) : held_(model.initial()) {
+    const State absolute = absolute_tolerances(config, model);
     for (int j = 0; j < State::size; ++j) {
-      dzdt[static_cast<std::size_t>(j)] = out.rate[j] / unit[static_cast<std::size_t>(j)];
+      if (moving_only && !moves(model, j)) continue;
+      index_[size_] = j;
+      unit_[size_] = absolute[j] / config.absolute_tolerance_K;
+      ++size_;
     }
-    ++statistics.rhs_evaluations;
-  };
+  }
 
-  const ShapeTable* tabulated = shapes && shapes->applies_to(model, trajectory) ? shapes : nullptr;
-  BlockRecorder recorder(trajectory, block_size, sink, tabulated);
-  const State initial = model.initial();
-  Vector z;
-  for (int j = 0; j < State::size; ++j) z[static_cast<std::size_t>(j)] = initial[j] / unit[static_cast<std::size_t>(j)];
-  recorder.record(0, model, workspace.output, trajectory.segment_velocity(0), initial, statistics);
+  /// How many components are integrated.
+  std::size_t size() const { return size_; }
+  /// How many of them lead the energies (the energies are always the last three).
+  std::size_t states() const { return size_ - 3; }
 
-  auto stepper = odeint::make_dense_output(config.absolute_tolerance_K, config.relative_tolerance, config.max_step_s,
-                                           odeint::runge_kutta_dopri5<Vector>());
+  template <class Vector>
+  State to_state(const Vector& z) const {
+    State y = held_;
+    for (std::size_t i = 0; i < size_; ++i) y[index_[i]] = z[i] * unit_[i];
+    return y;
+  }
+  template <class Vector>
+  void from_state(const State& y, Vector& z) const {
+    for (std::size_t i = 0; i < size_; ++i) z[i] = y[index_[i]] / unit_[i];
+  }
+  /// The integrated components' rates of `rate`, d(state)/dt.
+  template <class Vector>
+  void rates(const State& rate, Vector& dz) const {
+    for (std::size_t i = 0; i < size_; ++i) dz[i] = rate[index_[i]] / unit_[i];
+  }
+
+ private:
+  State held_;
+  std::array<int, State::size> index_{};
+  std::array<double, State::size> unit_{};
+  std::size_t size_ = 0;
+};
+
+/// The run loop of the Boost.Odeint methods: `stepper`, a dense-output stepper, steps `system`
+/// (its right-hand side, or with a Rosenbrock method the pair of it and its Jacobian) from `z`
+/// piece by piece between the corners as the CVODES loop goes, each sample read off the dense
+/// output of the step that passed it. A piece's last step is shortened to end on its corner: the
+/// right-hand side is never evaluated past it. The step a piece ends with starts the next one.
+/// \throws SolverError naming `name` where the state stops being finite, the steps between two
+///         samples exceed max_steps, or odeint's step control fails.
+template <class Stepper, class System, class Vector>
+void integrate_dense(const char* name, const SimulatorConfig& config, const MuscleModel& model,
+                     const ElongationTrajectory& trajectory, RunWorkspace& workspace, const ScaledState& scaled,
+                     Stepper& stepper, System system, Vector z, BlockRecorder& recorder, SolverStatistics& statistics) {
+  namespace odeint = boost::numeric::odeint;
+  const auto& time = trajectory.time();
   const double corner = corner_jump(trajectory, config);
-  double step = 0.0;  // the step size the last piece ended with: the next one starts with it
+  double step = 0.0;
   std::size_t k = 0;
   try {
     while (k + 1 < trajectory.size()) {
@@ -484,7 +522,7 @@ SolverStatistics integrate_explicit(const SimulatorConfig& config, const MuscleM
       double steps_since_sample = 0;
       while (sample <= end) {
         if (++steps_since_sample > config.max_steps) {
-          throw SolverError(detail::message("dopri5 took more than ", config.max_steps,
+          throw SolverError(detail::message(name, " took more than ", config.max_steps,
                                             " steps before the sample at t = ", time[sample],
                                             " s (SimulatorConfig.max_steps)"));
         }
@@ -493,18 +531,18 @@ SolverStatistics integrate_explicit(const SimulatorConfig& config, const MuscleM
           z = stepper.current_state();
           stepper.initialize(z, t, time[end] - t);
         }
-        t = stepper.do_step(rhs).second;
+        t = stepper.do_step(system).second;
         ++statistics.steps;
         // The shortened step ends on the corner to rounding.
         const bool at_corner = time[end] - t <= 1e-14 * std::max(std::abs(time[end]), length);
         for (const double value : stepper.current_state()) {
           if (!std::isfinite(value)) {
-            throw SolverError(detail::message("dopri5: the state is not finite at t = ", t, " s"));
+            throw SolverError(detail::message(name, ": the state is not finite at t = ", t, " s"));
           }
         }
         for (; sample <= end && (time[sample] <= t || (sample == end && at_corner)); ++sample) {
           stepper.calc_state(time[sample], z);
-          recorder.record(sample, model, workspace.output, trajectory.segment_velocity(sample - 1), to_state(z),
+          recorder.record(sample, model, workspace.output, trajectory.segment_velocity(sample - 1), scaled.to_state(z),
                           statistics);
           steps_since_sample = 0;
         }
@@ -513,14 +551,134 @@ SolverStatistics integrate_explicit(const SimulatorConfig& config, const MuscleM
       k = end;  // z holds the state at the corner
     }
   } catch (const odeint::odeint_error& error) {
-    throw SolverError(detail::message("dopri5 failed at t = ", time[k], " s or later: ", error.what()));
+    throw SolverError(detail::message(name, " failed at t = ", time[k], " s or later: ", error.what()));
   }
+}
+
+/// The run loop of IntegrationMethod::dopri5: Dormand-Prince 5(4), explicit, with its dense
+/// output (Boost.Odeint's controlled runge_kutta_dopri5), on every component of the state.
+SolverStatistics integrate_explicit(const SimulatorConfig& config, const MuscleModel& model,
+                                    const ElongationTrajectory& trajectory, std::size_t block_size,
+                                    const SampleSink& sink, const ShapeTable* shapes) {
+  namespace odeint = boost::numeric::odeint;
+  using Vector = std::array<double, State::size>;
+  check_lengths(model, trajectory);
+  const ScaledState scaled(config, model, false);
+
+  SolverStatistics statistics;
+  statistics.method = IntegrationMethod::dopri5;
+  RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}, nullptr};
+  const auto rhs = [&](const Vector& z, Vector& dzdt, double t) {
+    const std::size_t k = workspace.segment(t);
+    const MuscleOutputs out =
+        model.evaluate_with(workspace.rhs, RunWorkspace::length(model, trajectory, t, k),
+                            trajectory.segment_velocity(k), scaled.to_state(z), ShapeParts::kinematics);
+    scaled.rates(out.rate, dzdt);
+    ++statistics.rhs_evaluations;
+  };
+
+  const ShapeTable* tabulated = shapes && shapes->applies_to(model, trajectory) ? shapes : nullptr;
+  BlockRecorder recorder(trajectory, block_size, sink, tabulated);
+  const State initial = model.initial();
+  Vector z;
+  scaled.from_state(initial, z);
+  recorder.record(0, model, workspace.output, trajectory.segment_velocity(0), initial, statistics);
+  auto stepper = odeint::make_dense_output(config.absolute_tolerance_K, config.relative_tolerance, config.max_step_s,
+                                           odeint::runge_kutta_dopri5<Vector>());
+  integrate_dense("dopri5", config, model, trajectory, workspace, scaled, stepper, rhs, z, recorder, statistics);
+  return statistics;
+}
+
+/// Hairer and Wanner's RODAS4 coefficients as Boost.Odeint holds them, but for d4, the sum of
+/// stage 4's gamma row that weighs the right-hand side's rate in time: Boost 1.74 gives it with
+/// the wrong sign (+0.0362), which costs the method its order wherever the right-hand side
+/// depends on time, as the motion makes ours: on the pair y' = cos t, z' = -50 (z - sin t) over
+/// 20 s it took 31 times the steps at rtol 1e-8 and ended 5e-6 off, where RODAS4's d4 ends at
+/// rounding.
+struct Rodas4Coefficients : boost::numeric::odeint::default_rosenbrock_coefficients<double> {
+  const double d4 = -0.3620000000000023e-01;  // hides the base's d4: odeint reads it by name
+};
+
+/// The run loop of IntegrationMethod::rosenbrock4: Boost.Odeint's Rosenbrock 4(3) method with its
+/// dense output, on the states that move (`moves`) and the energies, the others held. Each step
+/// factorises I / (gamma h) - J once and solves with it six times, each stage one evaluation: no
+/// Newton iteration, no history. The Jacobian J is differenced on the states that move alone (a
+/// column each, from the step's first evaluation), as is the right-hand side's rate in time (the
+/// motion's); nothing depends on the energies, so their columns are zero.
+SolverStatistics integrate_rosenbrock(const SimulatorConfig& config, const MuscleModel& model,
+                                      const ElongationTrajectory& trajectory, std::size_t block_size,
+                                      const SampleSink& sink, const ShapeTable* shapes) {
+  namespace odeint = boost::numeric::odeint;
+  using Vector = boost::numeric::ublas::vector<double>;
+  using Matrix = boost::numeric::ublas::matrix<double>;
+  check_lengths(model, trajectory);
+  const ScaledState scaled(config, model, true);
+  const std::size_t n = scaled.size();
+
+  SolverStatistics statistics;
+  statistics.method = IntegrationMethod::rosenbrock4;
+  RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}, nullptr};
+  const auto evaluate = [&](const Vector& z, Vector& dzdt, double t) {
+    const std::size_t k = workspace.segment(t);
+    const MuscleOutputs out =
+        model.evaluate_with(workspace.rhs, RunWorkspace::length(model, trajectory, t, k),
+                            trajectory.segment_velocity(k), scaled.to_state(z), ShapeParts::kinematics);
+    scaled.rates(out.rate, dzdt);
+    ++statistics.rhs_evaluations;
+  };
+  // odeint asks for the rates at a step's start and then for the Jacobian there: the Jacobian
+  // starts from those rates.
+  Vector first_z(n), first_rates(n), moved(n), moved_rates(n);
+  double first_t = std::numeric_limits<double>::quiet_NaN();
+  const auto rhs = [&](const Vector& z, Vector& dzdt, double t) {
+    evaluate(z, dzdt, t);
+    first_z = z;
+    first_rates = dzdt;
+    first_t = t;
+  };
+  const double root_epsilon = std::sqrt(std::numeric_limits<double>::epsilon());
+  const auto jacobian = [&](const Vector& z, Matrix& jac, double t, Vector& dfdt) {
+    ++statistics.jacobian_evaluations;
+    ++statistics.linear_solver_setups;
+    if (!(t == first_t && std::equal(z.begin(), z.end(), first_z.begin()))) {
+      evaluate(z, first_rates, t);
+      first_z = z;
+      first_t = t;
+    }
+    jac.clear();
+    for (std::size_t j = 0; j < scaled.states(); ++j) {
+      moved = z;
+      moved[j] += root_epsilon * std::max(std::abs(z[j]), 1.0);
+      const double h = moved[j] - z[j];
+      evaluate(moved, moved_rates, t);
+      for (std::size_t i = 0; i < n; ++i) jac(i, j) = (moved_rates[i] - first_rates[i]) / h;
+    }
+    // Into the piece: its motion is one smooth piece (corners restart), so is the quotient.
+    const auto& time = trajectory.time();
+    const double piece = time[workspace.piece_end] - time[workspace.piece_start];
+    const double later = t + root_epsilon * std::max(std::abs(t), piece);
+    evaluate(z, moved_rates, later);
+    for (std::size_t i = 0; i < n; ++i) dfdt[i] = (moved_rates[i] - first_rates[i]) / (later - t);
+  };
+
+  const ShapeTable* tabulated = shapes && shapes->applies_to(model, trajectory) ? shapes : nullptr;
+  BlockRecorder recorder(trajectory, block_size, sink, tabulated);
+  const State initial = model.initial();
+  Vector z(n);
+  scaled.from_state(initial, z);
+  recorder.record(0, model, workspace.output, trajectory.segment_velocity(0), initial, statistics);
+  auto stepper = odeint::make_dense_output(config.absolute_tolerance_K, config.relative_tolerance, config.max_step_s,
+                                           odeint::rosenbrock4<double, Rodas4Coefficients>());
+  integrate_dense("rosenbrock4", config, model, trajectory, workspace, scaled, stepper, std::make_pair(rhs, jacobian),
+                  z, recorder, statistics);
+  statistics.error_test_failures = statistics.jacobian_evaluations - statistics.steps;
   return statistics;
 }
 
 /// The run loop of Simulator::run_blocks and run_sensitivities: with `moved` (and `derivatives`
 /// to fill), the sensitivities to the moved models are integrated beside the state, by BDF. A
-/// run by dopri5 (asked for, or auto's pick where not stiff) goes to integrate_explicit.
+/// run by dopri5 or rosenbrock4 (asked for, or auto's pick) goes to integrate_explicit or
+/// integrate_rosenbrock.
 SolverStatistics integrate(const SimulatorConfig& config, const MuscleModel& model,
                            const ElongationTrajectory& trajectory, std::size_t block_size, const SampleSink& sink,
                            const ShapeTable* shapes, MovedModels* moved, std::vector<SimulationResult>* derivatives) {
@@ -528,10 +686,18 @@ SolverStatistics integrate(const SimulatorConfig& config, const MuscleModel& mod
   if (moved) {
     method = IntegrationMethod::bdf;  // the sensitivities' corrector is Newton's
   } else if (method == IntegrationMethod::automatic) {
-    method = estimate_stiffness(model, trajectory, config).stiff() ? IntegrationMethod::bdf : IntegrationMethod::dopri5;
+    if (!estimate_stiffness(model, trajectory, config).stiff()) {
+      method = IntegrationMethod::dopri5;
+    } else {
+      method = config.relative_tolerance >= kRosenbrockTightestTolerance ? IntegrationMethod::rosenbrock4
+                                                                         : IntegrationMethod::bdf;
+    }
   }
   if (method == IntegrationMethod::dopri5) {
     return integrate_explicit(config, model, trajectory, block_size, sink, shapes);
+  }
+  if (method == IntegrationMethod::rosenbrock4) {
+    return integrate_rosenbrock(config, model, trajectory, block_size, sink, shapes);
   }
   const auto& time = trajectory.time();
   check_lengths(model, trajectory);

@@ -58,7 +58,7 @@ TEST_CASE("Energy: work = heat lost + friction + gas internal energy over whole 
   // tau = 2 s is comparable to the 20 s ramps, so heat flows both ways; Kf = 200 s/m gives
   // tanh(200 * 2.5e-3) = 0.46 of the Coulomb level, so friction matters. By CVODES's BDF and
   // by the explicit Dormand-Prince method alike.
-  const auto method = GENERATE(IntegrationMethod::bdf, IntegrationMethod::dopri5);
+  const auto method = GENERATE(IntegrationMethod::bdf, IntegrationMethod::dopri5, IntegrationMethod::rosenbrock4);
   INFO(method);
   const Run run = run_cycles(2.0, 200.0, 0.2, method);
   const SimulationResult& r = run.result;

@@ -13,7 +13,7 @@ import pytest
 from pamkit import cli
 from pamkit.cluster import ScaleUnavailable, client, read_rows, require
 from pamkit.io.guards import ExperimentError
-from pamkit.sweep import METRICS, load_spec, run_in_process, run_one, sweep
+from pamkit.sweep import METRICS, batch_rows, load_spec, run_chunk, run_in_process, run_one, sweep
 
 # One cycle of the thesis's PAM 2 test at 207 kPa (table C.2): a short run, about 300 samples.
 BASE = '[sweep]\nexperiment = "{base}"\ncycles = 1\n'
@@ -81,6 +81,49 @@ def test_a_combination_the_build_rejects_is_a_failed_run(write_spec):
     spec = load_spec(write_spec("[parameters]\ndiameter_m = { values = [0.02, 0.012] }\n"))
     assert run_one(spec, 0)["error"] is None
     assert "bladder" in run_one(spec, 1)["error"]
+
+
+def test_a_batch_of_runs_gives_the_rows_of_one_run_at_a_time_bit_for_bit(write_spec):
+    # A sealed test's runs go through one C++ batch (Simulator.run_batch over ParameterSets, the
+    # spec's kPa and degrees Celsius converted once for all runs); run_one still simulates one
+    # experiment at a time through simulate_experiment. The rows must not differ, not even in the
+    # last bit or in an error's wording: a bladder the braid cannot hold, a muscle mounted past
+    # the braid's reach, a room of another temperature, a thousandfold friction sharpness.
+    lhs = """[parameters]
+inflation_pressure_kPa = { range = [100, 300] }
+braid_angle_deg = { range = [24, 35] }
+ambient_temperature_C = { range = [0, 40] }
+friction.sharpness_s_per_m = { range = [0.5, 1000] }
+"""
+    path = write_spec(lhs)
+    path.write_text(
+        path.read_text().replace("[sweep]\n", '[sweep]\ndesign = "latin_hypercube"\nsamples = 24\nseed = 3\n')
+    )
+    grid = load_spec(
+        write_spec(
+            "[parameters]\ninitial_length_m = { values = [0.167, 0.30] }\ndiameter_m = { values = [0.02, 0.012] }\n",
+            "grid.toml",
+        )
+    )
+    for spec in (load_spec(path), grid):
+        runs = list(range(len(spec.runs)))
+        batched = batch_rows(spec, runs, threads=2)
+        assert json.dumps(batched) == json.dumps([run_one(spec, run) for run in runs])  # NaN-safe
+    assert {row["error"] is None for row in batched} == {True, False}  # the grid has both
+
+
+def test_a_chunk_is_one_batch_where_the_test_is_sealed(write_spec, tmp_path, monkeypatch):
+    import pamkit.sweep
+
+    spec = load_spec(write_spec(GRID.format()))
+    calls = []
+    real = pamkit.sweep.batch_rows
+    monkeypatch.setattr(pamkit.sweep, "batch_rows", lambda *args, **kwargs: calls.append(args) or real(*args, **kwargs))
+    rows = run_chunk(spec, [0, 3, 5])
+    assert len(calls) == 1 and [row["run"] for row in rows] == [0, 3, 5]
+    exo = tmp_path / "exo.toml"
+    exo.write_text('[sweep]\ndevice = "exoskeleton"\n[parameters]\nexo.play_deg = { values = [0, 4] }\n')
+    assert len(run_chunk(load_spec(exo), [0, 1])) == 2 and len(calls) == 1  # run by run
 
 
 def test_a_latin_hypercube_is_reproduced_by_its_seed_and_stratifies_each_parameter(write_spec):

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pamkit/fields.hpp"
+#include "pamkit/sim/batch.hpp"
 #include "pamkit/sim/model.hpp"
 #include "pamkit/sim/shape_table.hpp"
 #include "pamkit/sim/statistics.hpp"
@@ -34,8 +35,9 @@ struct SimulatorConfig {
   double corner_threshold = 0.2;       ///< a jump of the elongation rate above this share of the largest rate
                                        ///< restarts the integrator (turning points, holds); smaller ones
                                        ///< (sampled curves, encoder noise) are integrated through [1]
-  IntegrationMethod method = IntegrationMethod::bdf;  ///< bdf, adams, dopri5, or automatic: dopri5 where
-                                                      ///< estimate_stiffness finds the run non-stiff, bdf otherwise
+  IntegrationMethod method = IntegrationMethod::bdf;  ///< bdf, adams, dopri5, rosenbrock4, or automatic: dopri5
+                                                      ///< where estimate_stiffness finds the run non-stiff, else
+                                                      ///< rosenbrock4, or bdf below kRosenbrockTightestTolerance
 
   template <class Visitor>
   static void for_each_field(Visitor&& visit) {
@@ -50,17 +52,26 @@ struct SimulatorConfig {
     visit("corner_threshold", &SimulatorConfig::corner_threshold,
           FieldInfo{"1", 0.0, 2.0, "rate jump that restarts, share of the largest rate"});
     visit("method", &SimulatorConfig::method,
-          FieldInfo{"1", 0.0, 3.0,
-                    "integration method: bdf, adams, dopri5 or auto (dopri5 where the run is not stiff, else bdf)"});
+          FieldInfo{"1", 0.0, 4.0,
+                    "integration method: bdf, adams, dopri5, rosenbrock4 or auto (dopri5 where the run is not stiff, "
+                    "else rosenbrock4, or bdf at a relative tolerance below 1e-9)"});
   }
   void validate() const { validate_fields(*this); }
 };
+
+/// The tightest relative tolerance at which IntegrationMethod::automatic runs a stiff run by
+/// rosenbrock4; tighter, by bdf. The Rosenbrock method's steps shrink as rtol^(1/4) (its error
+/// estimate is of order 3), BDF's as rtol^(1/6) at its order 5: on the thesis's stiff bench test
+/// (bench/bench_simulate.py, heat exchanged in 0.02 s) rosenbrock4 is 1.4x faster at 1e-8, the two
+/// tie at 1e-9 and BDF is 1.6x faster at 1e-10.
+constexpr double kRosenbrockTightestTolerance = 1e-9;
 
 /// The stiffness test behind IntegrationMethod::automatic, made before a run from the model's
 /// parameters and the trajectory's times alone (so the same on every machine and thread).
 /// A run is stiff where the model relaxes faster than the steps the tolerance allows: an explicit
 /// method's steps (dopri5's) and Adams's fixed-point iteration then shrink to ~1 / rate, where
-/// BDF's Newton iteration keeps steps the tolerance sets.
+/// the implicit methods' (rosenbrock4's linear solve, BDF's Newton iteration) keep the steps the
+/// tolerance sets.
 struct StiffnessEstimate {
   double fastest_rate_per_s;  ///< MuscleModel::fastest_rate_per_s [1/s]
   double longest_piece_s;     ///< longest stretch between corners of the trajectory [s]
@@ -92,6 +103,28 @@ struct SimulationResult {
   std::vector<double> heat_lost_J;            ///< heat from gas to wall since t0
   std::vector<double> friction_dissipated_J;  ///< friction work since t0
   SolverStatistics statistics;
+
+  /// Visits every column once, in the order above: visit(name, &SimulationResult::column, unit,
+  /// meaning, output), `output` false for the two the trajectory prescribes (time_s,
+  /// elongation_m). The bindings and a batch's channels read the columns through it.
+  template <class Visitor>
+  static void for_each_column(Visitor&& visit) {
+    visit("time_s", &SimulationResult::time_s, "s", "sample times", false);
+    visit("elongation_m", &SimulationResult::elongation_m, "m", "prescribed elongation", false);
+    visit("length_m", &SimulationResult::length_m, "m", "muscle length", true);
+    visit("force_N", &SimulationResult::force_N, "N", "axial force, tension > 0, friction included", true);
+    visit("friction_force_N", &SimulationResult::friction_force_N, "N", "friction part of the force", true);
+    visit("gauge_pressure_Pa", &SimulationResult::gauge_pressure_Pa, "Pa", "gas pressure above ambient", true);
+    visit("temperature_K", &SimulationResult::temperature_K, "K", "gas temperature", true);
+    visit("gas_volume_m3", &SimulationResult::gas_volume_m3, "m^3", "gas volume, dead volume included", true);
+    visit("gas_mass_kg", &SimulationResult::gas_mass_kg, "kg", "mass of air inside", true);
+    visit("braid_angle_rad", &SimulationResult::braid_angle_rad, "rad", "braid angle of the cylinder", true);
+    visit("diameter_m", &SimulationResult::diameter_m, "m", "braid diameter", true);
+    visit("work_J", &SimulationResult::work_J, "J", "work done on the muscle since the start", true);
+    visit("heat_lost_J", &SimulationResult::heat_lost_J, "J", "heat from gas to wall since the start", true);
+    visit("friction_dissipated_J", &SimulationResult::friction_dissipated_J, "J", "friction work since the start",
+          true);
+  }
 };
 
 /// A run and its forward sensitivities (Simulator::run_sensitivities).
@@ -181,6 +214,27 @@ class Simulator {
                                       const std::vector<double>& steps, const ElongationTrajectory& trajectory,
                                       const ShapeTable* shapes = nullptr,
                                       const std::vector<ElongationTrajectory>& moved_motions = {}) const;
+
+  /// Runs every model of `models` along `trajectory`, as `run_blocks` runs each, on
+  /// `request.threads` threads, and keeps of each run the request's channels at its rows and
+  /// their extremes over every sample: a screen of many candidate muscles of one test, with no
+  /// result per run to build. A run that fails leaves NaN and its message (BatchResult::errors);
+  /// the others run. `shapes` serves every run it applies to (ShapeTable::applies_to); with
+  /// `motions`, run i follows motions[i] (an effect that moves the muscle off the crosshead: a
+  /// fixture's slack), on the trajectory's sample times.
+  /// \throws InvalidInput for an unknown or repeated channel, rows that do not increase or pass
+  ///         the trajectory's end, or `motions` neither empty nor one per model on the
+  ///         trajectory's times.
+  BatchResult run_batch(const std::vector<MuscleModel>& models, const ElongationTrajectory& trajectory,
+                        const BatchRequest& request = {}, const ShapeTable* shapes = nullptr,
+                        const std::vector<ElongationTrajectory>& motions = {}) const;
+
+  /// `run_batch` over the runs of `sets`, each run's muscle made on the thread that runs it
+  /// (ParameterSets::at): a design sweep with no work per run outside C++. A run whose parameters
+  /// are refused fails with RunFailure::parameters.
+  /// \throws InvalidInput as the other overload.
+  BatchResult run_batch(const ParameterSets& sets, const ElongationTrajectory& trajectory,
+                        const BatchRequest& request = {}) const;
 
   const SimulatorConfig& config() const { return config_; }
 

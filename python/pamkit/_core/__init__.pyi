@@ -9,7 +9,7 @@ import os
 import typing
 from . import logger
 from . import units
-__all__: list[str] = ['BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'Construction', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'IntegrationMethod', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'PlayParams', 'Resolution', 'ScriptKinematics', 'SensitivityResult', 'ShapeTable', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'StiffnessEstimate', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'estimate_stiffness', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_measurement_blocks', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
+__all__: list[str] = ['BatchResult', 'BiaxialStress', 'BladderLaw', 'BraidGeometry', 'Clutch', 'ClutchMode', 'ClutchParams', 'Construction', 'DeviceRun', 'Effect', 'EffectCatalog', 'EffectParameter', 'EffectStage', 'ElongationTrajectory', 'Error', 'FiberTensions', 'FitScale', 'FreeInflation', 'FrictionParams', 'GaitCycle', 'GaitData', 'GaitEvents', 'GasMode', 'GasParams', 'GasProcess', 'IdealSpring', 'InitialState', 'IntegrationMethod', 'InvalidInput', 'InvalidParameter', 'IsotonicLengths', 'IsotonicMotion', 'IsotonicMotionConfig', 'Jig', 'JigParams', 'JigSample', 'LinearSpring', 'Linkage', 'LinkageParams', 'LinkagePose', 'Measurement', 'ModelExtensions', 'MuscleBuild', 'MuscleForces', 'MuscleModel', 'MuscleOutputs', 'MuscleParams', 'MuscleParamsFile', 'MuscleShape', 'PamStaticSpring', 'ParameterSets', 'PlayParams', 'Resolution', 'RunFailure', 'ScriptKinematics', 'SensitivityResult', 'ShapeTable', 'SimulationResult', 'Simulator', 'SimulatorConfig', 'SolverError', 'SolverStatistics', 'State', 'StiffnessEstimate', 'Table42Row', 'ThesisPolynomialSpring', 'WINTER_SUBJECT_MASS_KG', 'braid_cylinder_length', 'braid_diameter', 'braid_fiber_length', 'braid_tension', 'deflated_braid_angle_deg', 'detect_gait_events', 'estimate_stiffness', 'fiber_revolutions_for_braid_angle', 'fit_clutch', 'free_inflation', 'ideal_spring', 'inflated_and_sealed', 'isotonic_lengths', 'isotonic_motion', 'logger', 'measured_channels', 'muscle_forces', 'newtonian_fiber_tensions', 'polytropic_pressure', 'polytropic_temperature', 'pressure_branches', 'read_muscle_params', 'read_muscle_params_file', 'reproduce_g3_script', 'resample_cycle', 'run_device', 'simulate_measurement', 'simulate_measurement_blocks', 'simulate_supplied_measurement', 'static_forces', 'table_4_2', 'thesis_protocol', 'units', 'walking_trajectory', 'winter_appendix_g3', 'with_ankle_range', 'write_muscle_params']
 class Error(RuntimeError):
     pass
 class SolverError(RuntimeError):
@@ -883,7 +883,7 @@ class ElongationTrajectory:
         ...
 class IntegrationMethod:
     """
-    How a run is integrated: bdf (CVODES, dense Newton), adams (CVODES, fixed-point iteration), dopri5 (explicit Dormand-Prince 5(4) with dense output, Boost.Odeint), or auto (dopri5 where estimate_stiffness finds the run non-stiff, bdf otherwise).
+    How a run is integrated: bdf (CVODES, dense Newton), adams (CVODES, fixed-point iteration), dopri5 (explicit Dormand-Prince 5(4) with dense output, Boost.Odeint), rosenbrock4 (Boost.Odeint's Rosenbrock 4(3), linearly implicit, on the states that move and the energies), or auto (dopri5 where estimate_stiffness finds the run non-stiff, else rosenbrock4, or bdf at a relative tolerance below 1e-9).
     
     Members:
     
@@ -894,12 +894,15 @@ class IntegrationMethod:
       adams
     
       dopri5
+    
+      rosenbrock4
     """
     __members__: typing.ClassVar[dict[str, IntegrationMethod]]
     adams: typing.ClassVar[IntegrationMethod]
     auto: typing.ClassVar[IntegrationMethod]
     bdf: typing.ClassVar[IntegrationMethod]
     dopri5: typing.ClassVar[IntegrationMethod]
+    rosenbrock4: typing.ClassVar[IntegrationMethod]
     @typing.overload
     def __eq__(self, other: IntegrationMethod) -> bool:
         ...
@@ -998,7 +1001,7 @@ class SimulatorConfig:
     @property
     def method(self) -> IntegrationMethod:
         """
-        integration method: bdf, adams, dopri5 or auto (dopri5 where the run is not stiff, else bdf)
+        integration method: bdf, adams, dopri5, rosenbrock4 or auto (dopri5 where the run is not stiff, else rosenbrock4, or bdf at a relative tolerance below 1e-9)
         """
     @method.setter
     def method(self, arg0: IntegrationMethod) -> None:
@@ -1040,7 +1043,7 @@ class StiffnessEstimate:
     @property
     def stiff(self) -> bool:
         """
-        ratio > 1: auto runs bdf
+        ratio > 1: auto runs rosenbrock4 (bdf below a relative tolerance of 1e-9)
         """
 class SolverStatistics:
     """
@@ -1050,33 +1053,49 @@ class SolverStatistics:
         ...
     @property
     def error_test_failures(self) -> int:
-        ...
+        """
+        steps rejected by the local error test (dopri5: not counted)
+        """
     @property
     def jacobian_evaluations(self) -> int:
-        ...
+        """
+        dense Jacobian evaluations (none with adams or dopri5)
+        """
     @property
     def linear_solver_setups(self) -> int:
-        ...
+        """
+        LU factorisations: Newton's (bdf) or a step's (rosenbrock4)
+        """
     @property
     def method(self) -> IntegrationMethod:
         """
-        the method that ran: bdf, adams or dopri5
+        the method that ran: never auto
         """
     @property
     def nonlinear_convergence_failures(self) -> int:
-        ...
+        """
+        failures of those iterations to converge
+        """
     @property
     def nonlinear_iterations(self) -> int:
-        ...
+        """
+        Newton (bdf) or fixed-point (adams) iterations
+        """
     @property
     def output_evaluations(self) -> int:
-        ...
+        """
+        model evaluations to report the samples
+        """
     @property
     def restarts(self) -> int:
-        ...
+        """
+        restarts at trajectory corners
+        """
     @property
     def rhs_evaluations(self) -> int:
-        ...
+        """
+        right-hand-side evaluations, difference-quotient Jacobians' included
+        """
     @property
     def sensitivity_rhs_evaluations(self) -> int:
         """
@@ -1084,7 +1103,9 @@ class SolverStatistics:
         """
     @property
     def steps(self) -> int:
-        ...
+        """
+        internal time steps (dopri5, rosenbrock4: accepted ones)
+        """
     @property
     def tabulated_shapes(self) -> int:
         """
@@ -1218,6 +1239,140 @@ class SensitivityResult:
         """
         the run at the nominal parameters
         """
+class ParameterSets:
+    """
+    One muscle's parameters and sealed start, varied run by run: each run sets its own values of the named fields on a shared base (Simulator.run_batch).
+    """
+    def __init__(self, base: MuscleParams, start: InitialState, names: collections.abc.Sequence[str], values: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], inflated_start: bool = False) -> None:
+        """
+        base: MuscleParams every run starts from; start: the InitialState every run shares but for the fields it sets; names: the fields each run sets, 'build.<MuscleBuild field>', 'build.braid_angle_deg' (the revolutions that give the deflated build this angle [deg], as fiber_revolutions_for_braid_angle takes it), 'bladder.shear_modulus_Pa' (a neo-Hookean bladder), 'friction.<field>', 'gas.<field>', 'extensions.<field>', 'initial.length_m', 'initial.gauge_pressure_Pa'; values: (runs, len(names)), each in its field's unit; inflated_start: a run starts at the free length its pressure inflates the muscle to (inflated_and_sealed) unless it sets initial.length_m. ValueError for an unknown or repeated name.
+        """
+    def at(self, run: typing.SupportsInt | typing.SupportsIndex) -> tuple[MuscleParams, InitialState]:
+        """
+        Run `run`'s (MuscleParams, InitialState), as run_batch makes them. ValueError for a value its field or the muscle refuses, IndexError past the last run.
+        """
+    @property
+    def names(self) -> list[str]:
+        """
+        the fields each run sets, in the values' column order
+        """
+    @property
+    def runs(self) -> int:
+        """
+        how many runs
+        """
+class RunFailure:
+    """
+    Why a run of Simulator.run_batch failed.
+    
+    Members:
+    
+      none : it ran
+    
+      parameters : its parameters were refused before a model was built (a field out of its range, a braid angle the build cannot reach, a pressure it cannot inflate to freely)
+    
+      input : the model could not follow the trajectory (outside the braid's range)
+    
+      solver : the integrator failed
+    """
+    __members__: typing.ClassVar[dict[str, RunFailure]]
+    input: typing.ClassVar[RunFailure]
+    none: typing.ClassVar[RunFailure]
+    parameters: typing.ClassVar[RunFailure]
+    solver: typing.ClassVar[RunFailure]
+    @typing.overload
+    def __eq__(self, other: RunFailure) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: RunFailure) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
+class BatchResult:
+    """
+    The runs of Simulator.run_batch, in the order given; arrays have one row per run.
+    """
+    @property
+    def channels(self) -> list[str]:
+        """
+        the channels kept, in the order asked
+        """
+    @property
+    def errors(self) -> list[str]:
+        """
+        per run, why it failed; '' where it ran
+        """
+    @property
+    def failed(self) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        (runs,) bool: the run failed (its message in errors)
+        """
+    @property
+    def failures(self) -> numpy.typing.NDArray[numpy.uint8]:
+        """
+        (runs,) RunFailure values: why each run failed (0 none: it ran)
+        """
+    @property
+    def maximum(self) -> dict:
+        """
+        channel name -> (runs,) array of each run's largest value over every sample (NaN for a failed run)
+        """
+    @property
+    def minimum(self) -> dict:
+        """
+        channel name -> (runs,) array of each run's smallest value over every sample
+        """
+    @property
+    def rejected(self) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        (runs,) bool: failures == RunFailure.parameters, its parameters refused before a model was built
+        """
+    @property
+    def rows(self) -> numpy.typing.NDArray[numpy.uint64]:
+        """
+        the sample indices each channel is kept at
+        """
+    @property
+    def runs(self) -> int:
+        """
+        how many runs
+        """
+    @property
+    def statistics(self) -> dict:
+        """
+        counter name (SolverStatistics's) -> (runs,) array of each run's count, and 'method': each run's IntegrationMethod as its integer value (zero counters for a failed run)
+        """
+    @property
+    def values(self) -> dict:
+        """
+        channel name -> (runs, len(rows)) array of its values at the rows (NaN for a failed run); views into this result
+        """
 class Simulator:
     """
     Integrates a MuscleModel along a trajectory with CVODES. Re-entrant.
@@ -1227,6 +1382,16 @@ class Simulator:
     def run(self, model: MuscleModel, trajectory: ElongationTrajectory, shapes: ShapeTable = None) -> SimulationResult:
         """
         Simulates the model along the trajectory; releases the GIL while it runs. shapes: a ShapeTable whose braid shapes the samples read where it applies to this run (statistics.tabulated_shapes counts them), with the same result bit for bit; None or a table that does not apply: the shapes are solved.
+        """
+    @typing.overload
+    def run_batch(self, models: collections.abc.Sequence[MuscleModel], trajectory: ElongationTrajectory, channels: collections.abc.Sequence[str] = ['force_N', 'gauge_pressure_Pa', 'temperature_K'], rows: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None = None, threads: typing.SupportsInt | typing.SupportsIndex = 0, shapes: ShapeTable = None, motions: collections.abc.Sequence[ElongationTrajectory] = []) -> BatchResult:
+        """
+        Runs every model along the trajectory on `threads` C++ threads (0: one per hardware thread), the GIL released, and keeps of each run the channels (SimulationResult's output columns, by name) at the sample indices `rows` (increasing; None: none) and their largest and smallest values over every sample: a BatchResult, each run's numbers Simulator.run's bit for bit whatever the threads. A run that fails keeps its message and NaN; the others run. shapes: a ShapeTable for every run it applies to; motions: run i follows motions[i] (on the trajectory's times). ValueError for an unknown channel, rows that do not increase or pass the end, or motions that are neither empty nor one per model.
+        """
+    @typing.overload
+    def run_batch(self, sets: ParameterSets, trajectory: ElongationTrajectory, channels: collections.abc.Sequence[str] = ['force_N', 'gauge_pressure_Pa', 'temperature_K'], rows: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] | None = None, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> BatchResult:
+        """
+        run_batch over the runs of a ParameterSets, each run's muscle made on the C++ thread that runs it (ParameterSets.at): a design sweep with no Python per run. A run whose parameters are refused is marked in BatchResult.failures as RunFailure.parameters.
         """
     def run_sensitivities(self, model: MuscleModel, moved: collections.abc.Sequence[MuscleModel], steps: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], trajectory: ElongationTrajectory, shapes: ShapeTable = None, moved_motions: collections.abc.Sequence[ElongationTrajectory] = []) -> SensitivityResult:
         """
