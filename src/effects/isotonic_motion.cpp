@@ -85,9 +85,9 @@ int motion_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
     // Each element follows the motion with its stiffness until it holds its slip force, and holds
     // it while the motion goes on the same way.
     const ModelExtensions& x = w.extended.extensions;
+    const double stiffness = x.slip_force_N > 0.0 ? slip_element_stiffness(x.slip_force_N, x.slip_distance_m) : 0.0;
     for (std::size_t i = 0; x.slip_force_N > 0.0 && i < kSlipElements; ++i) {
-      NV_Ith_S(ydot, slip_index + static_cast<int>(i)) =
-          w.slipping[i] ? 0.0 : slip_element_stiffness(x.slip_force_N, x.slip_distance_m, i) * velocity;
+      NV_Ith_S(ydot, slip_index + static_cast<int>(i)) = w.slipping[i] ? 0.0 : stiffness * velocity;
     }
     return 0;
   } catch (...) {
@@ -104,10 +104,10 @@ int motion_limits(sunrealtype, N_Vector y, sunrealtype* g, void* user_data) {
   g[0] = NV_Ith_S(y, length_index) - w.shortest;
   g[1] = w.longest - NV_Ith_S(y, length_index);
   if (N_VGetLength(y) > slip_index) {
-    const double limit = slip_element_force(w.extended.extensions.slip_force_N);
     const double velocity = NV_Ith_S(y, velocity_index);
     for (std::size_t i = 0; i < kSlipElements; ++i) {
       const double force = NV_Ith_S(y, slip_index + static_cast<int>(i));
+      const double limit = slip_element_force(w.extended.extensions.slip_force_N, i);
       g[2 + i] = w.slipping[i] ? (force > 0.0 ? velocity : -velocity) : limit - std::abs(force);
     }
   }
@@ -120,11 +120,11 @@ bool switch_slip_elements(void* cv, MotionWorkspace& w, N_Vector y) {
   std::array<int, 2 + kSlipElements> found{};
   check_flag(CVodeGetRootInfo(cv, found.data()), "CVodeGetRootInfo", 0.0);
   bool switched = false;
-  const double limit = slip_element_force(w.extended.extensions.slip_force_N);
   for (std::size_t i = 0; N_VGetLength(y) > slip_index && i < kSlipElements; ++i) {
     if (found[2 + i] == 0) continue;
     switched = true;
     double& force = NV_Ith_S(y, slip_index + static_cast<int>(i));
+    const double limit = slip_element_force(w.extended.extensions.slip_force_N, i);
     w.slipping[i] = !w.slipping[i];
     if (w.slipping[i]) force = force > 0.0 ? limit : -limit;
   }
@@ -231,7 +231,7 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
     NV_Ith_S(y.get(), j) = slip.force_N[i];
     workspace.slipping[i] = false;  // at rest every element sticks
     NV_Ith_S(tolerances.get(), j) =
-        config.absolute_tolerance_m * slip_element_stiffness(extensions.slip_force_N, extensions.slip_distance_m, i);
+        config.absolute_tolerance_m * slip_element_stiffness(extensions.slip_force_N, extensions.slip_distance_m);
   }
 
   // BDF with Newton: the tanh friction of a sharp Kf is stiff; without friction the tight

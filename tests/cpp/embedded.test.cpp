@@ -46,15 +46,15 @@ MuscleParams dmsp_params(double slip_force_N = 0.0, double slip_distance_m = 0.0
   return p;
 }
 
-// The virgin curve of kSlipElements elements from rest: element i (1..N) springs with stiffness
-// f / (N delta_i), delta_i = delta (i - 1/2) / N, and holds at f / N.
+// The virgin curve of kSlipElements elements from rest, written from Iwan's model: every element
+// springs with stiffness k = 2 f / (N delta) until it holds f (2 i + 1) / N^2 (i = 0..N-1).
 double virgin_slip(double slip_force_N, double slip_distance_m, double displacement_m) {
   double sum = 0.0;
   const double n = static_cast<double>(kSlipElements);
-  for (std::size_t i = 1; i <= kSlipElements; ++i) {
-    const double break_away = slip_distance_m * (static_cast<double>(i) - 0.5) / n;
-    const double x = std::abs(displacement_m) / break_away;
-    sum += slip_force_N / n * std::min(x, 1.0);
+  const double k = 2.0 * slip_force_N / (n * slip_distance_m);
+  for (std::size_t i = 0; i < kSlipElements; ++i) {
+    const double limit = slip_force_N * (2.0 * static_cast<double>(i) + 1.0) / (n * n);
+    sum += std::min(k * std::abs(displacement_m), limit);
   }
   return displacement_m >= 0.0 ? sum : -sum;
 }
@@ -130,6 +130,36 @@ TEST_CASE("Embedded fibres cannot push: every force passes through the slack bra
   for (double f : run.force_N) CHECK(f >= 0.0);
   // The thesis's muscle is a sleeve: its braid pushes as before (no slack band at all).
   CHECK(detail::slack_band_N(MuscleParams{}) == 0.0);
+}
+
+TEST_CASE("Maxwell-slip elements: Iwan's parabola from rest, its chords, and every element slipping at f",
+          "[embedded][slip]") {
+  // Break-away displacements spread evenly over (0, delta] with one stiffness: the continuous
+  // model's virgin curve is f (2 u - u^2), u = x / delta, whose slope at rest is the bond's
+  // 2 f / delta and at delta zero. The N elements' curve is made of its tangents at m delta / N
+  // (m = 0..N), which cross at the break-aways (i + 1/2) delta / N, f / (4 N^2) above it.
+  const double f = 160.0;
+  const double delta = 0.02;
+  const double n = static_cast<double>(kSlipElements);
+  for (int k = 0; k <= 400; ++k) {
+    const double x = 1.2 * delta * k / 400.0;
+    INFO("x = " << x);
+    const double u = std::min(x / delta, 1.0);
+    CHECK(virgin_slip(f, delta, x) == Approx(f * (2.0 * u - u * u)).margin(f / (4.0 * n * n) * (1.0 + 1e-9)));
+    CHECK(slip_virgin_force(f, delta, x) == Approx(f * (2.0 * u - u * u)).epsilon(1e-15));
+    CHECK(slip_virgin_force(f, delta, -x) == -slip_virgin_force(f, delta, x));
+  }
+  for (std::size_t i = 0; i < kSlipElements; ++i) {
+    const double break_away = delta * (static_cast<double>(i) + 0.5) / n;
+    CHECK(virgin_slip(f, delta, break_away) - slip_virgin_force(f, delta, break_away) ==
+          Approx(f / (4.0 * n * n)).epsilon(1e-9));
+  }
+  CHECK_REL(virgin_slip(f, delta, 0.25 * delta / n), 2.0 * f / delta * (0.25 * delta / n),
+            1e-12);  // the bond's stiffness
+  for (int m = 0; m <= static_cast<int>(kSlipElements); ++m) {
+    CHECK(virgin_slip(f, delta, delta * m / n) == Approx(slip_virgin_force(f, delta, delta * m / n)).epsilon(1e-12));
+  }
+  CHECK_REL(virgin_slip(f, delta, delta), f, 1e-12);  // every element slipping
 }
 
 TEST_CASE("Maxwell-slip elements: the virgin curve, Masing's doubled reversal, and energy", "[embedded][slip]") {

@@ -8,10 +8,11 @@ D = D0 sin(theta) / sin(theta0). The gas force is -p dV/dL of V = pi D^2 (L - 2e
 complex-step differentiation of the volume (not the closed form). The braid cannot push: the
 force is max(F, 0), sharply.
 
-Friction with memory: a Prandtl-Ishlinskii operator of uniform density, in 400 elastic-perfectly
-plastic elements whose break-away displacements sit at the midpoints of (0, delta] (pamkit's
-16: the discretisations differ). Each follows the braid's length with stiffness
-(f / n) / delta_i until it holds f / n.
+Friction with memory: Iwan's distributed-element model, springs of one stiffness whose sliders
+break away at displacements spread evenly over (0, delta], so that from rest the friction follows
+f (2 x / delta - (x / delta)^2) up to f: here 400 elastic-perfectly plastic elements, each
+following the braid's length with stiffness 2 f / delta until it holds its share of f in
+proportion to its break-away displacement (pamkit's 16 elements: the discretisations differ).
 
 The rig: an isometric test holds the muscle's ends at a length; below its rest length it is slack
 at low pressure, and its free braid contracts as the pressure rises (zero force: elastic force and
@@ -65,12 +66,13 @@ class Muscle:
 
 
 class Slip:
-    """Maxwell-slip elements: a Prandtl-Ishlinskii operator of uniform density."""
+    """Maxwell-slip elements: Iwan's model, one stiffness, break-away displacements spread evenly."""
 
     def __init__(self, force_N: float, distance_m: float, elements: int = 400):
-        self.limit = force_N / elements
         breakaway = distance_m * (np.arange(elements) + 0.5) / elements
-        self.stiffness = self.limit / breakaway
+        # Each element's share of the whole stiffness 2 f / delta, holding until it has moved its break-away.
+        self.stiffness = np.full(elements, 2.0 * force_N / distance_m / elements)
+        self.limit = self.stiffness * breakaway
         self.held = np.zeros(elements)
 
     def after(self, displacement_m: float) -> float:
@@ -219,3 +221,45 @@ def write_dmsp_isotonic(
         _muscle_section(truth, "") + f'\n[test]\nkind = "isotonic"\ndata = "isotonic.csv"\nload_N = {load_N}\n'
     )
     return folder / "isotonic.toml"
+
+
+def write_dmsp_cyclic(
+    folder: Path,
+    truth: DmspTruth,
+    *,
+    gauge_kPa: float,
+    stroke_m: float,
+    cycles: int,
+    seed: int,
+    step_m: float = 0.5e-3,
+    speed_m_per_s: float = 2e-3,
+    noise_N: float = 1.0,
+) -> Path:
+    """A cyclic test on a tensile machine (TOML + CSV, a supplied time series): the muscle mounted
+    at its rest length, pressurised there to `gauge_kPa` by a regulator in 50 kPa steps, then
+    shortened by `stroke_m` and returned `cycles` times by the crosshead at `speed_m_per_s`, a
+    sample every `step_m` of travel. What the muscle does depends on its path, not its rate
+    (friction with memory, a slack braid): each sample is a held length at the regulated pressure,
+    in the order measured. The TOML declares the build as the other writers do; its [friction] is
+    none, the thesis's sliding sleeve (this muscle's fibres lie in its membrane)."""
+    rng = np.random.default_rng(seed)
+    folder.mkdir(parents=True, exist_ok=True)
+    pressures = list(np.arange(0.0, gauge_kPa, 50.0)) + [gauge_kPa]
+    elongation = [0.0] * len(pressures)
+    steps = int(round(stroke_m / step_m))
+    down = [-step_m * k for k in range(1, steps + 1)]
+    cycle = down + down[::-1][1:] + [0.0]
+    for _ in range(cycles):
+        elongation += cycle
+        pressures += [gauge_kPa] * len(cycle)
+    forces = isometric_forces(truth, [truth.rest_length_m + e for e in elongation], [PA_PER_KPA * p for p in pressures])
+    dt = step_m / speed_m_per_s
+    with (folder / "cyclic.csv").open("w") as handle:
+        handle.write("time_s,elongation_m,force_N,pressure_kPa\n")
+        for k, (e, p, f) in enumerate(zip(elongation, pressures, forces)):
+            reading = max(round((f + rng.normal(0, noise_N)) / 0.1) * 0.1, 0.0) if f > 0 else 0.0
+            handle.write(f"{k * dt:.3f},{e:.5f},{reading:.1f},{p:.1f}\n")
+    friction = "[friction]\nfiber_fiber_coefficient = 0.0\nfiber_bladder_coefficient = 0.0\n"
+    test = '[test]\ngas = "supplied"\ninflation_pressure_kPa = 0\nambient_temperature_C = 20.0\ndata = "cyclic.csv"\n'
+    (folder / "cyclic.toml").write_text(_muscle_section(truth, "") + "\n" + friction + "\n" + test)
+    return folder / "cyclic.toml"

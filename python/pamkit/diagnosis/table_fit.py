@@ -13,10 +13,10 @@ from scipy.optimize import least_squares
 from pamkit._core import Effect, MuscleParams
 from pamkit.diagnosis.identify import identify
 from pamkit.diagnosis.model import Coordinate, configure, effect_space, unknown_coordinate, with_unknowns
-from pamkit.diagnosis.table_kinds import PREDICTED, Campaign, test_names
+from pamkit.diagnosis.table_kinds import CYCLIC, PREDICTED, Campaign, kind_of, test_names
 from pamkit.io.experiment import Experiment
 from pamkit.io.guards import ExperimentError
-from pamkit.simulation import muscle_params, simulate_table
+from pamkit.simulation import muscle_params, simulate_experiment, simulate_table
 
 # [calibrate] names each test of a campaign has its own value of (the rest are shared).
 PER_TEST = ("load_N",)
@@ -91,9 +91,14 @@ class TableModel:
             if len(mine) == 0:
                 continue
             local = rows[mine] - int(np.flatnonzero(self.campaign.test == i)[0])
-            load = values.get(self.unknown_of("load_N", experiment))
-            predicted = simulate_table(experiment, self.params(experiment, values), effects, local, load)
-            for channel in PREDICTED[experiment.kind]:
+            kind = kind_of(experiment)
+            if kind == CYCLIC:  # one record: every sample is simulated, the rows asked for returned
+                series = simulate_experiment(experiment, self.params(experiment, values), effects=effects)
+                predicted = {channel: series[channel][local] for channel in PREDICTED[kind]}
+            else:
+                load = values.get(self.unknown_of("load_N", experiment))
+                predicted = simulate_table(experiment, self.params(experiment, values), effects, local, load)
+            for channel in PREDICTED[kind]:
                 out[channel][mine] = predicted[channel]
         return out
 

@@ -2,7 +2,10 @@
 tables of one muscle, the held-out group of each row (a map's held lengths, an isotonic test's
 pressurise/vent sweeps, a free-inflation table's rows) and the noise, estimated without the
 model. A campaign may join tables of different kinds (an isometric map and an isotonic test of
-one muscle): each row then predicts its own kind's channels."""
+one muscle): each row then predicts its own kind's channels. A supplied time series of the same
+muscle (a tensile machine cycling it at a regulated pressure) may join them: what a muscle's
+friction with memory and its slack braid do depends on the path, not on its rate, so its samples
+are rows in the order measured, its stretch cycles its groups."""
 
 from __future__ import annotations
 
@@ -12,20 +15,45 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit._core import BraidGeometry, pressure_branches
+from pamkit._core import BraidGeometry, GasMode, pressure_branches
+from pamkit.diagnosis.cycles import find_cycles
 from pamkit.diagnosis.kinds import LOCKING_ANGLE_DEG
 from pamkit.io.columns import value_from_si
 from pamkit.io.experiment import Experiment
+from pamkit.io.guards import ExperimentError
 from pamkit.io.sections import BRAID_ANGLE_KEY
 from pamkit.simulation import muscle_params
 from pamkit.units import MILLIMETRE_PER_METRE
 
 # [calibrate] fields that move the braid's reach: with one of them unknown, the reach is too.
 REACH_FIELDS = ("length_m", "diameter_m", "fiber_revolutions", BRAID_ANGLE_KEY, "end_diameter_m", "cone_generator_m")
+# A supplied time series in a campaign of tables: the crosshead cycles the muscle at a regulated pressure.
+CYCLIC = "cyclic"
 # The channels each kind predicts.
-PREDICTED = {"isometric_map": ("force_N",), "free_inflation": ("length_m", "diameter_m"), "isotonic": ("length_m",)}
+PREDICTED = {
+    "isometric_map": ("force_N",),
+    "free_inflation": ("length_m", "diameter_m"),
+    "isotonic": ("length_m",),
+    CYCLIC: ("force_N",),
+}
 # What each kind holds out.
-GROUP_NAMES = {"isometric_map": "held length", "isotonic": "sweep", "free_inflation": "row"}
+GROUP_NAMES = {"isometric_map": "held length", "isotonic": "sweep", "free_inflation": "row", CYCLIC: "cycle"}
+
+
+def kind_of(experiment: Experiment) -> str:
+    """A test's kind in a campaign of tables: its table kind, or CYCLIC for a supplied time series.
+
+    Raises:
+        ExperimentError: for a sealed time series, whose gas the tables' settled rows do not follow.
+    """
+    if experiment.is_table:
+        return experiment.kind
+    if experiment.gas == GasMode.supplied:
+        return CYCLIC
+    raise ExperimentError(
+        f"{experiment.path}: a sealed time series joins a campaign of time series; a campaign of tables takes "
+        '[test] gas = "supplied" series (the pressure regulated, the crosshead cycling the muscle)'
+    )
 
 
 @dataclass
@@ -52,17 +80,22 @@ class Campaign:
         """What the campaign predicts: its kinds' channels, in the order the tests give them."""
         out: list[str] = []
         for e in self.experiments:
-            out += [c for c in PREDICTED[e.kind] if c not in out]
+            out += [c for c in PREDICTED[kind_of(e)] if c not in out]
         return tuple(out)
+
+    @property
+    def kinds(self) -> list[str]:
+        """Each test's kind (kind_of)."""
+        return [kind_of(e) for e in self.experiments]
 
     def predicts(self, channel: str) -> np.ndarray:
         """The rows whose test's kind predicts `channel`."""
-        kinds = np.array([self.experiments[t].kind for t in range(len(self.experiments))])
+        kinds = np.array(self.kinds)
         return np.isin(kinds[self.test], [k for k, channels in PREDICTED.items() if channel in channels])
 
     def of_kind(self, kind: str) -> Campaign:
         """The campaign's tests of one kind, as a campaign of their own."""
-        return campaign_of([e for e in self.experiments if e.kind == kind])
+        return campaign_of([e for e in self.experiments if kind_of(e) == kind])
 
 
 def test_names(experiments: list[Experiment]) -> list[str]:
@@ -77,7 +110,7 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
     """Joins tables of one muscle, of one kind or several; a map's groups are its held lengths, an
     isotonic test's its sweeps, a free-inflation table's its rows: the held-out unit follows the
     kind."""
-    kinds = list(dict.fromkeys(e.kind for e in experiments))
+    kinds = list(dict.fromkeys(kind_of(e) for e in experiments))
     kind = " + ".join(kinds)
     names_of_columns = list(dict.fromkeys(c for e in experiments for c in e.columns))
     columns = {
@@ -102,6 +135,16 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
             for number in np.unique(sweep):
                 groups[rows[sweep == number]] = len(labels)
                 labels.append(f"{prefix(i)}sweep {number + 1}")
+        elif kind_of(e) == CYCLIC:
+            # A stretch cycle from one low turn of the crosshead to the next; what comes before
+            # the first (the mounting, the pressurising) belongs to it, what follows the last to that.
+            cycles = find_cycles(e.elongation_m)
+            number = np.clip(cycles.index(len(rows)), 0, None) if len(cycles) else np.zeros(len(rows), dtype=int)
+            if len(cycles):
+                number[cycles.ends[-1] :] = len(cycles) - 1
+            for cycle in np.unique(number):
+                groups[rows[number == cycle]] = len(labels)
+                labels.append(f"{prefix(i)}cycle {cycle + 1}")
         else:
             for row, pressure in zip(rows, value_from_si("gauge_pressure_Pa", e.columns["gauge_pressure_Pa"])):
                 groups[row] = len(labels)
@@ -126,7 +169,7 @@ def beyond_reach(campaign: Campaign) -> list[dict]:
     over a bulge, or a build other than the one declared), not a cause to fit."""
     out = []
     for e in campaign.experiments:
-        if e.kind != "free_inflation" or any(field in e.calibrate for field in REACH_FIELDS):
+        if kind_of(e) != "free_inflation" or any(field in e.calibrate for field in REACH_FIELDS):
             continue
         build = muscle_params(e).build
         reach = (
@@ -168,12 +211,18 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
     what the instruments add, not what the model misses. A slack muscle's force reads exactly
     zero, with no noise in it: such rows are left out. An isotonic test's first sweep starts from
     rest, and friction with memory makes it no repeat of the sweeps after it: the repeats are
-    looked for among those."""
-    if len({e.kind for e in campaign.experiments}) > 1:  # each channel from the tests that predict it
-        return {
-            c: noise_of(campaign.of_kind(next(e.kind for e in campaign.experiments if c in PREDICTED[e.kind])), (c,))[c]
-            for c in channels
-        }
+    looked for among those. A cyclic time series's noise is its samples' scatter about their
+    neighbours (cyclic_noise). Where several kinds predict a channel, their noises pooled by rows."""
+    kinds = list(dict.fromkeys(campaign.kinds))
+    if len(kinds) > 1:  # each channel from the tests that predict it
+        out = {}
+        for c in channels:
+            parts = [campaign.of_kind(k) for k in kinds if c in PREDICTED[k]]
+            variances = [(noise_of(part, (c,))[c] ** 2, len(part.test)) for part in parts]
+            out[c] = math.sqrt(sum(v * n for v, n in variances) / sum(n for _, n in variances))
+        return out
+    if kinds == [CYCLIC]:
+        return {c: cyclic_noise(campaign, c) for c in channels}
     pressure = campaign.columns["gauge_pressure_Pa"]
     branch = campaign.branch if campaign.kind == "isotonic" else np.ones(len(pressure))
     used = ~campaign.censored
@@ -213,3 +262,22 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
             dof += int(mine.sum()) - 4
         out[channel] = math.sqrt(squares / dof) if dof > 0 else float("nan")
     return out
+
+
+def cyclic_noise(campaign: Campaign, channel: str) -> float:
+    """The noise of a channel of cyclic time series, model-free: a smooth signal sampled densely
+    changes by nearly the same step from one sample to the next, so its second difference is the
+    noise's, whose spread is sqrt(6) times the noise's. The median of its magnitude (over samples
+    whose force is not a slack zero), as the median absolute deviation estimates a spread, is not
+    moved by the few samples where the crosshead turns or the muscle goes slack."""
+    values = []
+    for test in np.unique(campaign.test):
+        rows = np.flatnonzero(campaign.test == test)
+        signal = campaign.columns[channel][rows]
+        loaded = (signal > 0) if channel == "force_N" else np.ones(len(rows), dtype=bool)
+        second = signal[2:] - 2.0 * signal[1:-1] + signal[:-2]
+        values.append(second[loaded[2:] & loaded[1:-1] & loaded[:-2]])
+    joined = np.concatenate(values)
+    if joined.size == 0:
+        return float("nan")
+    return float(1.4826 * np.median(np.abs(joined - np.median(joined))) / math.sqrt(6.0))

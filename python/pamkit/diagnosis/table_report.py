@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from pamkit.diagnosis.identify import why_undetermined
-from pamkit.diagnosis.table_kinds import test_names
+from pamkit.diagnosis.table_kinds import CYCLIC, test_names
 from pamkit.diagnosis.tables import CHANNEL_UNITS, TableDiagnosis, TableFit, heldout_rmse
 from pamkit.io.columns import value_from_si
 from pamkit.plots import save_figure
@@ -88,6 +88,7 @@ def to_json(d: TableDiagnosis) -> dict:
         "discovered_by_channel": d.discovered_by_channel,
         "decision": {"cause": d.cause, "reason": d.reason, "margins": d.margins},
         "warnings": d.warnings,
+        "heldout_by_test": d.by_test,
     }
     return report
 
@@ -206,6 +207,18 @@ def verdict(d: TableDiagnosis) -> str:
             lines.append(f"still left: {left}")
         else:
             lines.append("nothing is left above the noise")
+    if d.by_test:
+        lines.append("each test predicted by the muscle calibrated on the others alone:")
+        for name, errors in d.by_test.items():
+            if "error" in errors:
+                lines.append(f"  {name}: {errors['error']}")
+                continue
+            shown = ", ".join(
+                f"{ch} {e['heldout_rmse']:.4g} {CHANNEL_UNITS[ch]} (noise {e['noise']:.2g}; largest "
+                f"{e['heldout_max_error']:.4g})"
+                for ch, e in errors.items()
+            )
+            lines.append(f"  {name}: {shown}")
     for channel, found in d.discovered_by_channel.items():
         if found.get("terms"):
             low, high = found["gain_ci95"][channel]
@@ -235,20 +248,42 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
 
     c = d.campaign
     pressure = value_from_si("gauge_pressure_Pa", c.columns["gauge_pressure_Pa"])  # drawn in kPa
-    by_group = all(e.kind in ("isometric_map", "isotonic") for e in c.experiments)
+    by_group = all(kind in ("isometric_map", "isotonic", CYCLIC) for kind in c.kinds)
     curves = c.groups if by_group else c.test
     names = c.group_labels if by_group else test_names(c.experiments)
-    figure, axes = plt.subplots(1, len(d.channels), figsize=(6.5 * len(d.channels), 4.8), squeeze=False)
+    cyclic = np.isin(c.test, [i for i, kind in enumerate(c.kinds) if kind == CYCLIC])
+    panels = len(d.channels) + int(cyclic.any())
+    figure, axes = plt.subplots(1, panels, figsize=(6.5 * panels, 4.8), squeeze=False)
+    if cyclic.any():  # at a regulated pressure: the force against the crosshead's elongation
+        axis = axes[0][-1]
+        elongation = MILLIMETRE_PER_METRE * c.columns["elongation_m"]
+        for test in np.unique(c.test[cyclic]):
+            rows = np.flatnonzero(c.test == test)
+            axis.plot(
+                elongation[rows],
+                c.columns["force_N"][rows],
+                "o",
+                ms=2,
+                color="0.4",
+                label=test_names(c.experiments)[test],
+            )
+            axis.plot(elongation[rows], d.baseline.heldout["force_N"][rows], ":", color="C0", lw=1)
+            if d.extended is not d.baseline:
+                axis.plot(elongation[rows], d.extended.heldout["force_N"][rows], "-", color="C1", lw=1.2)
+        axis.set_xlabel("elongation [mm]")
+        axis.set_ylabel("force [N]")
+        axis.grid(alpha=0.3)
+        axis.legend(fontsize=7, loc="best")
     for axis, channel in zip(axes[0], d.channels):
         unit = CHANNEL_UNITS[channel]
         scale = MILLIMETRE_PER_METRE if unit == "m" else 1.0
         shown_unit = "mm" if unit == "m" else unit
-        mine = c.predicts(channel)
+        mine = c.predicts(channel) & ~cyclic
         drawn = np.unique(curves[mine])
         colors = plt.cm.viridis(np.linspace(0, 0.9, len(drawn)))
         for curve, color in zip(drawn, colors):
             rows = np.flatnonzero((curves == curve) & mine)
-            if c.experiments[c.test[rows[0]]].kind != "isotonic":  # an isotonic sweep is drawn as measured: up, down
+            if c.kinds[c.test[rows[0]]] != "isotonic":  # an isotonic sweep is drawn as measured: up, down
                 rows = rows[np.argsort(pressure[rows])]
             axis.plot(pressure[rows], scale * c.columns[channel][rows], "o", color=color, ms=4, label=names[curve])
             axis.plot(pressure[rows], scale * d.baseline.heldout[channel][rows], ":", color=color, lw=1)

@@ -1,16 +1,19 @@
 """Diagnosis of static tables: isometric maps, isotonic tests of settled steps and
-free-inflation tables, the kinds docs/experiments.md describes; their units and noise are
-in table_kinds.py, their fits in table_fit.py, the search of what is left in table_discover.py,
-their report in table_report.py.
+free-inflation tables, the kinds docs/experiments.md describes, and beside them a supplied time
+series of the same muscle (a cyclic test); their units and noise are in table_kinds.py, their
+fits in table_fit.py, the search of what is left in table_discover.py, their report in
+table_report.py.
 
 A table has no time axis, so the units held out are its groups: the held lengths of a map
 (leave one length out: does the model carry to a length it was not fitted on?), an isotonic
-test's sweeps, the rows of a free-inflation table. The baseline is the model the file declares
-with its `[calibrate]` unknowns fitted; each catalog effect that acts on a static table is fitted
-with the same unknowns free (one yardstick) and scored by the held-out RMSE it leaves. The rules
-of decide.py hold: a cause needs a significant gain (MIN_GAIN, 95 % interval above zero, over
-held-out groups) and credible parameters (none at a search bound, none outside its plausible
-range); `none` only within NONE_WITHIN_NOISE of the table's noise; otherwise `unexplained`.
+test's sweeps, the rows of a free-inflation table, a cyclic test's stretch cycles. A campaign's
+tests are also each predicted by the model calibrated on the others alone (heldout_by_test).
+The baseline is the model the file declares with its `[calibrate]` unknowns fitted; each catalog
+effect that acts on a static table is fitted with the same unknowns free (one yardstick) and
+scored by the held-out RMSE it leaves. The rules of decide.py hold: a cause needs a significant
+gain (MIN_GAIN, 95 % interval above zero, over held-out groups) and credible parameters (none at
+a search bound, none outside its plausible range); `none` only within NONE_WITHIN_NOISE of the
+table's noise; otherwise `unexplained`.
 """
 
 from __future__ import annotations
@@ -28,7 +31,7 @@ from pamkit.diagnosis.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOI
 from pamkit.diagnosis.findings import findings
 from pamkit.diagnosis.table_discover import discover_table
 from pamkit.diagnosis.table_fit import Fitter, TableFit, TableModel, fit_table, heldout_rmse
-from pamkit.diagnosis.table_kinds import Campaign, beyond_reach, campaign_of, noise_of
+from pamkit.diagnosis.table_kinds import Campaign, beyond_reach, campaign_of, noise_of, test_names
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.io.experiment import Experiment
 from pamkit.io.guards import ExperimentError
@@ -72,6 +75,8 @@ class TableDiagnosis:
     added: list[dict]  # effects beside the cause, each with its held-out gain over the cause alone
     discovered_by_channel: dict[str, dict]  # what is left, per channel beyond its noise
     remainder: dict[str, float]  # held-out RMSE over noise of each channel still above NONE_WITHIN_NOISE
+    # a campaign's tests, each predicted by the model fitted on the others (heldout_by_test)
+    by_test: dict[str, dict] = field(default_factory=dict)
 
     @property
     def discovered(self) -> dict:
@@ -278,6 +283,10 @@ def diagnose_table(
     if cause == "unexplained" or remainder:
         progress("looking for what the catalog lacks in the residual (sparse regression)")
         discovered = discover_table(campaign, channels, noise, extended, seed)
+    by_test = {}
+    if len(campaign.experiments) > 1:
+        progress("predicting each test with the muscle calibrated on the others")
+        by_test = heldout_by_test(model, channels, scales, extended, catalog)
     return TableDiagnosis(
         campaign,
         channels,
@@ -294,7 +303,43 @@ def diagnose_table(
         added,
         discovered,
         remainder,
+        by_test,
     )
+
+
+def heldout_by_test(model: TableModel, channels, scales, fit: TableFit, catalog: EffectCatalog) -> dict[str, dict]:
+    """Each test of a campaign predicted by `fit`'s model (its unknowns and its effects) calibrated
+    on the other tests alone: does one characterisation of a muscle carry to another? Per test,
+    the held-out RMSE and largest error of each channel its kind predicts, and its noise; a test
+    with an unknown of its own (its load), which the others cannot calibrate, says so instead."""
+    campaign = model.campaign
+    names = [e.name() for e in fit.effects]
+    fitter = Fitter(model, channels, scales, [lambda n=n: catalog.make(n) for n in names])
+    used = ~campaign.censored
+    out = {}
+    for index, (experiment, name) in enumerate(zip(campaign.experiments, test_names(campaign.experiments))):
+        own = [c.name for c in model.unknowns if c.name == model.unknown_of("load_N", experiment)]
+        if own:
+            out[name] = {"error": f"{', '.join(own)} is this test's own: the other tests cannot calibrate it"}
+            continue
+        others = np.flatnonzero(used & (campaign.test != index))
+        mine = np.flatnonzero(used & (campaign.test == index))
+        if mine.size == 0:
+            out[name] = {"error": "every row of this test is censored: nothing of it is scored"}
+            continue
+        x = fitter.fit(others, [fit.x])
+        predicted = fitter.predict(x, mine)
+        kind_noise = noise_of(campaign_of([experiment]), tuple(c for c in channels if campaign.predicts(c)[mine[0]]))
+        errors = {}
+        for c, noise in kind_noise.items():
+            residual = predicted[c] - campaign.columns[c][mine]
+            errors[c] = {
+                "heldout_rmse": float(np.sqrt(np.mean(residual**2))),
+                "heldout_max_error": float(np.max(np.abs(residual))),
+                "noise": noise,
+            }
+        out[name] = errors
+    return out
 
 
 def _second_effect(first, candidates, baseline, model, catalog, progress, pool, seed):

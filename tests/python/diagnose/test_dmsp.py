@@ -1,7 +1,7 @@
 """Commercial muscles with their fibres in the membrane (Festo DMSP): the base physics of the
 embedded construction (a braid that cannot push, end zones at flat flanges) and the friction
-with memory (`slip_hysteresis`, Maxwell-slip) checked on data pamkit did not make: isometric and
-isotonic tests and a campaign of both, written by tests/independent/dmsp.py, its own
+with memory (`slip_hysteresis`, Maxwell-slip) checked on data pamkit did not make: isometric,
+isotonic and cyclic tests and campaigns of them, written by tests/independent/dmsp.py, its own
 implementation of each; and on the datasheet's two numbers."""
 
 import sys
@@ -22,7 +22,7 @@ from pamkit import (
 from pamkit.diagnosis import diagnose, to_json, verdict
 
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
-from independent.dmsp import DmspTruth, write_dmsp_isometric, write_dmsp_isotonic  # noqa: E402
+from independent.dmsp import DmspTruth, write_dmsp_cyclic, write_dmsp_isometric, write_dmsp_isotonic  # noqa: E402
 
 FESTO = SOURCE_DIR / "data" / "experiments" / "festo"
 SEEDS = (21, 22, 23)
@@ -54,13 +54,23 @@ def isotonic(folder, t, seed):
     return write_dmsp_isotonic(folder, t, load_N=120.0, top_kPa=600, sweeps=3, seed=seed + 100)
 
 
+def cyclic(folder, t, seed):
+    # Shortened 25 mm from rest and returned three times at 4 bar: taut throughout, the loop the slip's.
+    return write_dmsp_cyclic(folder, t, gauge_kPa=400, stroke_m=0.025, cycles=3, seed=seed + 200)
+
+
 def within_intervals(fit, t: DmspTruth) -> dict[str, bool]:
     """Whether each calibrated number's jackknife interval holds its truth. The braid angle is
     pinned so closely (0.01 degrees) that the bias of pamkit's 16 slip elements against the
     independent model's 400 outweighs its spread: it is checked against the truth to 0.1 degree,
-    a tenth of what a datasheet's angle can say, instead."""
-    expected = {"end_zone_m": t.end_zone_m, "slip_force_N": t.slip_force_N, "slip_distance_m": t.slip_distance_m}
+    a tenth of what a datasheet's angle can say, instead. For the same reason the slip force's
+    interval is taken wider by the most the two discretisations' curves differ, f / (4 * 16^2)
+    (muscle/slip.hpp: 16 elements' curve is the continuous one's tangents, within that of it)."""
+    expected = {"end_zone_m": t.end_zone_m, "slip_distance_m": t.slip_distance_m}
     out = {name: fit.intervals[name][0] <= value <= fit.intervals[name][1] for name, value in expected.items()}
+    low, high = fit.intervals["slip_force_N"]
+    discretisation = t.slip_force_N / (4 * 16**2)
+    out["slip_force_N"] = low - discretisation <= t.slip_force_N <= high + discretisation
     out["braid_angle_deg"] = abs(fit.params["braid_angle_deg"] - t.braid_angle_deg) <= 0.1
     return out
 
@@ -98,6 +108,34 @@ def test_a_campaign_of_an_isometric_and_an_isotonic_test_calibrates_one_muscle(t
         assert all(within_intervals(d.extended, t).values()), (within_intervals(d.extended, t), verdict(d))
 
 
+def test_one_muscle_across_the_three_characterisations_is_calibrated_once_and_predicts_each(tmp_path):
+    # An isometric map, isotonic sweeps under a weighed load and a cyclic test on a tensile machine
+    # of one muscle, calibrated at once: every held length, sweep and cycle predicted within 1.5x
+    # its channel's noise by the muscle fitted without it, and each test by the muscle fitted on
+    # the other two alone; the slip named, every calibrated number's interval holding its truth.
+    from pamkit.diagnosis.tables import diagnose_table
+    from pamkit.io.experiment import load_tests
+
+    for seed in SEEDS:
+        t = truth(seed)
+        paths = [
+            isometric(tmp_path / f"i{seed}", t, seed),
+            isotonic(tmp_path / f"t{seed}", t, seed),
+            cyclic(tmp_path / f"c{seed}", t, seed),
+        ]
+        d = diagnose_table([test for path in paths for test in load_tests(path)], threads=2)
+        report = to_json(d)
+        assert d.cause == "slip_hysteresis", verdict(d)
+        assert report["kind"] == "isometric_map + isotonic + cyclic"
+        for channel in ("force_N", "length_m"):
+            assert report["extended"]["heldout_rmse"][channel] <= WITHIN_NOISE * d.noise[channel], verdict(d)
+        for name, channels in report["heldout_by_test"].items():
+            for channel, errors in channels.items():
+                assert errors["heldout_rmse"] <= WITHIN_NOISE * errors["noise"], (name, channel, verdict(d))
+        assert sorted(report["heldout_by_test"]) == ["cyclic", "isometric", "isotonic"]
+        assert all(within_intervals(d.extended, t).values()), (within_intervals(d.extended, t), verdict(d))
+
+
 def test_isotonic_sweeps_alone_open_loops_at_rest_that_the_slip_closes(tmp_path):
     # Settled steps under a weighed load: the loop between pressurising and venting is the
     # friction's (no rate in it). The slip is named on each seed, and the loop the calibrated
@@ -112,10 +150,55 @@ def test_isotonic_sweeps_alone_open_loops_at_rest_that_the_slip_closes(tmp_path)
         for p in (300e3, 450e3):  # the loop's width at two pressures, on the last sweep
             rows = (pressure == p) & (d.groups == d.groups.max())
             width = measured[rows & venting].mean() - measured[rows & ~venting].mean()
-            assert width < -1e-3  # shorter on venting, by more than a millimetre
+            assert width < -5 * 0.1e-3  # shorter on venting, by more than 5 times the laser's noise
             assert predicted[rows & venting].mean() - predicted[rows & ~venting].mean() == pytest.approx(
                 width, abs=0.5e-3
             )
+
+
+def dmsp20_truth(seed: int) -> DmspTruth:
+    """A DMSP-20-like muscle (20 mm, 300 mm), its braid angle, end zones and friction drawn per seed."""
+    rng = np.random.default_rng(seed)
+    return DmspTruth(
+        rest_length_m=0.3,
+        diameter_m=0.02,
+        braid_angle_deg=float(rng.uniform(22.0, 26.0)),
+        end_zone_m=float(rng.uniform(0.012, 0.020)),
+        slip_force_N=float(rng.uniform(150.0, 400.0)),
+        slip_distance_m=float(rng.uniform(0.012, 0.03)),
+    )
+
+
+def test_a_dmsp20_meets_the_real_data_targets(tmp_path):
+    # The targets real sweeps of commercial muscles are judged on (a rig that repeats to 0.8 mm),
+    # at the DMSP-20's size: isometric sweeps held out within 5 % of the force's span, isotonic
+    # sweeps under a weighed 480 N held out within 1.5 mm RMSE on each branch, the loops named,
+    # and no force below zero, the written-out muscle's included, on each seed.
+    from pamkit import BraidGeometry, read_muscle_params
+    from pamkit.diagnosis.params_out import write_params
+
+    held = [0.3, 0.295, 0.289, 0.281, 0.27, 0.258]  # the DMSP-10 tests' held lengths, scaled
+    for seed in SEEDS:
+        t = dmsp20_truth(seed)
+        d = diagnose(write_dmsp_isometric(tmp_path / f"i{seed}", t, lengths_m=held, top_kPa=600, seed=seed), threads=2)
+        assert d.cause == "slip_hysteresis", verdict(d)
+        force = d.campaign.columns["force_N"]
+        error = np.nanmax(np.abs(d.extended.heldout["force_N"] - force))
+        assert error <= 0.05 * (force.max() - force.min()), verdict(d)
+        assert np.nanmin(d.extended.heldout["force_N"]) >= 0.0
+        write_params(d, tmp_path / f"muscle{seed}.toml")
+        params = read_muscle_params(str(tmp_path / f"muscle{seed}.toml"))
+        geometry = BraidGeometry(params.build)
+        lengths = np.linspace(geometry.min_length * 1.01, geometry.max_length * 0.99, 60)
+        for pressure in (0.0, 300e3, 600e3):  # [Pa]
+            assert static_forces(params, lengths, np.full(lengths.size, pressure)).min() >= 0.0
+        path = write_dmsp_isotonic(tmp_path / f"t{seed}", t, load_N=480.0, top_kPa=600, sweeps=3, seed=seed + 100)
+        d = diagnose(path, threads=2)
+        assert d.cause == "slip_hysteresis", verdict(d)
+        residual = d.extended.heldout["length_m"] - d.campaign.columns["length_m"]
+        for branch in (1, -1):
+            on = d.campaign.branch == branch
+            assert np.sqrt(np.nanmean(residual[on] ** 2)) <= 1.5e-3, (branch, verdict(d))
 
 
 def test_without_friction_the_slip_is_not_named(tmp_path):

@@ -11,9 +11,11 @@ namespace pamkit {
 struct SlipHysteresisParams {
   static constexpr const char* kName = "slip_hysteresis";
   static constexpr const char* kDescription =
-      "friction with memory between the fibres and the rubber they move in: Maxwell-slip elements (a "
-      "Prandtl-Ishlinskii operator of uniform density) that follow the braid's length, each springing back until it "
-      "slips (Vo-Minh et al. 2011 found this model on pneumatic muscles). Rate-independent, so a loop survives "
+      "friction with memory between the fibres and the rubber they move in: Maxwell-slip elements of one stiffness "
+      "whose break-away displacements spread evenly up to the slip distance (Iwan's model) that follow the braid's "
+      "length, each springing back until it slips (Vo-Minh et al. 2011 found this model on pneumatic muscles); from "
+      "rest the friction rises as f (2 x / d - (x / d)^2) to its slip force f at the slip distance d. "
+      "Rate-independent, so a loop survives "
       "settled steps, and what the elements hold stays when the motion stops: a muscle that contracted to a held "
       "length pulls less than its elastic force at every pressure, one that lengthened to it more, vented or not. "
       "Gives it away: an isometric map's force lies a constant below the elastic one at every length the muscle "
