@@ -16,8 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit._core import EffectCatalog, EffectStage
-from pamkit.diagnosis.buildcheck import check_build
+from pamkit._core import EffectCatalog, EffectStage, GasMode
 from pamkit.diagnosis.calibrate import Fit, fit_baseline, one_blas_thread
 from pamkit.diagnosis.campaign import MIN_TESTS, campaign_of_series
 from pamkit.diagnosis.candidates import candidates, fit_candidate, fit_pair
@@ -29,11 +28,11 @@ from pamkit.diagnosis.decide import (
     Cause,
     Decision,
     Judgement,
-    credited_channels,
     decide,
     judge,
     keeps_gain,
     noise_ratios,
+    reads_left,
     score,
     stands_out,
     structured,
@@ -171,10 +170,9 @@ def _add_cause(
             candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
             # The second's own channels, beside the first, must stand out from what the base model
             # leaves on the channels it cannot change, as a single cause's must (decide.stands_out).
-            second = credited_channels(problem, pair, pair.effects[1:])
             if (
                 keeps_gain(own)
-                and not stands_out(problem, single.fit, own, second)
+                and not stands_out(problem, single.fit, own, pair.effects[1:])
                 and not unfounded(problem, single.fit, pair.effects[1:])
                 and candidate.credible
                 and (best is None or candidate.score.combined_gain > best.judgement.score.combined_gain)
@@ -200,27 +198,24 @@ def _add_cause(
     return replace(decision, causes=causes, left_structure=structured(problem, best.judgement.fit, NONE_WITHIN_NOISE))
 
 
-def _check_the_build(
-    problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, pool, report
-):
-    """The causes refitted with the build's uncertain fields free (buildcheck.py): each must keep a
-    significant gain on its own channels there; those that do not are dropped, with the reason
-    kept in the report (`decision.build_check`)."""
-    report(f"refitting {decision.causes[-1].judgement.fit.name} with the build as uncertain as declared")
-    check = check_build(problem, decision.causes, judged, factories, seed, pool)
-    if check is None:
-        return decision
-    kept = decision.causes[: check.kept]
-    margins = {**decision.margins, "build": check.margin()}
-    if kept:
-        left = structured(problem, kept[-1].judgement.fit, NONE_WITHIN_NOISE)
-        return replace(decision, causes=kept, margins=margins, left_structure=left, build_check=check.to_json())
-    dropped = decision.causes[0].judgement
-    dropped.objections.append(check.objection())
-    left = structured(problem, baseline, NONE_WITHIN_NOISE)
-    if not left:
-        margins["within_noise"] = float(NONE_WITHIN_NOISE - max(noise_ratios(problem, baseline).values()))
-    return Decision("unexplained" if left else "none", [], dropped, margins, left, check.to_json())
+def _reads_explained(problem: Problem, baseline: Fit, decision: Decision) -> Decision:
+    """The causes less an instrument that reads off whose channel the causes named leave structured
+    (decide.reads_left). A second cause is dropped from the causes; a leading one carries the
+    objection, and none is left (the decision is to be taken again)."""
+    final = decision.named.fit
+    for k, cause in enumerate(decision.causes):
+        effects = cause.judgement.fit.effects[k:] if k else cause.judgement.fit.effects[:1]
+        why = reads_left(problem, final, effects)
+        if not why:
+            continue
+        if k:
+            kept = decision.causes[:k]
+            return replace(
+                decision, causes=kept, left_structure=structured(problem, kept[-1].judgement.fit, NONE_WITHIN_NOISE)
+            )
+        cause.judgement.objections += why
+        return replace(decision, causes=[])
+    return decision
 
 
 CHANNEL_UNITS = {"force_N": "N", "gauge_pressure_Pa": "Pa", "temperature_K": "K"}  # as the report prints them
@@ -305,7 +300,9 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
             loaded.append(one)
     tests = loaded
     effect_catalog = effect_catalog if effect_catalog is not None else builtin_catalog()
-    if all(e.is_table for e in tests):
+    # Tables, alone or with supplied cyclic tests of the same muscle: one muscle calibrated across
+    # its characterisations (tables.py samples a supplied series as rows along its path).
+    if any(e.is_table for e in tests) and all(e.is_table or e.gas == GasMode.supplied for e in tests):
         return diagnose_table(tests, effect_catalog, progress=progress, threads=threads)
     if len(tests) > 1:
         return _diagnose_series_campaign(tests, effect_catalog, progress, threads, seed)
@@ -381,16 +378,13 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     while decision.causes:
         if structured(problem, decision.named.fit, PAIR_TRIGGER):
             decision = _add_cause(problem, baseline, decision, judged, factories, seed, threads, report)
-        with _pool(threads) as pool:
-            checked = _check_the_build(problem, baseline, decision, judged, factories, seed, pool, report)
-        # A lead the build explains as well carries that objection now: a candidate that acts on
-        # other channels (a thermometer beside a pressure offset a wind explains) may still be a
-        # cause. Each pass refuses one more lead, so the loop ends.
-        retry = decide(problem, baseline, judged) if not checked.causes else None
-        if retry is None or not retry.causes:
+        checked = _reads_explained(problem, baseline, decision)
+        if checked.causes:
             decision = checked
             break
-        decision = retry
+        # The lead refused carries its objection now, and another candidate may still be a cause.
+        # Each pass refuses one more lead, so the loop ends.
+        decision = decide(problem, baseline, judged)
     named = decision.named
     extended = named.fit if named is not None else baseline
     # The base model's strain and the rejected best candidate's findings (why it is not a cause).
@@ -420,7 +414,8 @@ def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress,
     """Each time series alone, then the causes carried from the others to each (campaign.py)."""
     if any(e.is_table for e in tests):
         raise ExperimentError(
-            f"{tests[0].path}: a campaign is of one kind: static tables together, or time series together"
+            f"{tests[0].path}: a campaign is of one kind: static tables (with supplied cyclic tests of the same "
+            "muscle), or sealed time series together"
         )
     check_one_muscle(tests)
     report = progress or (lambda message: None)

@@ -5,9 +5,9 @@ Baseline parameters (the model's own uncertainty, not a cause):
   - the inflation pressure, within the transducer's tolerance (sealed tests only);
   - a scale on both friction coefficients (eqs. 3.1.19-3.1.24 are the least certain part);
   - a scale on the bladder stress law (eqs. 3.1.12-13 were fitted to one rubber sample);
-  - with `uncertain`, the build fields `[uncertain]` declares (by default the braid's wind within
-    what counting it by hand allows), unless `[calibrate]` declares them unknown (buildcheck.py: a named
-    cause must survive it).
+  - the build fields `[uncertain]` declares, each within its tolerance (by default the braid's wind
+    within what counting it by hand allows), unless `[calibrate]` declares them unknown: no build is
+    exactly as its file declares it, and a cause is judged against the build as it may be.
 An effect adds its own physical parameters, fitted in a space where they move smoothly
 (log for time constants, rates for "infinite means off" constants).
 """
@@ -173,24 +173,22 @@ def configure(effect: Effect, space: list[Coordinate], x: np.ndarray) -> Effect:
 @dataclass
 class Baseline:
     """Maps baseline coordinates to model inputs: the inflation pressure (sealed tests), the
-    friction and bladder scales, and the fields `[calibrate]` declares unknown; with `uncertain`,
-    the build fields `[uncertain]` declares too, each within its tolerance. Names in `fixed` are
+    friction and bladder scales, the build fields `[uncertain]` declares, each within its tolerance,
+    and the fields `[calibrate]` declares unknown. Names in `fixed` are
     held at the given values instead of fitted (a campaign's jointly calibrated muscle)."""
 
     experiment: Experiment
     fixed: dict[str, float] = field(default_factory=dict)
-    uncertain: bool = False
     params: MuscleParams = field(init=False)
     space: list[Coordinate] = field(init=False)
 
     def __post_init__(self):
         self.params = muscle_params(self.experiment)
-        self.space = [c for c in self.coordinates(self.experiment, self.uncertain) if c.name not in self.fixed]
+        self.space = [c for c in self.coordinates(self.experiment) if c.name not in self.fixed]
 
     @staticmethod
-    def coordinates(experiment: Experiment, uncertain: bool = False) -> list[Coordinate]:
-        """Every coordinate a test's baseline may calibrate (with `uncertain`, the build's
-        uncertain fields within their tolerance)."""
+    def coordinates(experiment: Experiment) -> list[Coordinate]:
+        """Every coordinate a test's baseline may calibrate."""
         p0 = experiment.inflation_gauge_pressure_Pa
         space = []
         if experiment.gas == GasMode.sealed:
@@ -227,8 +225,7 @@ class Baseline:
                     "by well under 3x",
                 )
             )
-        if uncertain:
-            space += [uncertain_coordinate(name, experiment) for name in uncertain_fields(experiment)]
+        space += [uncertain_coordinate(name, experiment) for name in uncertain_fields(experiment)]
         space += [unknown_coordinate(name, bounds, experiment) for name, bounds in experiment.calibrate.items()]
         return space
 
@@ -301,11 +298,10 @@ class Predictor:
         experiment: Experiment,
         channels: list[str],
         config: SimulatorConfig | None = None,
-        uncertain: bool = False,
     ):
         self.experiment = experiment
         self.channels = channels
-        self.baseline = Baseline(experiment, uncertain=uncertain)
+        self.baseline = Baseline(experiment)
         self.mode = experiment.gas
         self.motion = (
             programmed_motion(experiment.time_s, experiment.elongation_m)

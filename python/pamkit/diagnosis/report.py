@@ -119,7 +119,6 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
         "decision": {
             "margins": d.decision.margins,
             "left_above_noise": d.decision.left_structure,
-            "build_check": d.decision.build_check,
             "rejected": (
                 {
                     "effect": d.decision.rejected.fit.name,
@@ -273,13 +272,7 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     decision = d.decision
     baseline_findings = [f.sentence() for f in d.warnings if f.parameter in d.baseline.coordinates]
     bounds = f"; the base model strains to fit: {'; '.join(baseline_findings)}" if baseline_findings else ""
-    check = decision.build_check
-    if check and check["at_bound"]:
-        bounds += (
-            f"; with the build free, {', '.join(check['at_bound'])} ends at the tolerance [uncertain] declares: the "
-            "base model strains beyond what the build's uncertainty explains"
-        )
-    unknowns = [name for name in p.experiment.calibrate if name in d.baseline.intervals]
+    unknowns = [name for name in [*p.experiment.uncertain, *p.experiment.calibrate] if name in d.baseline.intervals]
     if unknowns:
         bounds += "; calibrated " + ", ".join(interval_phrase(d.baseline, name) for name in unknowns)
     if decision.cause == "none":

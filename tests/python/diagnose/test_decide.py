@@ -6,16 +6,18 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from pamkit._core import EffectStage, GasMode
+from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis.calibrate import Fit
 from pamkit.diagnosis.decide import (
     NONE_WITHIN_NOISE,
     STANDS_OUT,
+    STRUCTURE_LEFT,
     Judgement,
     Score,
     decide,
     judge,
     noise_ratios,
+    reads_left,
     uncredited,
     unfounded,
 )
@@ -145,32 +147,33 @@ def test_none_only_within_the_noise():
     assert decide(problem(), outside, [weak]).cause == "unexplained"
 
 
-def instrument_case(own_before: float, other_after: float):
-    """A pressure-only instrument effect: the baseline leaves the pressure `own_before` and the
-    force 5 noise sigmas off; the instrument's fit leaves the pressure at the noise and the force
-    at `other_after`."""
+def instrument_case(own_before: float, other_after: float, instrument: str = "load_cell"):
+    """An instrument effect on one coupled channel (a load cell on the force, or the sealed gas's
+    pressure transducer): the baseline leaves its channel `own_before` and the other 5 noise sigmas
+    off; the instrument's fit leaves its channel at the noise and the other at `other_after`."""
     channels = ("force_N", "gauge_pressure_Pa")
+    own, other = ("force_N", "gauge_pressure_Pa") if instrument == "load_cell" else ("gauge_pressure_Pa", "force_N")
     p = problem(channels)
-    baseline = fit("none", {"force_N": np.full(ROWS, 5.0), "gauge_pressure_Pa": np.full(ROWS, own_before)}, [])
-    sensor = effect("sensor_offset", ["gauge_pressure_Pa"], EffectStage.measurement)
-    offset = fit("sensor_offset", {"force_N": np.full(ROWS, other_after), "gauge_pressure_Pa": np.ones(ROWS)}, [sensor])
+    baseline = fit("none", {other: np.full(ROWS, 5.0), own: np.full(ROWS, own_before)}, [])
+    reader = effect(instrument, [own], EffectStage.measurement)
+    corrected = fit(instrument, {other: np.full(ROWS, other_after), own: np.ones(ROWS)}, [reader])
     score = Score(
-        rmse={"force_N": other_after, "gauge_pressure_Pa": 1.0},
-        gain={"force_N": 0.0, "gauge_pressure_Pa": 0.5},
-        gain_ci95={"force_N": [0, 0], "gauge_pressure_Pa": [0.4, 0.6]},
+        rmse={other: other_after, own: 1.0},
+        gain={other: 0.0, own: 0.5},
+        gain_ci95={other: [0, 0], own: [0.4, 0.6]},
         combined_gain=0.3,
         combined_ci95=[0.2, 0.4],
         delta_bic=-100.0,
         credited_gain=0.5,
         credited_ci95=[0.4, 0.6],
     )
-    return uncredited(p, offset, score, baseline), noise_ratios(p, baseline)
+    return uncredited(p, corrected, score, baseline), noise_ratios(p, baseline)
 
 
 def test_an_instrument_that_stands_out_from_the_base_models_misfit_is_credited():
-    # The pressure STANDS_OUT times further off than the force the instrument cannot change.
+    # The force STANDS_OUT times further off than the pressure the load cell cannot change.
     reasons, ratios = instrument_case(own_before=2.2 * STANDS_OUT * 3.0, other_after=3.0)
-    assert ratios["gauge_pressure_Pa"] == pytest.approx(2.2 * STANDS_OUT * 3.0)
+    assert ratios["force_N"] == pytest.approx(2.2 * STANDS_OUT * 3.0)
     assert reasons == []
 
 
@@ -180,22 +183,60 @@ def test_an_instrument_that_does_not_stand_out_may_be_the_base_models_misfit():
 
 
 def test_structure_within_the_noise_beside_an_instrument_is_no_objection():
-    # The force it cannot change ends within NONE_WITHIN_NOISE: nothing to compare it with.
-    reasons, _ = instrument_case(own_before=2.5, other_after=0.9 * NONE_WITHIN_NOISE)
-    assert reasons == []
+    # The channel it cannot change ends within STRUCTURE_LEFT: nothing to compare it with.
+    for instrument in ("load_cell", "sensor_offset"):
+        reasons, _ = instrument_case(own_before=2.5, other_after=0.9 * STRUCTURE_LEFT, instrument=instrument)
+        assert reasons == [], instrument
+
+
+def test_the_inflation_transducer_needs_the_force_explained_however_far_out_its_pressure():
+    # The sealed gas's pressure transducer read the declared inflation pressure: its offset and gain
+    # trade against the calibrated inflation pressure, and its error shows as a pressure at odds with
+    # a force the model explains. With the force left structured, even a pressure far further off
+    # is refused; a load cell in the same place stands out.
+    reasons, _ = instrument_case(own_before=10 * STANDS_OUT * 1.6, other_after=1.6, instrument="sensor_offset")
+    assert len(reasons) == 1 and "does not stand out" in reasons[0]
+    assert instrument_case(own_before=10 * STANDS_OUT * 1.6, other_after=1.6)[0] == []
+
+
+def test_an_instrument_that_reads_off_must_leave_its_channel_unstructured_with_the_causes():
+    # An error of what an instrument reads corrects that channel whole: with the causes named, a
+    # load cell whose force is still beyond STRUCTURE_LEFT explains only a share of another misfit.
+    # A time shift is not held to it (a skew beside a leak's drift on the same channel).
+    p = problem(("force_N", "gauge_pressure_Pa"))
+    load_cell = effect("load_cell", ["force_N"], EffectStage.measurement)
+    shift = effect("time_skew", ["force_N"], EffectStage.measurement)
+    shift.parameters = lambda: [SimpleNamespace(resolution=Resolution.sample_interval)]
+    for force, founded in ((0.95 * STRUCTURE_LEFT, True), (1.05 * STRUCTURE_LEFT, False)):
+        final = fit("load_cell", {"force_N": np.full(ROWS, force), "gauge_pressure_Pa": np.zeros(ROWS)}, [load_cell])
+        assert (reads_left(p, final, [load_cell]) == []) is founded
+        assert reads_left(p, final, [shift]) == []
+
+
+def test_a_shift_below_one_sample_outdoes_no_cause():
+    # A skew of less than a sample (the sampling's own artefact: two clocks interpolated) that
+    # explains the channel better is no mechanism the credible candidate could be a piece of.
+    better = candidate("time_skew", 0.45, 0.45 + SHARED)
+    better.below_resolution = ["offset_s = 0.005 is below the sample interval (0.02)"]
+    lesser = candidate("dead_volume", 0.30, 0.30 + SHARED + rng.normal(0, 0.02, SAMPLES))
+    decision = decide(problem(), BASELINE, [better, lesser])
+    assert decision.cause == "dead_volume" and decision.rejected is better
 
 
 def test_an_instruments_error_beside_a_first_cause_needs_its_channel_off():
-    # As a second cause, an instrument effect is founded only where the first cause leaves its
-    # channel beyond NONE_WITHIN_NOISE; one that edits the model (a dead volume) is not held to it.
+    # The sealed gas's pressure transducer, first cause or second, is founded only where the model
+    # without it leaves its channel beyond NONE_WITHIN_NOISE; one that edits the model (a dead
+    # volume) is not held to it, nor a load cell, whose error no baseline parameter trades against.
     channels = ("force_N", "gauge_pressure_Pa")
     p = problem(channels)
     sensor = effect("sensor_offset", ["gauge_pressure_Pa"], EffectStage.measurement)
     volume = effect("dead_volume", ["gauge_pressure_Pa"], EffectStage.physics)
+    load_cell = effect("load_cell", ["force_N"], EffectStage.measurement)
     for pressure, founded in ((0.95 * NONE_WITHIN_NOISE, False), (1.05 * NONE_WITHIN_NOISE, True)):
-        first = fit("leak", {"force_N": np.full(ROWS, 5.0), "gauge_pressure_Pa": np.full(ROWS, pressure)}, [])
+        first = fit("leak", {"force_N": np.full(ROWS, 1.0), "gauge_pressure_Pa": np.full(ROWS, pressure)}, [])
         assert (unfounded(p, first, [sensor]) == []) is founded
         assert unfounded(p, first, [volume]) == []
+        assert unfounded(p, first, [load_cell]) == []
 
 
 def test_a_strained_inflation_pressure_founds_a_transducers_error():
@@ -210,7 +251,7 @@ def test_a_strained_inflation_pressure_founds_a_transducers_error():
         baseline = fit("none", within, [])
         baseline.coordinates = inflation_at_bound(side)
         assert (unfounded(p, baseline, [sensor]) == []) is founded
-        assert unfounded(p, baseline, [load_cell]) != []  # the force's instrument is not founded by it
+        assert unfounded(p, baseline, [load_cell]) == []  # the force's instrument is never held to it
 
 
 def inflation_at_bound(side):

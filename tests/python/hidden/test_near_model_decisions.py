@@ -26,7 +26,7 @@ STRENGTHS = ("medium", "strong")
 NULLS = (("null", 1), ("null", 2), ("null", 3), ("supplied_null", 1), ("supplied_null", 2))
 
 
-MIN_RIGHT = 70
+MIN_RIGHT = 75
 MAX_WRONG = 6
 
 
@@ -76,10 +76,11 @@ def lines(rows) -> str:
 def test_the_hidden_causes_are_named(world):
     rows = [r for r in world if r["hidden"]]
     right = [r for r in rows if r["hidden"] <= r["named"] and not wrong(r)]
-    # The floor: the measured rate, 79 of 108 right (73 %; bench_near_model's medium and strong
-    # strengths, seeds 1-3), less two binomial standard deviations (sqrt(108 * 0.73 * 0.27) = 4.6).
+    # The floor: the measured rate, 84 of 108 right (78 %; bench_near_model's medium and strong
+    # strengths, seeds 1-3), less two binomial standard deviations (2 sqrt(108 * 0.78 * 0.22) = 8.6).
     # The aim, 90 %, is not reached: docs/validation.md lists the misses (a supplied transducer's
-    # offset, 0 of 6, is degenerate with the braid's uncertain wind and stays `unexplained`).
+    # offset and gain at one held length are exactly a braid wound otherwise and a membrane's scale,
+    # 1 of 6; a second cause the first's fit absorbs within the noise).
     assert len(right) >= MIN_RIGHT, f"{len(right)} of {len(rows)} named right; the others:\n" + lines(
         [r for r in rows if r not in right]
     )
@@ -87,7 +88,7 @@ def test_the_hidden_causes_are_named(world):
 
 def test_wrong_names_stay_rare(world):
     bad = [r for r in world if wrong(r)]
-    # The target: at most 5 % of the world's datasets carry a wrong name (6 of 123; measured 5).
+    # The target: at most 5 % of the world's datasets carry a wrong name (6 of 123; measured 4).
     assert len(bad) <= MAX_WRONG, f"wrong names:\n{lines(bad)}"
 
 

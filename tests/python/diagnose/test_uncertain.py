@@ -1,7 +1,7 @@
-"""A named cause must keep its gain when the build is as uncertain as the experiment declares
-(python/pamkit/diagnosis/buildcheck.py): refitted with the uncertain build fields free within their
-tolerance, beside its rivals, the same rules must name it again. Decisions are judged over several
-seeds; `[uncertain]` is checked as any section of the file is."""
+"""The build as uncertain as the experiment declares (`[uncertain]`; by default the braid's wind
+within 5 %): the baseline calibrates those fields within their tolerance, so every candidate is
+judged against the build as it may be (python/pamkit/diagnosis/model.py). Decisions are judged over
+several seeds; `[uncertain]` is checked as any section of the file is."""
 
 import pytest
 
@@ -25,39 +25,32 @@ def declaring(toml, old: str, new: str, extra: str = ""):
 
 
 @pytest.mark.parametrize("seed", SEEDS)
-def test_a_miscounted_wind_is_not_named_a_cause(seed, tmp_path):
+def test_a_miscounted_wind_is_calibrated_and_not_named_a_cause(seed, tmp_path):
     # A null test of a muscle built with 2 revolutions whose file declares 2.06 (a builder's
-    # miscount, 3 %, within the default 5 %): whatever the declared wind lets a catalog effect
-    # mimic, no cause survives the wind free, and a check that ran finds the wind built.
+    # miscount, 3 %, within the default 5 %): the baseline finds the wind built, and nothing is
+    # left for a catalog effect to mimic.
     toml = declaring(
         synthesize("none", seed, tmp_path).experiment, "fiber_revolutions = 2\n", "fiber_revolutions = 2.06\n"
     )
     report = report_of(toml)
     assert report["causes"] == [], report["verdict"]
-    check = report["decision"]["build_check"]
-    if check is not None:
-        assert not check["survives"] and "built otherwise than declared" in report["verdict"]
-        assert check["fields"]["fiber_revolutions"]["calibrated"] == pytest.approx(BUILT_WITH, rel=0.005), check
+    # pamkit synth's noise on a 2 % wind's swing: within half a per cent on these protocols.
+    assert report["baseline"]["params"]["fiber_revolutions"] == pytest.approx(BUILT_WITH, rel=0.005), report["verdict"]
 
 
 @pytest.mark.parametrize("seed", SEEDS)
-def test_a_cause_keeps_its_gain_with_the_wind_free(seed, tmp_path):
+def test_a_cause_is_named_with_the_wind_free(seed, tmp_path):
     report = report_of(synthesize("heat_transfer", seed, tmp_path).experiment)
-    check = report["decision"]["build_check"]
     assert report["cause"] == "heat_transfer", report["verdict"]
-    assert check["survives"] and check["ahead_there"] is None, check
-    assert report["decision"]["margins"]["build"] == pytest.approx(check["margin"]) and check["margin"] > 0
-    # Data made with the declared wind: fitted with the cause, the free wind stays within a percent
-    # of it (the baseline alone may strain it to absorb what heat exchange does).
-    wind = check["fields"]["fiber_revolutions"]
-    assert wind["declared"] == BUILT_WITH and wind["tolerance"] == pytest.approx(0.05 * BUILT_WITH)
-    assert wind["calibrated_with_causes"] == pytest.approx(BUILT_WITH, rel=0.01), check
+    # Data made with the declared wind: fitted with the cause, the free wind stays within a percent.
+    assert report["extended"]["params"]["fiber_revolutions"] == pytest.approx(BUILT_WITH, rel=0.01)
+    assert "fiber_revolutions" in report["baseline"]["intervals"]
 
 
 def test_a_build_field_at_its_tolerance_is_reported_not_held_against_a_cause(tmp_path):
     # Declared 2.3 revolutions for a muscle built with 2, and a tolerance of 0.1 that cannot reach
-    # them: the wind ends at its tolerance's end (the base model strains), and the heat exchange,
-    # which the data show plainly, keeps its gain all the same.
+    # them: the wind ends at its tolerance's end (the base model strains, a finding of the report),
+    # and the heat exchange, which the data show plainly, is named all the same.
     toml = declaring(
         synthesize("heat_transfer:time_constant_s=3", SEEDS[0], tmp_path).experiment,
         "fiber_revolutions = 2\n",
@@ -65,28 +58,26 @@ def test_a_build_field_at_its_tolerance_is_reported_not_held_against_a_cause(tmp
         "\n[uncertain]\nfiber_revolutions = 0.1\n",
     )
     report = report_of(toml)
-    check = report["decision"]["build_check"]
     assert report["cause"] == "heat_transfer", report["verdict"]
-    assert check["fields"]["fiber_revolutions"]["tolerance"] == 0.1
-    assert check["at_bound"] == ["fiber_revolutions"], check
-    assert "ends at the tolerance [uncertain] declares" in report["verdict"]
+    assert report["baseline"]["params"]["fiber_revolutions"] == pytest.approx(2.2)
+    assert any(w["parameter"] == "fiber_revolutions" and w["bound"] == pytest.approx(2.2) for w in report["warnings"])
+    assert "fiber_revolutions = 2.2 ended at its search bound" in report["verdict"]
 
 
-def test_a_wind_the_file_declares_unknown_needs_no_check(tmp_path):
+def test_a_wind_the_file_declares_unknown_is_calibrated_in_its_bounds(tmp_path):
     toml = synthesize("heat_transfer", SEEDS[0], tmp_path).experiment
     toml.write_text(toml.read_text() + "\n[calibrate]\nfiber_revolutions = [1.9, 2.1]\n")
     report = report_of(toml)
     assert report["cause"] == "heat_transfer", report["verdict"]
-    assert report["decision"]["build_check"] is None and "build" not in report["decision"]["margins"]
     assert report["extended"]["params"]["fiber_revolutions"] == pytest.approx(BUILT_WITH, rel=0.01)
 
 
-def test_an_exact_build_needs_no_check(tmp_path):
+def test_an_exact_build_calibrates_no_build_field(tmp_path):
     toml = synthesize("heat_transfer", SEEDS[0], tmp_path).experiment
     toml.write_text(toml.read_text() + "\n[uncertain]\n")
     assert load_experiment(toml).uncertain == {}
     report = report_of(toml)
-    assert report["cause"] == "heat_transfer" and report["decision"]["build_check"] is None
+    assert report["cause"] == "heat_transfer" and "fiber_revolutions" not in report["baseline"]["params"]
 
 
 def test_the_default_uncertainty_is_the_winds_five_percent(tmp_path):
