@@ -52,6 +52,26 @@ inline MuscleForces muscle_forces(const BraidGeometry& geometry, const MuscleSha
   return f;
 }
 
+/// The tension of the braid's fibers together, N T [N]: the force conjugate to their length b
+/// over the cylinder. By virtual work at fixed muscle length, with the gas at gauge pressure
+/// `gauge_Pa` and the bladder's strain energy E_b,
+///     N T = p dV/db - dE_b/db = p dV/db - V_rubber (sigma_l deps_l/db + sigma_h deps_h/db),
+/// `viscous` adding the bladder's Maxwell-branch stresses to the elastic ones. It is the hoop
+/// stress's pull (a free-inflated muscle, which carries no axial force, tensions its fibers);
+/// for a flat-ended braid without bladder it is the hoop balance p Lm b / (2 pi n^2). Negative
+/// where the bladder pushes the braid shorter than the gas pulls it.
+/// \param fiber the shape's derivatives in the fiber length (BraidGeometry::fiber_length_derivatives)
+inline double total_fiber_tension(const BraidGeometry& geometry, const MuscleShape& shape,
+                                  const FiberLengthDerivatives& fiber, const BladderLaw& law, double gauge_Pa,
+                                  const BiaxialStress& viscous = {0.0, 0.0}) noexcept {
+  const BladderState b = bladder_state(geometry, shape, law);
+  const double d_longitudinal_strain = fiber.d_cylinder_length / geometry.deflated_cylinder_length();
+  const double d_hoop_strain = fiber.d_diameter / geometry.build().bladder_diameter_m;
+  return gauge_Pa * fiber.d_gas_volume -
+         bladder_reference_volume(geometry) * ((b.longitudinal_stress + viscous.longitudinal) * d_longitudinal_strain +
+                                               (b.hoop_stress + viscous.hoop) * d_hoop_strain);
+}
+
 /// What a braid transmits of the axial force `force_N` of its gas and bladder [N]: a braid of
 /// fibers carries tension but cannot push. Held shorter than its free length, a real muscle goes
 /// slack (the braid bunches and the load cell reads zero), where the virtual-work force would

@@ -60,28 +60,39 @@ inline double fiber_revolutions_for_braid_angle(const MuscleBuild& build, double
 
 inline BraidGeometry::BraidGeometry(const MuscleBuild& build) : build_(build) {
   build_.validate();
-  const double d = build_.end_diameter_m;
-  const double lz = build_.cone_generator_m;
-  const double turns = detail::kPi * build_.fiber_revolutions;
-  const bool has_cones = lz > 0.0;
   deflated_cylinder_length_ = detail::deflated_cylinder_length(build_);
   const double tb = build_.bladder_thickness_m;
   wall_volume_ = detail::kPi * build_.length_m * (build_.diameter_m * tb - tb * tb);
   fiber_length_ = braid_fiber_length(deflated_cylinder_length_, build_.diameter_m, build_.fiber_revolutions);
-  if (has_cones) {
-    // Shortest: the cones lie flat (D = d + 2 Lz, LL = 0). Longest: the braid narrows to d.
-    const double widest = d + 2.0 * lz;
-    if (turns * widest >= fiber_length_) {
-      min_length_ = 0.0;  // the braid reaches 90 degrees before the cones flatten
-    } else {
-      min_length_ = std::sqrt(fiber_length_ * fiber_length_ - turns * turns * widest * widest);
-    }
-    max_length_ = 2.0 * lz + std::sqrt(fiber_length_ * fiber_length_ - turns * turns * d * d);
-  } else {
-    // Flat ends: the end zones keep their length, the cylinder between them spans 0 to Lym.
-    min_length_ = 2.0 * build_.end_zone_m;
-    max_length_ = fiber_length_ + 2.0 * build_.end_zone_m;
-  }
+  min_length_ = min_length_for_fibers(fiber_length_);
+  max_length_ = max_length_for_fibers(fiber_length_);
+}
+
+inline double BraidGeometry::min_length_for_fibers(double fiber_length_m) const noexcept {
+  const double lz = build_.cone_generator_m;
+  // Flat ends: the end zones keep their length, the cylinder between them spans 0 to Lym.
+  if (!(lz > 0.0)) return 2.0 * build_.end_zone_m;
+  // Shortest: the cones lie flat (D = d + 2 Lz, LL = 0), unless the braid reaches 90 degrees first.
+  const double turns = detail::kPi * build_.fiber_revolutions;
+  const double widest = build_.end_diameter_m + 2.0 * lz;
+  if (turns * widest >= fiber_length_m) return 0.0;
+  return std::sqrt(fiber_length_m * fiber_length_m - turns * turns * widest * widest);
+}
+
+inline double BraidGeometry::max_length_for_fibers(double fiber_length_m) const noexcept {
+  const double lz = build_.cone_generator_m;
+  if (!(lz > 0.0)) return fiber_length_m + 2.0 * build_.end_zone_m;
+  // Longest: the braid narrows to the end caps' diameter d.
+  const double turns = detail::kPi * build_.fiber_revolutions;
+  const double d = build_.end_diameter_m;
+  return 2.0 * lz + std::sqrt(fiber_length_m * fiber_length_m - turns * turns * d * d);
+}
+
+inline double BraidGeometry::longest_fiber_length(double length_m) const noexcept {
+  const double lz = build_.cone_generator_m;
+  if (!(lz > 0.0)) return std::numeric_limits<double>::infinity();
+  const double turns = detail::kPi * build_.fiber_revolutions;
+  return std::hypot(length_m, turns * (build_.end_diameter_m + 2.0 * lz));
 }
 
 inline void BraidGeometry::check_range(double length_m) const {
@@ -99,22 +110,65 @@ inline MuscleShape BraidGeometry::shape(double length_m) const {
 
 inline MuscleShape BraidGeometry::shape_from(ShapeHint& hint, double length_m, ShapeParts parts) const {
   check_range(length_m);
-  return solve(hint, length_m, parts);
+  return solve(hint, length_m, fiber_length_, parts);
+}
+
+inline MuscleShape BraidGeometry::shape_from(ShapeHint& hint, double length_m, double fiber_length_m,
+                                             ShapeParts parts) const {
+  const double shortest = min_length_for_fibers(fiber_length_m);
+  const double longest = max_length_for_fibers(fiber_length_m);
+  if (!(length_m > shortest && length_m < longest)) {
+    PAMKIT_THROW(
+        InvalidInput(detail::message("muscle length ", length_m, " m is outside the range the braid model allows (",
+                                     shortest, ", ", longest, ") m for fibers of length ", fiber_length_m, " m")));
+  }
+  return solve(hint, length_m, fiber_length_m, parts);
+}
+
+inline FiberLengthDerivatives BraidGeometry::fiber_length_derivatives(const MuscleShape& shape,
+                                                                      double fiber_length_m) const noexcept {
+  // The closure G(D; L, b) = (pi n D)^2 + (L - 2 LL(D))^2 - b^2 = 0 at fixed L: G_D dD + G_b db = 0
+  // with G_b = -2 b and G_D / 2 = (pi n)^2 D + Lm c / LL, the denominator of dD/dL = -Lm / (G_D / 2).
+  const double pi = detail::kPi;
+  const double n = build_.fiber_revolutions;
+  const double k2 = pi * pi * n * n;
+  const double d = build_.end_diameter_m;
+  const double lz = build_.cone_generator_m;
+  const double D = shape.diameter;
+  const double ll = shape.cone_length;
+  const double lm = shape.cylinder_length;
+  const double c = 0.5 * (D - d);
+  const bool has_cones = lz > 0.0;
+  const double cone_term = has_cones ? lm * c / ll : 0.0;
+  FiberLengthDerivatives f{};
+  f.d_diameter = fiber_length_m / (k2 * D + cone_term);
+  // LL = sqrt(Lz^2 - c^2) shortens as D grows: dLL/dD = -c / (2 LL), and Lm = L - 2 LL.
+  const double d_cone_length_d_diameter = has_cones ? -c / (2.0 * ll) : 0.0;
+  f.d_cylinder_length = -2.0 * d_cone_length_d_diameter * f.d_diameter;
+  // dV_total/dD at fixed L: the cylinder pi D^2 Lm / 4 and, with cones, the two frusta of eq. 3.1.1.
+  double d_volume_d_diameter = 0.25 * pi * (2.0 * D * lm - 2.0 * D * D * d_cone_length_d_diameter);
+  if (has_cones) {
+    const double frustum = 0.25 * (D * D + d * d + d * D);
+    d_volume_d_diameter += (2.0 / 3.0) * pi * (d_cone_length_d_diameter * frustum + ll * 0.25 * (2.0 * D + d));
+  }
+  f.d_gas_volume = d_volume_d_diameter * f.d_diameter;
+  return f;
 }
 
 inline MuscleShape BraidGeometry::shape_unchecked(double length_m) const noexcept {
   ShapeHint cold;
-  return solve(cold, length_m, ShapeParts::all);
+  return solve(cold, length_m, fiber_length_, ShapeParts::all);
 }
 
-inline MuscleShape BraidGeometry::solve(ShapeHint& hint, double length_m, ShapeParts parts) const noexcept {
+inline MuscleShape BraidGeometry::solve(ShapeHint& hint, double length_m, double fiber_length_m,
+                                        ShapeParts parts) const noexcept {
   // Inside the range the closure below brackets its root (G(d) < 0 < G(d + 2 Lz)), so Boost's
   // Newton iteration has no cause to raise its "no root" error.
   const double n = build_.fiber_revolutions;
   const double k2 = detail::kPi * detail::kPi * n * n;  // (pi n)^2
   const double d = build_.end_diameter_m;
   const double lz = build_.cone_generator_m;
-  const double lym = fiber_length_;
+  const double lym = fiber_length_m;
 
   MuscleShape s{};
   s.length = length_m;
