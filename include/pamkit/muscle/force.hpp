@@ -72,6 +72,38 @@ inline double total_fiber_tension(const BraidGeometry& geometry, const MuscleSha
                                                (b.hoop_stress + viscous.hoop) * d_hoop_strain);
 }
 
+/// The slopes of `total_fiber_tension` at fixed gas pressure and viscous stresses [N/m].
+struct FiberTensionSlopes {
+  double d_fiber;   ///< d(N T)/db at fixed muscle length
+  double d_length;  ///< d(N T)/dL at fixed fiber length
+};
+
+/// `total_fiber_tension`'s slopes, from the shape's second derivatives in the fiber length
+/// (`fiber`) and the bladder law's tangent moduli.
+inline FiberTensionSlopes total_fiber_tension_slopes(const BraidGeometry& geometry, const MuscleShape& shape,
+                                                     const FiberLengthDerivatives& fiber, const BladderLaw& law,
+                                                     double gauge_Pa, const BiaxialStress& viscous = {0.0, 0.0}) {
+  const BladderState b = bladder_state(geometry, shape, law);
+  const BiaxialStress modulus = law.tangent_moduli(b.longitudinal_strain, b.hoop_strain);
+  const double lm0 = geometry.deflated_cylinder_length();
+  const double db0 = geometry.build().bladder_diameter_m;
+  const double longitudinal_stress = b.longitudinal_stress + viscous.longitudinal;
+  const double hoop_stress = b.hoop_stress + viscous.hoop;
+  const double longitudinal_b = fiber.d_cylinder_length / lm0;  // d eps_l / db
+  const double hoop_b = fiber.d_diameter / db0;                 // d eps_h / db
+  const double rubber = bladder_reference_volume(geometry);
+  FiberTensionSlopes slopes{};
+  slopes.d_fiber = gauge_Pa * fiber.d2_gas_volume -
+                   rubber * (modulus.longitudinal * longitudinal_b * longitudinal_b +
+                             longitudinal_stress * fiber.d2_cylinder_length / lm0 + modulus.hoop * hoop_b * hoop_b +
+                             hoop_stress * fiber.d2_diameter / db0);
+  slopes.d_length = gauge_Pa * fiber.d_gas_volume_d_length -
+                    rubber * (modulus.longitudinal * b.d_longitudinal_strain * longitudinal_b +
+                              longitudinal_stress * fiber.d_cylinder_length_d_length / lm0 +
+                              modulus.hoop * b.d_hoop_strain * hoop_b + hoop_stress * fiber.d_diameter_d_length / db0);
+  return slopes;
+}
+
 /// What a braid transmits of the axial force `force_N` of its gas and bladder [N]: a braid of
 /// fibers carries tension but cannot push. Held shorter than its free length, a real muscle goes
 /// slack (the braid bunches and the load cell reads zero), where the virtual-work force would

@@ -51,13 +51,20 @@ struct MuscleShape {
   double d_gas_volume;       ///< dV_gas/dL [m^2]
 };
 
-/// How the shape at a fixed muscle length moves with the fibers' length b over the cylinder
-/// (fiber compliance, sim/model.hpp): partial derivatives at fixed L. Only the diameter moves
-/// with b; the cone's axial length, so the cylinder's, follows the diameter.
+/// How the shape moves with the fibers' length b over the cylinder (fiber compliance,
+/// sim/model.hpp): partial derivatives in b at fixed muscle length L, and their own partial
+/// derivatives in b and in L, which the fibers' tension's slopes need. At fixed L only the
+/// diameter moves with b; the cone's axial length, so the cylinder's, follows the diameter.
 struct FiberLengthDerivatives {
-  double d_diameter;         ///< dD/db [1]
-  double d_cylinder_length;  ///< dLm/db [1]
-  double d_gas_volume;       ///< dV_gas/db = dV_total/db [m^2]: the wall keeps its volume
+  double d_diameter;                  ///< dD/db [1]
+  double d_cylinder_length;           ///< dLm/db [1]
+  double d_gas_volume;                ///< dV_gas/db = dV_total/db [m^2]: the wall keeps its volume
+  double d2_diameter;                 ///< d2D/db2 [1/m]
+  double d2_cylinder_length;          ///< d2Lm/db2 [1/m]
+  double d2_gas_volume;               ///< d2V_gas/db2 [m]
+  double d_diameter_d_length;         ///< d2D/db dL [1/m]
+  double d_cylinder_length_d_length;  ///< d2Lm/db dL [1/m]
+  double d_gas_volume_d_length;       ///< d2V_gas/db dL [m]
 };
 
 /// Which parts of a MuscleShape to compute. The ODE's right-hand side needs the lengths, the
@@ -111,8 +118,9 @@ class BraidGeometry {
   ///         max_length_for_fibers(fiber_length_m))`.
   MuscleShape shape_from(ShapeHint& hint, double length_m, double fiber_length_m, ShapeParts parts) const;
 
-  /// Derivatives at fixed muscle length of `shape`, solved for fibers of length `fiber_length_m`,
-  /// with respect to that fiber length: from the closure, dD/db = b / (G_D / 2) = -b (dD/dL) / Lm.
+  /// The derivatives of `shape`, solved for fibers of length `fiber_length_m`, in that fiber
+  /// length: from the closure G(D; L, b) = 0, dD/db = 2 b / G_D, and the geometry's own closed
+  /// forms in D (cones of fixed slant, the frusta and cylinder of eq. 3.1.1).
   FiberLengthDerivatives fiber_length_derivatives(const MuscleShape& shape, double fiber_length_m) const noexcept;
 
   /// Shortest length the model allows [m]: the cones flatten (D = d + 2 Lz) there; with flat

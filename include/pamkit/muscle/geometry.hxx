@@ -127,31 +127,54 @@ inline MuscleShape BraidGeometry::shape_from(ShapeHint& hint, double length_m, d
 
 inline FiberLengthDerivatives BraidGeometry::fiber_length_derivatives(const MuscleShape& shape,
                                                                       double fiber_length_m) const noexcept {
-  // The closure G(D; L, b) = (pi n D)^2 + (L - 2 LL(D))^2 - b^2 = 0 at fixed L: G_D dD + G_b db = 0
-  // with G_b = -2 b and G_D / 2 = (pi n)^2 D + Lm c / LL, the denominator of dD/dL = -Lm / (G_D / 2).
+  // At fixed L every quantity X is X(D, L), D solving the closure
+  //     G(D; L, b) = (pi n D)^2 + (L - 2 LL(D))^2 - b^2 = 0,
+  // so dX/db = X_D D_b and the second derivatives follow by the chain rule. With
+  // g = G_D / 2 = (pi n)^2 D + Lm c / LL (the denominator of dD/dL = -Lm / g):
+  //     D_b = b / g,  D_bb = (1 - b g_D D_b / g) / g,  D_bL = -b (g_L + g_D D_L) / g^2.
+  // The cone LL = sqrt(Lz^2 - c^2), c = (D - d) / 2: LL' = -c / (2 LL), LL'' = -Lz^2 / (4 LL^3);
+  // flat ends keep LL fixed.
   const double pi = detail::kPi;
   const double n = build_.fiber_revolutions;
   const double k2 = pi * pi * n * n;
   const double d = build_.end_diameter_m;
   const double lz = build_.cone_generator_m;
+  const double b = fiber_length_m;
   const double D = shape.diameter;
   const double ll = shape.cone_length;
   const double lm = shape.cylinder_length;
   const double c = 0.5 * (D - d);
   const bool has_cones = lz > 0.0;
-  const double cone_term = has_cones ? lm * c / ll : 0.0;
+  const double ll_d = has_cones ? -c / (2.0 * ll) : 0.0;
+  const double ll_dd = has_cones ? -lz * lz / (4.0 * ll * ll * ll) : 0.0;
+  const double g = k2 * D + (has_cones ? lm * c / ll : 0.0);
+  // d(Lm c / LL)/dD with Lm_D = -2 LL', c' = 1/2; d(Lm c / LL)/dL = c / LL.
+  const double g_d = k2 + (has_cones ? (-2.0 * ll_d * c + 0.5 * lm) / ll - lm * c * ll_d / (ll * ll) : 0.0);
+  const double g_l = has_cones ? c / ll : 0.0;
+  const double d_l = shape.d_diameter;  // dD/dL at fixed b: -Lm / g
+
   FiberLengthDerivatives f{};
-  f.d_diameter = fiber_length_m / (k2 * D + cone_term);
-  // LL = sqrt(Lz^2 - c^2) shortens as D grows: dLL/dD = -c / (2 LL), and Lm = L - 2 LL.
-  const double d_cone_length_d_diameter = has_cones ? -c / (2.0 * ll) : 0.0;
-  f.d_cylinder_length = -2.0 * d_cone_length_d_diameter * f.d_diameter;
-  // dV_total/dD at fixed L: the cylinder pi D^2 Lm / 4 and, with cones, the two frusta of eq. 3.1.1.
-  double d_volume_d_diameter = 0.25 * pi * (2.0 * D * lm - 2.0 * D * D * d_cone_length_d_diameter);
+  f.d_diameter = b / g;
+  f.d2_diameter = (1.0 - b * g_d * f.d_diameter / g) / g;
+  f.d_diameter_d_length = -b * (g_l + g_d * d_l) / (g * g);
+  // Lm = L - 2 LL(D).
+  f.d_cylinder_length = -2.0 * ll_d * f.d_diameter;
+  f.d2_cylinder_length = -2.0 * (ll_dd * f.d_diameter * f.d_diameter + ll_d * f.d2_diameter);
+  f.d_cylinder_length_d_length = -2.0 * (ll_dd * d_l * f.d_diameter + ll_d * f.d_diameter_d_length);
+  // V_total(D, L): the cylinder pi D^2 Lm / 4 and, with cones, the two frusta of eq. 3.1.1,
+  // 2/3 pi LL F(D), F = (D^2 + d^2 + d D) / 4. V_D, V_DD at fixed L; V_DL = pi D / 2.
+  double v_d = 0.25 * pi * (2.0 * D * lm - 2.0 * D * D * ll_d);
+  double v_dd = 0.25 * pi * (2.0 * lm - 8.0 * D * ll_d - 2.0 * D * D * ll_dd);
   if (has_cones) {
     const double frustum = 0.25 * (D * D + d * d + d * D);
-    d_volume_d_diameter += (2.0 / 3.0) * pi * (d_cone_length_d_diameter * frustum + ll * 0.25 * (2.0 * D + d));
+    const double frustum_d = 0.25 * (2.0 * D + d);
+    v_d += (2.0 / 3.0) * pi * (ll_d * frustum + ll * frustum_d);
+    v_dd += (2.0 / 3.0) * pi * (ll_dd * frustum + 2.0 * ll_d * frustum_d + 0.5 * ll);
   }
-  f.d_gas_volume = d_volume_d_diameter * f.d_diameter;
+  const double v_dl = 0.5 * pi * D;
+  f.d_gas_volume = v_d * f.d_diameter;
+  f.d2_gas_volume = v_dd * f.d_diameter * f.d_diameter + v_d * f.d2_diameter;
+  f.d_gas_volume_d_length = (v_dl + v_dd * d_l) * f.d_diameter + v_d * f.d_diameter_d_length;
   return f;
 }
 

@@ -109,10 +109,14 @@ inline double MuscleModel::bracketed_fiber_length(double length_m, const Absolut
   };
   const double at_rest = tension(rest);
   if (!(at_rest > 0.0)) return rest;  // slack fibers keep their length
+  // Fibers so stiff that their stretch is below the resolution of their length: the tension
+  // at rest is theirs (a bracket of no width would never widen).
+  const double stretch = s * at_rest;
+  if (stretch <= 4.0 * std::numeric_limits<double>::epsilon() * rest) return rest + stretch;
   const auto residual = [&](double fiber) { return fiber - rest - s * std::max(tension(fiber), 0.0); };
   // r(b) < 0; r(b + s N T(b)) >= 0 where the tension falls as the fibers stretch, as it does
   // wherever the balance is stable; else the bracket widens towards the braid's longest fibers.
-  double upper = std::min(rest + s * at_rest, longest);
+  double upper = std::min(rest + stretch, longest);
   while (residual(upper) < 0.0 && upper < longest) upper = std::min(rest + 2.0 * (upper - rest), longest);
   if (residual(upper) < 0.0) {
     PAMKIT_THROW(
@@ -152,21 +156,12 @@ inline MuscleOutputs MuscleModel::evaluate_with(MuscleWorkspace& workspace, doub
   const double volume = out.shape.gas_volume + dead_volume_;
   const double gauge = sealed(volume) - g.atmospheric_pressure_Pa;
   balance.tension_N = total_fiber_tension(geometry_, out.shape, balance.shape, params_.bladder, gauge, viscous);
-  // The tension's partial slopes at this gas pressure, by central differences: the rates need
-  // them, and the next solve's chord is 1 - s dN T/db' with the pressure following the volume,
-  // dp/db' = -(p / V) dV/db'. Each tension carries the closure's rounding, ~1e-14 of N T, so the
-  // step is 1e-5 m: that rounding over it is 1e-9 of the slope, and the truncation, h^2 / 6 of
-  // the third derivative over lengths of centimetres, a few 1e-8. A step of 1e-7 m left 1e-7 of
-  // rounding in the rates, which a sensitivity's difference quotient (step 1e-6) magnifies.
-  const double h = 1e-5;
-  ShapeHint hint = workspace.shape;
-  const auto held = [&](double) { return gauge + g.atmospheric_pressure_Pa; };
-  balance.d_tension_d_length = (fiber_tension_at(length_m + h, fiber, held, viscous, hint) -
-                                fiber_tension_at(length_m - h, fiber, held, viscous, hint)) /
-                               (2.0 * h);
-  balance.d_tension_d_fiber = (fiber_tension_at(length_m, fiber + h, held, viscous, hint) -
-                               fiber_tension_at(length_m, fiber - h, held, viscous, hint)) /
-                              (2.0 * h);
+  // The tension's slopes at this gas pressure: the rates need them, and the next solve's chord
+  // is 1 - s dN T/db' with the pressure following the volume, dp/db' = -(p / V) dV/db'.
+  const FiberTensionSlopes slopes =
+      total_fiber_tension_slopes(geometry_, out.shape, balance.shape, params_.bladder, gauge, viscous);
+  balance.d_tension_d_length = slopes.d_length;
+  balance.d_tension_d_fiber = slopes.d_fiber;
   const double d_pressure_d_fiber = -(gauge + g.atmospheric_pressure_Pa) / volume * balance.shape.d_gas_volume;
   workspace.fiber_balance_slope =
       balance.tension_N > 0.0

@@ -163,7 +163,19 @@ TEST_CASE("fiber_compliance: stiff fibres are the inextensible model", "[effects
     }
     CHECK(departure[0] < 0.0);  // stretched fibres let the braid widen less than the rigid one: less force
     CHECK_REL(departure[1], 0.1 * departure[0], 1e-4);
+    // Fibres whose stretch is below the resolution of their length (EA = 1e17 N, as a fit may
+    // try on its way to infinity) are the inextensible ones to rounding.
+    MuscleParams p = rigid;
+    p.extensions.fiber_compliance_per_N = 1e-17;
+    const MuscleModel model(p, initial);
+    const MuscleOutputs out = model.evaluate(length, 2.5e-3, model.initial());
+    CHECK_REL(out.forces.total, inextensible.forces.total, 1e-12);
+    CHECK_REL(out.rate[State::temperature_K] + 1.0, inextensible.rate[State::temperature_K] + 1.0, 1e-12);
   }
+  MuscleParams p = rigid;
+  p.extensions.fiber_compliance_per_N = 1e-17;
+  CHECK_REL(Simulator().run(MuscleModel(p, initial), crosshead).force_N.back(),
+            Simulator().run(stiff_model, crosshead).force_N.back(), 1e-9);
 }
 
 TEST_CASE("fiber_compliance: the same crosshead travel gives less force and a lower pressure",
@@ -224,9 +236,68 @@ TEST_CASE("fiber_compliance: the forward sensitivity to the compliance agrees wi
     return worst / largest;
   };
   // Measured 1e-6 (force, pressure) and 1.5e-5 (temperature, through the integrated heat
-  // exchange): the tension's slopes in the rates are central differences whose rounding,
-  // ~1e-9 of them, the quotient's step of 1e-6 magnifies.
+  // exchange).
   CHECK(gap(r.derivatives[0].force_N, up.force_N, down.force_N) < 1e-4);
   CHECK(gap(r.derivatives[0].gauge_pressure_Pa, up.gauge_pressure_Pa, down.gauge_pressure_Pa) < 1e-4);
   CHECK(gap(r.derivatives[0].temperature_K, up.temperature_K, down.temperature_K) < 1e-4);
+}
+
+TEST_CASE(
+    "fiber_compliance: the shape's derivatives in the fibre length and the tension's slopes are their "
+    "difference quotients",
+    "[effects][fiber_compliance][geometry]") {
+  // Central differences of step 1e-6 m of the closure solved afresh: truncation h^2 X''' / 6
+  // ~1e-12 of X's scale, rounding ~1e-14 / 1e-6 = 1e-8 of it (the closure's Newton tolerance);
+  // 1e-6 leaves room for the smallest derivatives, which are differences of larger terms.
+  const BladderLaw law = BladderLaw::thesis();
+  const BiaxialStress viscous{3e4, -2e4};
+  const double gauge = 250e3;
+  const double h = 1e-6;
+  for (const double zone : {-1.0, 0.004}) {  // the thesis's cones; flat ends with end zones
+    MuscleBuild build;
+    if (zone > 0.0) {
+      build.cone_generator_m = 0.0;
+      build.end_zone_m = zone;
+    }
+    const BraidGeometry geometry(build);
+    const double fiber = 1.013 * geometry.fiber_length();
+    const auto shape = [&](double length, double b) {
+      ShapeHint hint;
+      return geometry.shape_from(hint, length, b, ShapeParts::kinematics);
+    };
+    const auto derivatives = [&](double length, double b) {
+      return geometry.fiber_length_derivatives(shape(length, b), b);
+    };
+    const auto tension = [&](double length, double b) {
+      return total_fiber_tension(geometry, shape(length, b), derivatives(length, b), law, gauge, viscous);
+    };
+    for (const double length : {0.17, 0.2}) {
+      INFO((zone > 0.0 ? "flat ends" : "cones") << ", L = " << length << " m");
+      const FiberLengthDerivatives f = derivatives(length, fiber);
+      const auto in_b = [&](double (*part)(const MuscleShape&)) {
+        return (part(shape(length, fiber + h)) - part(shape(length, fiber - h))) / (2.0 * h);
+      };
+      CHECK_REL(f.d_diameter, in_b([](const MuscleShape& s) { return s.diameter; }), 1e-6);
+      CHECK_REL(f.d_gas_volume, in_b([](const MuscleShape& s) { return s.gas_volume; }), 1e-6);
+      const auto up_b = derivatives(length, fiber + h);
+      const auto down_b = derivatives(length, fiber - h);
+      const auto up_l = derivatives(length + h, fiber);
+      const auto down_l = derivatives(length - h, fiber);
+      CHECK_REL(f.d2_diameter, (up_b.d_diameter - down_b.d_diameter) / (2.0 * h), 1e-6);
+      CHECK_REL(f.d2_gas_volume, (up_b.d_gas_volume - down_b.d_gas_volume) / (2.0 * h), 1e-6);
+      CHECK_REL(f.d_diameter_d_length, (up_l.d_diameter - down_l.d_diameter) / (2.0 * h), 1e-6);
+      CHECK_REL(f.d_gas_volume_d_length, (up_l.d_gas_volume - down_l.d_gas_volume) / (2.0 * h), 1e-6);
+      if (zone < 0.0) {
+        CHECK_REL(f.d_cylinder_length, in_b([](const MuscleShape& s) { return s.cylinder_length; }), 1e-6);
+        CHECK_REL(f.d2_cylinder_length, (up_b.d_cylinder_length - down_b.d_cylinder_length) / (2.0 * h), 1e-6);
+        CHECK_REL(f.d_cylinder_length_d_length, (up_l.d_cylinder_length - down_l.d_cylinder_length) / (2.0 * h), 1e-6);
+      } else {
+        CHECK(f.d_cylinder_length == 0.0);  // flat ends keep their cylinder's length at a fixed muscle length
+      }
+      const FiberTensionSlopes slopes =
+          total_fiber_tension_slopes(geometry, shape(length, fiber), f, law, gauge, viscous);
+      CHECK_REL(slopes.d_fiber, (tension(length, fiber + h) - tension(length, fiber - h)) / (2.0 * h), 1e-6);
+      CHECK_REL(slopes.d_length, (tension(length + h, fiber) - tension(length - h, fiber)) / (2.0 * h), 1e-6);
+    }
+  }
 }
