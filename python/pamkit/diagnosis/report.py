@@ -338,8 +338,8 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
 
 
 def _numbers(params: dict) -> str:
-    """ ", name = value, ..." of a cause's fitted numbers; nothing for a cause with none fitted (a
-    braid's slack whose width no sample resolves is held)."""
+    """A cause's fitted numbers as the verdict lists them after its name (', name = value, ...');
+    nothing for a cause with none fitted (a braid's slack whose width no sample resolves is held)."""
     numbers = [f"{k} = {v:.3g}" for k, v in params.items() if not isinstance(v, str)]
     return ", " + ", ".join(numbers) if numbers else ""
 
