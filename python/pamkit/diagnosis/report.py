@@ -270,8 +270,12 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     p = d.problem
     baseline_rmse = _heldout_rmse(d, d.baseline)
     decision = d.decision
-    baseline_findings = [f.sentence() for f in d.warnings if f.parameter in d.baseline.coordinates]
-    bounds = f"; the base model strains to fit: {'; '.join(baseline_findings)}" if baseline_findings else ""
+    in_baseline = [f for f in d.warnings if f.parameter in d.baseline.coordinates]
+    straining = [f.sentence() for f in in_baseline if not f.costs_nothing]
+    resting = [f.sentence() for f in in_baseline if f.costs_nothing]
+    bounds = f"; the base model strains to fit: {'; '.join(straining)}" if straining else ""
+    if resting:
+        bounds += f"; at a bound that costs the fit nothing: {'; '.join(resting)}"
     unknowns = [name for name in [*p.experiment.uncertain, *p.experiment.calibrate] if name in d.baseline.intervals]
     if unknowns:
         bounds += "; calibrated " + ", ".join(interval_phrase(d.baseline, name) for name in unknowns)
