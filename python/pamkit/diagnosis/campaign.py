@@ -27,7 +27,7 @@ from pamkit.diagnosis.decide import MIN_GAIN, score
 from pamkit.diagnosis.findings import Finding, findings
 from pamkit.diagnosis.joint import DISAGREES, JointFit, calibrate_jointly
 from pamkit.diagnosis.result import Diagnosis
-from pamkit.diagnosis.table_kinds import test_names
+from pamkit.io.experiment import test_names
 from pamkit.plots import save_figure
 
 # Fewer tests than this cannot hold a test out and still fit the effect on the others.
@@ -48,7 +48,7 @@ class Transfer:
 @dataclass
 class SeriesCampaign:
     paths: list[str]
-    tests: list[str]  # a short name for each (table_kinds.test_names)
+    tests: list[str]  # a short name for each (pamkit.io.experiment.test_names)
     diagnoses: list[Diagnosis]
     transfers: dict[str, list[Transfer]]  # per effect named by some test: one per test
     cause: str

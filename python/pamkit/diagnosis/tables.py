@@ -31,9 +31,9 @@ from pamkit.diagnosis.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOI
 from pamkit.diagnosis.findings import findings
 from pamkit.diagnosis.table_discover import discover_table
 from pamkit.diagnosis.table_fit import Fitter, TableFit, TableModel, fit_table, heldout_rmse
-from pamkit.diagnosis.table_kinds import Campaign, beyond_reach, campaign_of, noise_of, test_names
+from pamkit.diagnosis.table_kinds import Campaign, beyond_reach, campaign_of, noise_of
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.experiment import Experiment
+from pamkit.io.experiment import Experiment, test_names
 from pamkit.io.guards import ExperimentError
 
 CHANNEL_UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
