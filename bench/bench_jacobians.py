@@ -24,12 +24,12 @@ from pathlib import Path
 
 import numpy as np
 
-import pamkit.diagnosis.candidates as candidates
-import pamkit.diagnosis.jacobian as jacobian
-import pamkit.diagnosis.joint as joint
+import pamkit.diagnosis.series.candidates as candidates
+import pamkit.diagnosis.series.jacobian as jacobian
+import pamkit.diagnosis.series.joint as joint
 from pamkit.diagnosis import diagnose
-from pamkit.diagnosis.model import Predictor
 from pamkit.diagnosis.report import to_json
+from pamkit.diagnosis.series.model import Predictor
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import hideable_effects, synthesize
 

@@ -1,4 +1,4 @@
-"""The decision rules of python/pamkit/diagnosis/decide.py on scores made by hand: what each rule
+"""The decision rules of python/pamkit/diagnosis/series/decide.py on scores made by hand: what each rule
 does with two candidates, without fitting anything."""
 
 from types import SimpleNamespace
@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from pamkit._core import EffectStage, GasMode, Resolution
-from pamkit.diagnosis.calibrate import Fit
-from pamkit.diagnosis.decide import (
+from pamkit.diagnosis.series.calibrate import Fit
+from pamkit.diagnosis.series.decide import (
     NONE_WITHIN_NOISE,
     STANDS_OUT,
     STRUCTURE_LEFT,

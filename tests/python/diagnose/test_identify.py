@@ -10,9 +10,9 @@ import pytest
 from conftest import SOURCE_DIR
 
 from pamkit.diagnosis import diagnose, to_json
-from pamkit.diagnosis.calibrate import cluster_intervals
 from pamkit.diagnosis.identify import Z95, identify
-from pamkit.diagnosis.model import _linear
+from pamkit.diagnosis.series.calibrate import cluster_intervals
+from pamkit.diagnosis.series.model import _linear
 from pamkit.io.experiment import load_experiment
 
 rng = np.random.default_rng(3)

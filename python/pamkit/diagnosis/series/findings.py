@@ -10,8 +10,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from pamkit._core import Resolution
-from pamkit.diagnosis.calibrate import Fit
-from pamkit.diagnosis.kinds import Problem
+from pamkit.diagnosis.series.calibrate import Fit
+from pamkit.diagnosis.series.kinds import Problem
 
 
 def sample_interval(problem: Problem) -> float:

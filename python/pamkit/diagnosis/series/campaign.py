@@ -22,11 +22,11 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.diagnosis.calibrate import Fit, one_blas_thread
-from pamkit.diagnosis.decide import MIN_GAIN, score
-from pamkit.diagnosis.findings import Finding, findings
-from pamkit.diagnosis.joint import DISAGREES, JointFit, calibrate_jointly
-from pamkit.diagnosis.result import Diagnosis
+from pamkit.diagnosis.series.calibrate import Fit, one_blas_thread
+from pamkit.diagnosis.series.decide import MIN_GAIN, score
+from pamkit.diagnosis.series.findings import Finding, findings
+from pamkit.diagnosis.series.joint import DISAGREES, JointFit, calibrate_jointly
+from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.io.experiment import test_names
 from pamkit.plots import save_figure
 
@@ -182,7 +182,7 @@ def _shared(j: JointFit) -> str:
 
 def to_json(c: SeriesCampaign, test_report) -> dict:
     """The campaign's report: its verdict, each effect carried test by test, and each test's own
-    report (`test_report`, report.py's to_json)."""
+    report (`test_report`, pamkit.diagnosis.report.to_json)."""
     return {
         "kind": "campaign",
         "tests": c.paths,

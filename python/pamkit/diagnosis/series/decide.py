@@ -38,9 +38,9 @@ import numpy as np
 
 from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis import evidence
-from pamkit.diagnosis.calibrate import Fit
-from pamkit.diagnosis.findings import Finding, baseline_findings, findings, unresolved
-from pamkit.diagnosis.kinds import Problem
+from pamkit.diagnosis.series.calibrate import Fit
+from pamkit.diagnosis.series.findings import Finding, baseline_findings, findings, unresolved
+from pamkit.diagnosis.series.kinds import Problem
 
 # 0.03 is ten times what fitting extra parameters to noise gains on held-out cycles (a few
 # tenths of a percent on pamkit's null benchmark).

@@ -40,7 +40,7 @@ from pamkit._core import (
     simulate_measurement,
     simulate_supplied_measurement,
 )
-from pamkit.diagnosis.motion import measured_motion, programmed_motion
+from pamkit.diagnosis.series.motion import measured_motion, programmed_motion
 from pamkit.io.columns import SERIES_COLUMNS
 from pamkit.io.experiment import Experiment
 from pamkit.io.sections import BRAID_ANGLE_KEY, declared_value

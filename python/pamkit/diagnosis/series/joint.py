@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse
 
-from pamkit.diagnosis.calibrate import (
+from pamkit.diagnosis.series.calibrate import (
     Fit,
     cluster_intervals,
     least_squares_in_box,
@@ -29,9 +29,9 @@ from pamkit.diagnosis.calibrate import (
     unit_to_x,
     x_to_unit,
 )
-from pamkit.diagnosis.jacobian import SENSITIVITY_STEP, applies, forward_differences, sensitivity_jacobian
-from pamkit.diagnosis.kinds import Problem
-from pamkit.diagnosis.model import Baseline, Coordinate, configure, effect_space, muscle_signature
+from pamkit.diagnosis.series.jacobian import SENSITIVITY_STEP, applies, forward_differences, sensitivity_jacobian
+from pamkit.diagnosis.series.kinds import Problem
+from pamkit.diagnosis.series.model import Baseline, Coordinate, configure, effect_space, muscle_signature
 from pamkit.io.experiment import Experiment
 from pamkit.io.guards import ExperimentError
 from pamkit.simulation import muscle_params

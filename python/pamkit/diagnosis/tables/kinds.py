@@ -16,7 +16,7 @@ import numpy as np
 
 from pamkit._core import BraidGeometry, GasMode, pressure_branches
 from pamkit.diagnosis.cycles import find_cycles
-from pamkit.diagnosis.kinds import LOCKING_ANGLE_DEG
+from pamkit.diagnosis.series.kinds import LOCKING_ANGLE_DEG
 from pamkit.io.columns import value_from_si
 from pamkit.io.experiment import Experiment, test_names
 from pamkit.io.guards import ExperimentError
