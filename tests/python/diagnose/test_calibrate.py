@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
+from pamkit.diagnosis.coordinates import Coordinate
 from pamkit.diagnosis.series.calibrate import cluster_intervals, strain_at_bounds
-from pamkit.diagnosis.series.model import Coordinate
 
 
 def test_cluster_intervals_of_a_mean_are_its_standard_error():

@@ -9,10 +9,11 @@ import numpy as np
 import pytest
 
 from pamkit._core import GasMode, SimulatorConfig
+from pamkit.diagnosis.coordinates import configure, effect_space
 from pamkit.diagnosis.series import jacobian
 from pamkit.diagnosis.series.calibrate import fit_baseline, start_unit, unit_to_x
 from pamkit.diagnosis.series.kinds import build_problem
-from pamkit.diagnosis.series.model import Predictor, configure, effect_space
+from pamkit.diagnosis.series.model import Predictor
 from pamkit.effects import catalog
 from pamkit.io.experiment import load_experiment
 

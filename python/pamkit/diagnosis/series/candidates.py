@@ -19,6 +19,7 @@ import numpy as np
 
 from pamkit._core import EffectCatalog, EffectStage, GasMode, Measurement, Resolution
 from pamkit.diagnosis import evidence
+from pamkit.diagnosis.coordinates import configure, effect_space
 from pamkit.diagnosis.series.calibrate import (
     Fit,
     baseline_coordinates,
@@ -31,7 +32,6 @@ from pamkit.diagnosis.series.calibrate import (
 )
 from pamkit.diagnosis.series.jacobian import SENSITIVITY_STEP, forward_differences, jacobian_for
 from pamkit.diagnosis.series.kinds import Problem
-from pamkit.diagnosis.series.model import configure, effect_space
 from pamkit.io.columns import SERIES_COLUMNS
 
 SCAN_POINTS = 5  # simulations per physical effect's first parameter

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse
 
+from pamkit.diagnosis.coordinates import Coordinate, configure, effect_space
 from pamkit.diagnosis.series.calibrate import (
     Fit,
     cluster_intervals,
@@ -31,7 +32,7 @@ from pamkit.diagnosis.series.calibrate import (
 )
 from pamkit.diagnosis.series.jacobian import SENSITIVITY_STEP, applies, forward_differences, sensitivity_jacobian
 from pamkit.diagnosis.series.kinds import Problem
-from pamkit.diagnosis.series.model import Baseline, Coordinate, configure, effect_space, muscle_signature
+from pamkit.diagnosis.series.model import Baseline, muscle_signature
 from pamkit.io.experiment import Experiment
 from pamkit.io.guards import ExperimentError
 from pamkit.simulation import muscle_params

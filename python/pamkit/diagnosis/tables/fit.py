@@ -11,8 +11,8 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from pamkit._core import Effect, MuscleParams
+from pamkit.diagnosis.coordinates import Coordinate, configure, effect_space, unknown_coordinate, with_unknowns
 from pamkit.diagnosis.identify import identify
-from pamkit.diagnosis.series.model import Coordinate, configure, effect_space, unknown_coordinate, with_unknowns
 from pamkit.diagnosis.tables.kinds import CYCLIC, PREDICTED, Campaign, kind_of
 from pamkit.io.experiment import Experiment, test_names
 from pamkit.io.guards import ExperimentError
