@@ -244,7 +244,9 @@ def fiber_compliance() -> Path:
     p, e = 276.0, stretch(276.0, 0.95)
     path = corners(e, 2.5e-3, 1)
     base, run = simulate(p, path), simulate(p, path, [spec])
-    fig, (force, pressure) = figure(f"{spec} (PAM 2, 276 kPa, 95 %, 2.5 mm/s): force-elongation softens at high force")
+    fig, (force, pressure) = figure(
+        f"{spec} (PAM 2, 276 kPa, 95 %, 2.5 mm/s): force and pressure fall, most at the top"
+    )
     force.plot(base["elongation_m"] * 1e3, base["force_N"], **BASE, label="baseline")
     force.plot(run["elongation_m"] * 1e3, run["force_N"], color=COLORS[0], label="fiber compliance")
     label(force, "crosshead elongation [mm]", "force [N]")

@@ -52,6 +52,58 @@ inline MuscleForces muscle_forces(const BraidGeometry& geometry, const MuscleSha
   return f;
 }
 
+/// The tension of the braid's fibers together, N T [N]: the force conjugate to their length b
+/// over the cylinder. By virtual work at fixed muscle length, with the gas at gauge pressure
+/// `gauge_Pa` and the bladder's strain energy E_b,
+///     N T = p dV/db - dE_b/db = p dV/db - V_rubber (sigma_l deps_l/db + sigma_h deps_h/db),
+/// `viscous` adding the bladder's Maxwell-branch stresses to the elastic ones. It is the hoop
+/// stress's pull (a free-inflated muscle, which carries no axial force, tensions its fibers);
+/// for a flat-ended braid without bladder it is the hoop balance p Lm b / (2 pi n^2). Negative
+/// where the bladder pushes the braid shorter than the gas pulls it.
+/// \param fiber the shape's derivatives in the fiber length (BraidGeometry::fiber_length_derivatives)
+inline double total_fiber_tension(const BraidGeometry& geometry, const MuscleShape& shape,
+                                  const FiberLengthDerivatives& fiber, const BladderLaw& law, double gauge_Pa,
+                                  const BiaxialStress& viscous = {0.0, 0.0}) noexcept {
+  const BladderState b = bladder_state(geometry, shape, law);
+  const double d_longitudinal_strain = fiber.d_cylinder_length / geometry.deflated_cylinder_length();
+  const double d_hoop_strain = fiber.d_diameter / geometry.build().bladder_diameter_m;
+  return gauge_Pa * fiber.d_gas_volume -
+         bladder_reference_volume(geometry) * ((b.longitudinal_stress + viscous.longitudinal) * d_longitudinal_strain +
+                                               (b.hoop_stress + viscous.hoop) * d_hoop_strain);
+}
+
+/// The slopes of `total_fiber_tension` at fixed gas pressure and viscous stresses [N/m].
+struct FiberTensionSlopes {
+  double d_fiber;   ///< d(N T)/db at fixed muscle length
+  double d_length;  ///< d(N T)/dL at fixed fiber length
+};
+
+/// `total_fiber_tension`'s slopes, from the shape's second derivatives in the fiber length
+/// (`fiber`) and the bladder law's tangent moduli.
+inline FiberTensionSlopes total_fiber_tension_slopes(const BraidGeometry& geometry, const MuscleShape& shape,
+                                                     const FiberLengthDerivatives& fiber, const BladderLaw& law,
+                                                     double gauge_Pa, const BiaxialStress& viscous = {0.0, 0.0}) {
+  const BladderState b = bladder_state(geometry, shape, law);
+  const BiaxialStress modulus = law.tangent_moduli(b.longitudinal_strain, b.hoop_strain);
+  const double lm0 = geometry.deflated_cylinder_length();
+  const double db0 = geometry.build().bladder_diameter_m;
+  const double longitudinal_stress = b.longitudinal_stress + viscous.longitudinal;
+  const double hoop_stress = b.hoop_stress + viscous.hoop;
+  const double longitudinal_b = fiber.d_cylinder_length / lm0;  // d eps_l / db
+  const double hoop_b = fiber.d_diameter / db0;                 // d eps_h / db
+  const double rubber = bladder_reference_volume(geometry);
+  FiberTensionSlopes slopes{};
+  slopes.d_fiber = gauge_Pa * fiber.d2_gas_volume -
+                   rubber * (modulus.longitudinal * longitudinal_b * longitudinal_b +
+                             longitudinal_stress * fiber.d2_cylinder_length / lm0 + modulus.hoop * hoop_b * hoop_b +
+                             hoop_stress * fiber.d2_diameter / db0);
+  slopes.d_length = gauge_Pa * fiber.d_gas_volume_d_length -
+                    rubber * (modulus.longitudinal * b.d_longitudinal_strain * longitudinal_b +
+                              longitudinal_stress * fiber.d_cylinder_length_d_length / lm0 +
+                              modulus.hoop * b.d_hoop_strain * hoop_b + hoop_stress * fiber.d_diameter_d_length / db0);
+  return slopes;
+}
+
 /// What a braid transmits of the axial force `force_N` of its gas and bladder [N]: a braid of
 /// fibers carries tension but cannot push. Held shorter than its free length, a real muscle goes
 /// slack (the braid bunches and the load cell reads zero), where the virtual-work force would

@@ -51,6 +51,22 @@ struct MuscleShape {
   double d_gas_volume;       ///< dV_gas/dL [m^2]
 };
 
+/// How the shape moves with the fibers' length b over the cylinder (fiber compliance,
+/// sim/model.hpp): partial derivatives in b at fixed muscle length L, and their own partial
+/// derivatives in b and in L, which the fibers' tension's slopes need. At fixed L only the
+/// diameter moves with b; the cone's axial length, so the cylinder's, follows the diameter.
+struct FiberLengthDerivatives {
+  double d_diameter;                  ///< dD/db [1]
+  double d_cylinder_length;           ///< dLm/db [1]
+  double d_gas_volume;                ///< dV_gas/db = dV_total/db [m^2]: the wall keeps its volume
+  double d2_diameter;                 ///< d2D/db2 [1/m]
+  double d2_cylinder_length;          ///< d2Lm/db2 [1/m]
+  double d2_gas_volume;               ///< d2V_gas/db2 [m]
+  double d_diameter_d_length;         ///< d2D/db dL [1/m]
+  double d_cylinder_length_d_length;  ///< d2Lm/db dL [1/m]
+  double d_gas_volume_d_length;       ///< d2V_gas/db dL [m]
+};
+
 /// Which parts of a MuscleShape to compute. The ODE's right-hand side needs the lengths, the
 /// volumes and their derivatives; the four angles (an output column, the Newtonian tensions)
 /// cost an atan2, two asin and a sin it never uses. Angles left out are NaN, so a misuse shows.
@@ -95,11 +111,31 @@ class BraidGeometry {
   /// \throws InvalidInput if `length_m` is outside `(min_length(), max_length())`.
   MuscleShape shape_from(ShapeHint& hint, double length_m, ShapeParts parts) const;
 
+  /// `shape_from` for fibers of length `fiber_length_m` over the cylinder instead of the build's
+  /// (fibers stretched by their tension); its derivatives are at that fiber length. With
+  /// `fiber_length_m == fiber_length()` it is `shape_from`, bit for bit.
+  /// \throws InvalidInput if `length_m` is outside `(min_length_for_fibers(fiber_length_m),
+  ///         max_length_for_fibers(fiber_length_m))`.
+  MuscleShape shape_from(ShapeHint& hint, double length_m, double fiber_length_m, ShapeParts parts) const;
+
+  /// The derivatives of `shape`, solved for fibers of length `fiber_length_m`, in that fiber
+  /// length: from the closure G(D; L, b) = 0, dD/db = 2 b / G_D, and the geometry's own closed
+  /// forms in D (cones of fixed slant, the frusta and cylinder of eq. 3.1.1).
+  FiberLengthDerivatives fiber_length_derivatives(const MuscleShape& shape, double fiber_length_m) const noexcept;
+
   /// Shortest length the model allows [m]: the cones flatten (D = d + 2 Lz) there; with flat
   /// ends the cylinder between the end zones shrinks to nothing.
   double min_length() const { return min_length_; }
   /// Longest length the model allows [m]: the braid closes onto the end diameter.
   double max_length() const { return max_length_; }
+  /// The length range of fibers of length `fiber_length_m` over the cylinder [m], as
+  /// min_length() and max_length() are the range of the build's fibers.
+  double min_length_for_fibers(double fiber_length_m) const noexcept;
+  double max_length_for_fibers(double fiber_length_m) const noexcept;
+  /// The longest fibers whose braid still reaches the muscle length `length_m` [m]: with end
+  /// cones, where the cones lie flat at that length (min_length_for_fibers(b) = L); with flat ends none
+  /// (infinity).
+  double longest_fiber_length(double length_m) const noexcept;
   /// Fiber length over the cylinder, Lym [m].
   double fiber_length() const { return fiber_length_; }
   /// Cylinder length of the deflated build, the bladder's longitudinal reference [m].
@@ -109,8 +145,9 @@ class BraidGeometry {
  private:
   /// \throws InvalidInput if `length_m` is outside `(min_length(), max_length())`.
   void check_range(double length_m) const;
-  /// The shape at a length inside the range, the closure's Newton iteration started from `hint`.
-  MuscleShape solve(ShapeHint& hint, double length_m, ShapeParts parts) const noexcept;
+  /// The shape at a length inside the range of fibers of length `fiber_length_m`, the closure's
+  /// Newton iteration started from `hint`.
+  MuscleShape solve(ShapeHint& hint, double length_m, double fiber_length_m, ShapeParts parts) const noexcept;
 
   MuscleBuild build_;
   double fiber_length_;

@@ -60,28 +60,39 @@ inline double fiber_revolutions_for_braid_angle(const MuscleBuild& build, double
 
 inline BraidGeometry::BraidGeometry(const MuscleBuild& build) : build_(build) {
   build_.validate();
-  const double d = build_.end_diameter_m;
-  const double lz = build_.cone_generator_m;
-  const double turns = detail::kPi * build_.fiber_revolutions;
-  const bool has_cones = lz > 0.0;
   deflated_cylinder_length_ = detail::deflated_cylinder_length(build_);
   const double tb = build_.bladder_thickness_m;
   wall_volume_ = detail::kPi * build_.length_m * (build_.diameter_m * tb - tb * tb);
   fiber_length_ = braid_fiber_length(deflated_cylinder_length_, build_.diameter_m, build_.fiber_revolutions);
-  if (has_cones) {
-    // Shortest: the cones lie flat (D = d + 2 Lz, LL = 0). Longest: the braid narrows to d.
-    const double widest = d + 2.0 * lz;
-    if (turns * widest >= fiber_length_) {
-      min_length_ = 0.0;  // the braid reaches 90 degrees before the cones flatten
-    } else {
-      min_length_ = std::sqrt(fiber_length_ * fiber_length_ - turns * turns * widest * widest);
-    }
-    max_length_ = 2.0 * lz + std::sqrt(fiber_length_ * fiber_length_ - turns * turns * d * d);
-  } else {
-    // Flat ends: the end zones keep their length, the cylinder between them spans 0 to Lym.
-    min_length_ = 2.0 * build_.end_zone_m;
-    max_length_ = fiber_length_ + 2.0 * build_.end_zone_m;
-  }
+  min_length_ = min_length_for_fibers(fiber_length_);
+  max_length_ = max_length_for_fibers(fiber_length_);
+}
+
+inline double BraidGeometry::min_length_for_fibers(double fiber_length_m) const noexcept {
+  const double lz = build_.cone_generator_m;
+  // Flat ends: the end zones keep their length, the cylinder between them spans 0 to Lym.
+  if (!(lz > 0.0)) return 2.0 * build_.end_zone_m;
+  // Shortest: the cones lie flat (D = d + 2 Lz, LL = 0), unless the braid reaches 90 degrees first.
+  const double turns = detail::kPi * build_.fiber_revolutions;
+  const double widest = build_.end_diameter_m + 2.0 * lz;
+  if (turns * widest >= fiber_length_m) return 0.0;
+  return std::sqrt(fiber_length_m * fiber_length_m - turns * turns * widest * widest);
+}
+
+inline double BraidGeometry::max_length_for_fibers(double fiber_length_m) const noexcept {
+  const double lz = build_.cone_generator_m;
+  if (!(lz > 0.0)) return fiber_length_m + 2.0 * build_.end_zone_m;
+  // Longest: the braid narrows to the end caps' diameter d.
+  const double turns = detail::kPi * build_.fiber_revolutions;
+  const double d = build_.end_diameter_m;
+  return 2.0 * lz + std::sqrt(fiber_length_m * fiber_length_m - turns * turns * d * d);
+}
+
+inline double BraidGeometry::longest_fiber_length(double length_m) const noexcept {
+  const double lz = build_.cone_generator_m;
+  if (!(lz > 0.0)) return std::numeric_limits<double>::infinity();
+  const double turns = detail::kPi * build_.fiber_revolutions;
+  return std::hypot(length_m, turns * (build_.end_diameter_m + 2.0 * lz));
 }
 
 inline void BraidGeometry::check_range(double length_m) const {
@@ -99,22 +110,88 @@ inline MuscleShape BraidGeometry::shape(double length_m) const {
 
 inline MuscleShape BraidGeometry::shape_from(ShapeHint& hint, double length_m, ShapeParts parts) const {
   check_range(length_m);
-  return solve(hint, length_m, parts);
+  return solve(hint, length_m, fiber_length_, parts);
+}
+
+inline MuscleShape BraidGeometry::shape_from(ShapeHint& hint, double length_m, double fiber_length_m,
+                                             ShapeParts parts) const {
+  const double shortest = min_length_for_fibers(fiber_length_m);
+  const double longest = max_length_for_fibers(fiber_length_m);
+  if (!(length_m > shortest && length_m < longest)) {
+    PAMKIT_THROW(
+        InvalidInput(detail::message("muscle length ", length_m, " m is outside the range the braid model allows (",
+                                     shortest, ", ", longest, ") m for fibers of length ", fiber_length_m, " m")));
+  }
+  return solve(hint, length_m, fiber_length_m, parts);
+}
+
+inline FiberLengthDerivatives BraidGeometry::fiber_length_derivatives(const MuscleShape& shape,
+                                                                      double fiber_length_m) const noexcept {
+  // At fixed L every quantity X is X(D, L), D solving the closure
+  //     G(D; L, b) = (pi n D)^2 + (L - 2 LL(D))^2 - b^2 = 0,
+  // so dX/db = X_D D_b and the second derivatives follow by the chain rule. With
+  // g = G_D / 2 = (pi n)^2 D + Lm c / LL (the denominator of dD/dL = -Lm / g):
+  //     D_b = b / g,  D_bb = (1 - b g_D D_b / g) / g,  D_bL = -b (g_L + g_D D_L) / g^2.
+  // The cone LL = sqrt(Lz^2 - c^2), c = (D - d) / 2: LL' = -c / (2 LL), LL'' = -Lz^2 / (4 LL^3);
+  // flat ends keep LL fixed.
+  const double pi = detail::kPi;
+  const double n = build_.fiber_revolutions;
+  const double k2 = pi * pi * n * n;
+  const double d = build_.end_diameter_m;
+  const double lz = build_.cone_generator_m;
+  const double b = fiber_length_m;
+  const double D = shape.diameter;
+  const double ll = shape.cone_length;
+  const double lm = shape.cylinder_length;
+  const double c = 0.5 * (D - d);
+  const bool has_cones = lz > 0.0;
+  const double ll_d = has_cones ? -c / (2.0 * ll) : 0.0;
+  const double ll_dd = has_cones ? -lz * lz / (4.0 * ll * ll * ll) : 0.0;
+  const double g = k2 * D + (has_cones ? lm * c / ll : 0.0);
+  // d(Lm c / LL)/dD with Lm_D = -2 LL', c' = 1/2; d(Lm c / LL)/dL = c / LL.
+  const double g_d = k2 + (has_cones ? (-2.0 * ll_d * c + 0.5 * lm) / ll - lm * c * ll_d / (ll * ll) : 0.0);
+  const double g_l = has_cones ? c / ll : 0.0;
+  const double d_l = shape.d_diameter;  // dD/dL at fixed b: -Lm / g
+
+  FiberLengthDerivatives f{};
+  f.d_diameter = b / g;
+  f.d2_diameter = (1.0 - b * g_d * f.d_diameter / g) / g;
+  f.d_diameter_d_length = -b * (g_l + g_d * d_l) / (g * g);
+  // Lm = L - 2 LL(D).
+  f.d_cylinder_length = -2.0 * ll_d * f.d_diameter;
+  f.d2_cylinder_length = -2.0 * (ll_dd * f.d_diameter * f.d_diameter + ll_d * f.d2_diameter);
+  f.d_cylinder_length_d_length = -2.0 * (ll_dd * d_l * f.d_diameter + ll_d * f.d_diameter_d_length);
+  // V_total(D, L): the cylinder pi D^2 Lm / 4 and, with cones, the two frusta of eq. 3.1.1,
+  // 2/3 pi LL F(D), F = (D^2 + d^2 + d D) / 4. V_D, V_DD at fixed L; V_DL = pi D / 2.
+  double v_d = 0.25 * pi * (2.0 * D * lm - 2.0 * D * D * ll_d);
+  double v_dd = 0.25 * pi * (2.0 * lm - 8.0 * D * ll_d - 2.0 * D * D * ll_dd);
+  if (has_cones) {
+    const double frustum = 0.25 * (D * D + d * d + d * D);
+    const double frustum_d = 0.25 * (2.0 * D + d);
+    v_d += (2.0 / 3.0) * pi * (ll_d * frustum + ll * frustum_d);
+    v_dd += (2.0 / 3.0) * pi * (ll_dd * frustum + 2.0 * ll_d * frustum_d + 0.5 * ll);
+  }
+  const double v_dl = 0.5 * pi * D;
+  f.d_gas_volume = v_d * f.d_diameter;
+  f.d2_gas_volume = v_dd * f.d_diameter * f.d_diameter + v_d * f.d2_diameter;
+  f.d_gas_volume_d_length = (v_dl + v_dd * d_l) * f.d_diameter + v_d * f.d_diameter_d_length;
+  return f;
 }
 
 inline MuscleShape BraidGeometry::shape_unchecked(double length_m) const noexcept {
   ShapeHint cold;
-  return solve(cold, length_m, ShapeParts::all);
+  return solve(cold, length_m, fiber_length_, ShapeParts::all);
 }
 
-inline MuscleShape BraidGeometry::solve(ShapeHint& hint, double length_m, ShapeParts parts) const noexcept {
+inline MuscleShape BraidGeometry::solve(ShapeHint& hint, double length_m, double fiber_length_m,
+                                        ShapeParts parts) const noexcept {
   // Inside the range the closure below brackets its root (G(d) < 0 < G(d + 2 Lz)), so Boost's
   // Newton iteration has no cause to raise its "no root" error.
   const double n = build_.fiber_revolutions;
   const double k2 = detail::kPi * detail::kPi * n * n;  // (pi n)^2
   const double d = build_.end_diameter_m;
   const double lz = build_.cone_generator_m;
-  const double lym = fiber_length_;
+  const double lym = fiber_length_m;
 
   MuscleShape s{};
   s.length = length_m;

@@ -162,15 +162,16 @@ struct State {
 
 /// What the model says at one instant.
 struct MuscleOutputs {
-  MuscleShape shape;              ///< geometry of the braid
-  MuscleForces forces;            ///< force and its parts [N] (viscous bladder stress in `bladder`)
-  double braid_length_m;          ///< braid length: the muscle length less the fibers' stretch [m]
-  double braid_velocity_m_per_s;  ///< its rate [m/s]
-  double gas_volume_m3;           ///< gas volume including any dead volume [m^3]
-  double absolute_pressure_Pa;    ///< gas pressure, absolute
-  double gauge_pressure_Pa;       ///< gas pressure above ambient
-  double heat_loss_rate_W;        ///< heat flowing from the gas to the wall
-  State rate;                     ///< d(state)/dt
+  MuscleShape shape;      ///< geometry of the braid
+  MuscleForces forces;    ///< force and its parts [N] (viscous bladder stress in `bladder`)
+  double fiber_length_m;  ///< the fibers' length over the cylinder [m]: the build's, stretched when compliant
+  double fiber_length_rate_m_per_s;  ///< its rate [m/s]; 0 for inextensible fibers
+  double fiber_tension_N;            ///< one fiber's tension [N] when compliant; NaN (not computed) when inextensible
+  double gas_volume_m3;              ///< gas volume including any dead volume [m^3]
+  double absolute_pressure_Pa;       ///< gas pressure, absolute
+  double gauge_pressure_Pa;          ///< gas pressure above ambient
+  double heat_loss_rate_W;           ///< heat flowing from the gas to the wall
+  State rate;                        ///< d(state)/dt
 };
 
 /// The mutable half of model evaluations, as Pinocchio splits Model from Data: what one caller
@@ -178,12 +179,22 @@ struct MuscleOutputs {
 /// const model stays shareable.
 struct MuscleWorkspace {
   ShapeHint shape;  ///< where the braid's last closure solve ended
-  /// Compliant fibers only: the fibers' stretch L - L_b [m] and the elastic force's slope
-  /// dF/dL_b [N/m] where the last braid-length solve ended (NaN: none yet). The next solve
-  /// starts there: Newton from a nearby length instead of a bracketing search.
-  double fiber_stretch_m = std::numeric_limits<double>::quiet_NaN();
-  double force_slope_N_per_m = std::numeric_limits<double>::quiet_NaN();
+  /// Compliant fibers only: the fibers' length [m] where their last balance solve ended, and the
+  /// slope there of its residual in that length [1] (NaN: none yet). The next solve starts
+  /// there: a chord Newton iteration from a nearby length instead of a bracketing search.
+  double fiber_length_m = std::numeric_limits<double>::quiet_NaN();
+  double fiber_balance_slope = std::numeric_limits<double>::quiet_NaN();
 };
+
+namespace detail {
+/// Compliant fibers at their balance in one evaluation: what the state's rates need.
+struct FiberBalance {
+  FiberLengthDerivatives shape;  ///< the shape's derivatives in the fiber length at the balance
+  double tension_N;              ///< the fibers' tension together, N T [N] (total_fiber_tension)
+  double d_tension_d_length;     ///< d(N T)/dL at fixed fiber length, gas pressure and viscous stresses [N/m]
+  double d_tension_d_fiber;      ///< d(N T)/db at fixed muscle length, gas pressure and viscous stresses [N/m]
+};
+}  // namespace detail
 
 /// A muscle in a test: parameters plus the sealed gas mass. Immutable, so one model may be
 /// simulated from many threads at once.
@@ -205,10 +216,10 @@ class MuscleModel {
                               ShapeParts parts) const;
 
   /// `evaluate_with` at a braid shape solved beforehand (a ShapeTable's, sim/shape_table.hpp),
-  /// for fibers that are inextensible: the braid's length is the muscle's, `shape.length`. The
-  /// same operations on the same shape as `evaluate_with`, so the same outputs bit for bit.
+  /// for fibers that are inextensible. The same operations on the same shape as
+  /// `evaluate_with`, so the same outputs bit for bit.
   /// \throws InvalidInput if the fibers are compliant (fiber_compliance_per_N > 0): their
-  ///         braid's length depends on the force, so on the state, and no shape fixed
+  ///         length depends on their tension, so on the gas's state, and no shape fixed
   ///         beforehand holds it.
   MuscleOutputs evaluate_at_shape(const MuscleShape& shape, double velocity_m_per_s, const State& state) const;
 
@@ -236,18 +247,31 @@ class MuscleModel {
   const BraidGeometry& geometry() const { return geometry_; }
 
  private:
-  /// Elastic force [N] (gas, bladder and its viscous branch; no friction) at braid length L_b.
-  double elastic_force(double braid_length, const State& state, ShapeHint& hint) const;
-  /// Braid length whose stretched fibers span the muscle length `length_m`, started from where
-  /// `workspace` ended; leaves there the solution's stretch and the force's slope dF/dL_b.
-  double braid_length(double length_m, const State& state, MuscleWorkspace& workspace) const;
-  /// The bracketing search braid_length falls back on where Newton does not converge.
-  double bracketed_braid_length(double length_m, const State& state, ShapeHint& hint) const;
-  /// dF/dL_b [N/m] of the elastic force at braid length L_b, by central differences.
-  double elastic_slope(double braid_length, const State& state, ShapeHint& hint) const;
-  /// Fills `out`'s gas, forces and rates from its shape, braid length and braid velocity, at the
-  /// crosshead's rate `velocity_m_per_s` (the work's) in state `state`.
-  void complete_outputs(MuscleOutputs& out, double velocity_m_per_s, const State& state) const;
+  /// Compliant fibers: the length b' = b (1 + T / EA) [m] at which their tension T balances
+  /// their stretch at muscle length `length_m`, the gas's absolute pressure following its volume
+  /// (dead volume included) by `absolute_of_volume` and the bladder carrying the viscous stresses
+  /// `viscous`. A fiber cannot be compressed: where T would be negative, b' = b. Started from
+  /// where `workspace` ended; leaves there the solution and its residual's slope.
+  /// \throws InvalidInput if no fiber length in the braid's range balances.
+  template <class AbsoluteOfVolume>
+  double balanced_fiber_length(double length_m, const AbsoluteOfVolume& absolute_of_volume,
+                               const BiaxialStress& viscous, MuscleWorkspace& workspace) const;
+  /// The bracketing search balanced_fiber_length falls back on where Newton does not converge.
+  template <class AbsoluteOfVolume>
+  double bracketed_fiber_length(double length_m, const AbsoluteOfVolume& absolute_of_volume,
+                                const BiaxialStress& viscous, ShapeHint& hint) const;
+  /// The fibers' tension together, N T [N], at muscle length `length_m` and fiber length
+  /// `fiber_length_m`, the gas's absolute pressure `absolute_of_volume` of its volume.
+  template <class AbsoluteOfVolume>
+  double fiber_tension_at(double length_m, double fiber_length_m, const AbsoluteOfVolume& absolute_of_volume,
+                          const BiaxialStress& viscous, ShapeHint& hint) const;
+  /// One fiber's stretch per newton of the fibers' tension together, b / (N EA) [m/N].
+  double stretch_per_newton() const;
+  /// Fills `out`'s gas, forces and rates from its shape at the crosshead's rate
+  /// `velocity_m_per_s` in state `state`; `fibers` is the compliant fibers' balance (nullptr:
+  /// inextensible), whose rate of length the gas's and the bladder's rates then share.
+  void complete_outputs(MuscleOutputs& out, double velocity_m_per_s, const State& state,
+                        const detail::FiberBalance* fibers) const;
 
   MuscleParams params_;
   InitialState initial_;

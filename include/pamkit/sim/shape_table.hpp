@@ -34,7 +34,7 @@ class ShapeTable {
   /// Whether a run of `model` along `trajectory` may read its output shapes here: the model's
   /// build is this table's field for field, every sample's length L0 + e_k (the model's L0) is
   /// this table's bit for bit, and the fibers are inextensible (with fiber compliance the
-  /// braid's length depends on the force, so on the state, and no table can hold it). Costs a
+  /// braid's shape depends on the fibers' tension, so on the state, and no table can hold it). Costs a
   /// comparison per sample, no closure solve.
   bool applies_to(const MuscleModel& model, const ElongationTrajectory& trajectory) const;
 

@@ -799,10 +799,13 @@ class MuscleOutputs:
     def absolute_pressure_Pa(self) -> float:
         ...
     @property
-    def braid_length_m(self) -> float:
+    def fiber_length_m(self) -> float:
         ...
     @property
-    def braid_velocity_m_per_s(self) -> float:
+    def fiber_length_rate_m_per_s(self) -> float:
+        ...
+    @property
+    def fiber_tension_N(self) -> float:
         ...
     @property
     def forces(self) -> MuscleForces:

@@ -321,23 +321,29 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     causes = causes_json(d)
     first, lead = causes[0], decision.causes[0]
     channel = max(first["channels"], key=lambda c: first["gain"][c])
-    numbers = ", ".join(f"{k} = {v:.3g}" for k, v in first["params"].items() if not isinstance(v, str))
+    numbers = _numbers(first["params"])
     lo, hi = first["gain_ci95"][channel]
     rmse = _heldout_rmse(d, lead.judgement.fit)[channel]
     text = (
-        f"{_phrase(lead.judgement, channel)}: {first['effect']}, {numbers}; held-out {file_name(channel)} RMSE "
+        f"{_phrase(lead.judgement, channel)}: {first['effect']}{numbers}; held-out {file_name(channel)} RMSE "
         f"{_error(channel, baseline_rmse[channel])} → {_error(channel, rmse)} {_unit(channel)} (gain "
         f"{first['gain'][channel]:.2f}, "
         f"95 % CI {lo:.2f}–{hi:.2f})"
     )
     for more in causes[1:]:
-        numbers = ", ".join(f"{k} = {v:.3g}" for k, v in more["params"].items() if not isinstance(v, str))
         text += (
-            f"; and {more['effect']}, {numbers} (its own held-out gain on {', '.join(more['channels'])} "
+            f"; and {more['effect']}{_numbers(more['params'])} (its own held-out gain on {', '.join(more['channels'])} "
             f"{more['gain_own_channels']:.2f}, 95 % CI {more['gain_own_channels_ci95'][0]:.2f}–"
             f"{more['gain_own_channels_ci95'][1]:.2f})"
         )
     return text + _remainder_phrase(d) + bounds
+
+
+def _numbers(params: dict) -> str:
+    """", name = value, ..." of a cause's fitted numbers; nothing for a cause with none fitted (a
+    braid's slack whose width no sample resolves is held)."""
+    numbers = [f"{k} = {v:.3g}" for k, v in params.items() if not isinstance(v, str)]
+    return ", " + ", ".join(numbers) if numbers else ""
 
 
 def _remainder_phrase(d: Diagnosis) -> str:

@@ -45,7 +45,7 @@ TEST_CASE("shape table: a sealed run with heat transfer and friction reads it, s
 
 TEST_CASE("shape table: effects that move the muscle or stretch its fibers leave it unread", "[effects][shape_table]") {
   // Fixture slack moves the muscle off the crosshead, so its lengths are not the table's;
-  // compliant fibers make the braid's length depend on the force. The run then solves its
+  // compliant fibers make the braid's shape depend on their tension, so on the gas. The run then solves its
   // shapes and is the plain run, bit for bit.
   const ShapeTable crosshead_table(MuscleParams().build, table_c2_90().length_m, bench());
   for (const std::string spec : {"fixture_slack:slack_m=0.001", "fiber_compliance"}) {

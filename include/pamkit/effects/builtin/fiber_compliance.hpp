@@ -6,13 +6,16 @@
 
 namespace pamkit {
 
-/// fiber_compliance: the braid's fibers stretch under tension, a spring in series.
+/// fiber_compliance: the braid's fibers stretch under their tension, which the gas's hoop stress
+/// sets (MuscleModel's fiber balance, sim/model.hpp).
 struct FiberComplianceParams {
   static constexpr const char* kName = "fiber_compliance";
   static constexpr const char* kDescription =
-      "braid fibers that stretch under tension (axial stiffness EA of one fiber): a spring in series with the "
-      "braid. Gives it away: the force-elongation curve softens at high force; the pressure peaks less than the "
-      "crosshead's travel implies.";
+      "braid fibers that stretch under their tension (axial stiffness EA of one fiber) to b (1 + T / EA); T is "
+      "the force conjugate to their length, N T = p dV/db - dE_bladder/db, the hoop stress's pull, which tensions "
+      "them even where the muscle pulls nothing. Gives it away: the muscle widens as the pressure rises, so a "
+      "stretch compresses the gas less: force and pressure fall below the baseline, the more so the higher the "
+      "pressure.";
   static constexpr const char* kSignature = "force softens at high stretch";
   static constexpr EffectStage kStage = EffectStage::physics;
   static constexpr bool kHasChannel = false;
@@ -25,7 +28,8 @@ struct FiberComplianceParams {
                           false,
                           {50.0, detail::kInfinity,
                            "a braid strand of 0.1-0.5 mm^2 polyester or nylon (E = 2-5 GPa) has EA = 200-2500 N; "
-                           "below 50 N the braid would stretch by several per cent at bench tensions"},
+                           "the hoop stress of 200-400 kPa pulls each of PAM 2's fibers with 1-3 N, so below 50 N "
+                           "the fibers would stretch by several per cent"},
                           {FitScale::reciprocal, 10.0, detail::kInfinity, 300.0},
                           Resolution::any,
                           detail::kInfinity});  // inextensible
