@@ -2,7 +2,9 @@
 value, and the parameter's physically plausible range with its source. An effect's come from what
 it declares (its fields' search scale, interval and start); a build field's from the experiment
 file (`[calibrate]`: an unknown within its bounds; `[uncertain]`: the declared value within its
-tolerance). Both kinds of test fit on them: a time series (series/) and a static table (tables/).
+tolerance). Both kinds of test fit on them: a time series (series/) and a static table (tables/),
+and both report a fitted coordinate that ended at a bound or outside its plausible range (a
+Finding).
 
 Effect parameters move smoothly in their coordinate: log for time constants, rates for "infinite
 means off" constants.
@@ -13,6 +15,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
@@ -161,3 +164,76 @@ def uncertain_coordinate(name: str, experiment: Experiment) -> Coordinate:
     return linear_coordinate(
         name, *bounds, declared, bounds, f"[uncertain] {name} = {tolerance:g}: the build as it may be"
     )
+
+
+class Fitted(Protocol):
+    """Anything fitted on coordinates (a time series' fit, a table's, a campaign's): each
+    coordinate with the point the fit ended at, by name."""
+
+    coordinates: dict[str, tuple[Coordinate, float]]
+
+
+@dataclass
+class Finding:
+    """One fitted parameter that ended at a bound or outside its plausible range."""
+
+    parameter: str
+    value: float
+    bound: float | None
+    plausible: list[float]
+    source: str
+    # at a bound: where the fit would take the parameter without it, and how much lower the
+    # fitted RMSE would be there (series/calibrate.strain_at_bounds), when known
+    beyond: float | None = None
+    rmse_drop: float | None = None
+
+    def to_json(self) -> dict:
+        return {
+            "parameter": self.parameter,
+            "value": self.value,
+            "bound": self.bound,
+            "plausible": self.plausible,
+            "source": self.source,
+            "beyond_bound": self.beyond,
+            "rmse_drop_beyond_bound": self.rmse_drop,
+        }
+
+    def sentence(self) -> str:
+        if self.bound is not None:
+            strain = (
+                f" (unbounded, the fit would take it to {self.beyond:.4g}, its fitted RMSE "
+                f"{100 * self.rmse_drop:.2g} % lower)"
+                if self.beyond is not None
+                else ""
+            )
+            return f"{self.parameter} = {self.value:.4g} ended at its search bound {self.bound:.4g}{strain}"
+        return (
+            f"{self.parameter} = {self.value:.4g} is outside its plausible range "
+            f"[{self.plausible[0]:.4g}, {self.plausible[1]:.4g}]"
+        )
+
+
+def findings(fit: Fitted) -> list[Finding]:
+    """Every parameter of `fit` (anything with `coordinates`: a Fit, a table's or a campaign's)
+    at a bound of its search or outside its plausible range, with how far beyond the bound the
+    fit strains where it knows (`strain`)."""
+    out = []
+    strain = getattr(fit, "strain", {})
+    for key, (coordinate, x) in fit.coordinates.items():
+        value = float(coordinate.value(x))
+        side = coordinate.at_bound(x)
+        if side is None and not coordinate.implausible(value):
+            continue
+        beyond, drop = strain.get(key, (None, None)) if side else (None, None)
+        out.append(
+            Finding(
+                key,
+                value,
+                coordinate.bound_value(side) if side else None,
+                [float(coordinate.plausible[0]), float(coordinate.plausible[1])],
+                coordinate.source,
+                beyond,
+                drop,
+            )
+        )
+    return out

@@ -22,8 +22,6 @@ from pamkit.diagnosis.series.calibrate import Fit, fit_baseline, one_blas_thread
 from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
 from pamkit.diagnosis.series.candidates import candidates, fit_candidate, fit_pair
 from pamkit.diagnosis.series.decide import (
-    MIN_GAIN,
-    NONE_WITHIN_NOISE,
     PAIR_PARTNERS,
     PAIR_TRIGGER,
     Cause,
@@ -34,7 +32,6 @@ from pamkit.diagnosis.series.decide import (
     keeps_gain,
     noise_ratios,
     reads_left,
-    score,
     stands_out,
     structured,
     unfounded,
@@ -43,6 +40,8 @@ from pamkit.diagnosis.series.findings import baseline_findings
 from pamkit.diagnosis.series.joint import check_one_muscle
 from pamkit.diagnosis.series.kinds import Problem, build_problem
 from pamkit.diagnosis.series.result import Diagnosis
+from pamkit.diagnosis.series.score import score
+from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
 from pamkit.diagnosis.tables.engine import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.io.columns import OPTIONAL_COLUMNS

@@ -14,15 +14,10 @@ from pamkit.diagnosis.identify import why_undetermined
 from pamkit.diagnosis.series import campaign
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.campaign import SeriesCampaign
-from pamkit.diagnosis.series.decide import (
-    MIN_BIC_DROP,
-    MIN_GAIN,
-    NONE_WITHIN_NOISE,
-    Judgement,
-    credited_channels,
-    noise_ratios,
-)
+from pamkit.diagnosis.series.decide import Judgement, noise_ratios
 from pamkit.diagnosis.series.result import Diagnosis
+from pamkit.diagnosis.series.score import credited_channels
+from pamkit.diagnosis.significance import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE
 from pamkit.diagnosis.tables import report as table_report
 from pamkit.diagnosis.tables.engine import TableDiagnosis
 from pamkit.io.columns import difference_from_si, file_name, file_unit, value_from_si
@@ -340,7 +335,7 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
 
 
 def _numbers(params: dict) -> str:
-    """", name = value, ..." of a cause's fitted numbers; nothing for a cause with none fitted (a
+    """ ", name = value, ..." of a cause's fitted numbers; nothing for a cause with none fitted (a
     braid's slack whose width no sample resolves is held)."""
     numbers = [f"{k} = {v:.3g}" for k, v in params.items() if not isinstance(v, str)]
     return ", " + ", ".join(numbers) if numbers else ""

@@ -208,7 +208,7 @@ def test_a_cause_whose_shared_parameter_ends_at_a_bound_is_not_named(unknown_bra
     """The rule's wiring: the heat campaign, with the shared time constant reported at its search
     bound (as a fit that strains would end), comes back unexplained and says why."""
     import pamkit.diagnosis.series.campaign as campaign
-    from pamkit.diagnosis.series.findings import Finding
+    from pamkit.diagnosis.coordinates import Finding
 
     c, _ = unknown_braid
     real = campaign.findings

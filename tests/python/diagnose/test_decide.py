@@ -9,11 +9,9 @@ import pytest
 from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.decide import (
-    NONE_WITHIN_NOISE,
     STANDS_OUT,
     STRUCTURE_LEFT,
     Judgement,
-    Score,
     decide,
     judge,
     noise_ratios,
@@ -21,6 +19,8 @@ from pamkit.diagnosis.series.decide import (
     uncredited,
     unfounded,
 )
+from pamkit.diagnosis.series.score import Score
+from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
 
 SAMPLES = 1000
 rng = np.random.default_rng(7)
@@ -138,7 +138,7 @@ def test_a_cause_stands_beside_a_better_fit_that_explains_another_channel():
 
 def test_none_only_within_the_noise():
     # No significant candidate: `none` while every channel's held-out RMSE is within
-    # NONE_WITHIN_NOISE of its noise, `unexplained` beyond it (the rule's factor, decide.py).
+    # NONE_WITHIN_NOISE of its noise, `unexplained` beyond it (the rule's factor, diagnosis/significance.py).
     weak = candidate("leak", 0.01, 0.01 + SHARED)
     weak.significant = False
     inside = fit("none", {"force_N": np.full(ROWS, 0.99 * NONE_WITHIN_NOISE)}, effects=[])

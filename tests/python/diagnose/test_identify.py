@@ -1,4 +1,4 @@
-"""Intervals never claim what the data cannot tell (python/pamkit/diagnose/identify.py): a
+"""Intervals never claim what the data cannot tell (python/pamkit/diagnosis/identify.py): a
 parameter the data do not determine is reported as such, with what it trades against, and its
 interval is its whole search interval, never a zero width."""
 

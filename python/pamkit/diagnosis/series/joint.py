@@ -41,7 +41,7 @@ from pamkit.simulation import muscle_params
 PER_TEST = ("inflation_gauge_pressure_Pa",)
 # A test whose fitted units the shared muscle fits with more than this multiple of the RMSE its own
 # calibration reaches disagrees with the others. The calibrations alone reach 0.75-1.5x the noise
-# on pamkit's null benchmark (decide.py), so sharing a muscle that fits costs well under 2x.
+# on pamkit's null benchmark (significance.py), so sharing a muscle that fits costs well under 2x.
 DISAGREES = 2.0
 
 

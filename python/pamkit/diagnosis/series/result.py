@@ -5,9 +5,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from pamkit.diagnosis.coordinates import Finding
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.decide import Decision, Judgement
-from pamkit.diagnosis.series.findings import Finding
 from pamkit.diagnosis.series.kinds import Problem
 
 

@@ -14,13 +14,13 @@ import numpy as np
 
 from pamkit.diagnosis.discover import discover
 from pamkit.diagnosis.features import DiscoveryError, Term
-from pamkit.diagnosis.series.decide import NONE_WITHIN_NOISE
+from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
 from pamkit.io.columns import value_from_si
 from pamkit.io.experiment import test_names
 
 UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
 # A channel is searched when its held-out RMSE exceeds the factor within which a model is said
-# to explain a table (series/decide.py).
+# to explain a table (significance.py).
 NOISE_FACTOR = NONE_WITHIN_NOISE
 
 

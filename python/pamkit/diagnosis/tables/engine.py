@@ -27,8 +27,8 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from pamkit._core import EffectCatalog, EffectStage, GasMode
-from pamkit.diagnosis.series.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
-from pamkit.diagnosis.series.findings import findings
+from pamkit.diagnosis.coordinates import findings
+from pamkit.diagnosis.significance import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
 from pamkit.diagnosis.tables.discover import discover_table
 from pamkit.diagnosis.tables.fit import Fitter, TableFit, TableModel, fit_table, heldout_rmse
 from pamkit.diagnosis.tables.kinds import Campaign, beyond_reach, campaign_of, noise_of
@@ -89,7 +89,7 @@ class TableDiagnosis:
 
 
 def _findings(fit: TableFit) -> list[dict]:
-    """series/findings.py's findings (parameters at a search bound or implausible), as report rows."""
+    """coordinates.py's findings (parameters at a search bound or implausible), as report rows."""
     return [asdict(f) for f in findings(fit)]
 
 
