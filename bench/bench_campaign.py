@@ -116,7 +116,7 @@ def _asked_by(frame) -> str:
     finite = False
     while frame is not None:
         name = frame.f_code.co_filename
-        if name.endswith(("diagnose/joint.py", "diagnose/campaign.py")):
+        if name.endswith(("diagnosis/series/joint.py", "diagnosis/series/campaign.py")):
             return "campaign"
         finite = finite or name.endswith("_numdiff.py")
         frame = frame.f_back
@@ -248,7 +248,7 @@ def print_tables(results: dict, total: dict) -> None:
         )
     print(
         "  (fin. diff.): the share of the tests' own simulations that are finite-difference Jacobian columns;\n"
-        "  sensitivity runs: runs with CVODES forward sensitivities, one per Jacobian (diagnose/jacobian.py)"
+        "  sensitivity runs: runs with CVODES forward sensitivities, one per Jacobian (diagnosis/series/jacobian.py)"
     )
 
 

@@ -6,7 +6,7 @@ verdicts and gains agree.
 
 Each dataset is diagnosed twice, the order alternating from one dataset to the next so that a
 machine growing busier does not favour either. Finite differences are what the fits used before
-diagnose/jacobian.py: runs differenced at DIFF_STEP. Runs are counted where they are made:
+diagnosis/series/jacobian.py: runs differenced at DIFF_STEP. Runs are counted where they are made:
 plain runs (Predictor.simulate) and runs with sensitivities (one per Jacobian, each carrying a
 sensitivity per coordinate that moves the model).
 """
