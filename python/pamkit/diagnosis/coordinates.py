@@ -173,6 +173,11 @@ class Fitted(Protocol):
     coordinates: dict[str, tuple[Coordinate, float]]
 
 
+# A bound whose lifting would lower the fitted RMSE by less than this share holds nothing back: the
+# fit rests there on a flat floor (a wind traded against the inflation pressure), it does not strain.
+NO_COST_AT_BOUND = 1e-3
+
+
 @dataclass
 class Finding:
     """One fitted parameter that ended at a bound or outside its plausible range."""
@@ -197,6 +202,11 @@ class Finding:
             "beyond_bound": self.beyond,
             "rmse_drop_beyond_bound": self.rmse_drop,
         }
+
+    @property
+    def costs_nothing(self) -> bool:
+        """At a bound that, lifted, would lower the fitted RMSE by less than NO_COST_AT_BOUND."""
+        return self.bound is not None and self.rmse_drop is not None and self.rmse_drop < NO_COST_AT_BOUND
 
     def sentence(self) -> str:
         if self.bound is not None:

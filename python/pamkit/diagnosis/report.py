@@ -267,8 +267,12 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     p = d.problem
     baseline_rmse = _heldout_rmse(d, d.baseline)
     decision = d.decision
-    baseline_findings = [f.sentence() for f in d.warnings if f.parameter in d.baseline.coordinates]
-    bounds = f"; the base model strains to fit: {'; '.join(baseline_findings)}" if baseline_findings else ""
+    in_baseline = [f for f in d.warnings if f.parameter in d.baseline.coordinates]
+    straining = [f.sentence() for f in in_baseline if not f.costs_nothing]
+    resting = [f.sentence() for f in in_baseline if f.costs_nothing]
+    bounds = f"; the base model strains to fit: {'; '.join(straining)}" if straining else ""
+    if resting:
+        bounds += f"; at a bound that costs the fit nothing: {'; '.join(resting)}"
     unknowns = [name for name in [*p.experiment.uncertain, *p.experiment.calibrate] if name in d.baseline.intervals]
     if unknowns:
         bounds += "; calibrated " + ", ".join(interval_phrase(d.baseline, name) for name in unknowns)
@@ -335,8 +339,8 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
 
 
 def _numbers(params: dict) -> str:
-    """ ", name = value, ..." of a cause's fitted numbers; nothing for a cause with none fitted (a
-    braid's slack whose width no sample resolves is held)."""
+    """A cause's fitted numbers as the verdict lists them after its name (', name = value, ...');
+    nothing for a cause with none fitted (a braid's slack whose width no sample resolves is held)."""
     numbers = [f"{k} = {v:.3g}" for k, v in params.items() if not isinstance(v, str)]
     return ", " + ", ".join(numbers) if numbers else ""
 

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from pamkit._core import EffectStage, GasMode, Resolution
+from pamkit.diagnosis.coordinates import NO_COST_AT_BOUND, Finding
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.decide import (
     STANDS_OUT,
@@ -299,3 +300,13 @@ def test_a_transducers_correction_is_not_bound_by_the_pressure_it_read():
         j = judge(p, candidate_fit, score, baseline)
         assert any(f.parameter == "inflation_gauge_pressure_Pa" for f in j.findings) is refused
         assert any(f.parameter == "inflation_gauge_pressure_Pa" for f in j.strain) is not refused
+
+
+def test_a_bound_that_costs_the_fit_nothing_is_told_apart_from_a_strain():
+    # A wind resting on a flat floor at its tolerance's end (the bundled example: lifting the bound
+    # lowers the RMSE by 5e-7) holds nothing back; one whose bound costs 3 % of the RMSE does.
+    resting = Finding("fiber_revolutions", 2.1, 2.1, [1.9, 2.1], "[uncertain]", beyond=2.101, rmse_drop=5e-7)
+    straining = Finding("fiber_revolutions", 2.1, 2.1, [1.9, 2.1], "[uncertain]", beyond=2.3, rmse_drop=0.03)
+    implausible = Finding("friction_scale", 0.05, None, [0.1, 10.0], "its range")
+    assert resting.costs_nothing and not straining.costs_nothing and not implausible.costs_nothing
+    assert Finding("x", 1.0, 1.0, [0.0, 1.0], "s", beyond=1.0, rmse_drop=NO_COST_AT_BOUND).costs_nothing is False
