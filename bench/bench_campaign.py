@@ -48,10 +48,10 @@ from independent import bench
 from independent.families import draws, record_sealed
 from independent.physics import Build, Motion, Physics, SealedMuscle
 
-import pamkit.diagnosis.jacobian
-import pamkit.diagnosis.joint
+import pamkit.diagnosis.series.jacobian
+import pamkit.diagnosis.series.joint
 from pamkit.diagnosis import diagnose
-from pamkit.diagnosis.model import Predictor
+from pamkit.diagnosis.series.model import Predictor
 
 THESIS = Path(__file__).resolve().parents[1] / "data" / "experiments" / "thesis"
 CAMPAIGNS = {"PAM 1": "pam1_*.toml", "PAM 2": "pam2_*.toml"}
@@ -116,7 +116,7 @@ def _asked_by(frame) -> str:
     finite = False
     while frame is not None:
         name = frame.f_code.co_filename
-        if name.endswith(("diagnose/joint.py", "diagnose/campaign.py")):
+        if name.endswith(("diagnosis/series/joint.py", "diagnosis/series/campaign.py")):
             return "campaign"
         finite = finite or name.endswith("_numdiff.py")
         frame = frame.f_back
@@ -142,8 +142,8 @@ def counting_simulations():
         return simulate(self, x, effects)
 
     # joint.py holds its own name for it: both are counted.
-    modules = (pamkit.diagnosis.jacobian, pamkit.diagnosis.joint)
-    sensitivity_jacobian = pamkit.diagnosis.jacobian.sensitivity_jacobian
+    modules = (pamkit.diagnosis.series.jacobian, pamkit.diagnosis.series.joint)
+    sensitivity_jacobian = pamkit.diagnosis.series.jacobian.sensitivity_jacobian
 
     def counted_sensitivities(*args):
         with lock:
@@ -248,7 +248,7 @@ def print_tables(results: dict, total: dict) -> None:
         )
     print(
         "  (fin. diff.): the share of the tests' own simulations that are finite-difference Jacobian columns;\n"
-        "  sensitivity runs: runs with CVODES forward sensitivities, one per Jacobian (diagnose/jacobian.py)"
+        "  sensitivity runs: runs with CVODES forward sensitivities, one per Jacobian (diagnosis/series/jacobian.py)"
     )
 
 

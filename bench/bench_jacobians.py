@@ -6,7 +6,7 @@ verdicts and gains agree.
 
 Each dataset is diagnosed twice, the order alternating from one dataset to the next so that a
 machine growing busier does not favour either. Finite differences are what the fits used before
-diagnose/jacobian.py: runs differenced at DIFF_STEP. Runs are counted where they are made:
+diagnosis/series/jacobian.py: runs differenced at DIFF_STEP. Runs are counted where they are made:
 plain runs (Predictor.simulate) and runs with sensitivities (one per Jacobian, each carrying a
 sensitivity per coordinate that moves the model).
 """
@@ -24,12 +24,12 @@ from pathlib import Path
 
 import numpy as np
 
-import pamkit.diagnosis.candidates as candidates
-import pamkit.diagnosis.jacobian as jacobian
-import pamkit.diagnosis.joint as joint
+import pamkit.diagnosis.series.candidates as candidates
+import pamkit.diagnosis.series.jacobian as jacobian
+import pamkit.diagnosis.series.joint as joint
 from pamkit.diagnosis import diagnose
-from pamkit.diagnosis.model import Predictor
 from pamkit.diagnosis.report import to_json
+from pamkit.diagnosis.series.model import Predictor
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import hideable_effects, synthesize
 

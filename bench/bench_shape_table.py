@@ -4,7 +4,7 @@
 The record: PAM 2 at 0.167 m and 236.63 kPa (table C.2, 90 %), the thesis protocol to 52.3 mm at
 2.5 mm/s for 10 cycles sampled every --period s (0.03 s: 13 961 samples, the length of the
 diagnosis's longer records), heat transfer (tau = 5 s) and the thesis's friction, at the
-diagnosis's tolerances (rtol 1e-6, atol 1e-6 K: diagnose/model.py's Predictor). Each round runs
+diagnosis's tolerances (rtol 1e-6, atol 1e-6 K: diagnosis/series/model.py's Predictor). Each round runs
 `simulate_measurement` without a table, then with one built beforehand, alternately; the
 inflation pressure changes every round (as a diagnosis's runs differ), the table does not.
 

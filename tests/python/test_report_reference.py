@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 import pamkit
-from pamkit.diagnosis.table_kinds import PREDICTED
+from pamkit.diagnosis.tables.kinds import PREDICTED
 from pamkit.io.columns import file_name
 
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[2]))

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import pamkit._core as core
-from pamkit.diagnosis.model import Predictor
+from pamkit.diagnosis.series.model import Predictor
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import synthesize
 

@@ -12,6 +12,6 @@ functions below are the implementation and stay importable:
 
 from pamkit.diagnosis.engine import MIN_GAIN, diagnose
 from pamkit.diagnosis.report import plot, to_json, verdict
-from pamkit.diagnosis.result import Diagnosis
+from pamkit.diagnosis.series.result import Diagnosis
 
 __all__ = ["MIN_GAIN", "Diagnosis", "diagnose", "plot", "to_json", "verdict"]

@@ -17,12 +17,11 @@ from pathlib import Path
 import numpy as np
 
 from pamkit._core import EffectCatalog, EffectStage, GasMode
-from pamkit.diagnosis.calibrate import Fit, fit_baseline, one_blas_thread
-from pamkit.diagnosis.campaign import MIN_TESTS, campaign_of_series
-from pamkit.diagnosis.candidates import candidates, fit_candidate, fit_pair
-from pamkit.diagnosis.decide import (
-    MIN_GAIN,
-    NONE_WITHIN_NOISE,
+from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
+from pamkit.diagnosis.series.calibrate import Fit, fit_baseline, one_blas_thread
+from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
+from pamkit.diagnosis.series.candidates import candidates, fit_candidate, fit_pair
+from pamkit.diagnosis.series.decide import (
     PAIR_PARTNERS,
     PAIR_TRIGGER,
     Cause,
@@ -33,17 +32,17 @@ from pamkit.diagnosis.decide import (
     keeps_gain,
     noise_ratios,
     reads_left,
-    score,
     stands_out,
     structured,
     unfounded,
 )
-from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
-from pamkit.diagnosis.findings import baseline_findings
-from pamkit.diagnosis.joint import check_one_muscle
-from pamkit.diagnosis.kinds import Problem, build_problem
-from pamkit.diagnosis.result import Diagnosis
-from pamkit.diagnosis.tables import TableDiagnosis, diagnose_table
+from pamkit.diagnosis.series.findings import baseline_findings
+from pamkit.diagnosis.series.joint import check_one_muscle
+from pamkit.diagnosis.series.kinds import Problem, build_problem
+from pamkit.diagnosis.series.result import Diagnosis
+from pamkit.diagnosis.series.score import score
+from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
+from pamkit.diagnosis.tables.engine import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.io.columns import OPTIONAL_COLUMNS
 from pamkit.io.experiment import Experiment, load_tests
@@ -274,8 +273,8 @@ def diagnose(
     """Diagnoses one experiment, or a campaign (a list) of tests of one muscle, or a campaign
     TOML (`[campaign] tests = [...]`). `progress(message)` is called as work proceeds; `seed`
     (by default drawn from the data) seeds the bootstrap. Static tables (isometric maps,
-    isotonic and free-inflation tables) are diagnosed by tables.py, on held-out lengths, sweeps
-    or rows; a campaign of time series by campaign.py, each test held out in turn.
+    isotonic and free-inflation tables) are diagnosed by tables/, on held-out lengths, sweeps
+    or rows; a campaign of time series by series/campaign.py, each test held out in turn.
 
     Raises:
         ExperimentError: for data that cannot be diagnosed, naming file, row and column.
@@ -301,7 +300,7 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     tests = loaded
     effect_catalog = effect_catalog if effect_catalog is not None else builtin_catalog()
     # Tables, alone or with supplied cyclic tests of the same muscle: one muscle calibrated across
-    # its characterisations (tables.py samples a supplied series as rows along its path).
+    # its characterisations (tables/ samples a supplied series as rows along its path).
     if any(e.is_table for e in tests) and all(e.is_table or e.gas == GasMode.supplied for e in tests):
         return diagnose_table(tests, effect_catalog, progress=progress, threads=threads)
     if len(tests) > 1:
@@ -411,7 +410,7 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
 
 
 def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress, threads, seed):
-    """Each time series alone, then the causes carried from the others to each (campaign.py)."""
+    """Each time series alone, then the causes carried from the others to each (series/campaign.py)."""
     if any(e.is_table for e in tests):
         raise ExperimentError(
             f"{tests[0].path}: a campaign is of one kind: static tables (with supplied cyclic tests of the same "

@@ -9,11 +9,11 @@ from pathlib import Path
 import numpy as np
 
 from pamkit._core import EffectStage, GasMode, InitialState, MuscleParams, write_muscle_params
-from pamkit.diagnosis.campaign import SeriesCampaign
-from pamkit.diagnosis.model import Baseline, muscle_signature
-from pamkit.diagnosis.result import Diagnosis
-from pamkit.diagnosis.table_fit import TableModel
-from pamkit.diagnosis.tables import TableDiagnosis
+from pamkit.diagnosis.series.campaign import SeriesCampaign
+from pamkit.diagnosis.series.model import Baseline, muscle_signature
+from pamkit.diagnosis.series.result import Diagnosis
+from pamkit.diagnosis.tables.engine import TableDiagnosis
+from pamkit.diagnosis.tables.fit import TableModel
 from pamkit.effects import catalog as builtin_catalog
 
 

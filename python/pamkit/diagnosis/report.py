@@ -8,21 +8,18 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.diagnosis import campaign, evidence, table_report
-from pamkit.diagnosis.calibrate import Fit
-from pamkit.diagnosis.campaign import SeriesCampaign
-from pamkit.diagnosis.decide import (
-    MIN_BIC_DROP,
-    MIN_GAIN,
-    NONE_WITHIN_NOISE,
-    Judgement,
-    credited_channels,
-    noise_ratios,
-)
+from pamkit.diagnosis import evidence
 from pamkit.diagnosis.engine import CHANNEL_UNITS as UNITS
 from pamkit.diagnosis.identify import why_undetermined
-from pamkit.diagnosis.result import Diagnosis
-from pamkit.diagnosis.tables import TableDiagnosis
+from pamkit.diagnosis.series import campaign
+from pamkit.diagnosis.series.calibrate import Fit
+from pamkit.diagnosis.series.campaign import SeriesCampaign
+from pamkit.diagnosis.series.decide import Judgement, noise_ratios
+from pamkit.diagnosis.series.result import Diagnosis
+from pamkit.diagnosis.series.score import credited_channels
+from pamkit.diagnosis.significance import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE
+from pamkit.diagnosis.tables import report as table_report
+from pamkit.diagnosis.tables.engine import TableDiagnosis
 from pamkit.io.columns import difference_from_si, file_name, file_unit, value_from_si
 from pamkit.plots import save_figure
 

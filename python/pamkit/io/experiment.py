@@ -222,6 +222,14 @@ def load_tests(path: str | Path) -> list[Experiment]:
     return [load_experiment(path.parent / test, shared=document) for test in tests]
 
 
+def test_names(experiments: list[Experiment]) -> list[str]:
+    """A short name for each test of a campaign: its file's stem, with its folder where stems repeat."""
+    stems = [Path(e.path).stem for e in experiments]
+    if len(set(stems)) == len(stems):
+        return stems
+    return [f"{Path(e.path).parent.name}/{stem}" for e, stem in zip(experiments, stems)]
+
+
 def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
     """Reads an experiment TOML and its CSV (pamkit's own, a spreadsheet's with ";" and decimal
     commas, or a tensile machine's export: Instron Bluehill, ZwickRoell testXpert); `shared`

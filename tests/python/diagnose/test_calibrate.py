@@ -1,10 +1,10 @@
-"""The least-squares helpers of python/pamkit/diagnosis/calibrate.py against closed forms."""
+"""The least-squares helpers of python/pamkit/diagnosis/series/calibrate.py against closed forms."""
 
 import numpy as np
 import pytest
 
-from pamkit.diagnosis.calibrate import cluster_intervals, strain_at_bounds
-from pamkit.diagnosis.model import Coordinate
+from pamkit.diagnosis.coordinates import Coordinate
+from pamkit.diagnosis.series.calibrate import cluster_intervals, strain_at_bounds
 
 
 def test_cluster_intervals_of_a_mean_are_its_standard_error():

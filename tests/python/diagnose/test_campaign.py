@@ -18,10 +18,10 @@ from independent.physics import Physics  # noqa: E402
 
 from pamkit import deflated_braid_angle_deg, read_muscle_params_file  # noqa: E402
 from pamkit.diagnosis import diagnose, verdict  # noqa: E402
-from pamkit.diagnosis.campaign import campaign_of_series  # noqa: E402
-from pamkit.diagnosis.joint import DISAGREES, calibrate_jointly  # noqa: E402
 from pamkit.diagnosis.params_out import write_params  # noqa: E402
 from pamkit.diagnosis.report import write  # noqa: E402
+from pamkit.diagnosis.series.campaign import campaign_of_series  # noqa: E402
+from pamkit.diagnosis.series.joint import DISAGREES, calibrate_jointly  # noqa: E402
 from pamkit.effects import catalog  # noqa: E402
 from pamkit.io.experiment import load_tests  # noqa: E402
 from pamkit.io.guards import ExperimentError  # noqa: E402
@@ -207,8 +207,8 @@ def test_the_one_step_leave_one_test_out_agrees_with_refitting_without_the_test(
 def test_a_cause_whose_shared_parameter_ends_at_a_bound_is_not_named(unknown_braid, monkeypatch):
     """The rule's wiring: the heat campaign, with the shared time constant reported at its search
     bound (as a fit that strains would end), comes back unexplained and says why."""
-    import pamkit.diagnosis.campaign as campaign
-    from pamkit.diagnosis.findings import Finding
+    import pamkit.diagnosis.series.campaign as campaign
+    from pamkit.diagnosis.coordinates import Finding
 
     c, _ = unknown_braid
     real = campaign.findings

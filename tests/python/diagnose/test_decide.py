@@ -1,4 +1,4 @@
-"""The decision rules of python/pamkit/diagnosis/decide.py on scores made by hand: what each rule
+"""The decision rules of python/pamkit/diagnosis/series/decide.py on scores made by hand: what each rule
 does with two candidates, without fitting anything."""
 
 from types import SimpleNamespace
@@ -7,13 +7,12 @@ import numpy as np
 import pytest
 
 from pamkit._core import EffectStage, GasMode, Resolution
-from pamkit.diagnosis.calibrate import Fit
-from pamkit.diagnosis.decide import (
-    NONE_WITHIN_NOISE,
+from pamkit.diagnosis.coordinates import NO_COST_AT_BOUND, Finding
+from pamkit.diagnosis.series.calibrate import Fit
+from pamkit.diagnosis.series.decide import (
     STANDS_OUT,
     STRUCTURE_LEFT,
     Judgement,
-    Score,
     decide,
     judge,
     noise_ratios,
@@ -21,7 +20,8 @@ from pamkit.diagnosis.decide import (
     uncredited,
     unfounded,
 )
-from pamkit.diagnosis.findings import NO_COST_AT_BOUND, Finding
+from pamkit.diagnosis.series.score import Score
+from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
 
 SAMPLES = 1000
 rng = np.random.default_rng(7)
@@ -139,7 +139,7 @@ def test_a_cause_stands_beside_a_better_fit_that_explains_another_channel():
 
 def test_none_only_within_the_noise():
     # No significant candidate: `none` while every channel's held-out RMSE is within
-    # NONE_WITHIN_NOISE of its noise, `unexplained` beyond it (the rule's factor, decide.py).
+    # NONE_WITHIN_NOISE of its noise, `unexplained` beyond it (the rule's factor, diagnosis/significance.py).
     weak = candidate("leak", 0.01, 0.01 + SHARED)
     weak.significant = False
     inside = fit("none", {"force_N": np.full(ROWS, 0.99 * NONE_WITHIN_NOISE)}, effects=[])

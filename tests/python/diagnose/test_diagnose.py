@@ -145,7 +145,7 @@ def test_ljung_box_tells_noise_from_structure():
 def test_programmed_motion_recovers_ramps_holds_and_corners():
     # A bench program: rest, 4 cycles of 20 mm at 5 mm/s with a 3 s hold at the top, sampled at
     # 10 Hz with corners between samples, read through 1 um of encoder noise.
-    from pamkit.diagnosis.motion import programmed_motion
+    from pamkit.diagnosis.series.motion import programmed_motion
 
     knots_t, knots_e, t = [0.0, 1.03], [0.0, 0.0], 1.03
     for _ in range(4):
@@ -166,7 +166,7 @@ def test_programmed_motion_recovers_ramps_holds_and_corners():
 
 
 def test_programmed_motion_keeps_a_curve_as_measured():
-    from pamkit.diagnosis.motion import programmed_motion
+    from pamkit.diagnosis.series.motion import programmed_motion
 
     time = np.linspace(0, 60, 1200)
     curve = 0.02 * (1 - np.cos(2 * np.pi * time / 15))  # not ramps and holds: nothing to fit

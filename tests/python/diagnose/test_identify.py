@@ -1,4 +1,4 @@
-"""Intervals never claim what the data cannot tell (python/pamkit/diagnose/identify.py): a
+"""Intervals never claim what the data cannot tell (python/pamkit/diagnosis/identify.py): a
 parameter the data do not determine is reported as such, with what it trades against, and its
 interval is its whole search interval, never a zero width."""
 
@@ -10,9 +10,9 @@ import pytest
 from conftest import SOURCE_DIR
 
 from pamkit.diagnosis import diagnose, to_json
-from pamkit.diagnosis.calibrate import cluster_intervals
+from pamkit.diagnosis.coordinates import linear_coordinate
 from pamkit.diagnosis.identify import Z95, identify
-from pamkit.diagnosis.model import _linear
+from pamkit.diagnosis.series.calibrate import cluster_intervals
 from pamkit.io.experiment import load_experiment
 
 rng = np.random.default_rng(3)
@@ -51,7 +51,10 @@ def test_a_direction_wider_than_the_search_is_not_determined(across_the_box, det
 
 
 def test_an_undetermined_interval_is_its_search_interval():
-    space = [_linear("braid_angle_deg", 10.0, 45.0, 20.0), _linear("fiber_count", 20.0, 200.0, 100.0)]
+    space = [
+        linear_coordinate("braid_angle_deg", 10.0, 45.0, 20.0),
+        linear_coordinate("fiber_count", 20.0, 200.0, 100.0),
+    ]
     jacobian = np.column_stack([rng.normal(size=40) * 50, np.zeros(40)])
     residual = rng.normal(size=40)
     bands, undetermined = cluster_intervals(space, np.array([0.3, 0.4]), jacobian, residual, np.arange(40) // 4)

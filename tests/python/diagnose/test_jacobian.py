@@ -1,4 +1,4 @@
-"""A fit's Jacobian from one run with CVODES forward sensitivities (python/pamkit/diagnosis/jacobian.py),
+"""A fit's Jacobian from one run with CVODES forward sensitivities (python/pamkit/diagnosis/series/jacobian.py),
 checked against central differences of tightly integrated runs, as Crocoddyl checks its
 analytic derivatives against numdiff; and where it does not apply, SciPy's differences remain."""
 
@@ -9,10 +9,11 @@ import numpy as np
 import pytest
 
 from pamkit._core import GasMode, SimulatorConfig
-from pamkit.diagnosis import jacobian
-from pamkit.diagnosis.calibrate import fit_baseline, start_unit, unit_to_x
-from pamkit.diagnosis.kinds import build_problem
-from pamkit.diagnosis.model import Predictor, configure, effect_space
+from pamkit.diagnosis.coordinates import configure, effect_space
+from pamkit.diagnosis.series import jacobian
+from pamkit.diagnosis.series.calibrate import fit_baseline, start_unit, unit_to_x
+from pamkit.diagnosis.series.kinds import build_problem
+from pamkit.diagnosis.series.model import Predictor
 from pamkit.effects import catalog
 from pamkit.io.experiment import load_experiment
 
@@ -76,7 +77,7 @@ def test_the_sensitivity_jacobian_is_central_differences_of_tight_runs(names):
 def test_a_fit_with_sensitivities_reaches_the_finite_difference_fits_optimum(monkeypatch):
     problem = build_problem(load_experiment(EXAMPLE))
     exact = fit_baseline(problem)
-    monkeypatch.setattr("pamkit.diagnosis.calibrate.jacobian_for", lambda *args: "2-point")
+    monkeypatch.setattr("pamkit.diagnosis.series.calibrate.jacobian_for", lambda *args: "2-point")
     differenced = fit_baseline(problem)
     for name, (low, high) in exact.intervals.items():
         # The two optima agree to a thousandth of the parameter's own 95 % interval (measured: 5e-5).

@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 
 from pamkit.diagnosis import diagnose
-from pamkit.diagnosis.calibrate import fit_baseline, one_blas_thread
-from pamkit.diagnosis.candidates import lag_start
-from pamkit.diagnosis.kinds import build_problem
-from pamkit.diagnosis.model import effect_space
+from pamkit.diagnosis.coordinates import effect_space
+from pamkit.diagnosis.series.calibrate import fit_baseline, one_blas_thread
+from pamkit.diagnosis.series.candidates import lag_start
+from pamkit.diagnosis.series.kinds import build_problem
 from pamkit.effects import catalog
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import synthesize

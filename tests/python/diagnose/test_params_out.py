@@ -239,7 +239,7 @@ def test_a_sleeve_and_an_embedded_build_of_the_same_numbers_are_two_muscles():
     # --params-out writes one muscle for a campaign of tables only when they declare one: the
     # construction tells two builds of the same dimensions apart (one braid pushes, one cannot).
     from pamkit._core import MuscleParams
-    from pamkit.diagnosis.model import muscle_signature
+    from pamkit.diagnosis.series.model import muscle_signature
 
     sleeve, embedded = MuscleParams(), MuscleParams()
     build = embedded.build

@@ -1,12 +1,12 @@
 """The diagnosis's Predictor: an instrument's finite-difference columns read the model's last run
-(python/pamkit/diagnosis/model.py, Predictor.measurement) instead of simulating again. The numbers
+(python/pamkit/diagnosis/series/model.py, Predictor.measurement) instead of simulating again. The numbers
 must be a full run's, bit for bit, and only instruments may skip the run."""
 
 import numpy as np
 import pytest
 
-import pamkit.diagnosis.model as model
-from pamkit.diagnosis.model import Predictor
+import pamkit.diagnosis.series.model as model
+from pamkit.diagnosis.series.model import Predictor
 from pamkit.effects import parse_effects
 from pamkit.io.experiment import load_experiment
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from pamkit.diagnosis.engine import data_seed
-from pamkit.diagnosis.kinds import build_problem
+from pamkit.diagnosis.series.kinds import build_problem
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import synthesize
 

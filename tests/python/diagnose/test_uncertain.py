@@ -1,6 +1,6 @@
 """The build as uncertain as the experiment declares (`[uncertain]`; by default the braid's wind
 within 5 %): the baseline calibrates those fields within their tolerance, so every candidate is
-judged against the build as it may be (python/pamkit/diagnosis/model.py). Decisions are judged over
+judged against the build as it may be (python/pamkit/diagnosis/series/model.py). Decisions are judged over
 several seeds; `[uncertain]` is checked as any section of the file is."""
 
 import pytest

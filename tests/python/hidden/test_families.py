@@ -6,7 +6,7 @@ only. One seed per family here; bench/bench_families.py sweeps more.
 The assertions marked ACCEPTANCE are the diagnosis's promises: a catalog name only when it is the
 truth ("never a wrong name"), `none` only when every channel's held-out RMSE is within the
 report's stated factor of its noise (rule 5 of docs/diagnosis.md; the factor and its source are in
-python/pamkit/diagnosis/decide.py), and the hidden effect named when it is in the catalog.
+python/pamkit/diagnosis/series/decide.py), and the hidden effect named when it is in the catalog.
 """
 
 import json

@@ -98,7 +98,7 @@ def test_own_world_never_names_a_wrong_cause(own_world):
 
 def test_own_world_nulls_come_back_none(own_world):
     # The baseline is the truth there: `none`, the calibrated model within NONE_WITHIN_NOISE of
-    # the noise on every channel (decide.py; tests/python/diagnose/test_decide.py pins the factor).
+    # the noise on every channel (diagnosis/significance.py; tests/python/diagnose/test_decide.py pins the factor).
     rows = nulls(own_world)
     assert all(r["cause"] == "none" for r in rows), summary(rows)
 

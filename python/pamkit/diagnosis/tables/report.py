@@ -9,9 +9,10 @@ from pathlib import Path
 import numpy as np
 
 from pamkit.diagnosis.identify import why_undetermined
-from pamkit.diagnosis.table_kinds import CYCLIC, test_names
-from pamkit.diagnosis.tables import CHANNEL_UNITS, TableDiagnosis, TableFit, heldout_rmse
+from pamkit.diagnosis.tables.engine import CHANNEL_UNITS, TableDiagnosis, TableFit, heldout_rmse
+from pamkit.diagnosis.tables.kinds import CYCLIC
 from pamkit.io.columns import value_from_si
+from pamkit.io.experiment import test_names
 from pamkit.plots import save_figure
 from pamkit.units import MILLIMETRE_PER_METRE
 

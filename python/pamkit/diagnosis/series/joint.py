@@ -20,7 +20,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse
 
-from pamkit.diagnosis.calibrate import (
+from pamkit.diagnosis.coordinates import Coordinate, configure, effect_space
+from pamkit.diagnosis.series.calibrate import (
     Fit,
     cluster_intervals,
     least_squares_in_box,
@@ -29,9 +30,9 @@ from pamkit.diagnosis.calibrate import (
     unit_to_x,
     x_to_unit,
 )
-from pamkit.diagnosis.jacobian import SENSITIVITY_STEP, applies, forward_differences, sensitivity_jacobian
-from pamkit.diagnosis.kinds import Problem
-from pamkit.diagnosis.model import Baseline, Coordinate, configure, effect_space, muscle_signature
+from pamkit.diagnosis.series.jacobian import SENSITIVITY_STEP, applies, forward_differences, sensitivity_jacobian
+from pamkit.diagnosis.series.kinds import Problem
+from pamkit.diagnosis.series.model import Baseline, muscle_signature
 from pamkit.io.experiment import Experiment
 from pamkit.io.guards import ExperimentError
 from pamkit.simulation import muscle_params
@@ -40,7 +41,7 @@ from pamkit.simulation import muscle_params
 PER_TEST = ("inflation_gauge_pressure_Pa",)
 # A test whose fitted units the shared muscle fits with more than this multiple of the RMSE its own
 # calibration reaches disagrees with the others. The calibrations alone reach 0.75-1.5x the noise
-# on pamkit's null benchmark (decide.py), so sharing a muscle that fits costs well under 2x.
+# on pamkit's null benchmark (significance.py), so sharing a muscle that fits costs well under 2x.
 DISAGREES = 2.0
 
 

@@ -11,10 +11,10 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from pamkit._core import Effect, MuscleParams
+from pamkit.diagnosis.coordinates import Coordinate, configure, effect_space, unknown_coordinate, with_unknowns
 from pamkit.diagnosis.identify import identify
-from pamkit.diagnosis.model import Coordinate, configure, effect_space, unknown_coordinate, with_unknowns
-from pamkit.diagnosis.table_kinds import CYCLIC, PREDICTED, Campaign, kind_of, test_names
-from pamkit.io.experiment import Experiment
+from pamkit.diagnosis.tables.kinds import CYCLIC, PREDICTED, Campaign, kind_of
+from pamkit.io.experiment import Experiment, test_names
 from pamkit.io.guards import ExperimentError
 from pamkit.simulation import muscle_params, simulate_experiment, simulate_table
 

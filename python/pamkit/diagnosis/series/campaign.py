@@ -4,7 +4,7 @@ Each test is diagnosed alone first (its baseline calibrated on its own cycles: t
 pressure, friction and bladder scales are per-test nuisances). A cause must then hold across the
 campaign, held out by whole test: for each test, the effect's parameters are the median of what
 the *other* tests fitted, the test's own calibrated baseline carries them, and the gain is
-scored on its held-out cycles exactly as a candidate's is (decide.score, credited channels).
+scored on its held-out cycles exactly as a candidate's is (score.score, credited channels).
 The campaign names the cause whose leave-one-test-out gain is significant in every test
 (at least MIN_GAIN, its 95 % interval above zero) and that at least one test named on its own;
 `none` when every test says `none`; otherwise `unexplained`, saying where the cause fails to
@@ -22,12 +22,13 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.diagnosis.calibrate import Fit, one_blas_thread
-from pamkit.diagnosis.decide import MIN_GAIN, score
-from pamkit.diagnosis.findings import Finding, findings
-from pamkit.diagnosis.joint import DISAGREES, JointFit, calibrate_jointly
-from pamkit.diagnosis.result import Diagnosis
-from pamkit.diagnosis.table_kinds import test_names
+from pamkit.diagnosis.coordinates import Finding, findings
+from pamkit.diagnosis.series.calibrate import Fit, one_blas_thread
+from pamkit.diagnosis.series.joint import DISAGREES, JointFit, calibrate_jointly
+from pamkit.diagnosis.series.result import Diagnosis
+from pamkit.diagnosis.series.score import score
+from pamkit.diagnosis.significance import MIN_GAIN
+from pamkit.io.experiment import test_names
 from pamkit.plots import save_figure
 
 # Fewer tests than this cannot hold a test out and still fit the effect on the others.
@@ -48,7 +49,7 @@ class Transfer:
 @dataclass
 class SeriesCampaign:
     paths: list[str]
-    tests: list[str]  # a short name for each (table_kinds.test_names)
+    tests: list[str]  # a short name for each (pamkit.io.experiment.test_names)
     diagnoses: list[Diagnosis]
     transfers: dict[str, list[Transfer]]  # per effect named by some test: one per test
     cause: str
@@ -182,7 +183,7 @@ def _shared(j: JointFit) -> str:
 
 def to_json(c: SeriesCampaign, test_report) -> dict:
     """The campaign's report: its verdict, each effect carried test by test, and each test's own
-    report (`test_report`, report.py's to_json)."""
+    report (`test_report`, pamkit.diagnosis.report.to_json)."""
     return {
         "kind": "campaign",
         "tests": c.paths,

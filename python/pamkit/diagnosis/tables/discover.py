@@ -3,23 +3,24 @@
 A table has no time axis, so the library is built from what a settled row has: its supplied
 pressure, its pressurise/vent branch, its held length (a map) and the channel's own predicted
 value. The regression, the choice of terms on held-out groups and the gain with its interval
-are discover.py's, unchanged; here the groups alternate between fitting and judging (the first,
-third, ... group fitted; the others held out), and censored rows take part in neither.
+are the shared discovery's (pamkit.diagnosis.discover), unchanged; here the groups alternate
+between fitting and judging (the first, third, ... group fitted; the others held out), and
+censored rows take part in neither.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from pamkit.diagnosis.decide import NONE_WITHIN_NOISE
 from pamkit.diagnosis.discover import discover
 from pamkit.diagnosis.features import DiscoveryError, Term
-from pamkit.diagnosis.table_kinds import test_names
+from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
 from pamkit.io.columns import value_from_si
+from pamkit.io.experiment import test_names
 
 UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
 # A channel is searched when its held-out RMSE exceeds the factor within which a model is said
-# to explain a table (decide.py).
+# to explain a table (significance.py).
 NOISE_FACTOR = NONE_WITHIN_NOISE
 
 
@@ -69,7 +70,7 @@ def table_features(
 
 def discover_table(campaign, channels, noise: dict[str, float], fit, seed: int) -> dict[str, dict]:
     """Sparse regression of what `fit` (a TableFit) leaves in each channel beyond NOISE_FACTOR
-    times its noise, the furthest first: discover.py's result per channel, or its error."""
+    times its noise, the furthest first: pamkit.diagnosis.discover's result per channel, or its error."""
     measured = {c: campaign.columns[c] for c in channels}
     used = ~campaign.censored
 

@@ -18,7 +18,7 @@ from pamkit._core import GasMode, deflated_braid_angle_deg
 from pamkit.diagnosis import evidence
 from pamkit.diagnosis.cycles import Cycles, find_cycles, split_cycles
 from pamkit.diagnosis.filters import running_median
-from pamkit.diagnosis.model import Predictor
+from pamkit.diagnosis.series.model import Predictor
 from pamkit.io.columns import file_name, value_from_si
 from pamkit.io.experiment import Experiment
 from pamkit.io.guards import ExperimentError

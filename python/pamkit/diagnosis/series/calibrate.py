@@ -12,10 +12,10 @@ from scipy.optimize import OptimizeResult, least_squares
 from threadpoolctl import ThreadpoolController
 
 from pamkit._core import Effect
+from pamkit.diagnosis.coordinates import Coordinate
 from pamkit.diagnosis.identify import Z95, identify
-from pamkit.diagnosis.jacobian import DIFF_STEP, jacobian_for
-from pamkit.diagnosis.kinds import Problem
-from pamkit.diagnosis.model import Coordinate
+from pamkit.diagnosis.series.jacobian import DIFF_STEP, jacobian_for
+from pamkit.diagnosis.series.kinds import Problem
 
 
 @dataclass

@@ -1,8 +1,8 @@
 """Diagnosis of static tables: isometric maps, isotonic tests of settled steps and
 free-inflation tables, the kinds docs/experiments.md describes, and beside them a supplied time
-series of the same muscle (a cyclic test); their units and noise are in table_kinds.py, their
-fits in table_fit.py, the search of what is left in table_discover.py, their report in
-table_report.py.
+series of the same muscle (a cyclic test); their units and noise are in kinds.py, their fits in
+fit.py, the search of what is left in discover.py, their report in report.py (all in this
+package).
 
 A table has no time axis, so the units held out are its groups: the held lengths of a map
 (leave one length out: does the model carry to a length it was not fitted on?), an isotonic
@@ -10,7 +10,7 @@ test's sweeps, the rows of a free-inflation table, a cyclic test's stretch cycle
 tests are also each predicted by the model calibrated on the others alone (heldout_by_test).
 The baseline is the model the file declares with its `[calibrate]` unknowns fitted; each catalog
 effect that acts on a static table is fitted with the same unknowns free (one yardstick) and
-scored by the held-out RMSE it leaves. The rules of decide.py hold: a cause needs a significant
+scored by the held-out RMSE it leaves. The rules of series/decide.py hold: a cause needs a significant
 gain (MIN_GAIN, 95 % interval above zero, over held-out groups) and credible parameters (none at
 a search bound, none outside its plausible range); `none` only within NONE_WITHIN_NOISE of the
 table's noise; otherwise `unexplained`.
@@ -27,13 +27,13 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from pamkit._core import EffectCatalog, EffectStage, GasMode
-from pamkit.diagnosis.decide import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
-from pamkit.diagnosis.findings import findings
-from pamkit.diagnosis.table_discover import discover_table
-from pamkit.diagnosis.table_fit import Fitter, TableFit, TableModel, fit_table, heldout_rmse
-from pamkit.diagnosis.table_kinds import Campaign, beyond_reach, campaign_of, noise_of, test_names
+from pamkit.diagnosis.coordinates import findings
+from pamkit.diagnosis.significance import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
+from pamkit.diagnosis.tables.discover import discover_table
+from pamkit.diagnosis.tables.fit import Fitter, TableFit, TableModel, fit_table, heldout_rmse
+from pamkit.diagnosis.tables.kinds import Campaign, beyond_reach, campaign_of, noise_of
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.experiment import Experiment
+from pamkit.io.experiment import Experiment, test_names
 from pamkit.io.guards import ExperimentError
 
 CHANNEL_UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
@@ -89,7 +89,7 @@ class TableDiagnosis:
 
 
 def _findings(fit: TableFit) -> list[dict]:
-    """findings.py's findings (parameters at a search bound or implausible), as report rows."""
+    """coordinates.py's findings (parameters at a search bound or implausible), as report rows."""
     return [asdict(f) for f in findings(fit)]
 
 

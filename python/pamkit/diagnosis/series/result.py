@@ -1,19 +1,19 @@
-"""What the diagnosis of one time series found: the record report.py writes as JSON, as a
-sentence and as a figure, and campaign.py gathers test by test."""
+"""What the diagnosis of one time series found: the record pamkit.diagnosis.report writes as
+JSON, as a sentence and as a figure, and campaign.py gathers test by test."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from pamkit.diagnosis.calibrate import Fit
-from pamkit.diagnosis.decide import Decision, Judgement
-from pamkit.diagnosis.findings import Finding
-from pamkit.diagnosis.kinds import Problem
+from pamkit.diagnosis.coordinates import Finding
+from pamkit.diagnosis.series.calibrate import Fit
+from pamkit.diagnosis.series.decide import Decision, Judgement
+from pamkit.diagnosis.series.kinds import Problem
 
 
 @dataclass
 class Diagnosis:
-    """Everything the report says; see report.py for the JSON, text and plot."""
+    """Everything the report says; see pamkit.diagnosis.report for the JSON, text and plot."""
 
     problem: Problem
     baseline: Fit

@@ -19,7 +19,8 @@ import numpy as np
 
 from pamkit._core import EffectCatalog, EffectStage, GasMode, Measurement, Resolution
 from pamkit.diagnosis import evidence
-from pamkit.diagnosis.calibrate import (
+from pamkit.diagnosis.coordinates import configure, effect_space
+from pamkit.diagnosis.series.calibrate import (
     Fit,
     baseline_coordinates,
     cluster_intervals,
@@ -29,9 +30,8 @@ from pamkit.diagnosis.calibrate import (
     unit_to_x,
     x_to_unit,
 )
-from pamkit.diagnosis.jacobian import SENSITIVITY_STEP, forward_differences, jacobian_for
-from pamkit.diagnosis.kinds import Problem
-from pamkit.diagnosis.model import configure, effect_space
+from pamkit.diagnosis.series.jacobian import SENSITIVITY_STEP, forward_differences, jacobian_for
+from pamkit.diagnosis.series.kinds import Problem
 from pamkit.io.columns import SERIES_COLUMNS
 
 SCAN_POINTS = 5  # simulations per physical effect's first parameter

@@ -8,14 +8,12 @@ Baseline parameters (the model's own uncertainty, not a cause):
   - the build fields `[uncertain]` declares, each within its tolerance (by default the braid's wind
     within what counting it by hand allows), unless `[calibrate]` declares them unknown: no build is
     exactly as its file declares it, and a cause is judged against the build as it may be.
-An effect adds its own physical parameters, fitted in a space where they move smoothly
-(log for time constants, rates for "infinite means off" constants).
+An effect adds its own physical parameters; every coordinate's bounds, start and plausible range
+come from diagnosis/coordinates.py, shared with the static tables.
 """
 
 from __future__ import annotations
 
-import functools
-import math
 import threading
 from dataclasses import dataclass, field
 
@@ -24,10 +22,8 @@ import numpy as np
 from pamkit._core import (
     BladderLaw,
     Effect,
-    EffectParameter,
     EffectStage,
     ElongationTrajectory,
-    FitScale,
     GasMode,
     InitialState,
     Measurement,
@@ -36,138 +32,23 @@ from pamkit._core import (
     ShapeTable,
     Simulator,
     SimulatorConfig,
-    fiber_revolutions_for_braid_angle,
     simulate_measurement,
     simulate_supplied_measurement,
 )
-from pamkit.diagnosis.motion import measured_motion, programmed_motion
+from pamkit.diagnosis.coordinates import (
+    Coordinate,
+    linear_coordinate,
+    uncertain_coordinate,
+    uncertain_fields,
+    unknown_coordinate,
+    with_unknowns,
+)
+from pamkit.diagnosis.series.motion import measured_motion, programmed_motion
 from pamkit.io.columns import SERIES_COLUMNS
 from pamkit.io.experiment import Experiment
-from pamkit.io.sections import BRAID_ANGLE_KEY, declared_value
 from pamkit.simulation import initial_length, muscle_params, sealed_start
 
 PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
-# [calibrate] unknowns whose declared range spans more than this ratio are searched on a log scale.
-LOG_SPAN = 20.0
-
-
-def _identity(x: float) -> float:
-    return x
-
-
-def _reciprocal(x: float) -> float:
-    return 1.0 / x if x > 0 else math.inf if x == 0 else -math.inf
-
-
-# A fitted coordinate within this share of its interval's width from an end is "at a bound".
-AT_BOUND = 1e-3
-
-
-@dataclass(frozen=True)
-class Coordinate:
-    """One fitted coordinate: its bounds and start, how it maps to a parameter's value, and the
-    parameter's physically plausible range (in value units) with its source."""
-
-    name: str
-    lower: float
-    upper: float
-    start: float
-    to_value: callable = _identity
-    from_value: callable = _identity
-    plausible: tuple[float, float] = (-math.inf, math.inf)
-    source: str = ""
-
-    def value(self, x: float) -> float:
-        return self.to_value(x)
-
-    def of(self, value: float) -> float:
-        return self.from_value(value)
-
-    def at_bound(self, x: float) -> str | None:
-        """ "lower" or "upper" when x ended at an end of the search interval, else None."""
-        margin = AT_BOUND * (self.upper - self.lower)
-        if x <= self.lower + margin:
-            return "lower"
-        if x >= self.upper - margin:
-            return "upper"
-        return None
-
-    def bound_value(self, side: str) -> float:
-        return float(self.value(self.lower if side == "lower" else self.upper))
-
-    def implausible(self, value: float) -> bool:
-        return not (self.plausible[0] <= value <= self.plausible[1])
-
-
-def _log(name, lower, upper, start, plausible=(-math.inf, math.inf), source=""):
-    return Coordinate(name, math.log(lower), math.log(upper), math.log(start), math.exp, math.log, plausible, source)
-
-
-def _linear(name, lower, upper, start, plausible=(-math.inf, math.inf), source=""):
-    return Coordinate(name, lower, upper, start, plausible=plausible, source=source)
-
-
-def _rate(name, largest_rate, start_value, plausible=(-math.inf, math.inf), source=""):
-    """Fits 1/value in [0, largest_rate]: 0 is 'infinite', the effect switched off."""
-    return Coordinate(name, 0.0, largest_rate, 1.0 / start_value, _reciprocal, _reciprocal, plausible, source)
-
-
-def parameter_coordinate(p: EffectParameter) -> Coordinate:
-    """The fit coordinate of an effect parameter, from what the effect declares (its search
-    scale, interval and start, its plausible range: catalog.hpp, or a Python effect's
-    EffectParameter)."""
-    plausible = (p.plausible_min, p.plausible_max)
-    if p.fit_scale == FitScale.log:
-        return _log(p.name, p.fit_min, p.fit_max, p.fit_start, plausible, p.plausible_source)
-    if p.fit_scale == FitScale.reciprocal:
-        return _rate(p.name, 1.0 / p.fit_min, p.fit_start, plausible, p.plausible_source)
-    return _linear(p.name, p.fit_min, p.fit_max, p.fit_start, plausible, p.plausible_source)
-
-
-def effect_space(effect: Effect) -> list[Coordinate]:
-    """The fit coordinates of an effect, one per numeric parameter it lets a diagnosis search
-    (a parameter whose search interval is one point is held at it)."""
-    return [parameter_coordinate(p) for p in effect.parameters() if p.fit_min != p.fit_max]
-
-
-def unknown_coordinate(name: str, bounds: tuple[float, float], experiment: Experiment) -> Coordinate:
-    """The fit coordinate of a `[calibrate]` field (an unknown of the build): its declared
-    bounds are both its search interval and its plausible range; it starts at the declared value
-    when that lies inside, else mid-interval. `name` may carry a test's suffix (`load_N[a]`)."""
-    lower, upper = bounds
-    declared = declared_value(name.split("[", 1)[0], experiment.build, experiment.bladder, experiment.load_N)
-    start = declared if lower < declared < upper else 0.5 * (lower + upper)
-    source = "the [calibrate] bounds the experiment file declares"
-    if lower > 0 and upper / lower > LOG_SPAN:
-        return _log(name, lower, upper, start, (lower, upper), source)
-    return _linear(name, lower, upper, start, (lower, upper), source)
-
-
-@functools.cache
-def _build_fields(build_type: type) -> frozenset[str]:
-    return frozenset(build_type.fields())
-
-
-def with_unknowns(params: MuscleParams, values: dict[str, float]) -> MuscleParams:
-    """`params` with the `[calibrate]` build and bladder fields in `values` set (other names,
-    such as the baseline's scales, are left to the caller)."""
-    build = params.build
-    fields = _build_fields(type(build))
-    for name, value in values.items():
-        if name in fields:
-            setattr(build, name, value)
-    if BRAID_ANGLE_KEY in values:
-        build.fiber_revolutions = fiber_revolutions_for_braid_angle(build, values[BRAID_ANGLE_KEY])
-    params.build = build
-    if "bladder.shear_modulus_Pa" in values:
-        params.bladder = BladderLaw.neo_hookean(values["bladder.shear_modulus_Pa"])
-    return params
-
-
-def configure(effect: Effect, space: list[Coordinate], x: np.ndarray) -> Effect:
-    for coordinate, value in zip(space, x):
-        effect.set(coordinate.name, float(coordinate.value(value)))
-    return effect
 
 
 @dataclass
@@ -193,7 +74,7 @@ class Baseline:
         space = []
         if experiment.gas == GasMode.sealed:
             space.append(
-                _linear(
+                linear_coordinate(
                     "inflation_gauge_pressure_Pa",
                     p0 * (1 - PRESSURE_TOLERANCE),
                     p0 * (1 + PRESSURE_TOLERANCE),
@@ -203,7 +84,7 @@ class Baseline:
                 )
             )
         space.append(
-            _linear(
+            linear_coordinate(
                 "friction_scale",
                 0.0,
                 20.0,
@@ -215,7 +96,7 @@ class Baseline:
         )
         if "bladder.shear_modulus_Pa" not in experiment.calibrate:  # the modulus is the scale then
             space.append(
-                _linear(
+                linear_coordinate(
                     "bladder_scale",
                     0.0,
                     5.0,
@@ -243,24 +124,6 @@ class Baseline:
         params.friction = friction
         params.bladder = scaled_law(params.bladder, values.get("bladder_scale", 1.0))
         return params, values.get("inflation_gauge_pressure_Pa", self.experiment.inflation_gauge_pressure_Pa)
-
-
-def uncertain_fields(experiment: Experiment) -> list[str]:
-    """The build fields `[uncertain]` declares that `[calibrate]` does not already fit (the wind
-    and the braid angle are one number)."""
-    known = set(experiment.calibrate)
-    if {"fiber_revolutions", BRAID_ANGLE_KEY} & known:
-        known |= {"fiber_revolutions", BRAID_ANGLE_KEY}
-    return [name for name in experiment.uncertain if name not in known]
-
-
-def uncertain_coordinate(name: str, experiment: Experiment) -> Coordinate:
-    """A build field free within its `[uncertain]` tolerance of its declared value: its search
-    interval is its plausible range, so that ending at an end is the base model straining."""
-    declared = declared_value(name, experiment.build, experiment.bladder)
-    tolerance = experiment.uncertain[name]
-    bounds = (declared - tolerance, declared + tolerance)
-    return _linear(name, *bounds, declared, bounds, f"[uncertain] {name} = {tolerance:g}: the build as it may be")
 
 
 def muscle_signature(params: MuscleParams) -> tuple:

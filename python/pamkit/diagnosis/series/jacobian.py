@@ -13,7 +13,7 @@ the nominal motion, and each sensitivity its own.
 
 A supplied-pressure test has no ODE: its model is evaluated sample by sample, each braid closure
 solved to ~1e-14, so it is differenced with the sensitivities' small step (static tables do the
-same in table_fit.py). Runs are differenced at DIFF_STEP only where a moved model leaves its
+same in tables/fit.py). Runs are differenced at DIFF_STEP only where a moved model leaves its
 range (the fit then goes on as it did before sensitivities).
 """
 
@@ -24,8 +24,8 @@ from collections.abc import Callable
 import numpy as np
 
 from pamkit._core import Effect, EffectStage, ElongationTrajectory, GasMode, Measurement
-from pamkit.diagnosis.kinds import Problem
-from pamkit.diagnosis.model import muscle_signature
+from pamkit.diagnosis.series.kinds import Problem
+from pamkit.diagnosis.series.model import muscle_signature
 
 # Finite-difference step in the unit box of each coordinate, where a fit differences runs: large
 # enough that the integrator's adaptive steps (relative error ~1e-7) do not swamp the slopes.

@@ -11,15 +11,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
 from pamkit._core import BraidGeometry, GasMode, pressure_branches
 from pamkit.diagnosis.cycles import find_cycles
-from pamkit.diagnosis.kinds import LOCKING_ANGLE_DEG
+from pamkit.diagnosis.series.kinds import LOCKING_ANGLE_DEG
 from pamkit.io.columns import value_from_si
-from pamkit.io.experiment import Experiment
+from pamkit.io.experiment import Experiment, test_names
 from pamkit.io.guards import ExperimentError
 from pamkit.io.sections import BRAID_ANGLE_KEY
 from pamkit.simulation import muscle_params
@@ -96,14 +95,6 @@ class Campaign:
     def of_kind(self, kind: str) -> Campaign:
         """The campaign's tests of one kind, as a campaign of their own."""
         return campaign_of([e for e in self.experiments if kind_of(e) == kind])
-
-
-def test_names(experiments: list[Experiment]) -> list[str]:
-    """A short name for each test of a campaign: its file's stem, with its folder where stems repeat."""
-    stems = [Path(e.path).stem for e in experiments]
-    if len(set(stems)) == len(stems):
-        return stems
-    return [f"{Path(e.path).parent.name}/{stem}" for e, stem in zip(experiments, stems)]
 
 
 def campaign_of(experiments: list[Experiment]) -> Campaign:
