@@ -35,7 +35,7 @@ def stretch_record(n=10_000, cycles=10, seed=0):
 
 
 def step_sweep(sweeps=6, rate_hz=100.0, seed=0):
-    """An isometric pressure sweep as the commercial muscle's of issue 9: held at 20 mm, the
+    """An isometric pressure sweep of a commercial muscle: held at 20 mm, the
     pressure stepped 0 -> 600 kPa by 100 kPa and back (2 s plateaus, 0.1 s steps), 0.5 kPa
     transducer noise, in Pa; the record starts with the first step up. Returns the programmed
     direction too: +1 after a step up (pressurising), -1 after a step down (venting)."""
@@ -195,7 +195,7 @@ def test_an_offset_is_not_taken_for_terms_of_positive_mean(coulomb_case):
 
 
 def test_dahl_friction_is_told_from_coulomb_friction(coulomb_case):
-    """Dahl friction (issue 9's "different friction law"), integrated here sample by sample from
+    """Dahl friction (a friction law other than the model's tanh), integrated here sample by sample from
     dF/dx = (Fc / xc) (1 - F sign(dx) / Fc) on the true stretch, Fc = 20 N, xc = 2 mm (the
     library's own slip distance is 5 % of the 50 mm stroke, 2.5 mm)."""
     time_s, fit, held = coulomb_case["time_s"], coulomb_case["fit"], coulomb_case["held"]
@@ -222,7 +222,7 @@ def test_dahl_friction_is_told_from_coulomb_friction(coulomb_case):
 
 
 def test_a_nonlinear_load_cell_is_found_from_the_model_force(coulomb_case):
-    """A load cell reading 0.02 % per newton high (the quadratic load cell of issue 9): the
+    """A load cell reading 0.02 % per newton high (a quadratic load cell): the
     residual is 2e-4 N⁻¹ · F² of the model's force F, here 1 N/kPa · p + 8 N/mm · x."""
     time_s, elongation_m, pressure = (coulomb_case[key] for key in ("time_s", "elongation_m", "gauge_pressure_Pa"))
     force = 1e-3 * pressure + 8.0 * 1e3 * elongation_m
@@ -258,7 +258,7 @@ def test_noise_alone_is_not_a_discovery(correlation):
 
 
 def test_pressurise_vent_hysteresis_is_found_in_an_isometric_sweep():
-    """Venting force 40 N above pressurising force (issue 9's commercial muscle): a residual of
+    """Venting force 40 N above pressurising force (a commercial muscle's loop): a residual of
     -20 N while pressurising and +20 N while venting, 0.24 N noise (that test's)."""
     time_s, elongation_m, pressure_Pa, direction, sweep = step_sweep()
     features = feature_library(time_s, elongation_m, pressure_Pa, cycle=sweep)

@@ -1,4 +1,4 @@
-"""The same input gives the same report (issue 10): `pamkit diagnose` run on one dataset with 1
+"""The same input gives the same report: `pamkit diagnose` run on one dataset with 1
 thread and with 2 (fits in parallel and the BLAS's own threads) writes identical JSON, timing
 aside. Identical means byte for byte: every fit, interval and decision, so no tolerance."""
 

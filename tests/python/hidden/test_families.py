@@ -26,8 +26,8 @@ from independent.physics import Build, Geometry, Motion, Physics, SealedMuscle  
 
 SEED = 1
 # The catalog families, named as a rate over seeds 1-3 (bench/bench_families.py's): at least two of
-# three, the target. The load cell's two are not met and are expected to fail (strict: a
-# pass fails the suite until the figure here is updated): the independent wall keeps its thickness
+# three, the target the diagnosis is held to. The load cell's two are not met and are expected to
+# fail (strict: a pass fails the suite until the figure here is updated): the independent wall keeps its thickness
 # where pamkit's conserves its volume, which leaves force and pressure about 1.9x the noise even
 # with the braid's wind calibrated, and a load cell's offset or nonlinearity explains only a share
 # of that force (1.8-2.0x left): indistinguishable from the share it takes of the same misfit on
