@@ -7,6 +7,7 @@ import html
 import inspect
 import json
 import pydoc
+import re
 import types
 
 import numpy as np
@@ -278,3 +279,18 @@ def test_the_readmes_python_runs(tmp_path, monkeypatch):
     exec(compile(script, "README.md", "exec"), namespace)
     assert namespace["report"].cause == "slip_hysteresis"  # the README's Festo line, which its comment quotes
     assert (tmp_path / "report.json").is_file() and (tmp_path / "report.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_a_narrow_interval_of_the_gain_is_printed_with_ends_that_differ():
+    # The bundled example's heat transfer gains 0.974 with a 95 % interval 0.973-0.975: printed at
+    # two decimals, both ends would read 0.97, a zero width the data never claimed.
+    report = pamkit.diagnose(SOURCE_DIR / "data" / "experiments" / "example" / "experiment.toml", threads=2)
+    document = report.to_dict()
+    low, high = document["causes"][0]["gain_ci95"]["temperature_K"]
+    match = re.search(r"\(gain ([0-9.]+), 95 % CI ([0-9.]+)–([0-9.]+)\)", report.verdict())
+    assert match is not None, report.verdict()
+    gain, printed_low, printed_high = match.groups()
+    assert printed_low != printed_high
+    digits = len(printed_low.split(".")[1])
+    assert (printed_low, printed_high) == (f"{low:.{digits}f}", f"{high:.{digits}f}")
+    assert float(printed_low) <= float(gain) <= float(printed_high)

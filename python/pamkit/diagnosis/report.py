@@ -326,16 +326,24 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     text = (
         f"{_phrase(lead.judgement, channel)}: {first['effect']}{numbers}; held-out {file_name(channel)} RMSE "
         f"{_error(channel, baseline_rmse[channel])} → {_error(channel, rmse)} {_unit(channel)} (gain "
-        f"{first['gain'][channel]:.2f}, "
-        f"95 % CI {lo:.2f}–{hi:.2f})"
+        f"{_gain_with_interval(first['gain'][channel], (lo, hi))})"
     )
     for more in causes[1:]:
         text += (
             f"; and {more['effect']}{_numbers(more['params'])} (its own held-out gain on {', '.join(more['channels'])} "
-            f"{more['gain_own_channels']:.2f}, 95 % CI {more['gain_own_channels_ci95'][0]:.2f}–"
-            f"{more['gain_own_channels_ci95'][1]:.2f})"
+            f"{_gain_with_interval(more['gain_own_channels'], more['gain_own_channels_ci95'])})"
         )
     return text + _remainder_phrase(d) + bounds
+
+
+def _gain_with_interval(gain: float, interval) -> str:
+    """ "0.97, 95 % CI 0.966–0.974": two decimals, more where two would print the interval's ends
+    alike (a narrow interval is not a zero-width one)."""
+    lo, hi = interval
+    digits = 2
+    while digits < 4 and f"{lo:.{digits}f}" == f"{hi:.{digits}f}":
+        digits += 1
+    return f"{gain:.{digits}f}, 95 % CI {lo:.{digits}f}–{hi:.{digits}f}"
 
 
 def _numbers(params: dict) -> str:
