@@ -14,8 +14,8 @@ The rules (docs/diagnosis.md gives them in full, with the measurements behind ea
    what they explain stands out from the base model's misfit on the channels coupled to theirs
    (stands_out), and an instrument's error is needed where it acts (unfounded).
 3. The best significant, credible candidate is named, and every cause present beside it (the
-   engine adds a second cause and checks the build). A better candidate that cannot be named is
-   reported beside it (`rejected`); when that one explains a channel both explain significantly
+   engine adds a second cause). A better candidate that cannot be named is reported beside it
+   (`rejected`); when that one explains a channel both explain significantly
    better on the same draws, the lesser is likely a piece of it and is not named either
    (outdone). With nothing named the verdict says what the best rejected fit looks like, and the
    cause is "none" if the baseline already reaches the noise on every channel (rule 4).
