@@ -21,7 +21,7 @@ import pytest
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[3]))
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
 
-from independent.families import FAMILIES, HONEST  # noqa: E402 (needs the path above)
+from independent.families import FAMILIES, HONEST, Dataset  # noqa: E402 (needs the path above)
 from independent.physics import Build, Geometry, Motion, Physics, SealedMuscle  # noqa: E402
 
 SEED = 1
@@ -60,6 +60,11 @@ def diagnose(toml: Path) -> dict:
     return json.loads(report.read_text())
 
 
+def named(dataset: Dataset, report: dict) -> set[str]:
+    """The catalog names a report gives, less the physics the dataset shows by construction."""
+    return {c["effect"].split(":")[0] for c in report["causes"]} - set(dataset.present)
+
+
 @pytest.mark.parametrize("family", list(FAMILIES))
 def test_diagnosis_of_a_family(family, tmp_path):
     dataset = FAMILIES[family](SEED, tmp_path / "seen")
@@ -68,7 +73,7 @@ def test_diagnosis_of_a_family(family, tmp_path):
     # ACCEPTANCE ("never a wrong name"): every cause named is the truth, or physics the independent
     # model has built in and this dataset shows (its braid went slack where its force would turn
     # negative); for a cause outside the catalog or below what the sampling resolves, none.
-    names = {c["effect"].split(":")[0] for c in report["causes"]} - set(dataset.present)
+    names = named(dataset, report)
     allowed = set() if dataset.expected == HONEST else {dataset.expected}
     assert names <= allowed, f"hidden {dataset.expected} {dataset.truth}, named {sorted(names)}: {verdict}"
     if cause == "none":
@@ -79,55 +84,52 @@ def test_diagnosis_of_a_family(family, tmp_path):
         assert not left, f"none with held-out RMSE / noise {left}: {verdict}"
 
 
-def named_in_seeds(family: str, tmp_path) -> tuple[int, list[str]]:
-    """How many of RATE_SEEDS name the family's hidden effect, and each verdict (none names
-    another cause: the test above's promise, asserted here too)."""
-    hits, verdicts = 0, []
+def seed_reports(family: str, tmp_path) -> list[tuple[Dataset, dict]]:
+    """Each of RATE_SEEDS's dataset and report; none names another cause (the test above's
+    promise, asserted here too)."""
+    runs = []
     for seed in RATE_SEEDS:
         dataset = FAMILIES[family](seed, tmp_path / str(seed))
         report = diagnose(dataset.experiment)
-        names = {c["effect"].split(":")[0] for c in report["causes"]} - set(dataset.present)
-        assert names <= {dataset.expected}, f"seed {seed}: named {sorted(names)}: {report['verdict']}"
-        hits += dataset.expected in names
-        verdicts.append(f"seed {seed}: {report['verdict'][:300]}")
-    return hits, verdicts
+        assert named(dataset, report) <= {dataset.expected}, f"seed {seed}: {report['verdict']}"
+        runs.append((dataset, report))
+    return runs
 
 
-@pytest.mark.parametrize("family", CATALOG_FAMILIES)
+def verdicts(runs) -> str:
+    return "\n".join(f"seed {seed}: {report['verdict'][:400]}" for seed, (_, report) in zip(RATE_SEEDS, runs))
+
+
+def expected_to_fail(families, why):
+    return [pytest.param(family, marks=pytest.mark.xfail(strict=True, reason=why)) for family in families]
+
+
+@pytest.mark.parametrize(
+    "family",
+    [
+        *CATALOG_FAMILIES,
+        *expected_to_fail(TIED_FAMILIES, "see TIED_FAMILIES: a dead volume and compliant fibres gain alike"),
+        *expected_to_fail(LOAD_CELL_FAMILIES, "see LOAD_CELL_FAMILIES: refused beside the independent wall's misfit"),
+    ],
+)
 def test_a_catalog_cause_is_named_in_two_of_three_seeds(family, tmp_path):
     # ACCEPTANCE ("the truth when it is in the catalog", on data an independent implementation made).
-    hits, verdicts = named_in_seeds(family, tmp_path)
-    assert hits >= MIN_NAMED, "\n".join(verdicts)
-
-
-@pytest.mark.xfail(strict=True, reason="see TIED_FAMILIES: a dead volume and compliant fibres gain alike")
-@pytest.mark.parametrize("family", TIED_FAMILIES)
-def test_a_dead_volume_is_named_in_two_of_three_seeds(family, tmp_path):
-    hits, verdicts = named_in_seeds(family, tmp_path)
-    assert hits >= MIN_NAMED, "\n".join(verdicts)
+    runs = seed_reports(family, tmp_path)
+    hits = sum(dataset.expected in named(dataset, report) for dataset, report in runs)
+    assert hits >= MIN_NAMED, verdicts(runs)
 
 
 @pytest.mark.parametrize("family", TIED_FAMILIES)
 def test_a_dead_volume_is_named_or_shown_tied_with_its_rival_in_two_of_three_seeds(family, tmp_path):
     # ACCEPTANCE (a weaker promise than naming, see TIED_FAMILIES): the truth named, or the verdict
     # says it and a rival explain the held-out units alike; no wrong name either way.
-    shown, verdicts = 0, []
-    for seed in RATE_SEEDS:
-        dataset = FAMILIES[family](seed, tmp_path / str(seed))
-        report = diagnose(dataset.experiment)
-        names = {c["effect"].split(":")[0] for c in report["causes"]} - set(dataset.present)
-        assert names <= {dataset.expected}, f"seed {seed}: named {sorted(names)}: {report['verdict']}"
-        tied = TIE in report["verdict"] and dataset.expected in report["verdict"]
-        shown += dataset.expected in names or tied
-        verdicts.append(f"seed {seed}: {report['verdict'][:400]}")
-    assert shown >= MIN_NAMED, "\n".join(verdicts)
-
-
-@pytest.mark.xfail(strict=True, reason="see LOAD_CELL_FAMILIES: refused beside the independent wall's misfit")
-@pytest.mark.parametrize("family", LOAD_CELL_FAMILIES)
-def test_a_load_cells_error_is_named_in_two_of_three_seeds(family, tmp_path):
-    hits, verdicts = named_in_seeds(family, tmp_path)
-    assert hits >= MIN_NAMED, "\n".join(verdicts)
+    runs = seed_reports(family, tmp_path)
+    shown = sum(
+        dataset.expected in named(dataset, report)
+        or (TIE in report["verdict"] and dataset.expected in report["verdict"])
+        for dataset, report in runs
+    )
+    assert shown >= MIN_NAMED, verdicts(runs)
 
 
 # The generator itself: independent, deterministic, and physically consistent.
