@@ -493,6 +493,19 @@ class ScaledState {
   std::size_t size_ = 0;
 };
 
+/// The right-hand side the Boost.Odeint methods step: the model's rates at time `t` on the scaled
+/// state `z`, counted as one evaluation.
+template <class Vector>
+void odeint_rates(const MuscleModel& model, const ElongationTrajectory& trajectory, const ScaledState& scaled,
+                  RunWorkspace& workspace, const Vector& z, Vector& dzdt, double t, SolverStatistics& statistics) {
+  const std::size_t k = workspace.segment(t);
+  const MuscleOutputs out =
+      model.evaluate_with(workspace.rhs, RunWorkspace::length(model, trajectory, t, k), trajectory.segment_velocity(k),
+                          scaled.to_state(z), ShapeParts::kinematics);
+  scaled.rates(out.rate, dzdt);
+  ++statistics.rhs_evaluations;
+}
+
 /// The run loop of the Boost.Odeint methods: `stepper`, a dense-output stepper, steps `system`
 /// (its right-hand side, or with a Rosenbrock method the pair of it and its Jacobian) from `z`
 /// piece by piece between the corners as the CVODES loop goes, each sample read off the dense
@@ -569,12 +582,7 @@ SolverStatistics integrate_explicit(const SimulatorConfig& config, const MuscleM
   statistics.method = IntegrationMethod::dopri5;
   RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}, nullptr};
   const auto rhs = [&](const Vector& z, Vector& dzdt, double t) {
-    const std::size_t k = workspace.segment(t);
-    const MuscleOutputs out =
-        model.evaluate_with(workspace.rhs, RunWorkspace::length(model, trajectory, t, k),
-                            trajectory.segment_velocity(k), scaled.to_state(z), ShapeParts::kinematics);
-    scaled.rates(out.rate, dzdt);
-    ++statistics.rhs_evaluations;
+    odeint_rates(model, trajectory, scaled, workspace, z, dzdt, t, statistics);
   };
 
   const ShapeTable* tabulated = shapes && shapes->applies_to(model, trajectory) ? shapes : nullptr;
@@ -619,12 +627,7 @@ SolverStatistics integrate_rosenbrock(const SimulatorConfig& config, const Muscl
   statistics.method = IntegrationMethod::rosenbrock4;
   RunWorkspace workspace{model, trajectory, 0, 1, nullptr, {}, {}, nullptr};
   const auto evaluate = [&](const Vector& z, Vector& dzdt, double t) {
-    const std::size_t k = workspace.segment(t);
-    const MuscleOutputs out =
-        model.evaluate_with(workspace.rhs, RunWorkspace::length(model, trajectory, t, k),
-                            trajectory.segment_velocity(k), scaled.to_state(z), ShapeParts::kinematics);
-    scaled.rates(out.rate, dzdt);
-    ++statistics.rhs_evaluations;
+    odeint_rates(model, trajectory, scaled, workspace, z, dzdt, t, statistics);
   };
   // odeint asks for the rates at a step's start and then for the Jacobian there: the Jacobian
   // starts from those rates.

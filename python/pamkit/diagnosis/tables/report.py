@@ -154,6 +154,11 @@ def _calibrated(fit: TableFit) -> str:
     return ", ".join(one(k, v) for k, v in fit.params.items())
 
 
+def _gains(gain: dict, ci95: dict, channels) -> str:
+    """Each channel's held-out gain with its 95 % interval: "force_N 0.92 [0.90, 0.95], ..."."""
+    return ", ".join(f"{c} {gain[c]:.2f} [{ci95[c][0]:.2f}, {ci95[c][1]:.2f}]" for c in channels)
+
+
 def verdict(d: TableDiagnosis) -> str:
     """What a person reads first: the calibrated unknowns with their intervals, the held-out
     error before and after, the cause and its gain, and every parameter at a bound."""
@@ -180,25 +185,14 @@ def verdict(d: TableDiagnosis) -> str:
     if d.extended_candidate is None:
         lines.append(f"cause: {d.cause} — {d.reason}")
     else:
-        gain = ", ".join(
-            f"{c} {d.extended_candidate.gain[c]:.2f} [{d.extended_candidate.gain_ci95[c][0]:.2f}, "
-            f"{d.extended_candidate.gain_ci95[c][1]:.2f}]"
-            for c in d.channels
-        )
+        gain = _gains(d.extended_candidate.gain, d.extended_candidate.gain_ci95, d.channels)
         lines.append(f"cause: {d.cause} — held-out gain {gain}")
         for added in d.added:
-            more = ", ".join(
-                f"{c} {added['gain'][c]:.2f} [{added['gain_ci95'][c][0]:.2f}, {added['gain_ci95'][c][1]:.2f}]"
-                for c in d.channels
-            )
+            more = _gains(added["gain"], added["gain_ci95"], d.channels)
             lines.append(f"also: {added['effect']} — held-out gain over {d.cause} alone {more}")
         lead = next(j for j in d.candidates if j.fit.name == d.cause)
         if lead.between:
-            between = ", ".join(
-                f"{c} {lead.between['gain'][c]:.2f} [{lead.between['gain_ci95'][c][0]:.2f}, "
-                f"{lead.between['gain_ci95'][c][1]:.2f}]"
-                for c in d.channels
-            )
+            between = _gains(lead.between["gain"], lead.between["gain_ci95"], d.channels)
             lines.append(f"  between the pressurising and venting branches, where it acts: held-out gain {between}")
         if lead.strain:
             strained = "; ".join(f"{f['parameter']} = {f['value']:.4g}" for f in lead.strain)
