@@ -310,3 +310,45 @@ def test_a_bound_that_costs_the_fit_nothing_is_told_apart_from_a_strain():
     implausible = Finding("friction_scale", 0.05, None, [0.1, 10.0], "its range")
     assert resting.costs_nothing and not straining.costs_nothing and not implausible.costs_nothing
     assert Finding("x", 1.0, 1.0, [0.0, 1.0], "s", beyond=1.0, rmse_drop=NO_COST_AT_BOUND).costs_nothing is False
+
+
+def friction_scale_at(value: float):
+    """The baseline's friction scale as a coordinate, found at `value` (plausible [0.1, 10], the
+    search [0, 20])."""
+    coordinate = SimpleNamespace(
+        value=lambda x: value,
+        at_bound=lambda x: None,
+        implausible=lambda v: not 0.1 <= v <= 10.0,
+        bound_value=lambda side: None,
+        plausible=(0.1, 10.0),
+        source="test",
+    )
+    return {"friction_scale": (coordinate, 0.0)}
+
+
+def test_a_value_the_data_leave_free_to_be_plausible_is_not_held_against_a_cause():
+    # A friction scale found at 0.05, below its plausible 0.1: with a 95 % interval of [0, 0.95]
+    # (a test whose crosshead holds still) the data do not say it is implausible, and a cause
+    # beside it may be named; with [0.04, 0.06] they do, and it is the base model's strain when the
+    # calibrated baseline ended there too, the candidate's own finding when the candidate moved it
+    # there.
+    p = problem()
+    p.experiment.time_s = np.arange(ROWS, dtype=float)
+    off = {"force_N": np.full(ROWS, 5.0)}
+    score = candidate("slack", 0.8, SHARED + 0.8).score
+    for baseline_ends_there in (True, False):
+        baseline = fit("none", off, [])
+        baseline.coordinates = friction_scale_at(0.05 if baseline_ends_there else 1.0)
+        for interval, free in (((0.0, 0.95), True), ((0.04, 0.06), False)):
+            cause = fit("slack", {"force_N": np.ones(ROWS)})
+            cause.coordinates = friction_scale_at(0.05)
+            cause.intervals = {"friction_scale": interval}
+            j = judge(p, cause, score, baseline)
+            held = [f.parameter for f in j.findings]
+            strained = [f.parameter for f in j.strain]
+            if free:
+                assert held == [] and strained == [] and j.credible
+            elif baseline_ends_there:
+                assert held == [] and strained == ["friction_scale"] and j.credible
+            else:
+                assert held == ["friction_scale"] and not j.credible
