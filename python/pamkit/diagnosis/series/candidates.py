@@ -36,6 +36,11 @@ from pamkit.io.columns import SERIES_COLUMNS
 
 SCAN_POINTS = 5  # simulations per physical effect's first parameter
 SCAN_POINTS_MEASUREMENT = 41  # no simulation needed: scan finely (a skew has one minimum per cycle)
+# A joint fit stops when a step lowers its chi-square by less than this share of it. SciPy's
+# default, 1e-8, spent 12 % of the diagnoses' CPU on digits no decision reads: over 353 diagnoses
+# of the four decision worlds, every verdict the same, the held-out gains moved by a median 0 and
+# at most 2e-3, on candidates gaining nothing, against decision margins of 8e-4 and more.
+JOINT_FTOL = 1e-6
 
 
 def candidates(effect_catalog: EffectCatalog, problem: Problem) -> list[tuple[str, object]]:
@@ -207,7 +212,9 @@ def fit_candidate(problem: Problem, baseline: Fit, make_effect, label: str, star
 
             jac = jacobian_for(problem, point, residual, counted)
             results = [
-                least_squares_in_box(residual, np.concatenate([base_u, u0]), 12 * (n_base + len(space) + 1), jac=jac)
+                least_squares_in_box(
+                    residual, np.concatenate([base_u, u0]), 12 * (n_base + len(space) + 1), jac=jac, ftol=JOINT_FTOL
+                )
                 for u0 in [best_u, *starts]
             ]
             result = min(results, key=lambda r: r.cost)  # the fit's own objective, never the held-out units
