@@ -40,7 +40,7 @@ from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis import evidence
 from pamkit.diagnosis.coordinates import Finding, findings
 from pamkit.diagnosis.series.calibrate import Fit
-from pamkit.diagnosis.series.findings import baseline_findings, unresolved
+from pamkit.diagnosis.series.findings import baseline_findings, unresolved, within_resolution
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.series.score import Score, credited_channels, significance_margin, significant
 from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
@@ -86,6 +86,8 @@ class Judgement:
     # parameters below what one sample resolves (findings.unresolved): a shift or slack of less than
     # a sample mimics the sampling's own artefacts, not a mechanism
     below_resolution: list[str] = field(default_factory=list)
+    # every such parameter's interval reaches one sample (findings.within_resolution)
+    near_resolution: bool = False
 
     @property
     def credible(self) -> bool:
@@ -286,6 +288,7 @@ def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
         strain,
         unneeded=unfounded(problem, baseline, fit.effects),
         below_resolution=unresolved(problem, fit),
+        near_resolution=within_resolution(problem, fit),
     )
 
 
@@ -357,7 +360,7 @@ def outdone(problem: Problem, candidate: Judgement, judged: list[Judgement]) -> 
             break
         if not better.significant or better.credible or not mine & explained(problem, better.score):
             continue
-        if not (better.findings or better.objections or better.unneeded):
+        if not (better.findings or better.objections or better.unneeded or better.near_resolution):
             continue  # only below what a sample resolves: the sampling's artefact, of which no cause is a part
         low = float(np.percentile(better.score.combined_samples - candidate.score.combined_samples, 2.5))
         if low > 0.0:
@@ -381,6 +384,8 @@ def marginal(j: Judgement) -> bool:
     because it is an instrument's error on a channel the base model already fits within the noise
     (unneeded): not a cause, but a rival that explains the data as well as a cause is one the data
     do not rule out. Naming the cause beside it would read a tie as a win."""
+    if j.below_resolution and j.near_resolution and not (j.objections or j.findings or j.unneeded):
+        return True
     if j.objections or j.below_resolution:
         return False
     if j.unneeded:
