@@ -20,7 +20,7 @@ from pamkit._core import EffectCatalog, EffectStage, GasMode
 from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
 from pamkit.diagnosis.series.calibrate import Fit, fit_baseline, one_blas_thread
 from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
-from pamkit.diagnosis.series.candidates import candidates, fit_candidate, fit_pair
+from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate, fit_pair
 from pamkit.diagnosis.series.decide import (
     PAIR_PARTNERS,
     PAIR_TRIGGER,
@@ -263,6 +263,23 @@ def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
         return {"channel": channel, "terms": [], "error": str(error)}
 
 
+def _judged(problem, baseline: Fit, fit: Fit, factory, seed: int) -> Judgement:
+    """A candidate's fit judged against the calibrated baseline. Every candidate's bootstrap draws
+    the same units: scores differ by the fits alone. One left after its screening step
+    (candidates.SCREEN_DROP) that is significant even so is fitted through; one that is not says
+    that it was screened, with the step's drop."""
+    judged = judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), baseline)
+    if fit.screened is None:
+        return judged
+    if judged.significant:
+        return _judged(problem, baseline, fit_candidate(problem, baseline, factory, fit.name), factory, seed)
+    judged.objections.append(
+        f"not fitted beyond one Gauss-Newton step from its scan: that step lowers the fitted chi-square by "
+        f"{100 * fit.screened:.2g} % (a fit is carried through from {100 * SCREEN_DROP:.0f} %)"
+    )
+    return judged
+
+
 def diagnose(
     experiment: Experiment | str | Path | list,
     effect_catalog: EffectCatalog | None = None,
@@ -332,18 +349,26 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     judged: list[Judgement] = []
     phase = clock.perf_counter()
     report(f"fitting {len(todo)} candidate effects, {threads or os.cpu_count() or 1} at a time")
+    factories = dict(todo)
     with _pool(threads) as pool:
-        futures = [(label, pool.submit(fit_candidate, problem, baseline, factory, label)) for label, factory in todo]
+        futures = [
+            (label, pool.submit(fit_candidate, problem, baseline, factory, label, screen=True))
+            for label, factory in todo
+        ]
         for done, (label, future) in enumerate(futures, start=1):
             fit = future.result()
             if fit.error is None:
-                # Every candidate's bootstrap draws the same units: scores differ by the fits alone.
-                judged.append(judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), baseline))
+                judged.append(_judged(problem, baseline, fit, factories[label], seed))
             else:
                 skipped[label] = f"fit failed: {fit.error}"
             report(
                 f"[{done}/{len(futures)}] {label}: "
-                + (f"held-out gain {judged[-1].score.combined_gain:+.3f}" if fit.error is None else "failed")
+                + (
+                    f"held-out gain {judged[-1].score.combined_gain:+.3f}"
+                    + (" (one step: not fitted further)" if judged[-1].fit.screened is not None else "")
+                    if fit.error is None
+                    else "failed"
+                )
             )
     judged.sort(key=lambda j: (-j.score.combined_gain, j.score.delta_bic, j.fit.name))
     # The baseline's calibration absorbed part of a measurement effect (an offset pulls the
@@ -351,7 +376,6 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     # lead among the measurement effects, not among all: an instrument error on one channel (a
     # pressure offset) must not lose its refit because another channel's (the load cell's) scored
     # higher on the calibrated baseline.
-    factories = dict(todo)
     measurement = [i for i, j in enumerate(judged) if j.fit.effects[0].stage() == EffectStage.measurement]
     leaders = measurement[:REFIT_LEADERS]
     if leaders:

@@ -81,6 +81,8 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
                 "significant": j.significant,
                 "credible": j.credible,
                 "not_credible_because": j.reasons(),
+                # not fitted beyond one Gauss-Newton step: the fitted chi-square's drop it predicted
+                "screened_drop": j.fit.screened,
             }
             for j in d.candidates
         ],

@@ -42,6 +42,12 @@ class Fit:
     # per coordinate at a bound: (value the fit would reach without the bound, fitted-RMSE drop
     # there), where computed (strain_at_bounds)
     strain: dict[str, tuple[float, float]] = field(default_factory=dict)
+    # a candidate left after one Gauss-Newton step (candidates.SCREEN_DROP): the fitted
+    # chi-square's drop that step predicted, as a share of the calibrated baseline's; else None
+    screened: float | None = None
+    # d chi / du on the fitted units at the solution, in the search box's unit coordinates (the
+    # calibrated baseline's: a candidate's screening step starts from it)
+    jacobian: np.ndarray | None = field(default=None, repr=False)
 
 
 def one_blas_thread():
@@ -188,4 +194,5 @@ def fit_baseline(problem: Problem) -> Fit:
         intervals=intervals,
         undetermined=undetermined,
         strain=strain,
+        jacobian=result.jac,
     )

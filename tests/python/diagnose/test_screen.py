@@ -1,0 +1,62 @@
+"""Candidates screened by one Gauss-Newton step (candidates.SCREEN_DROP): checked against the full
+fit they were spared, one algorithm against the other, over hidden effects of several kinds. A
+screened candidate must be one whose full fit could not have been significant, and the hidden cause
+is never among them."""
+
+import numpy as np
+import pytest
+
+from pamkit.diagnosis.series.calibrate import fit_baseline, one_blas_thread
+from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate, one_step
+from pamkit.diagnosis.series.kinds import build_problem
+from pamkit.diagnosis.series.score import score, significant
+from pamkit.diagnosis.significance import MIN_GAIN
+from pamkit.effects import catalog
+from pamkit.io.experiment import load_experiment
+from pamkit.synth.dataset import synthesize
+
+# One hidden effect of each of the gas, the fibres and the fixture, at the synthetic tests' seeds
+# of bench_diagnose.
+HIDDEN = {"dead_volume": 1002, "leak": 1006, "fixture_slack": 1004}
+
+
+@pytest.mark.parametrize("hidden", sorted(HIDDEN))
+def test_a_screened_candidate_could_not_have_gained_significantly(hidden, tmp_path):
+    experiment = load_experiment(synthesize(hidden, HIDDEN[hidden], tmp_path).experiment)
+    with one_blas_thread():
+        problem = build_problem(experiment)
+        baseline = fit_baseline(problem)
+        screened = []
+        for label, factory in candidates(catalog(), problem):
+            stepped = fit_candidate(problem, baseline, factory, label, screen=True)
+            if stepped.error is not None or stepped.screened is None:
+                continue
+            assert stepped.screened < SCREEN_DROP
+            full = fit_candidate(problem, baseline, factory, label)
+            full_score = score(problem, baseline, full, np.random.default_rng(1))
+            screened.append(label)
+            # The full fit would have been neither significant nor near the threshold's gain.
+            assert not significant(full_score), label
+            assert full_score.combined_gain < MIN_GAIN, label
+    assert hidden not in screened
+    assert screened  # the screen spares a fit in each (a leak makes three of the others gain: one is left)
+
+
+def test_one_step_is_exact_on_a_linear_residual():
+    # For a residual linear in u the step is the bounded least-squares solution itself: from any
+    # start, with the baseline's columns given and the effect's differenced, the drop is the
+    # optimum's (inside the box here), and the step lands on it.
+    rng = np.random.default_rng(3)
+    a = rng.normal(size=(40, 3))
+    u_true = np.array([0.2, 0.5, 0.7])
+    b = a @ u_true + rng.normal(0, 0.01, 40)
+
+    def residual(u):
+        return a @ u - b
+
+    optimum, *_ = np.linalg.lstsq(a, b, rcond=None)
+    chi2_at_zero = float(b @ b)
+    drop, landed = one_step(residual, a[:, :2], np.array([0.9, 0.1, 0.4]), chi2_at_zero)
+    expected = 1.0 - float(np.sum((a @ optimum - b) ** 2)) / chi2_at_zero
+    assert landed == pytest.approx(optimum, abs=1e-9)
+    assert drop == pytest.approx(expected, rel=1e-9)
