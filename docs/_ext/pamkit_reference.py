@@ -5,6 +5,7 @@ cannot drift from the code: ``.. pamkit-reference:: NAME`` with NAME one of
     data-columns      the data CSV's columns of each kind of test (pamkit.reference.data_columns)
     params-file       every key of a muscle-parameters file (pamkit.reference.params_file_keys)
     effect-catalog    every effect of the built-in catalog, with its parameters (pamkit.effects.catalog)
+    effect-table      the same catalog as one table: parameters, what each effect is, what gives it away
     cli               every command's --help (pamkit.cli.command_help)
     templates         `pamkit template KIND` of each kind (pamkit.templates.template)
 
@@ -128,6 +129,23 @@ def effect_catalog() -> list[str]:
     return lines
 
 
+GIVES_IT_AWAY = "Gives it away:"
+
+
+def effect_table() -> list[str]:
+    effects = catalog()
+    rows = []
+    for name in effects.names():
+        effect = effects.make(name)
+        what, _, away = effect.description().partition(GIVES_IT_AWAY)
+        parameters = [f"``{k}`` (default ``{v}``)" for k, v in effect.options().items()] + [
+            f"``{p.name}`` [{p.unit}]: {p.realistic_min:g}–{p.realistic_max:g} (default {p.value:g})"
+            for p in effect.parameters()
+        ]
+        rows.append([f"``{name}``", "; ".join(parameters) or "none", what.strip(), away.strip()])
+    return _table(["name", "parameters", "what it is", "what gives it away"], rows, "15 25 35 25")
+
+
 def cli() -> list[str]:
     lines: list[str] = []
     for name, text in command_help():
@@ -152,6 +170,7 @@ GENERATORS = {
     "data-columns": data_columns,
     "params-file": params_file,
     "effect-catalog": effect_catalog,
+    "effect-table": effect_table,
     "cli": cli,
     "templates": templates,
 }

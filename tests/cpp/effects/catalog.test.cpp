@@ -77,29 +77,33 @@ ElongationTrajectory bench() { return thesis_protocol(0.05, 2.5e-3, 2, 0.1, 2.0)
 
 }  // namespace
 
-TEST_CASE("catalog: holds the documented effects, what real muscles add and the instruments' errors",
-          "[effects][catalog]") {
-  // The effects docs/effects.md promises: the model's physical extensions, what real muscles add
-  // (a braid that goes slack, rate-independent pressurise/vent hysteresis, commercial muscles'
-  // loops at rest: a friction with memory, Maxwell-slip) and the instruments' errors (the load
-  // cell's tare and nonlinearity, the thermometer's offset). This list checks the catalog against
-  // that promise, not against itself; what each effect must do is checked for every entry of the
-  // catalog, whatever its name, in every_effect.test.cpp.
-  const std::vector<std::string> expected{"bladder_viscoelasticity",
-                                          "braid_slack",
-                                          "dead_volume",
-                                          "fiber_compliance",
-                                          "fixture_slack",
-                                          "heat_transfer",
-                                          "leak",
-                                          "load_cell",
-                                          "pressure_hysteresis",
-                                          "sensor_lag",
-                                          "sensor_offset",
-                                          "slip_hysteresis",
-                                          "thermometer",
-                                          "time_skew"};
-  CHECK(EffectCatalog::builtin().names() == expected);
+TEST_CASE("catalog: holds the effects the diagnosis has been measured with", "[effects][catalog]") {
+  // What the benches, the documentation and the users' files rely on: the model's physical
+  // extensions, what real muscles add (a braid that goes slack, rate-independent pressurise/vent
+  // hysteresis, commercial muscles' loops at rest: a friction with memory, Maxwell-slip) and the
+  // instruments' errors (the load cell's tare and nonlinearity, the thermometer's offset). None
+  // may go missing; a new effect is its header, its test and its line in catalog.hpp, not an entry
+  // here. What each effect must do is checked for every entry of the catalog, whatever its name,
+  // in every_effect.test.cpp; the documentation's table is written from the catalog.
+  const std::vector<std::string> relied_on{"bladder_viscoelasticity",
+                                           "braid_slack",
+                                           "dead_volume",
+                                           "fiber_compliance",
+                                           "fixture_slack",
+                                           "heat_transfer",
+                                           "leak",
+                                           "load_cell",
+                                           "pressure_hysteresis",
+                                           "sensor_lag",
+                                           "sensor_offset",
+                                           "slip_hysteresis",
+                                           "thermometer",
+                                           "time_skew"};
+  const std::vector<std::string> names = EffectCatalog::builtin().names();
+  for (const std::string& name : relied_on) {
+    INFO(name);
+    CHECK(std::find(names.begin(), names.end(), name) != names.end());
+  }
 }
 
 TEST_CASE("catalog: parse sets the values written in the text", "[effects][catalog]") {

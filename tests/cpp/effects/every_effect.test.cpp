@@ -108,6 +108,10 @@ TEST_CASE("every effect: a name, a description, a signature, and acts in a test 
     INFO(name);
     CHECK(e->name() == name);
     CHECK_FALSE(e->description().empty());
+    // what the effect is, then what gives it away: the two columns of the documentation's table
+    const std::size_t away = e->description().find("Gives it away: ");
+    CHECK(away != std::string::npos);
+    CHECK(away > 0);
     CHECK_FALSE(e->signature().empty());
     CHECK((e->acts_in(GasMode::sealed, nullptr) || e->acts_in(GasMode::supplied, nullptr)));
     for (const GasMode mode : {GasMode::sealed, GasMode::supplied}) {
