@@ -21,7 +21,7 @@ from sphinx.util.nodes import nested_parse_with_titles
 
 from pamkit import reference
 from pamkit.cli import command_help
-from pamkit.effects import catalog
+from pamkit.effects import catalog, table_rows
 from pamkit.templates import TEMPLATE_KINDS, template
 
 
@@ -129,20 +129,10 @@ def effect_catalog() -> list[str]:
     return lines
 
 
-GIVES_IT_AWAY = "Gives it away:"
-
-
 def effect_table() -> list[str]:
-    effects = catalog()
-    rows = []
-    for name in effects.names():
-        effect = effects.make(name)
-        what, _, away = effect.description().partition(GIVES_IT_AWAY)
-        parameters = [f"``{k}`` (default ``{v}``)" for k, v in effect.options().items()] + [
-            f"``{p.name}`` [{p.unit}]: {p.realistic_min:g}–{p.realistic_max:g} (default {p.value:g})"
-            for p in effect.parameters()
-        ]
-        rows.append([f"``{name}``", "; ".join(parameters) or "none", what.strip(), away.strip()])
+    rows = [
+        [f"``{name}``", fields.replace("`", "``") or "none", what, away] for name, fields, what, away in table_rows()
+    ]
     return _table(["name", "parameters", "what it is", "what gives it away"], rows, "15 25 35 25")
 
 

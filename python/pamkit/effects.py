@@ -33,6 +33,27 @@ def parse_effects(specs: Iterable[str], effect_catalog: EffectCatalog | None = N
     return [effect_catalog.parse(spec) for spec in specs]
 
 
+# Each built-in effect's description says what it is, then, after this, what gives it away.
+GIVES_IT_AWAY = "Gives it away:"
+
+
+def table_rows(effect_catalog: EffectCatalog | None = None) -> list[tuple[str, str, str, str]]:
+    """The catalog as the documentation's table, one row an effect: its name; its options and
+    parameters (``"`key` (default `value`)"``, ``"`name` [unit]: low–high (default value)"`` over
+    the realistic range, joined by "; "); what it is; what gives it away."""
+    effect_catalog = effect_catalog if effect_catalog is not None else catalog()
+    rows = []
+    for name in effect_catalog.names():
+        effect = effect_catalog.make(name)
+        what, _, away = effect.description().partition(GIVES_IT_AWAY)
+        fields = [f"`{key}` (default `{value}`)" for key, value in effect.options().items()] + [
+            f"`{p.name}` [{p.unit}]: {p.realistic_min:g}–{p.realistic_max:g} (default {p.value:g})"
+            for p in effect.parameters()
+        ]
+        rows.append((name, "; ".join(fields), what.strip(), away.strip()))
+    return rows
+
+
 def describe(effect_catalog: EffectCatalog | None = None) -> str:
     """A table of every effect: name, stage, parameters (unit, realistic and plausible ranges,
     the plausible range's source), what gives it away."""

@@ -1,7 +1,7 @@
-"""docs/effects.md against the code: the catalog table says what the effects' C++ headers say,
-every effect has its gallery plot, and the user-effect example runs (through simulate and synth).
-Adding a catalog effect is its header, its test and its doc line: each is checked for every
-effect of the catalog."""
+"""docs/effects.md against the code: the catalog table, written from the catalog, says what the
+effects' C++ headers say, every effect has its gallery plot, and the user-effect example runs
+(through simulate and synth). Adding a catalog effect is its header, its test and its line in
+catalog.hpp; its gallery figure is drawn by a generic plot unless it has one of its own."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import pamkit
-from pamkit.effects import catalog, describe, parse_effects
+from pamkit.effects import GIVES_IT_AWAY, catalog, describe, parse_effects, table_rows
 from pamkit.io.experiment import load_experiment
 from pamkit.simulation import simulate_experiment
 from pamkit.synth.dataset import synthesize
@@ -25,31 +25,27 @@ SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().p
 DOC = SOURCE_DIR / "docs" / "effects.md"
 GALLERY_DIR = SOURCE_DIR / "docs" / "effects"
 PARAMETER = re.compile(r"`(\w+)` \[([^\]]+)\]: (-?[\d.]+)–(-?[\d.]+) \(default (-?[\d.]+)\)")
-OPTION = re.compile(r"`(\w+)`: .* \(default `(\w+)`\)")
-
-
-def table_rows() -> dict[str, str]:
-    """The catalog table's rows: effect name -> parameters cell."""
-    rows = {}
-    for line in DOC.read_text().splitlines():
-        match = re.match(r"\| `(\w+)` \| (.*?) \|", line)
-        if match:
-            rows[match.group(1)] = match.group(2)
-    return rows
+OPTION = re.compile(r"`(\w+)` \(default `(\w+)`\)")
 
 
 def test_the_table_lists_every_effect_with_the_catalogs_units_ranges_and_defaults():
-    rows = table_rows()
+    # The documentation's table is written from table_rows when the site is built: each row must
+    # carry its effect's parameters as the header declares them, its options, and both halves of
+    # its description.
+    assert "```{eval-rst}\n.. pamkit-reference:: effect-table\n```" in DOC.read_text()
+    rows = {name: row for name, *row in table_rows()}
     assert sorted(rows) == sorted(catalog().names())
-    for name, cell in rows.items():
+    for name, (cell, what, away) in rows.items():
         effect = catalog().make(name)
-        documented = {m.group(1): m.groups()[1:] for m in map(PARAMETER.search, cell.split("<br>")) if m}
+        row_text = " ".join(f"{what} {GIVES_IT_AWAY} {away}".split())
+        assert what and away and row_text == " ".join(effect.description().split()), name
+        documented = {m.group(1): m.groups()[1:] for m in map(PARAMETER.search, cell.split("; ")) if m}
         assert sorted(documented) == sorted(p.name for p in effect.parameters()), name
         for p in effect.parameters():
             unit, lo, hi, default = documented[p.name]
             assert unit == p.unit, (name, p.name)
             assert (float(lo), float(hi), float(default)) == (p.realistic_min, p.realistic_max, p.value), (name, p.name)
-        options = dict(m.groups() for m in map(OPTION.search, cell.split("<br>")) if m)
+        options = dict(m.groups() for m in map(OPTION.search, cell.split("; ")) if m)
         assert options == effect.options(), name
 
 
