@@ -248,32 +248,18 @@ def fit_candidate(
             fitted_space = base_space + space
         configure(effect, space, effect_x)
         predicted = predict(base_x, effect_x)
-        params = {c.name: float(c.value(v)) for c, v in zip(space, effect_x)}
-        params.update(effect.options())
-        coordinates = {} if measurement_only else baseline_coordinates(problem, base_x)
-        coordinates.update(_effect_coordinates(effect, space, effect_x))
         bands, undetermined = (
             cluster_intervals(fitted_space, u, result.jac, result.fun, problem.residual_units())
             if result is not None
             else ([], {})
         )
-        intervals = {c.name: band for c, band in zip(fitted_space, bands)}
         # A measurement effect keeps the calibrated baseline: counted as one model with it.
         total = count + (len(base_space) if measurement_only else 0)
-        return Fit(
-            label,
-            [effect],
-            base_x,
-            params,
-            predicted,
-            problem.chi2_by_channel(predicted),
-            total,
-            evaluations,
-            baseline_params=problem.predictor.baseline.values(base_x),
-            coordinates=coordinates,
-            intervals=intervals,
-            undetermined=undetermined,
-        )
+        fit = _effect_fit(problem, label, effect, space, base_x, effect_x, predicted, not measurement_only)
+        fit.parameter_count, fit.evaluations = total, evaluations
+        fit.intervals = {c.name: band for c, band in zip(fitted_space, bands)}
+        fit.undetermined = undetermined
+        return fit
     except (ValueError, RuntimeError) as error:  # the effect drove the model out of its range
         return Fit(
             label, [effect], baseline.baseline_x, {}, baseline.predicted, {}, len(space), evaluations, error=str(error)
@@ -301,10 +287,17 @@ def _stepped(problem: Problem, label, effect, space, base_space, u, predict, eva
     """The candidate where its screening step landed: a model run there, no intervals."""
     n_base = len(base_space)
     base_x, effect_x = unit_to_x(base_space, u[:n_base]), unit_to_x(space, u[n_base:])
-    predicted = predict(base_x, effect_x)
+    fit = _effect_fit(problem, label, effect, space, base_x, effect_x, predict(base_x, effect_x), True)
+    fit.parameter_count, fit.evaluations, fit.screened = n_base + len(space), evaluations + 1, drop
+    return fit
+
+
+def _effect_fit(problem: Problem, label, effect, space, base_x, effect_x, predicted, baseline_moved: bool) -> Fit:
+    """One effect's fit at `effect_x` over the baseline at `base_x`, its prediction scored on the
+    fitted units; the baseline's coordinates among its own where the fit moved them."""
     params = {c.name: float(c.value(v)) for c, v in zip(space, effect_x)}
     params.update(effect.options())
-    coordinates = baseline_coordinates(problem, base_x)
+    coordinates = baseline_coordinates(problem, base_x) if baseline_moved else {}
     coordinates.update(_effect_coordinates(effect, space, effect_x))
     return Fit(
         label,
@@ -313,11 +306,9 @@ def _stepped(problem: Problem, label, effect, space, base_space, u, predict, eva
         params,
         predicted,
         problem.chi2_by_channel(predicted),
-        n_base + len(space),
-        evaluations + 1,
+        len(space),
         baseline_params=problem.predictor.baseline.values(base_x),
         coordinates=coordinates,
-        screened=drop,
     )
 
 
