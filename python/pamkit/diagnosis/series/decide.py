@@ -382,8 +382,9 @@ def marginal(j: Judgement) -> bool:
     """A candidate that cannot be named only because a parameter lies just outside its plausible
     range (within NEAR_PLAUSIBLE of its end; none at a search bound, no other objection), or only
     because it is an instrument's error on a channel the base model already fits within the noise
-    (unneeded): not a cause, but a rival that explains the data as well as a cause is one the data
-    do not rule out. Naming the cause beside it would read a tie as a win."""
+    (unneeded), or only because a shift is fitted below one sample with its interval reaching one
+    (near_resolution): not a cause, but a rival that explains the data as well as a cause is one
+    the data do not rule out. Naming the cause beside it would read a tie as a win."""
     if j.below_resolution and j.near_resolution and not (j.objections or j.findings or j.unneeded):
         return True
     if j.objections or j.below_resolution:
