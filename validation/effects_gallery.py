@@ -1,4 +1,5 @@
 """Writes the effect gallery of docs/effects.md: one PNG per catalog effect in docs/effects/,
+and its caption (`caption`: a figure's docstring), which the documentation reads from here;
 the baseline model against the model with the effect at a clearly visible strength from its
 realistic range, drawn to show what gives the effect away (its signature in the catalog).
 The effects are the catalog's; one without a figure of its own (`FIGURES`) is drawn by
@@ -153,6 +154,8 @@ def generic(name: str, effect_catalog: pamkit.EffectCatalog | None = None, out_d
 
 
 def heat_transfer() -> Path:
+    """the pressure–elongation loop opens with rate (the isothermal baseline has none), and
+    after a fast stretch the pressure relaxes during the hold as the gas cools to the wall."""
     spec = "heat_transfer:time_constant_s=2"
     p, e = 207.0, stretch(207.0, 0.9)
     fig, (loops, hold) = figure(
@@ -174,6 +177,8 @@ def heat_transfer() -> Path:
 
 
 def dead_volume() -> Path:
+    """the same motion compresses a larger volume of gas, so the pressure swing, and with it the
+    force, shrinks by the same factor at every rate."""
     spec = "dead_volume:volume_fraction=0.2"
     p, e = 207.0, stretch(207.0, 0.9)
     path = corners(e, 10e-3, 2)
@@ -196,6 +201,7 @@ def dead_volume() -> Path:
 
 
 def leak() -> Path:
+    """each cycle starts from less gas: the peaks drift down, fastest at high pressure."""
     spec = "leak:time_constant_s=1000"
     p, e = 207.0, stretch(207.0, 0.9)
     path = corners(e, 2.5e-3, 10)
@@ -217,6 +223,9 @@ def leak() -> Path:
 
 
 def bladder_viscoelasticity() -> Path:
+    """the force loop grows with rate; the bladder's share of the force, and so the effect
+    relative to the force, is largest at low pressure (35 kPa, left; 276 kPa, right). The
+    pressure (not shown) does not change."""
     spec = "bladder_viscoelasticity:time_constant_s=2,strength=2"
     fig, axes = figure(f"{spec}: force loops that grow with rate, strongest at low pressure")
     for axis, p in zip(axes, (35.0, 276.0)):
@@ -240,6 +249,11 @@ def bladder_viscoelasticity() -> Path:
 
 
 def fiber_compliance() -> Path:
+    """the fibers stretch under the hoop stress's pull, by T/EA: the braid is wider than the
+    inextensible one at every length, the more so the higher the pressure, so the gas is
+    compressed less by the same crosshead travel and force and pressure fall below the baseline,
+    most at the top. The muscle's force is the virtual work of the shape with the stretched
+    fibers (docs/model.md)."""
     spec = "fiber_compliance:stiffness_N=150"
     p, e = 276.0, stretch(276.0, 0.95)
     path = corners(e, 2.5e-3, 1)
@@ -257,6 +271,8 @@ def fiber_compliance() -> Path:
 
 
 def fixture_slack() -> Path:
+    """at each reversal the crosshead first takes up the play: the force stays flat for slack /
+    speed (0.8 s here), then follows the baseline shifted in elongation."""
     spec = "fixture_slack:slack_m=0.002"
     p, e = 207.0, stretch(207.0, 0.9)
     path = corners(e, 2.5e-3, 2)
@@ -279,6 +295,9 @@ def fixture_slack() -> Path:
 
 
 def sensor_lag() -> Path:
+    """the lagged channel trails the truth and its swings shrink: the pressure transducer behind
+    a slow hose (left), and the TMP36 inside the muscle (right, with heat_transfer making the
+    gas temperature swing), which reads a fraction of the gas's swing."""
     p, e = 207.0, stretch(207.0, 0.9)
     fig, (pressure, temperature) = figure(
         "sensor_lag: the lagged channel trails its prediction and its swings shrink (PAM 2, 207 kPa, 90 %, 25 mm/s)"
@@ -299,6 +318,8 @@ def sensor_lag() -> Path:
 
 
 def time_skew() -> Path:
+    """the channel is shifted in time; its correlation with the prediction peaks at the skew,
+    not at zero."""
     spec = "time_skew:channel=gauge_pressure_Pa,offset_s=1.5"
     p, e = 207.0, stretch(207.0, 0.9)
     path = corners(e, 10e-3, 3)
@@ -325,6 +346,8 @@ def time_skew() -> Path:
 
 
 def sensor_offset() -> Path:
+    """the reading is a straight line of the truth: reading − prediction against the prediction
+    has the offset as intercept and gain − 1 as slope."""
     spec = "sensor_offset:offset_Pa=8e3,gain=1.05"
     p, e = 207.0, stretch(207.0, 0.9)
     path = corners(e, 10e-3, 2)
@@ -343,6 +366,8 @@ def sensor_offset() -> Path:
 
 
 def load_cell() -> Path:
+    """the force reading is a parabola of the truth: reading − prediction against the prediction
+    has the tare as intercept and grows with the force by the nonlinearity."""
     spec = "load_cell:offset_N=-5,nonlinearity_per_kN=0.12"
     p, e = 207.0, stretch(207.0, 0.9)
     path = corners(e, 10e-3, 2)
@@ -357,6 +382,9 @@ def load_cell() -> Path:
 
 
 def braid_slack() -> Path:
+    """held below its free length, the thesis's braid pushes (dashed: a negative force); a real
+    braid goes slack and the load cell reads zero. It acts in supplied tests and static tables
+    (an isometric map of a Festo muscle is mostly zeros at short lengths and low pressures)."""
     spec = "braid_slack:band_N=2"
     fig, axes = figure(f"{spec} (PAM 2 held at fixed lengths, supplied pressure): no push below the free length")
     for axis, pressure_kPa in zip(axes, (138.0, 276.0)):
@@ -373,6 +401,9 @@ def braid_slack() -> Path:
 
 
 def pressure_hysteresis() -> Path:
+    """a muscle held at one length, its supplied pressure stepped up and down: the force on
+    venting lies above the force on pressurising by twice the friction; under a constant load
+    (an isotonic sweep), the muscle is shorter on the way down."""
     spec = "pressure_hysteresis:coefficient=0.1"
     up = np.linspace(20.0, 300.0, 60)
     pressures = np.concatenate([up, up[::-1]])
@@ -392,6 +423,11 @@ def pressure_hysteresis() -> Path:
 
 
 def slip_hysteresis() -> Path:
+    """a DMSP-10-like muscle (fibres in its membrane, so its braid cannot push): held at its
+    rest length it never moves and nothing changes; held 15 mm shorter it is slack at low
+    pressure and contracts until taut, and keeps what its friction took up on the way, a
+    constant less at every pressure after; under a load, settled steps up and down leave an open
+    loop."""
     spec = "slip_hysteresis:slip_force_N=150,slip_distance_m=0.02"
     build = pamkit.MuscleBuild(
         length_m=0.25,
@@ -445,6 +481,16 @@ FIGURES = {
         sensor_offset,
     )
 }
+
+
+def caption(name: str) -> str:
+    """What the figure of the catalog effect `name` shows, for docs/effects.md: its figure's
+    docstring, or for one drawn by `generic` its signature."""
+    figure_of = FIGURES.get(name)
+    if figure_of is not None and figure_of.__doc__:
+        return " ".join(figure_of.__doc__.split())
+    signature = catalog().make(name).signature().format(channel="the channel")
+    return f"{signature}: the effect at its defaults against the baseline"
 
 
 def draw(name: str) -> Path:

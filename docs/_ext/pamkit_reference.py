@@ -6,6 +6,7 @@ cannot drift from the code: ``.. pamkit-reference:: NAME`` with NAME one of
     params-file       every key of a muscle-parameters file (pamkit.reference.params_file_keys)
     effect-catalog    every effect of the built-in catalog, with its parameters (pamkit.effects.catalog)
     effect-table      the same catalog as one table: parameters, what each effect is, what gives it away
+    effect-gallery    each effect's gallery figure with its caption (validation/effects_gallery.py)
     cli               every command's --help (pamkit.cli.command_help)
     templates         `pamkit template KIND` of each kind (pamkit.templates.template)
 
@@ -13,6 +14,9 @@ The tables are written as reStructuredText and parsed in place.
 """
 
 from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
 
 from docutils import nodes
 from docutils.statemachine import StringList
@@ -136,6 +140,25 @@ def effect_table() -> list[str]:
     return _table(["name", "parameters", "what it is", "what gives it away"], rows, "15 25 35 25")
 
 
+GALLERY = Path(__file__).resolve().parents[2] / "validation" / "effects_gallery.py"
+
+
+def effect_gallery() -> list[str]:
+    spec = importlib.util.spec_from_file_location("effects_gallery", GALLERY)
+    gallery = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gallery)
+    lines: list[str] = []
+    for name in catalog().names():
+        lines += [
+            f"**{name}** — {_cell(gallery.caption(name))}",
+            "",
+            f".. image:: effects/{name}.png",
+            f"   :alt: {name}",
+            "",
+        ]
+    return lines
+
+
 def cli() -> list[str]:
     lines: list[str] = []
     for name, text in command_help():
@@ -161,6 +184,7 @@ GENERATORS = {
     "params-file": params_file,
     "effect-catalog": effect_catalog,
     "effect-table": effect_table,
+    "effect-gallery": effect_gallery,
     "cli": cli,
     "templates": templates,
 }
