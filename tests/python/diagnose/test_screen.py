@@ -56,7 +56,8 @@ def test_one_step_is_exact_on_a_linear_residual():
 
     optimum, *_ = np.linalg.lstsq(a, b, rcond=None)
     chi2_at_zero = float(b @ b)
-    drop, landed = one_step(residual, a[:, :2], np.array([0.9, 0.1, 0.4]), chi2_at_zero)
+    start = np.array([0.9, 0.1, 0.4])
+    drop, landed = one_step(residual, residual(start), a[:, :2], start, chi2_at_zero)
     expected = 1.0 - float(np.sum((a @ optimum - b) ** 2)) / chi2_at_zero
     assert landed == pytest.approx(optimum, abs=1e-9)
     assert drop == pytest.approx(expected, rel=1e-9)

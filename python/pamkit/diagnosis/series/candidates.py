@@ -178,7 +178,7 @@ def fit_candidate(
         else:
             # Scan the first coordinate over its range (the others at their starts).
             first = start_unit(space)
-            best_u, best_chi2 = first, math.inf
+            best_u, best_chi2, best_chi = first, math.inf, None
             grid = np.linspace(0.0, 1.0, SCAN_POINTS_MEASUREMENT if measurement_only else SCAN_POINTS)
             lags = lag_start(problem, baseline, effect, space) if measurement_only else []
             for point in [
@@ -187,9 +187,10 @@ def fit_candidate(
             ]:
                 u = first.copy()
                 u[0] = point
-                chi2 = float(np.sum(chi_or_penalty(baseline.baseline_x, unit_to_x(space, u)) ** 2))
+                chi = chi_or_penalty(baseline.baseline_x, unit_to_x(space, u))
+                chi2 = float(np.sum(chi**2))
                 if chi2 < best_chi2:
-                    best_u, best_chi2 = u, chi2
+                    best_u, best_chi2, best_chi = u, chi2, chi
         if measurement_only:
 
             def residual(u):
@@ -231,7 +232,8 @@ def fit_candidate(
 
             if screen and start is None and len(space) == 1 and baseline.jacobian is not None:
                 calibrated = np.concatenate([np.clip(x_to_unit(base_space, baseline.baseline_x), 0.0, 1.0), best_u])
-                drop, landed = one_step(residual, baseline.jacobian, calibrated, sum(baseline.training_chi2.values()))
+                chi2_baseline = sum(baseline.training_chi2.values())
+                drop, landed = one_step(residual, best_chi, baseline.jacobian, calibrated, chi2_baseline)
                 if drop < SCREEN_DROP:
                     return _stepped(problem, label, effect, space, base_space, landed, predict, evaluations, drop)
             jac = jacobian_for(problem, point, residual, counted)
@@ -266,14 +268,16 @@ def fit_candidate(
         )
 
 
-def one_step(residual, baseline_jacobian: np.ndarray, u: np.ndarray, chi2_baseline: float) -> tuple[float, np.ndarray]:
+def one_step(
+    residual, r: np.ndarray, baseline_jacobian: np.ndarray, u: np.ndarray, chi2_baseline: float
+) -> tuple[float, np.ndarray]:
     """The drop of the fitted chi-square, as a share of the calibrated baseline's, that one
-    Gauss-Newton step from `u` (the calibrated baseline's coordinates, then the effect's last)
-    predicts, the step bounded to the unit box (a linear least-squares problem,
-    scipy.optimize.lsq_linear); and where the step lands. The Jacobian is the calibrated
-    baseline's, already computed, beside a difference quotient for the effect's coordinate: two
-    model runs, where the joint fit's first Jacobian would be one run per coordinate."""
-    r = residual(u)
+    Gauss-Newton step from `u` (the calibrated baseline's coordinates, then the effect's last;
+    `r` the residual there, which the scan computed) predicts, the step bounded to the unit box
+    (a linear least-squares problem, scipy.optimize.lsq_linear); and where the step lands. The
+    Jacobian is the calibrated baseline's, already computed, beside a difference quotient for the
+    effect's coordinate: one model run, where the joint fit's first Jacobian would be one run per
+    coordinate."""
     last = len(u) - 1
     h = DIFF_STEP if u[last] + DIFF_STEP <= 1.0 else -DIFF_STEP
     column = (residual(u + h * np.eye(len(u))[last]) - r) / h
