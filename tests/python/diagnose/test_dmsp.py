@@ -152,6 +152,12 @@ def test_isotonic_sweeps_alone_open_loops_at_rest_that_the_slip_closes(tmp_path)
             assert predicted[rows & venting].mean() - predicted[rows & ~venting].mean() == pytest.approx(
                 width, abs=0.5e-3
             )
+        # The first sweep starts from rest and reaches lengths no later sweep does: held out, the
+        # later ones cannot place it, and the report says that is where the remainder lies; the
+        # later sweeps, each predicted from sweeps like it, are held out within 1.5x the noise.
+        where = to_json(d)["remainder"]["where"]["length_m"]
+        assert where["group"] == "sweep 1" and where["rows_beyond"] > 0, verdict(d)
+        assert where["others_ratio"] <= WITHIN_NOISE, verdict(d)
 
 
 def dmsp20_truth(seed: int) -> DmspTruth:

@@ -49,6 +49,61 @@ def test_a_festo_map_names_the_friction_the_contracted_muscle_keeps_and_carries_
     assert set(report["extended"]["heldout_rmse_by_group"]) == {f"L={length:g}" for length in set(lengths)}
     largest = np.nanmax(np.abs(d.extended.heldout["force_N"] - d.campaign.columns["force_N"]))
     assert report["extended"]["heldout_max_error"]["force_N"] == pytest.approx(largest)
+    # What is left lies mostly at the longest held length, which only the model fitted on the
+    # shorter ones predicts: an extrapolation, said so beside the remainder.
+    where = report["remainder"]["where"]["force_N"]
+    assert where["group"] == f"L={lengths.max():g}" and where["share"] > 0.5
+    assert where["rows_beyond"] == where["rows"]
+    assert where["beyond_m"] == pytest.approx(lengths.max() - np.unique(lengths)[-2])
+    assert "predicted by extrapolation" in verdict(d)
+
+
+def _campaign(lengths, groups, kind="isometric_map"):
+    from pamkit.diagnosis.tables.kinds import Campaign
+
+    n = len(lengths)
+    labels = [f"group {g}" for g in range(max(groups) + 1)]
+    columns = {"length_m": np.asarray(lengths, float), "gauge_pressure_Pa": np.full(n, 3e5)}
+    test, censored, branch = np.zeros(n, int), np.zeros(n, bool), np.ones(n)
+    return Campaign([], kind, columns, test, np.asarray(groups), labels, "group", censored, branch)
+
+
+def test_where_left_names_the_group_holding_the_error_and_how_far_it_reaches_beyond_the_others():
+    from types import SimpleNamespace
+
+    from pamkit.diagnosis.tables.engine import where_left
+
+    # Three held lengths of four rows; the longest mispredicted by 3 N on each row, the others by 1 N.
+    lengths = np.repeat([0.20, 0.22, 0.25], 4)
+    groups = np.repeat([0, 1, 2], 4)
+    error = np.where(groups == 2, 3.0, 1.0) * np.tile([1, -1], 6)
+    fit = SimpleNamespace(heldout={"force_N": error})
+    w = where_left(_campaign(lengths, groups), fit, {"force_N": np.zeros(12)}, "force_N", {"force_N": 0.5})
+    assert w["group"] == "group 2" and w["share"] == pytest.approx(9 / 11)
+    assert w["ratio"] == pytest.approx(6.0) and w["others_ratio"] == pytest.approx(2.0)
+    assert (w["rows"], w["rows_beyond"]) == (4, 4) and w["beyond_m"] == pytest.approx(0.03)
+    # The middle length lies within the others' range: no extrapolation.
+    error = np.where(groups == 1, 3.0, 1.0) * np.tile([1, -1], 6)
+    fit = SimpleNamespace(heldout={"force_N": error})
+    w = where_left(_campaign(lengths, groups), fit, {"force_N": np.zeros(12)}, "force_N", {"force_N": 0.5})
+    assert w["group"] == "group 1" and (w["rows_beyond"], w["beyond_m"]) == (0, 0.0)
+
+
+def test_where_left_counts_a_measured_length_beyond_the_others_only_past_three_times_its_noise():
+    from types import SimpleNamespace
+
+    from pamkit.diagnosis.tables.engine import where_left
+
+    # Isotonic sweeps: the lengths are the measured channel. The first sweep reaches 0.5 mm and
+    # 5 mm past the others' longest (0.230 m), its noise 0.2 mm: only the second row is beyond.
+    lengths = np.array([0.2305, 0.235, 0.21, 0.21, 0.23, 0.22, 0.21, 0.23])
+    groups = np.array([0, 0, 0, 0, 1, 1, 2, 2])
+    error = np.array([2e-3, 2e-3, 2e-3, 2e-3, 1e-4, -1e-4, 1e-4, -1e-4])
+    fit = SimpleNamespace(heldout={"length_m": lengths + error})
+    noise = {"length_m": 0.2e-3}
+    w = where_left(_campaign(lengths, groups, "isotonic"), fit, {"length_m": lengths}, "length_m", noise)
+    assert w["group"] == "group 0" and (w["rows"], w["rows_beyond"]) == (4, 1)
+    assert w["beyond_m"] == pytest.approx(0.005)
 
 
 def test_an_independent_map_gives_back_its_braid_angle_and_membrane(tmp_path):

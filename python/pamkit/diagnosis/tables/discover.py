@@ -90,6 +90,15 @@ def _discover_channel(campaign, channel: str, noise: float, residual, predicted,
     used = ~campaign.censored & campaign.predicts(channel)  # a campaign's other kinds do not predict it
     labels = np.unique(campaign.groups[used])
     fitted_labels = labels[::2]
+    if labels.size - fitted_labels.size < 2:
+        return {
+            "channel": channel,
+            "terms": [],
+            "error": (
+                f"{labels.size} {campaign.group_name}s: a term is fitted on every other one and judged on the rest, "
+                "which takes at least 4"
+            ),
+        }
     fit_mask = used & np.isin(campaign.groups, fitted_labels)
     held_mask = used & ~np.isin(campaign.groups, fitted_labels)
     names = test_names(campaign.experiments) if len(campaign.experiments) > 1 else ()

@@ -77,6 +77,8 @@ class TableDiagnosis:
     remainder: dict[str, float]  # held-out RMSE over noise of each channel still above NONE_WITHIN_NOISE
     # a campaign's tests, each predicted by the model fitted on the others (heldout_by_test)
     by_test: dict[str, dict] = field(default_factory=dict)
+    # where each remainder channel's error lies (where_left)
+    remainder_where: dict[str, dict] = field(default_factory=dict)
 
     @property
     def discovered(self) -> dict:
@@ -283,6 +285,7 @@ def diagnose_table(
     if cause == "unexplained" or remainder:
         progress("looking for what the catalog lacks in the residual (sparse regression)")
         discovered = discover_table(campaign, channels, noise, extended, seed)
+    where = {c: w for c in remainder if (w := where_left(campaign, extended, measured, c, noise))}
     by_test = {}
     if len(campaign.experiments) > 1:
         progress("predicting each test with the muscle calibrated on the others")
@@ -304,7 +307,52 @@ def diagnose_table(
         discovered,
         remainder,
         by_test,
+        where,
     )
+
+
+def where_left(campaign: Campaign, fit: TableFit, measured, channel: str, noise: dict[str, float]) -> dict:
+    """Where a channel's held-out error lies: the group holding the largest share of its squared
+    error, that group's held-out RMSE over the noise and the other groups', and how far the group's
+    lengths reach beyond those the other groups of its test cover. Held out, such a group is
+    predicted by extrapolation (the longest length of a map, an isotonic test's first sweep from
+    rest): its error says as much about what the other groups cannot tell as about the model. A
+    length counts as beyond only by more than three times the length's noise where the length is
+    measured. Empty with fewer than two groups scored."""
+    residual = fit.heldout[channel] - measured[channel]
+    scored = np.isfinite(residual) & ~campaign.censored
+    labels = np.unique(campaign.groups[scored])
+    if labels.size < 2:
+        return {}
+    squared = np.bincount(campaign.groups[scored], weights=residual[scored] ** 2, minlength=len(campaign.group_labels))
+    worst = int(np.argmax(squared))
+    mine, rest = scored & (campaign.groups == worst), scored & (campaign.groups != worst)
+
+    def ratio(rows):
+        return float(np.sqrt(np.mean(residual[rows] ** 2))) / noise[channel]
+
+    out = {
+        "group": campaign.group_labels[worst],
+        "share": float(squared[worst] / squared.sum()),
+        "ratio": ratio(mine),
+        "others_ratio": ratio(rest),
+        "rows": int(mine.sum()),
+        "rows_beyond": 0,
+        "beyond_m": 0.0,
+    }
+    lengths = campaign.columns.get("length_m")
+    if lengths is None:
+        return out
+    test = campaign.test[mine][0]
+    others = rest & (campaign.test == test) & np.isfinite(lengths)
+    if not others.any():
+        return out
+    here = lengths[mine]
+    beyond = np.maximum(lengths[others].min() - here, here - lengths[others].max()).clip(0.0)
+    beyond[beyond <= 3.0 * noise.get("length_m", 0.0)] = 0.0
+    out["rows_beyond"] = int(np.count_nonzero(beyond))
+    out["beyond_m"] = float(beyond.max(initial=0.0))
+    return out
 
 
 def heldout_by_test(model: TableModel, channels, scales, fit: TableFit, catalog: EffectCatalog) -> dict[str, dict]:

@@ -84,7 +84,11 @@ def to_json(d: TableDiagnosis) -> dict:
         "gain_ci95": ({c: list(v) for c, v in d.extended_candidate.gain_ci95.items()} if d.extended_candidate else {}),
         "added": d.added,
         "causes": causes_json(d),
-        "remainder": ({"channels": d.remainder, "discovered": d.discovered_by_channel} if d.remainder else None),
+        "remainder": (
+            {"channels": d.remainder, "where": d.remainder_where, "discovered": d.discovered_by_channel}
+            if d.remainder
+            else None
+        ),
         "discovered": d.discovered,
         "discovered_by_channel": d.discovered_by_channel,
         "decision": {"cause": d.cause, "reason": d.reason, "margins": d.margins},
@@ -92,6 +96,21 @@ def to_json(d: TableDiagnosis) -> dict:
         "heldout_by_test": d.by_test,
     }
     return report
+
+
+def _where(w: dict, group_name: str) -> str:
+    """where_left's finding in a sentence."""
+    where = "most of it" if w["share"] >= 0.5 else "the largest share"
+    out = (
+        f"{where} in {w['group']} ({100 * w['share']:.0f} % of the squared error; {w['ratio']:.1f}x its noise there, "
+        f"{w['others_ratio']:.1f}x over the other {group_name}s)"
+    )
+    if w["rows_beyond"]:
+        out += (
+            f", up to {w['beyond_m']:.3g} m beyond the lengths of the other {group_name}s ({w['rows_beyond']} of its "
+            f"{w['rows']} rows): held out, it is predicted by extrapolation"
+        )
+    return out
 
 
 def _undetermined_json(fit: TableFit) -> dict:
@@ -200,6 +219,7 @@ def verdict(d: TableDiagnosis) -> str:
         if d.remainder:
             left = ", ".join(f"{c} at {r:.1f}x its noise" for c, r in d.remainder.items())
             lines.append(f"still left: {left}")
+            lines += [f"  {ch}: {_where(w, d.campaign.group_name)}" for ch, w in d.remainder_where.items()]
         else:
             lines.append("nothing is left above the noise")
     if d.by_test:
@@ -221,8 +241,10 @@ def verdict(d: TableDiagnosis) -> str:
                 f"discovered: {found['equation']} (held-out gain {found['gain'][channel]:.2f} "
                 f"[{low:.2f}, {high:.2f}]); its largest term resembles {found['terms'][0]['resembles']}"
             )
+        elif "error" in found:
+            lines.append(f"discovered in {channel}: not searched: {found['error']}")
         else:
-            lines.append(f"discovered in {channel}: no term beats zero on held-out groups {found.get('error', '')}")
+            lines.append(f"discovered in {channel}: no term beats zero on held-out {d.campaign.group_name}s")
     for w in d.warnings:
         if "message" in w:  # the data against the declared test
             lines.append(f"warning: {w['message']}")
