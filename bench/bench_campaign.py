@@ -2,7 +2,7 @@
 thesis's 15 tests as one campaign in ≤ 10 s on 2 cores (docs/benchmarks.md).
 
     PYTHONPATH=build/python python3 bench/bench_campaign.py [--threads 2] [--time-constant 3]
-        [--seed 1] [--json OUT.json]
+        [--seed 1] [--campaigns "PAM 1,PAM 2"] [--json OUT.json]
 
 The thesis's tests (data/experiments/thesis/pam1_*.toml: 6 tests of PAM 1; pam2_*.toml: 9 of
 PAM 2) hold only their protocols. Their measured channels are written here by the independent
@@ -266,7 +266,13 @@ def main() -> int:
     parser.add_argument("--seed", type=int, default=1, help="instrument noise of the first test; +1 per test")
     parser.add_argument("--repeats", type=int, default=5, help="timings of one simulation per test (median)")
     parser.add_argument("--json", help="write every campaign's numbers and each test's")
+    parser.add_argument(
+        "--campaigns", default=",".join(CAMPAIGNS), help=f"comma-separated, of: {', '.join(CAMPAIGNS)} (default both)"
+    )
     arguments = parser.parse_args()
+    chosen = [name.strip() for name in arguments.campaigns.split(",")]
+    if unknown := [name for name in chosen if name not in CAMPAIGNS]:
+        parser.error(f"--campaigns: no campaign {', '.join(unknown)}; there are {', '.join(CAMPAIGNS)}")
     if arguments.time_constant <= 0:
         parser.error(f"--time-constant must be > 0 s, got {arguments.time_constant:g}")
     for option in ("threads", "repeats"):
@@ -278,8 +284,12 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as scratch:
         seed = arguments.seed
         for name, pattern in CAMPAIGNS.items():
+            tomls = sorted(THESIS.glob(pattern))
+            if name not in chosen:  # its seeds still counted: a campaign's data do not depend on the others chosen
+                seed += len(tomls)
+                continue
             paths = []
-            for toml in sorted(THESIS.glob(pattern)):
+            for toml in tomls:
                 paths.append(write_measured(toml, Path(scratch) / toml.stem, physics, seed))
                 seed += 1
             print(f"{name}: diagnosing {len(paths)} tests as one campaign", file=sys.stderr, flush=True)
@@ -303,8 +313,12 @@ def main() -> int:
     total["ratio"] = total["seconds"] / total["one_simulation_each_s"]
     print(f"hidden in every test: {HIDDEN}, time constant {arguments.time_constant:g} s; {arguments.threads} threads")
     print_tables(results, total)
-    met = "met" if total["seconds"] <= TARGET_S else "MISSED"
-    print(f"\ntarget: the {total['tests']} tests in ≤ {TARGET_S:g} s on 2 cores: {met} ({total['seconds']:.1f} s)")
+    if len(results) == len(CAMPAIGNS):
+        met = "met" if total["seconds"] <= TARGET_S else "MISSED"
+        print(f"\ntarget: the {total['tests']} tests in ≤ {TARGET_S:g} s on 2 cores: {met} ({total['seconds']:.1f} s)")
+    else:
+        chosen_only = ", ".join(results)
+        print(f"\ntarget: the thesis's 15 tests in ≤ {TARGET_S:g} s on 2 cores: not judged on {chosen_only} alone")
     for name, r in results.items():
         shared = r["shared_time_constant_s"]
         print(
