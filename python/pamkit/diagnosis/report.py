@@ -15,6 +15,7 @@ from pamkit.diagnosis.series import campaign
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.campaign import SeriesCampaign
 from pamkit.diagnosis.series.decide import Judgement, noise_ratios
+from pamkit.diagnosis.series.remainder import describe, where_left
 from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.diagnosis.series.score import credited_channels
 from pamkit.diagnosis.significance import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE
@@ -209,8 +210,10 @@ def remainder_json(d: Diagnosis) -> dict | None:
         return None
     ratios = noise_ratios(d.problem, d.extended)
     found = d.discovered or {}
+    where = {c: where_left(d.problem, d.extended, c) for c in d.decision.left_structure}
     return {
         "channels": {c: ratios[c] for c in d.decision.left_structure},
+        "where": {c: w for c, w in where.items() if w},
         "over": "+".join(c.label for c in d.decision.causes) or "baseline",
         "discovered": {
             key: found[key] for key in ("channel", "equation", "terms", "gain", "gain_ci95", "error") if key in found
@@ -315,9 +318,11 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
             if found
             else ""
         )
+        where = (remainder_json(d) or {}).get("where", {})
+        shape = "".join(f"{file_name(c)} {describe(w)}; " for c, w in where.items())
         return (
             f"unexplained: structure is left in {left} (held-out RMSE {_sizes(d, d.baseline)}); "
-            f"{looks}{discovered}{bounds}"
+            f"{shape}{looks}{discovered}{bounds}"
         )
     causes = causes_json(d)
     first, lead = causes[0], decision.causes[0]
@@ -359,7 +364,11 @@ def _remainder_phrase(d: Diagnosis) -> str:
     remainder = remainder_json(d)
     if remainder is None:
         return "; nothing is left above the noise"
-    left = ", ".join(f"{file_name(c)} at {r:.1f}x its noise" for c, r in remainder["channels"].items())
+    where = remainder["where"]
+    left = " and ".join(
+        f"{file_name(c)} at {r:.1f}x its noise" + (f" ({describe(where[c])})" if c in where else "")
+        for c, r in remainder["channels"].items()
+    )
     found = remainder["discovered"]
     if found.get("terms"):
         return (

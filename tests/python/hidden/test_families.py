@@ -209,3 +209,13 @@ def test_a_muscle_sealed_at_a_declared_length_starts_there():
     volume, _ = muscle.geometry.volume_and_slope(length + run.elongation_m)
     product = (run.gauge_kPa * 1e3 + 101325.0) * volume
     assert np.ptp(product) / product.mean() < 1e-9
+
+
+def test_an_out_of_catalog_coulomb_friction_is_left_as_a_loop_the_model_lacks(tmp_path):
+    # Friction of constant size that flips with the motion's direction is in no catalog effect:
+    # what it leaves changes sign between the stretch and the return of every cycle, the same in
+    # each cycle, and the report must say so (docs/reference/report.md, `remainder.where`).
+    for _, report in seed_reports("coulomb_alternating", tmp_path):
+        where = report["remainder"]["where"]["force_N"]
+        assert where["halves"] == "loop" and where["pattern"] == "spread", report["verdict"]
+        assert "a loop the model lacks" in report["verdict"]
