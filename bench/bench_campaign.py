@@ -40,10 +40,6 @@ import tomllib
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-# Imported before any clock starts, as pamkit.diagnosis is: the sparse regression imports
-# scikit-learn on the first test it runs on (about 1 s here); the campaign's time is the
-# diagnosis's, not Python's imports.
-import sklearn.linear_model  # noqa: F401, E402
 from independent import bench
 from independent.families import draws, record_sealed
 from independent.physics import Build, Motion, Physics, SealedMuscle

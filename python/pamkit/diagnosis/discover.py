@@ -14,8 +14,8 @@ gain and the mechanism each term resembles::
     print(result["equation"])   # force_N residual ≈ 0.0003 N/Pa · p · tanh(v / 2.1 mm/s)
     save_effect(result, "friction.json")  # discovered.py: a pamkit.Effect for the next run
 
-Method (docs/diagnosis.md, rule 9): orthogonal matching pursuit (scikit-learn's
-``orthogonal_mp``) on columns centred and scaled over the fitted samples, the offset as the
+Method (docs/diagnosis.md, rule 10): orthogonal matching pursuit (`pursuit`, checked against
+scikit-learn's ``orthogonal_mp``) on columns centred and scaled over the fitted samples, the offset as the
 intercept; unshrunk coefficients read as physical constants; the number of terms chosen on
 held-out units only, by the one-standard-error rule (Hastie, Tibshirani & Friedman, The
 Elements of Statistical Learning, 2nd ed., sec. 7.10), beating no term by ``MIN_Z`` standard
@@ -25,8 +25,6 @@ errors (paired over held-out units) and by a tenth of the noise.
 from __future__ import annotations
 
 import math
-import threading
-import warnings
 
 import numpy as np
 
@@ -38,9 +36,6 @@ MAX_TERMS = 5  # an explanation with more terms is not one a reader can check
 MIN_Z = 2.0  # the chosen terms must beat "no term" by 2 standard errors (one-sided ~2 %) ...
 MIN_RMSE_DROP = 0.1  # ... and lower the held-out RMSE by a tenth of the noise to be worth reading
 BOOTSTRAP_SAMPLES = 1000  # as the diagnosis's own gain intervals (engine.BOOTSTRAP_SAMPLES)
-# warnings.catch_warnings saves and restores the process's filters: two threads inside it at once
-# (a campaign's tests diagnosed side by side) would restore each other's and leak a filter.
-_FILTERS = threading.Lock()
 
 # --------------------------------------------------------------------------- the regression
 
@@ -80,16 +75,41 @@ def _least_squares(design: np.ndarray, target: np.ndarray) -> np.ndarray:
     return np.linalg.lstsq(design, target, rcond=None)[0]
 
 
+def pursuit(columns: np.ndarray, target: np.ndarray, max_terms: int) -> list[list[int]]:
+    """Orthogonal matching pursuit (Pati, Rezaiifar and Krishnaprasad, 1993) on unit-norm
+    `columns`: the columns chosen after each step, in ascending order, at most `max_terms` steps.
+    Each step takes the column most correlated with what the chosen ones leave of `target` and
+    refits all chosen by least squares. The path ends early where that column is one already
+    chosen, one the chosen columns span, or one uncorrelated with the target, as scikit-learn's
+    ``orthogonal_mp`` ends it. Written here rather than imported: importing scikit-learn costs
+    about 1.6 s, two thirds of a diagnosis that ends with a remainder, for these few lines; the
+    tests check the path against ``sklearn.linear_model.orthogonal_mp``."""
+    tiny = np.finfo(float).eps
+    correlation_with_target = columns.T @ target
+    chosen: list[int] = []
+    residual = target
+    path = []
+    for _ in range(max_terms):
+        best = int(np.argmax(np.abs(columns.T @ residual)))
+        if best in chosen or correlation_with_target[best] ** 2 < tiny:
+            break
+        if chosen:
+            basis = columns[:, chosen]
+            spanned = basis @ np.linalg.lstsq(basis, columns[:, best], rcond=None)[0]
+            if np.sum((columns[:, best] - spanned) ** 2) <= tiny:
+                break
+        chosen.append(best)
+        residual = target - columns[:, chosen] @ _least_squares(columns[:, chosen], target)
+        path.append(sorted(chosen))
+    return path
+
+
 def _candidate_models(terms: list[Term], X_fit: np.ndarray, residual_fit: np.ndarray) -> list[list[int]]:
     """Nested models, fewest terms first: none; the offset alone; then the offset with the
     first 1, 2, ... MAX_TERMS terms that orthogonal matching pursuit picks from the other
     columns centred on the fitted samples. Centring leaves the offset to the intercept: with raw
     columns every term of positive mean (pressure, x²) would stand in for an offset before the
     offset itself is picked. Without an offset column: none, then the pursuit on raw columns."""
-    # Imported here: scikit-learn takes about a second to import, and most diagnoses end with a
-    # named cause or none and never get here.
-    from sklearn.linear_model import orthogonal_mp
-
     offset = next((j for j, t in enumerate(terms) if t.name == "offset"), None)
     others = np.array([j for j in range(len(terms)) if j != offset])
     columns = X_fit[:, others]
@@ -97,27 +117,13 @@ def _candidate_models(terms: list[Term], X_fit: np.ndarray, residual_fit: np.nda
     if offset is not None:
         columns = columns - columns.mean(axis=0)
         target = residual_fit - residual_fit.mean()
-    # OMP assumes unit-norm columns; a column constant on the fitted samples cannot be picked.
+    # The pursuit takes unit-norm columns; a column constant on the fitted samples cannot be picked.
     norms = np.linalg.norm(columns, axis=0)
     usable = norms > 1e-12 * max(float(norms.max(initial=0.0)), 1e-300)
     candidates = others[usable]
     models: list[list[int]] = [[]] + ([[offset]] if offset is not None else [])
-    if candidates.size:
-        with _FILTERS, warnings.catch_warnings():
-            # Ending early because the rest is linearly dependent is a shorter path, not an error.
-            warnings.filterwarnings(
-                "ignore", message="Orthogonal matching pursuit ended prematurely", category=RuntimeWarning
-            )
-            path = orthogonal_mp(
-                columns[:, usable] / norms[usable],
-                target,
-                n_nonzero_coefs=min(MAX_TERMS, int(candidates.size)),
-                return_path=True,
-            )
-        path = path.reshape(candidates.size, -1)
-        for step in range(path.shape[1]):
-            chosen = candidates[np.flatnonzero(path[:, step])].tolist()
-            models.append(chosen + ([offset] if offset is not None else []))
+    for step in pursuit(columns[:, usable] / norms[usable], target, min(MAX_TERMS, int(candidates.size))):
+        models.append(candidates[step].tolist() + ([offset] if offset is not None else []))
     return models
 
 

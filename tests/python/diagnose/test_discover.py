@@ -365,3 +365,47 @@ def test_nothing_discovered_is_no_effect_and_a_bad_file_is_named(tmp_path):
     )
     with pytest.raises(DiscoveryError, match=r"other.json: discovered effect: terms\[0\].name = 'creep' is not"):
         load_effect(other)
+
+
+def sklearn_path(columns, target, max_terms):
+    """scikit-learn's orthogonal matching pursuit path, as the columns chosen at each step."""
+    import warnings
+
+    from sklearn.linear_model import orthogonal_mp
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # a path that ends early says so
+        coefficients = orthogonal_mp(columns, target, n_nonzero_coefs=max_terms, return_path=True)
+    coefficients = coefficients.reshape(columns.shape[1], -1)
+    return [np.flatnonzero(coefficients[:, step]).tolist() for step in range(coefficients.shape[1])]
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_the_pursuit_takes_the_path_of_scikit_learns_orthogonal_matching_pursuit(seed):
+    # Random unit-norm designs: a sparse truth in noise, with duplicated and dependent columns
+    # (where the path must end early, as scikit-learn's does) on every fourth seed.
+    from pamkit.diagnosis.discover import pursuit
+
+    rng = np.random.default_rng(seed)
+    samples, count = int(rng.integers(8, 200)), int(rng.integers(2, 14))
+    columns = rng.normal(size=(samples, count))
+    if seed % 4 == 0:
+        columns[:, -1] = columns[:, 0] - 0.5 * columns[:, 1]
+    columns /= np.linalg.norm(columns, axis=0)
+    truth = np.zeros(count)
+    truth[rng.choice(count, size=min(3, count), replace=False)] = rng.normal(0, 3, size=min(3, count))
+    target = columns @ truth + rng.normal(0, 0.1, samples)
+    steps = min(5, count)
+    assert pursuit(columns, target, steps) == sklearn_path(columns, target, steps)
+
+
+def test_the_pursuit_takes_scikit_learns_path_on_a_stretch_records_library(coulomb_case):
+    from pamkit.diagnosis.discover import pursuit
+
+    X = np.column_stack([values for term, values in coulomb_case["features"].items() if term.name != "offset"])
+    fit = coulomb_case["fit"]
+    columns = X[fit] - X[fit].mean(axis=0)
+    usable = np.linalg.norm(columns, axis=0) > 1e-9
+    columns = columns[:, usable] / np.linalg.norm(columns[:, usable], axis=0)
+    target = coulomb_case["residual"][fit] - coulomb_case["residual"][fit].mean()
+    assert pursuit(columns, target, 5) == sklearn_path(columns, target, 5)
