@@ -15,6 +15,7 @@ from pamkit.diagnosis.series import campaign
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.campaign import SeriesCampaign
 from pamkit.diagnosis.series.decide import Judgement, noise_ratios
+from pamkit.diagnosis.series.kinds import driving_signal
 from pamkit.diagnosis.series.remainder import describe, where_left
 from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.diagnosis.series.score import credited_channels
@@ -379,7 +380,9 @@ def _remainder_phrase(d: Diagnosis) -> str:
 
 
 def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Path:
-    """Measured vs baseline vs extended per channel, residuals before and after, the ranking."""
+    """Measured vs baseline vs extended per channel, residuals before and after, what the model
+    leaves on the held-out cycles against the signal that drives them (the way out and back
+    apart), the ranking."""
     if isinstance(d, TableDiagnosis):
         return table_report.plot(d, path)
     if isinstance(d, SeriesCampaign):
@@ -392,9 +395,15 @@ def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Pa
     p = d.problem
     time = p.experiment.time_s
     rows = len(p.channels)
-    figure = plt.figure(figsize=(13, 3.0 * rows + 3.2), constrained_layout=True)
-    grid = figure.add_gridspec(rows + 1, 2)
+    figure = plt.figure(figsize=(18, 3.0 * rows + 3.2), constrained_layout=True)
+    grid = figure.add_gridspec(rows + 1, 3, width_ratios=(1.0, 1.0, 0.7))
     held = p.held_mask
+    driver, driven, _ = driving_signal(p.experiment)
+    driven = value_from_si(driver, driven)
+    # The way out (stretch, pressurise) and back of every held-out cycle, apart: a loop the model
+    # lacks shows as two branches, an offset as one band off zero.
+    out = held & (p.half_cycle >= 0) & (p.half_cycle % 2 == 0)
+    back = held & (p.half_cycle >= 0) & (p.half_cycle % 2 == 1)
     for i, c in enumerate(p.channels):
         # Drawn in the units a person reads (kPa, °C), as the data's file gives them.
         measured = value_from_si(c, p.measured[c])
@@ -411,16 +420,26 @@ def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Pa
         for axis in (signal, residual):
             _shade(axis, time, held)
             axis.grid(alpha=0.3)
+        left = measured - (extended if d.extended is not d.baseline else baseline)
+        loop = figure.add_subplot(grid[i, 2])
+        loop.plot(driven[out], left[out], ".", ms=2, color="C1", label="way out")
+        loop.plot(driven[back], left[back], ".", ms=2, color="C2", label="way back")
+        loop.axhline(0.0, color="0.4", lw=0.8)
+        loop.grid(alpha=0.3)
         signal.set_ylabel(file_name(c))
         residual.set_ylabel(f"measured − model [{_unit(c)}]")
         if i == 0:
             signal.legend(loc="upper right", fontsize="small")
             residual.legend(loc="upper right", fontsize="small")
+            loop.legend(loc="upper right", fontsize="small", markerscale=4)
             signal.set_title("measured and predicted (held-out cycles shaded)")
             residual.set_title("residuals")
+            model = "extended" if d.extended is not d.baseline else "baseline"
+            loop.set_title(f"what the {model} model leaves, held out")
         if i == rows - 1:
             signal.set_xlabel("time [s]")
             residual.set_xlabel("time [s]")
+            loop.set_xlabel(file_name(driver))
     ranking = figure.add_subplot(grid[rows, :])
     labels = [j.fit.name + ("" if j.credible else " (not credible)") for j in d.candidates]
     gains = [j.score.combined_gain for j in d.candidates]
