@@ -56,6 +56,10 @@ def test_a_festo_map_names_the_friction_the_contracted_muscle_keeps_and_carries_
     assert where["rows_beyond"] == where["rows"]
     assert where["beyond_m"] == pytest.approx(lengths.max() - np.unique(lengths)[-2])
     assert "predicted by extrapolation" in verdict(d)
+    # The rest length at its bound is the baseline's finding and the cause's alike; each says whose.
+    found = {(w["parameter"], w["model"]) for w in report["warnings"] if "parameter" in w}
+    assert ("length_m", "baseline") in found and all(model in ("baseline", d.cause) for _, model in found)
+    assert f"without {d.cause}, length_m = " in verdict(d)
 
 
 def _campaign(lengths, groups, kind="isometric_map"):

@@ -278,7 +278,11 @@ def diagnose_table(
                     f"its held-out gain with {added[0]['effect']} beside it is significant, every parameter plausible"
                 )
     extended = chosen.fit if chosen else baseline
-    warnings = beyond_reach(campaign) + _findings(baseline) + (chosen.findings if chosen else [])
+    warnings = (
+        beyond_reach(campaign)
+        + [dict(f, model="baseline") for f in _findings(baseline)]
+        + ([dict(f, model=chosen.fit.name) for f in chosen.findings] if chosen else [])
+    )
     discovered: dict[str, dict] = {}
     ratios = {c: heldout_rmse(extended, measured, c) / noise[c] for c in channels if noise[c] > 0}
     remainder = {c: r for c, r in ratios.items() if r > NONE_WITHIN_NOISE}

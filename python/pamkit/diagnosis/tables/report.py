@@ -250,7 +250,13 @@ def verdict(d: TableDiagnosis) -> str:
             lines.append(f"warning: {w['message']}")
             continue
         where = f"at its bound {w['bound']:.4g}" if w["bound"] is not None else "outside its plausible range"
-        lines.append(f"warning: {w['parameter']} = {w['value']:.4g} {where} ({w['source']})")
+        finding = f"{w['parameter']} = {w['value']:.4g} {where} ({w['source']})"
+        if w.get("model") == "baseline" and d.extended is not d.baseline:
+            # The baseline's strain, which the model with the cause may not share: said apart.
+            finding = f"without {named}, {finding}"
+            if w["parameter"] in d.extended.params:
+                finding += f"; with it, {w['parameter']} = {d.extended.params[w['parameter']]:.4g}"
+        lines.append(f"warning: {finding}")
     return "\n".join(lines)
 
 
