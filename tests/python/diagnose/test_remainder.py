@@ -51,7 +51,11 @@ def test_an_error_that_changes_steadily_over_the_test_is_a_drift(direction):
     # Rising by less than DRIFT_FACTOR from the first held-out cycle to the last is no drift.
     problem, fit, wiggle = problem_with(lambda c, h: {1: 1.0, 3: 1.1, 5: 1.2, 7: 1.3}[c])
     fit.predicted["force_N"] = fit.predicted["force_N"] * wiggle
-    assert where_left(problem, fit, "force_N")["pattern"] == "spread"
+    w = where_left(problem, fit, "force_N")
+    assert w["pattern"] == "spread" and describe(w) == "spread over the held-out stretch cycles, 1.0x to 1.3x"
+    problem, fit, wiggle = problem_with(lambda c, h: 2.0)
+    fit.predicted["force_N"] = fit.predicted["force_N"] * wiggle
+    assert describe(where_left(problem, fit, "force_N")) == "spread over the held-out stretch cycles, 2.0x in each"
 
 
 def test_opposite_signs_on_the_stretch_and_the_return_are_a_loop_and_one_sign_an_offset():

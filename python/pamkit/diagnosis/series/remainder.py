@@ -85,7 +85,8 @@ def describe(where: dict) -> str:
             f"{last:.1f}x in {unit} {where['held_out'][-1]}"
         )
     else:
-        text = f"spread over the held-out {unit}s, {min(where['ratios']):.1f}x to {max(where['ratios']):.1f}x"
+        low, high = f"{min(where['ratios']):.1f}x", f"{max(where['ratios']):.1f}x"
+        text = f"spread over the held-out {unit}s, " + (f"{low} in each" if low == high else f"{low} to {high}")
     halves = where.get("halves")
     if halves == "loop":
         text += "; of opposite sign on the way out and back: a loop the model lacks"
