@@ -75,7 +75,7 @@ def _campaign(lengths, groups, kind="isometric_map"):
 def test_where_left_names_the_group_holding_the_error_and_how_far_it_reaches_beyond_the_others():
     from types import SimpleNamespace
 
-    from pamkit.diagnosis.tables.engine import where_left
+    from pamkit.diagnosis.tables.remainder import where_left
 
     # Three held lengths of four rows; the longest mispredicted by 3 N on each row, the others by 1 N.
     lengths = np.repeat([0.20, 0.22, 0.25], 4)
@@ -96,7 +96,7 @@ def test_where_left_names_the_group_holding_the_error_and_how_far_it_reaches_bey
 def test_where_left_counts_a_measured_length_beyond_the_others_only_past_three_times_its_noise():
     from types import SimpleNamespace
 
-    from pamkit.diagnosis.tables.engine import where_left
+    from pamkit.diagnosis.tables.remainder import where_left
 
     # Isotonic sweeps: the lengths are the measured channel. The first sweep reaches 0.5 mm and
     # 5 mm past the others' longest (0.230 m), its noise 0.2 mm: only the second row is beyond.

@@ -17,7 +17,7 @@ ONE_UNIT_SHARE = 0.5
 DRIFT_RANK_CORRELATION = 0.8
 DRIFT_FACTOR = 1.5
 # The two halves' mean residuals, in units of the channel's held-out RMSE, beyond which a loop or
-# an offset is what the remainder looks like (a mean of half the RMSE: half its square is the mean's).
+# an offset is what the remainder looks like (a mean of half the RMSE carries a quarter of its square).
 HALVES_MEAN = 0.5
 
 

@@ -1,8 +1,8 @@
 """Diagnosis of static tables: isometric maps, isotonic tests of settled steps and
 free-inflation tables, the kinds docs/experiments.md describes, and beside them a supplied time
 series of the same muscle (a cyclic test); their units and noise are in kinds.py, their fits in
-fit.py, the search of what is left in discover.py, their report in report.py (all in this
-package).
+fit.py, the search of what is left in discover.py and where it lies in remainder.py, their report
+in report.py (all in this package).
 
 A table has no time axis, so the units held out are its groups: the held lengths of a map
 (leave one length out: does the model carry to a length it was not fitted on?), an isotonic
@@ -32,6 +32,7 @@ from pamkit.diagnosis.significance import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITH
 from pamkit.diagnosis.tables.discover import discover_table
 from pamkit.diagnosis.tables.fit import Fitter, TableFit, TableModel, fit_table, heldout_rmse
 from pamkit.diagnosis.tables.kinds import Campaign, beyond_reach, campaign_of, noise_of
+from pamkit.diagnosis.tables.remainder import where_left
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.io.experiment import Experiment, test_names
 from pamkit.io.guards import ExperimentError
@@ -313,50 +314,6 @@ def diagnose_table(
         by_test,
         where,
     )
-
-
-def where_left(campaign: Campaign, fit: TableFit, measured, channel: str, noise: dict[str, float]) -> dict:
-    """Where a channel's held-out error lies: the group holding the largest share of its squared
-    error, that group's held-out RMSE over the noise and the other groups', and how far the group's
-    lengths reach beyond those the other groups of its test cover. Held out, such a group is
-    predicted by extrapolation (the longest length of a map, an isotonic test's first sweep from
-    rest): its error says as much about what the other groups cannot tell as about the model. A
-    length counts as beyond only by more than three times the length's noise where the length is
-    measured. Empty with fewer than two groups scored."""
-    residual = fit.heldout[channel] - measured[channel]
-    scored = np.isfinite(residual) & ~campaign.censored
-    labels = np.unique(campaign.groups[scored])
-    if labels.size < 2:
-        return {}
-    squared = np.bincount(campaign.groups[scored], weights=residual[scored] ** 2, minlength=len(campaign.group_labels))
-    worst = int(np.argmax(squared))
-    mine, rest = scored & (campaign.groups == worst), scored & (campaign.groups != worst)
-
-    def ratio(rows):
-        return float(np.sqrt(np.mean(residual[rows] ** 2))) / noise[channel]
-
-    out = {
-        "group": campaign.group_labels[worst],
-        "share": float(squared[worst] / squared.sum()),
-        "ratio": ratio(mine),
-        "others_ratio": ratio(rest),
-        "rows": int(mine.sum()),
-        "rows_beyond": 0,
-        "beyond_m": 0.0,
-    }
-    lengths = campaign.columns.get("length_m")
-    if lengths is None:
-        return out
-    test = campaign.test[mine][0]
-    others = rest & (campaign.test == test) & np.isfinite(lengths)
-    if not others.any():
-        return out
-    here = lengths[mine]
-    beyond = np.maximum(lengths[others].min() - here, here - lengths[others].max()).clip(0.0)
-    beyond[beyond <= 3.0 * noise.get("length_m", 0.0)] = 0.0
-    out["rows_beyond"] = int(np.count_nonzero(beyond))
-    out["beyond_m"] = float(beyond.max(initial=0.0))
-    return out
 
 
 def heldout_by_test(model: TableModel, channels, scales, fit: TableFit, catalog: EffectCatalog) -> dict[str, dict]:

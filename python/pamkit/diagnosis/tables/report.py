@@ -11,6 +11,7 @@ import numpy as np
 from pamkit.diagnosis.identify import why_undetermined
 from pamkit.diagnosis.tables.engine import CHANNEL_UNITS, TableDiagnosis, TableFit, heldout_rmse
 from pamkit.diagnosis.tables.kinds import CYCLIC
+from pamkit.diagnosis.tables.remainder import describe
 from pamkit.io.columns import value_from_si
 from pamkit.io.experiment import test_names
 from pamkit.plots import save_figure
@@ -96,21 +97,6 @@ def to_json(d: TableDiagnosis) -> dict:
         "heldout_by_test": d.by_test,
     }
     return report
-
-
-def _where(w: dict, group_name: str) -> str:
-    """where_left's finding in a sentence."""
-    where = "most of it" if w["share"] >= 0.5 else "the largest share"
-    out = (
-        f"{where} in {w['group']} ({100 * w['share']:.0f} % of the squared error; {w['ratio']:.1f}x its noise there, "
-        f"{w['others_ratio']:.1f}x over the other {group_name}s)"
-    )
-    if w["rows_beyond"]:
-        out += (
-            f", up to {w['beyond_m']:.3g} m beyond the lengths of the other {group_name}s ({w['rows_beyond']} of its "
-            f"{w['rows']} rows): held out, it is predicted by extrapolation"
-        )
-    return out
 
 
 def _undetermined_json(fit: TableFit) -> dict:
@@ -219,7 +205,7 @@ def verdict(d: TableDiagnosis) -> str:
         if d.remainder:
             left = ", ".join(f"{c} at {r:.1f}x its noise" for c, r in d.remainder.items())
             lines.append(f"still left: {left}")
-            lines += [f"  {ch}: {_where(w, d.campaign.group_name)}" for ch, w in d.remainder_where.items()]
+            lines += [f"  {ch}: {describe(w, d.campaign.group_name)}" for ch, w in d.remainder_where.items()]
         else:
             lines.append("nothing is left above the noise")
     if d.by_test:
