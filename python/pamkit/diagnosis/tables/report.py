@@ -289,12 +289,16 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
         shown_unit = "mm" if unit == "m" else unit
         mine = c.predicts(channel) & ~cyclic
         drawn = np.unique(curves[mine])
+        # The group the remainder lies in, beyond the others' lengths: its held-out curve extrapolates.
+        where = d.remainder_where.get(channel, {})
+        beyond = where.get("group") if by_group and where.get("rows_beyond") else None
         colors = plt.cm.viridis(np.linspace(0, 0.9, len(drawn)))
         for curve, color in zip(drawn, colors):
             rows = np.flatnonzero((curves == curve) & mine)
             if c.kinds[c.test[rows[0]]] != "isotonic":  # an isotonic sweep is drawn as measured: up, down
                 rows = rows[np.argsort(pressure[rows])]
-            axis.plot(pressure[rows], scale * c.columns[channel][rows], "o", color=color, ms=4, label=names[curve])
+            label = names[curve] + (" (held out: extrapolated)" if names[curve] == beyond else "")
+            axis.plot(pressure[rows], scale * c.columns[channel][rows], "o", color=color, ms=4, label=label)
             axis.plot(pressure[rows], scale * d.baseline.heldout[channel][rows], ":", color=color, lw=1)
             if d.extended is not d.baseline:
                 axis.plot(pressure[rows], scale * d.extended.heldout[channel][rows], "-", color=color, lw=1.5)
