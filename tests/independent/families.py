@@ -227,6 +227,18 @@ def load_cell_nonlinear(seed, folder):
     )
 
 
+def load_cell_drift(seed, folder):
+    """The load cell's zero creeps by 2-6 N over the test, linearly in time (a strain gauge
+    warming up): in no catalog effect (the load cell's own is an offset held through the test)."""
+    drift = _signed(np.random.default_rng([seed, 15]), 2.0, 6.0)
+
+    def record(muscle, motion, times, rate, rng):
+        ramp = drift * (times - times[0]) / (times[-1] - times[0])
+        return record_sealed(muscle, motion, times, rate, rng, force=lambda f: f + ramp)
+
+    return sealed_test(seed, folder, record=record, truth={"drift_N": drift})
+
+
 def travel_scale(seed, folder):
     scale = 1.0 + _signed(np.random.default_rng([seed, 6]), 0.02, 0.04)
     return sealed_test(
@@ -413,6 +425,7 @@ FAMILIES = {
         independent_leak,
         load_cell_tare,
         load_cell_nonlinear,
+        load_cell_drift,
         travel_scale,
         declared_length,
         declared_diameter,

@@ -41,6 +41,17 @@ def test_one_cycle_holding_most_of_the_error_is_named():
     assert describe(w).startswith("most of it in stretch cycle 6: 84 %")
 
 
+def test_a_drift_whose_last_cycle_holds_most_of_the_error_is_a_drift_not_one_cycle():
+    # A load cell's zero creeping at a constant rate: 2.9x, 4.5x, 9.0x the noise over three held-out
+    # cycles (a diagnosis's figures), the last holding 74 % of the squared error.
+    size = {1: 2.9, 3: 4.5, 5: 9.0}
+    problem, fit, wiggle = problem_with(lambda c, h: size.get(c, 0.0))
+    problem.held_mask = problem.held_mask & (problem.cycle < 7)
+    fit.predicted["force_N"] = fit.predicted["force_N"] * wiggle
+    w = where_left(problem, fit, "force_N")
+    assert w["share"] > 0.5 and w["pattern"] == "growing"
+
+
 @pytest.mark.parametrize("direction", ["growing", "fading"])
 def test_an_error_that_changes_steadily_over_the_test_is_a_drift(direction):
     size = {1: 1.0, 3: 1.4, 5: 1.8, 7: 2.2} if direction == "growing" else {1: 2.2, 3: 1.8, 5: 1.4, 7: 1.0}

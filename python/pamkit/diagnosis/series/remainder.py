@@ -10,7 +10,8 @@ import numpy as np
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.kinds import Problem
 
-# One held-out unit holding at least this share of the squared error is where the remainder lies.
+# One held-out unit holding at least this share of the squared error, the others level, is where
+# the remainder lies.
 ONE_UNIT_SHARE = 0.5
 # A drift: the units' RMSE in the order measured rank-correlates with time at least this well and
 # changes by at least this factor from the first held-out unit to the last.
@@ -51,7 +52,10 @@ def where_left(problem: Problem, fit: Fit, channel: str) -> dict:
         "others_ratio": float(np.sqrt(squared[others].sum() / counts[others].sum())),
     }
     rho = float(np.corrcoef(_rank(units), _rank(ratios))[0, 1]) if np.ptp(ratios) > 0 else 0.0
-    if units.size >= 3 and share >= ONE_UNIT_SHARE:
+    # One unit stands out from the others only where they are level among themselves: a drift's
+    # last unit holds most of the error too.
+    level = ratios[others].max() < DRIFT_FACTOR * ratios[others].min()
+    if units.size >= 3 and share >= ONE_UNIT_SHARE and level:
         out["pattern"] = "one unit"
     elif units.size >= 3 and rho >= DRIFT_RANK_CORRELATION and ratios[-1] >= DRIFT_FACTOR * ratios[0]:
         out["pattern"] = "growing"
