@@ -44,7 +44,10 @@ class LoadCellCreep(pamkit.Effect):
         return measurement
 
 
-@pytest.mark.xfail(strict=True, reason="a weak creep is named bladder_viscoelasticity on 3 of 12 seeds (module docstring)")
+WHY = "a weak creep is named bladder_viscoelasticity on 3 of 12 seeds (module docstring)"
+
+
+@pytest.mark.xfail(strict=True, reason=WHY)
 def test_a_creeping_load_cell_zero_is_named_no_catalog_effect(tmp_path):
     hidden = builtin_catalog()
     hidden.add("load_cell_creep", LoadCellCreep)
