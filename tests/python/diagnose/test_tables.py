@@ -86,6 +86,10 @@ def test_where_left_names_the_group_holding_the_error_and_how_far_it_reaches_bey
     assert w["group"] == "group 2" and w["share"] == pytest.approx(9 / 11)
     assert w["ratio"] == pytest.approx(6.0) and w["others_ratio"] == pytest.approx(2.0)
     assert (w["rows"], w["rows_beyond"]) == (4, 4) and w["beyond_m"] == pytest.approx(0.03)
+    # A scored row without a length (a kind that measures none) lies beyond nothing.
+    lengths[8] = np.nan
+    w = where_left(_campaign(lengths, groups), fit, {"force_N": np.zeros(12)}, "force_N", {"force_N": 0.5})
+    assert (w["rows"], w["rows_beyond"]) == (4, 3) and w["beyond_m"] == pytest.approx(0.03)
     # The middle length lies within the others' range: no extrapolation.
     error = np.where(groups == 1, 3.0, 1.0) * np.tile([1, -1], 6)
     fit = SimpleNamespace(heldout={"force_N": error})

@@ -47,7 +47,8 @@ def where_left(campaign: Campaign, fit: TableFit, measured, channel: str, noise:
     if not others.any():
         return out
     here = lengths[mine]
-    beyond = np.maximum(lengths[others].min() - here, here - lengths[others].max()).clip(0.0)
+    # A row with no length (a test of a kind that measures none) lies beyond nothing.
+    beyond = np.nan_to_num(np.maximum(lengths[others].min() - here, here - lengths[others].max()), nan=0.0).clip(0.0)
     beyond[beyond <= 3.0 * noise.get("length_m", 0.0)] = 0.0
     out["rows_beyond"] = int(np.count_nonzero(beyond))
     out["beyond_m"] = float(beyond.max(initial=0.0))
