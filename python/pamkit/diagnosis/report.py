@@ -420,7 +420,7 @@ def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Pa
         for axis in (signal, residual):
             _shade(axis, time, held)
             axis.grid(alpha=0.3)
-        left = measured - (extended if d.extended is not d.baseline else baseline)
+        left = measured - extended  # the baseline's where no cause is named (extended is baseline)
         loop = figure.add_subplot(grid[i, 2])
         loop.plot(driven[out], left[out], ".", ms=2, color="C1", label="way out")
         loop.plot(driven[back], left[back], ".", ms=2, color="C2", label="way back")

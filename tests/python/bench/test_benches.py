@@ -61,6 +61,8 @@ def test_every_python_bench_is_run_here_or_said_why_not():
 
 def test_the_simulation_bench_runs_beside_scipy(tmp_path):
     exe = BUILD / "bench" / "pamkit_bench_simulate"
+    # The README's set-up builds the benchmark programs (PAMKIT_BUILD_BENCH is on in a full build),
+    # so this runs there and in CI; a build configured without them skips, saying so (-rs).
     if not exe.exists():
         pytest.skip(f"{exe} is not built (configure with -DPAMKIT_BUILD_BENCH=ON)")
     arguments = ["--exe", str(exe), "--rounds", "1", "--repeats", "1", "--cycles", "1"]
