@@ -94,6 +94,14 @@ def identify(jacobian: np.ndarray, meat: np.ndarray | None = None, widths: bool 
     return Identification(covariance, undetermined)
 
 
+def interval_numbers(value: float, low: float, high: float, digits: int = 4) -> tuple[str, str, str]:
+    """A value and its interval's ends as printed: `digits` significant digits, more where fewer would
+    print a narrow interval's ends alike (a narrow interval is not a zero-width one), up to 9."""
+    while digits < 9 and f"{low:.{digits}g}" == f"{high:.{digits}g}" and low != high:
+        digits += 1
+    return f"{value:.{digits}g}", f"{low:.{digits}g}", f"{high:.{digits}g}"
+
+
 def why_undetermined(partners: list[str], at_bound: bool) -> str:
     """Why a value is not determined, in words: what it trades against, a bound that holds it, or a
     prediction that does not depend on it."""

@@ -10,7 +10,7 @@ import numpy as np
 
 from pamkit.diagnosis import evidence
 from pamkit.diagnosis.engine import CHANNEL_UNITS as UNITS
-from pamkit.diagnosis.identify import why_undetermined
+from pamkit.diagnosis.identify import interval_numbers, why_undetermined
 from pamkit.diagnosis.series import campaign
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.campaign import SeriesCampaign
@@ -161,7 +161,8 @@ def interval_phrase(fit: Fit, name: str) -> str:
     if name in fit.undetermined:
         why = why_undetermined(fit.undetermined[name], _at_bound(fit, name))
         return f"{name} = {value:.4g} (not determined by the data: {why})"
-    return f"{name} = {value:.4g} (95 % CI {interval[0]:.4g}–{interval[1]:.4g})"
+    shown, low, high = interval_numbers(value, *interval)
+    return f"{name} = {shown} (95 % CI {low}–{high})"
 
 
 def _own(params: dict, effect, count: int) -> dict:

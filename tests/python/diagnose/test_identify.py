@@ -77,3 +77,14 @@ def test_a_festo_map_does_not_determine_a_fibre_count_it_does_not_depend_on(tmp_
         assert report[fit]["intervals"]["fiber_count"] == pytest.approx([20.0, 200.0])
         widths = {k: hi - lo for k, (lo, hi) in report[fit]["intervals"].items()}
         assert all(w > 0 for w in widths.values()), widths
+
+
+def test_an_interval_prints_with_the_digits_that_tell_its_ends_apart():
+    from pamkit.diagnosis.identify import interval_numbers
+
+    # Four significant digits where they tell the ends apart; more where a narrow interval's ends
+    # would print alike (a braid angle pinned to 0.002 degrees read "22 [22, 22]"), up to 9.
+    assert interval_numbers(21.57, 20.86, 22.29) == ("21.57", "20.86", "22.29")
+    assert interval_numbers(22.0023, 22.0011, 22.0041) == ("22.002", "22.001", "22.004")
+    assert interval_numbers(1.0, 1.0 - 1e-12, 1.0 + 1e-12)[1:] == ("1", "1")  # beyond 9 digits: alike
+    assert interval_numbers(3.0, 3.0, 3.0) == ("3", "3", "3")

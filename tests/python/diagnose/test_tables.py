@@ -56,6 +56,9 @@ def test_a_festo_map_names_the_friction_the_contracted_muscle_keeps_and_carries_
     assert where["rows_beyond"] == where["rows"]
     assert where["beyond_m"] == pytest.approx(lengths.max() - np.unique(lengths)[-2])
     assert "predicted by extrapolation" in verdict(d)
+    # Every value the friction's model takes the other lengths determine too: no length is left
+    # out of its test as one that alone tells one (four others load the friction each time).
+    assert where["rests_on"] == [] and all(not j["untested"] for j in report["candidates"]), verdict(d)
     # The rest length at its bound is the baseline's finding and the cause's alike; each says whose.
     found = {(w["parameter"], w["model"]) for w in report["warnings"] if "parameter" in w}
     assert ("length_m", "baseline") in found and all(model in ("baseline", d.cause) for _, model in found)
@@ -81,7 +84,7 @@ def test_where_left_names_the_group_holding_the_error_and_how_far_it_reaches_bey
     lengths = np.repeat([0.20, 0.22, 0.25], 4)
     groups = np.repeat([0, 1, 2], 4)
     error = np.where(groups == 2, 3.0, 1.0) * np.tile([1, -1], 6)
-    fit = SimpleNamespace(heldout={"force_N": error})
+    fit = SimpleNamespace(heldout={"force_N": error}, rests_on={})
     w = where_left(_campaign(lengths, groups), fit, {"force_N": np.zeros(12)}, "force_N", {"force_N": 0.5})
     assert w["group"] == "group 2" and w["share"] == pytest.approx(9 / 11)
     assert w["ratio"] == pytest.approx(6.0) and w["others_ratio"] == pytest.approx(2.0)
@@ -92,7 +95,7 @@ def test_where_left_names_the_group_holding_the_error_and_how_far_it_reaches_bey
     assert (w["rows"], w["rows_beyond"]) == (4, 3) and w["beyond_m"] == pytest.approx(0.03)
     # The middle length lies within the others' range: no extrapolation.
     error = np.where(groups == 1, 3.0, 1.0) * np.tile([1, -1], 6)
-    fit = SimpleNamespace(heldout={"force_N": error})
+    fit = SimpleNamespace(heldout={"force_N": error}, rests_on={})
     w = where_left(_campaign(lengths, groups), fit, {"force_N": np.zeros(12)}, "force_N", {"force_N": 0.5})
     assert w["group"] == "group 1" and (w["rows_beyond"], w["beyond_m"]) == (0, 0.0)
 
@@ -107,7 +110,7 @@ def test_where_left_counts_a_measured_length_beyond_the_others_only_past_three_t
     lengths = np.array([0.2305, 0.235, 0.21, 0.21, 0.23, 0.22, 0.21, 0.23])
     groups = np.array([0, 0, 0, 0, 1, 1, 2, 2])
     error = np.array([2e-3, 2e-3, 2e-3, 2e-3, 1e-4, -1e-4, 1e-4, -1e-4])
-    fit = SimpleNamespace(heldout={"length_m": lengths + error})
+    fit = SimpleNamespace(heldout={"length_m": lengths + error}, rests_on={})
     noise = {"length_m": 0.2e-3}
     w = where_left(_campaign(lengths, groups, "isotonic"), fit, {"length_m": lengths}, "length_m", noise)
     assert w["group"] == "group 0" and (w["rows"], w["rows_beyond"]) == (4, 1)

@@ -53,6 +53,9 @@ class TableCandidate:
     strain: list[dict] = field(default_factory=list)  # the calibrated baseline's findings it shares
     # an effect between the branches: its gain on what differs between them, where it is judged
     between: dict | None = None
+    # held-out groups left out of its judgement: each predicted, by it or the model it is judged
+    # against, with values only that group determines (TableFit.rests_on), by the group's label
+    untested: dict[str, list[str]] = field(default_factory=dict)
 
     @property
     def credible(self) -> bool:
@@ -148,8 +151,17 @@ def _judge(
     baseline has too (`calibrated`: its parameters at a bound or implausible) is the base model's
     strain, not held against the candidate, unless the candidate is an instrument that would then
     correct the table it alone predicts. `acting` are the effects whose gain this is (by default all
-    of `fit`'s; a second effect judged beside a first: that one)."""
+    of `fit`'s; a second effect judged beside a first: that one). A group that either model
+    predicts with values only that group determines (TableFit.rests_on) tests neither: it is left
+    out of the judgement, and said so (`untested`), while MIN_GROUPS groups are left to judge on;
+    with fewer, every group is judged, as a table of so few groups would be."""
+    untestable = {**baseline.rests_on, **fit.rests_on}
     labels = np.unique(groups[used])
+    tested = np.array([label for label in labels if int(label) not in untestable])
+    if len(tested) >= MIN_GROUPS:
+        labels = tested
+    else:
+        untestable = {}
     index = [np.flatnonzero((groups == label) & used) for label in labels]
     rng = np.random.default_rng(seed)
     draws = rng.integers(0, len(labels), size=(BOOTSTRAP_SAMPLES, len(labels)))
@@ -177,7 +189,9 @@ def _judge(
             finding["parameter"] == f["parameter"] and finding["bound"] == f["bound"] for f in calibrated
         )
         (strain if inherited and not corrector else own).append(finding)
-    candidate = TableCandidate(fit, gain, ci, score, significant, own, strain)
+    names = campaign.group_labels if campaign is not None else [str(label) for label in range(groups.max() + 1)]
+    untested = {names[label]: values for label, values in sorted(untestable.items())}
+    candidate = TableCandidate(fit, gain, ci, score, significant, own, strain, untested=untested)
     if between:
         candidate.between = {"gain": judged_gain, "gain_ci95": {c: list(v) for c, v in judged_ci.items()}}
     return candidate
@@ -234,7 +248,7 @@ def diagnose_table(
         progress(f"calibrating {unknowns} on {len(groups)} rows, holding out each of {len(labels)} {group_name}s")
         if not used.all():
             progress(f"{int((~used).sum())} row(s) read the pressure transducer's range end: predicted, not scored")
-        baseline = fit_table("baseline", model, channels, scales, (), groups, used, pool)
+        baseline = fit_table("baseline", model, channels, scales, (), groups, used, pool, noise=noise)
         candidates = []
         for name in names:
             if catalog.make(name).shows_between_branches() and not np.any(campaign.branch[used] < 0):
@@ -261,7 +275,7 @@ def diagnose_table(
                 skipped[name] = "does not change a static table's prediction"
                 continue
             progress(f"fitting {name}")
-            fit = fit_table(name, model, channels, scales, [make_effect], groups, used, pool)
+            fit = fit_table(name, model, channels, scales, [make_effect], groups, used, pool, noise=noise)
             candidates.append(
                 _judge(fit, baseline, measured, channels, groups, used, seed, campaign, _findings(baseline))
             )
@@ -270,7 +284,9 @@ def diagnose_table(
         added = []
         significant = [j for j in candidates if j.significant]
         if significant:  # named, or not credible alone: a second effect may be what it lacks
-            pair, added = _second_effect(significant[0], candidates, baseline, model, catalog, progress, pool, seed)
+            pair, added = _second_effect(
+                significant[0], candidates, baseline, model, catalog, progress, pool, seed, noise
+            )
             if added:
                 chosen, cause = pair, significant[0].fit.name
                 margins["over_none"] = float(min(pair.gain_ci95[c][0] for c in channels))
@@ -351,7 +367,7 @@ def heldout_by_test(model: TableModel, channels, scales, fit: TableFit, catalog:
     return out
 
 
-def _second_effect(first, candidates, baseline, model, catalog, progress, pool, seed):
+def _second_effect(first, candidates, baseline, model, catalog, progress, pool, seed, noise):
     """A second effect beside the best significant candidate `first`: each other candidate is
     fitted jointly with it (from its fit), and the best pair is kept when it gains significantly
     on held-out groups over `first` alone and over the baseline, with every parameter credible.
@@ -372,7 +388,9 @@ def _second_effect(first, candidates, baseline, model, catalog, progress, pool, 
         fitter = Fitter(model, channels, scales, makes)
         start = np.concatenate([first.fit.x, [c.start for c in fitter.effect_spaces[1]]])
         progress(f"fitting {names[1]} beside {names[0]}")
-        pair = fit_table(" + ".join(names), model, channels, scales, makes, campaign.groups, used, pool, [start])
+        pair = fit_table(
+            " + ".join(names), model, channels, scales, makes, campaign.groups, used, pool, [start], noise=noise
+        )
         over_cause = _judge(
             pair, first.fit, measured, channels, campaign.groups, used, seed, campaign, acting=pair.effects[1:]
         )

@@ -27,6 +27,12 @@ STARTS = (0.25, 0.75)
 JACOBIAN_STEP = 1e-5
 # A jackknife spread below this share of the search interval is no spread: the refits did not move.
 SAME = 1e-6
+# A fit from another start replaces the whole fit where its cost is lower by more than this share:
+# least squares stopped at a relative change of 1e-8 leave the same minimum within it.
+BETTER = 1e-6
+# Steps of the whole fit from a refit's solution before it is kept or dropped: each costs one
+# evaluation of every row and, for the next, one Jacobian.
+PROBE_STEPS = 3
 
 
 @dataclass
@@ -46,6 +52,8 @@ class TableFit:
     error: str | None = None
     # the values the table does not determine, each with those it trades against (identify.py)
     undetermined: dict[str, list[str]] = field(default_factory=dict)
+    # held-out groups, by index, whose prediction rests on values only they determine (rests_on)
+    rests_on: dict[int, list[str]] = field(default_factory=dict)
 
 
 class TableModel:
@@ -137,7 +145,9 @@ class Fitter:
     def predict(self, x: np.ndarray, rows: np.ndarray) -> dict[str, np.ndarray]:
         return self.model.predict(self.values(x), self.effects(x), rows)
 
-    def residual(self, x: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    def residual(self, x: np.ndarray, rows: np.ndarray, scales: dict[str, float] | None = None) -> np.ndarray:
+        """Each channel's residual at `rows` over its scale (by default the fit's: the channel's spread)."""
+        scales = scales or self.scales
         try:
             predicted = self.predict(x, rows)
         except ValueError:
@@ -145,12 +155,34 @@ class Fitter:
             return np.full(sum(int(self.model.predicts[c][rows].sum()) for c in self.channels), 1e3)
         return np.concatenate(
             [
-                (predicted[c] - self.model.columns[c][rows])[self.model.predicts[c][rows]] / self.scales[c]
+                (predicted[c] - self.model.columns[c][rows])[self.model.predicts[c][rows]] / scales[c]
                 for c in self.channels
             ]
         )
 
-    def fit(self, rows: np.ndarray, starts: list[np.ndarray]) -> np.ndarray:
+    def cost(self, x: np.ndarray, rows: np.ndarray) -> float:
+        return 0.5 * float(np.sum(self.residual(x, rows) ** 2))
+
+    def jacobian(self, x: np.ndarray, rows: np.ndarray, scales: dict[str, float] | None = None) -> np.ndarray:
+        """d residual / d coordinate at `x` over the unit box (central differences at JACOBIAN_STEP of
+        each search interval; one-sided at an end of it, beyond which the model may not exist)."""
+        lower = np.array([c.lower for c in self.space])
+        upper = np.array([c.upper for c in self.space])
+        at = self.residual(x, rows, scales)
+        columns = []
+        for index, w in enumerate(upper - lower):
+            step = np.zeros_like(x)
+            step[index] = JACOBIAN_STEP * w
+            ahead = x[index] + step[index] <= upper[index]
+            behind = x[index] - step[index] >= lower[index]
+            high = self.residual(x + step, rows, scales) if ahead else at
+            low = self.residual(x - step, rows, scales) if behind else at
+            columns.append((high - low) / (JACOBIAN_STEP * (int(ahead) + int(behind))))
+        return np.column_stack(columns) if columns else np.zeros((at.size, 0))
+
+    def fit(self, rows: np.ndarray, starts: list[np.ndarray], steps: int | None = None) -> np.ndarray:
+        """Least squares on `rows` from each of `starts`, the best kept; `steps` caps each search's
+        evaluations of the residual (its Jacobian's aside)."""
         if not self.space:
             return np.array([])
         lower = np.array([c.lower for c in self.space])
@@ -163,6 +195,7 @@ class Fitter:
                 bounds=(lower, upper),
                 x_scale=upper - lower,
                 diff_step=1e-6,
+                max_nfev=steps,
             )
             if best is None or result.cost < best.cost:
                 best = result
@@ -173,20 +206,7 @@ class Fitter:
         trades against: numerically null directions of the Jacobian at `x` (central differences at
         JACOBIAN_STEP of each search interval), and any value that no held-out refit (`folds`)
         moved, which a jackknife would report with a zero-width interval."""
-        lower = np.array([c.lower for c in self.space])
-        upper = np.array([c.upper for c in self.space])
-        at = self.residual(x, rows)
-        columns = []
-        for index, w in enumerate(upper - lower):
-            step = np.zeros_like(x)
-            step[index] = JACOBIAN_STEP * w
-            # One-sided at an end of the search interval: beyond it the model may not exist.
-            ahead = x[index] + step[index] <= upper[index]
-            behind = x[index] - step[index] >= lower[index]
-            high = self.residual(x + step, rows) if ahead else at
-            low = self.residual(x - step, rows) if behind else at
-            columns.append((high - low) / (JACOBIAN_STEP * (int(ahead) + int(behind))))
-        found = identify(np.column_stack(columns), widths=False).trades_against(self.names())
+        found = identify(self.jacobian(x, rows), widths=False).trades_against(self.names())
         names = self.names()
         for index, name in enumerate(names):
             if folds and all(fold[index] == x[index] for fold in folds) and name not in found:
@@ -213,11 +233,15 @@ def fit_table(
     used: np.ndarray,
     pool,
     starts=None,
+    noise: dict[str, float] | None = None,
 ) -> TableFit:
     """Fits on the `used` rows (not censored), from `starts` (by default the declared values and
-    STARTS), and again without each group; censored rows are predicted, and held out as NaN."""
+    STARTS), and again without each group; censored rows are predicted, and held out as NaN. With
+    the channels' `noise`, finds the groups whose held-out prediction rests on values only they
+    determine (rests_on)."""
     fitter = Fitter(model, channels, scales, make_effects)
-    x = fitter.fit(np.flatnonzero(used), starts if starts is not None else fitter.starts())
+    rows = np.flatnonzero(used)
+    x = fitter.fit(rows, starts if starts is not None else fitter.starts())
     labels = np.unique(groups[used])
 
     def leave_out(label):
@@ -227,6 +251,16 @@ def fit_table(
         return held, x_fold, fitter.predict(x_fold, held)
 
     folds = list(pool.map(leave_out, labels))
+    # The refit that improved most on the whole fit over its own rows may have found a basin the
+    # whole fit's starts missed (a friction's break-away distance that only some groups bear
+    # on): a few steps of the whole fit from there tell, and where they already fit every row
+    # better than the whole fit by more than the least squares' own tolerance, the whole fit goes
+    # on from there and its folds start from the new fit.
+    deepest = min(folds, key=lambda fold: _fold_drop(fitter, x, fold, rows))[1]
+    probe = fitter.fit(rows, [deepest], steps=PROBE_STEPS)
+    if fitter.cost(probe, rows) < (1.0 - BETTER) * fitter.cost(x, rows):
+        x = fitter.fit(rows, [probe])
+        folds = list(pool.map(leave_out, labels))
     heldout = {c: np.full(len(groups), np.nan) for c in channels}
     for held, _, predicted in folds:
         for c in channels:
@@ -262,7 +296,55 @@ def fit_table(
         intervals,
         x=x,
         undetermined=undetermined,
+        rests_on=rests_on(fitter, x, groups, used, noise, undetermined) if noise else {},
     )
+
+
+def rests_on(
+    fitter: Fitter,
+    x: np.ndarray,
+    groups: np.ndarray,
+    used: np.ndarray,
+    noise: dict[str, float],
+    undetermined: dict[str, list[str]],
+) -> dict[int, list[str]]:
+    """The held-out groups, by index, predicted with values the whole table determines but the
+    other groups alone do not, each with those values: held out, such a group is predicted with
+    what its refit could not tell (a friction's break-away distance where only one held length
+    contracts less than it), and its error is the experiment's design, not a test of the model.
+    Linearised at the whole fit, where the values are known (a refit without the group may have
+    wandered to where nothing depends on them): a value is undetermined by the other groups as
+    identify() finds it with residuals in units of the noise, and the group's prediction depends
+    on it when crossing its search interval moves it by more than the noise (root mean square over
+    the group's rows)."""
+    if not fitter.space or not all(noise[c] > 0 for c in fitter.channels):
+        return {}
+    rows = np.flatnonzero(used)
+    jacobian = fitter.jacobian(x, rows, noise)
+    # The residual's entries are each channel's predicted rows in turn: the row of each entry.
+    entry_rows = np.concatenate([rows[fitter.model.predicts[c][rows]] for c in fitter.channels])
+    names = fitter.names()
+    out = {}
+    for label in np.unique(groups[used]):
+        mine = groups[entry_rows] == label
+        open_without = identify(jacobian[~mine]).undetermined
+        moves = jacobian[mine]
+        values = [
+            names[j]
+            for j in sorted(open_without)
+            if names[j] not in undetermined and np.sqrt(np.mean(moves[:, j] ** 2)) > 1.0
+        ]
+        if values:
+            out[int(label)] = values
+    return out
+
+
+def _fold_drop(fitter: Fitter, x: np.ndarray, fold, rows: np.ndarray) -> float:
+    """A fold's cost over the rows it kept, as a share of the whole fit's cost there."""
+    held, x_fold, _ = fold
+    kept = rows[~np.isin(rows, held)]
+    before = fitter.cost(x, kept)
+    return fitter.cost(x_fold, kept) / before if before > 0 else 1.0
 
 
 def heldout_rmse(fit: TableFit, measured, channel: str, rows=None) -> float:

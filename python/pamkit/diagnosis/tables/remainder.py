@@ -1,6 +1,7 @@
-"""Where a table's remainder lies: the held-out group holding most of a channel's error, and
-whether that group lies beyond the lengths the other groups cover (held out, it is then predicted
-by extrapolation). The report says it under "still left"."""
+"""Where a table's remainder lies: the held-out group holding most of a channel's error, whether
+that group lies beyond the lengths the other groups cover (held out, it is then predicted by
+extrapolation), and whether its prediction rests on a value only it determines. The report says
+it under "still left"."""
 
 from __future__ import annotations
 
@@ -17,7 +18,8 @@ def where_left(campaign: Campaign, fit: TableFit, measured, channel: str, noise:
     predicted by extrapolation (the longest length of a map, an isotonic test's first sweep from
     rest): its error says as much about what the other groups cannot tell as about the model. A
     length counts as beyond only by more than three times the length's noise where the length is
-    measured. Empty with fewer than two groups scored."""
+    measured. `rests_on` names the values the group's held-out prediction depends on that only the
+    group determines (fit.rests_on). Empty with fewer than two groups scored."""
     residual = fit.heldout[channel] - measured[channel]
     scored = np.isfinite(residual) & ~campaign.censored
     labels = np.unique(campaign.groups[scored])
@@ -38,6 +40,7 @@ def where_left(campaign: Campaign, fit: TableFit, measured, channel: str, noise:
         "rows": int(mine.sum()),
         "rows_beyond": 0,
         "beyond_m": 0.0,
+        "rests_on": fit.rests_on.get(worst, []),
     }
     lengths = campaign.columns.get("length_m")
     if lengths is None:
@@ -66,5 +69,10 @@ def describe(w: dict, group_name: str) -> str:
         out += (
             f", up to {w['beyond_m']:.3g} m beyond the lengths of the other {group_name}s ({w['rows_beyond']} of its "
             f"{w['rows']} rows): held out, it is predicted by extrapolation"
+        )
+    if w.get("rests_on"):
+        out += (
+            f"; held out, it is predicted with {', '.join(w['rests_on'])}, which the other {group_name}s do not "
+            f"determine"
         )
     return out

@@ -8,8 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.diagnosis.identify import why_undetermined
-from pamkit.diagnosis.tables.engine import CHANNEL_UNITS, TableDiagnosis, TableFit, heldout_rmse
+from pamkit.diagnosis.identify import interval_numbers, why_undetermined
+from pamkit.diagnosis.tables.engine import CHANNEL_UNITS, TableCandidate, TableDiagnosis, TableFit, heldout_rmse
 from pamkit.diagnosis.tables.kinds import CYCLIC
 from pamkit.diagnosis.tables.remainder import describe
 from pamkit.io.columns import value_from_si
@@ -65,6 +65,7 @@ def to_json(d: TableDiagnosis) -> dict:
                 "significant": j.significant,
                 "credible": j.credible,
                 "findings": j.findings,
+                "untested": j.untested,
             }
             for j in d.candidates
         ],
@@ -151,12 +152,21 @@ def causes_json(d: TableDiagnosis) -> list[dict]:
 def _calibrated(fit: TableFit) -> str:
     def one(k, v):
         if k not in fit.undetermined:
-            return f"{k} = {v:.4g} [{fit.intervals[k][0]:.4g}, {fit.intervals[k][1]:.4g}]"
+            value, low, high = interval_numbers(v, *fit.intervals[k])
+            return f"{k} = {value} [{low}, {high}]"
         coordinate, x = fit.coordinates[k]
         why = why_undetermined(fit.undetermined[k], coordinate.at_bound(x) is not None)
         return f"{k} = {v:.4g} (not determined by the data: {why})"
 
     return ", ".join(one(k, v) for k, v in fit.params.items())
+
+
+def _untested(j: TableCandidate, group_name: str) -> str:
+    """The groups left out of a candidate's held-out gain, and why, as the verdict adds it."""
+    if not j.untested:
+        return ""
+    parts = "; ".join(f"{group}, predicted with {', '.join(values)}" for group, values in j.untested.items())
+    return f" (not tested on {parts}, which the other {group_name}s do not determine)"
 
 
 def _gains(gain: dict, ci95: dict, channels) -> str:
@@ -191,7 +201,7 @@ def verdict(d: TableDiagnosis) -> str:
         lines.append(f"cause: {d.cause} — {d.reason}")
     else:
         gain = _gains(d.extended_candidate.gain, d.extended_candidate.gain_ci95, d.channels)
-        lines.append(f"cause: {d.cause} — held-out gain {gain}")
+        lines.append(f"cause: {d.cause} — held-out gain {gain}{_untested(d.extended_candidate, c.group_name)}")
         for added in d.added:
             more = _gains(added["gain"], added["gain_ci95"], d.channels)
             lines.append(f"also: {added['effect']} — held-out gain over {d.cause} alone {more}")
