@@ -15,9 +15,9 @@ from pamkit.effects import catalog
 from pamkit.io.experiment import load_experiment
 from pamkit.synth.dataset import synthesize
 
-# One hidden effect of each of the gas, the fibres and the fixture, at the synthetic tests' seeds
-# of bench_diagnose.
-HIDDEN = {"dead_volume": 1002, "leak": 1006, "fixture_slack": 1004}
+# One hidden effect of each of the gas, the fixture and the bladder (two parameters, stepped
+# together), at the synthetic tests' seeds of bench_diagnose.
+HIDDEN = {"dead_volume": 1002, "leak": 1006, "fixture_slack": 1004, "bladder_viscoelasticity": 1001}
 
 
 @pytest.mark.parametrize("hidden", sorted(HIDDEN))
@@ -61,3 +61,20 @@ def test_one_step_is_exact_on_a_linear_residual():
     expected = 1.0 - float(np.sum((a @ optimum - b) ** 2)) / chi2_at_zero
     assert landed == pytest.approx(optimum, abs=1e-9)
     assert drop == pytest.approx(expected, rel=1e-9)
+
+
+def test_one_step_of_several_coordinates_is_exact_on_a_linear_residual():
+    # An effect of two parameters (a viscoelastic branch's time constant and strength): both
+    # columns differenced, the baseline's given; the step is the least-squares optimum.
+    rng = np.random.default_rng(4)
+    a = rng.normal(size=(50, 4))
+    b = a @ np.array([0.3, 0.6, 0.4, 0.5]) + rng.normal(0, 0.01, 50)
+
+    def residual(u):
+        return a @ u - b
+
+    optimum, *_ = np.linalg.lstsq(a, b, rcond=None)
+    start = np.array([0.8, 0.2, 0.9, 0.1])
+    drop, landed = one_step(residual, residual(start), a[:, :2], start, float(b @ b), count=2)
+    assert landed == pytest.approx(optimum, abs=1e-9)
+    assert drop == pytest.approx(1.0 - float(np.sum((a @ optimum - b) ** 2)) / float(b @ b), rel=1e-9)

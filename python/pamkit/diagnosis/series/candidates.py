@@ -10,10 +10,11 @@ pressure offset undoes that on the pressure channel — so its gain is counted o
 channels the effect changes, and it must not make the others worse (decide.py: an effect earns
 credit only where it acts).
 
-A physics or motion effect of one parameter is screened before its joint fit: one Gauss-Newton step
-from its scan, with the calibrated baseline free, predicts how far a fit could lower the fitted
-chi-square, and one that could not lower it by SCREEN_DROP is left where that step lands (a model
-run there scores it; engine.py fits it through if even that is significant). The report says which.
+A physics or motion effect is screened before its joint fit: one Gauss-Newton step from its scan,
+with the calibrated baseline and every parameter of the effect free, predicts how far a fit could
+lower the fitted chi-square, and one that could not lower it by SCREEN_DROP is left where that step
+lands (a model run there scores it; engine.py fits it through if even that is significant). The
+report says which.
 """
 
 from __future__ import annotations
@@ -47,11 +48,12 @@ SCAN_POINTS_MEASUREMENT = 41  # no simulation needed: scan finely (a skew has on
 # of the four decision worlds, every verdict the same, the held-out gains moved by a median 0 and
 # at most 2e-3, on candidates gaining nothing, against decision margins of 8e-4 and more.
 JOINT_FTOL = 1e-6
-# A candidate of one parameter whose one Gauss-Newton step from its scan (the calibrated baseline
-# free, the step bounded to the search box) lowers the fitted chi-square by less than this share is
-# not fitted further: a held-out gain of MIN_GAIN (0.03) needs a drop near 6 %. Over the 353
-# diagnoses of four decision worlds, 1021 of 1774 physics and motion candidates were screened, and
-# fitted through anyway none was significant (the best gained 0.026).
+# A candidate whose one Gauss-Newton step from its scan (the calibrated baseline free, the step
+# bounded to the search box) lowers the fitted chi-square by less than this share is not fitted
+# further: a held-out gain of MIN_GAIN (0.03) needs a drop near 6 %. Over the 353 diagnoses of four
+# decision worlds, 1021 of 1774 physics and motion candidates of one parameter were screened, and
+# fitted through anyway none was significant (the best gained 0.026); with the viscoelastic
+# bladder's two parameters stepped together, 224 of its 298 fits too, every cause the same.
 SCREEN_DROP = 0.02
 
 
@@ -124,10 +126,9 @@ def fit_candidate(
     """Fits one candidate effect (module docstring). With `start` (a measurement effect's fit on
     the calibrated baseline), refits it jointly with the baseline from there. With `screen`, an
     effect on the physics or the motion with one parameter takes one Gauss-Newton step from its
-    scan first and, where that lowers the fitted chi-square by less than SCREEN_DROP, is left
-    there (`Fit.screened`). Effects of more parameters are always fitted: the scan explores only
-    the first, and from its best the step can see nothing (a viscoelastic branch at the scanned
-    time constant is inert: its step predicted no drop where fits reached gains of 0.03-0.22)."""
+    scan first, every parameter of the effect in the step (the scan explores only the first: a
+    step in it alone sees nothing of a viscoelastic branch's strength), and where that lowers the
+    fitted chi-square by less than SCREEN_DROP, is left there (`Fit.screened`)."""
     effect = make_effect()
     space = effect_space(effect)
     base_space = problem.predictor.baseline.space
@@ -230,10 +231,10 @@ def fit_candidate(
                     configure(make_effect(), space, unit_to_x(space, u[n_base:]))
                 ]
 
-            if screen and start is None and len(space) == 1 and baseline.jacobian is not None:
+            if screen and start is None and space and baseline.jacobian is not None:
                 calibrated = np.concatenate([np.clip(x_to_unit(base_space, baseline.baseline_x), 0.0, 1.0), best_u])
                 chi2_baseline = sum(baseline.training_chi2.values())
-                drop, landed = one_step(residual, best_chi, baseline.jacobian, calibrated, chi2_baseline)
+                drop, landed = one_step(residual, best_chi, baseline.jacobian, calibrated, chi2_baseline, len(space))
                 if drop < SCREEN_DROP:
                     return _stepped(problem, label, effect, space, base_space, landed, predict, evaluations, drop)
             jac = jacobian_for(problem, point, residual, counted)
@@ -269,19 +270,20 @@ def fit_candidate(
 
 
 def one_step(
-    residual, r: np.ndarray, baseline_jacobian: np.ndarray, u: np.ndarray, chi2_baseline: float
+    residual, r: np.ndarray, baseline_jacobian: np.ndarray, u: np.ndarray, chi2_baseline: float, count: int = 1
 ) -> tuple[float, np.ndarray]:
     """The drop of the fitted chi-square, as a share of the calibrated baseline's, that one
-    Gauss-Newton step from `u` (the calibrated baseline's coordinates, then the effect's last;
-    `r` the residual there, which the scan computed) predicts, the step bounded to the unit box
-    (a linear least-squares problem, scipy.optimize.lsq_linear); and where the step lands. The
-    Jacobian is the calibrated baseline's, already computed, beside a difference quotient for the
-    effect's coordinate: one model run, where the joint fit's first Jacobian would be one run per
-    coordinate."""
-    last = len(u) - 1
-    h = DIFF_STEP if u[last] + DIFF_STEP <= 1.0 else -DIFF_STEP
-    column = (residual(u + h * np.eye(len(u))[last]) - r) / h
-    jacobian = np.column_stack([baseline_jacobian, column])
+    Gauss-Newton step from `u` (the calibrated baseline's coordinates, then the effect's `count`
+    last; `r` the residual there, which the scan computed) predicts, the step bounded to the unit
+    box (a linear least-squares problem, scipy.optimize.lsq_linear); and where the step lands. The
+    Jacobian is the calibrated baseline's, already computed, beside a difference quotient for each
+    of the effect's coordinates: one model run each, where the joint fit's first Jacobian would be
+    one run per coordinate of the baseline too."""
+    columns = []
+    for index in range(len(u) - count, len(u)):
+        h = DIFF_STEP if u[index] + DIFF_STEP <= 1.0 else -DIFF_STEP
+        columns.append((residual(u + h * np.eye(len(u))[index]) - r) / h)
+    jacobian = np.column_stack([baseline_jacobian, *columns])
     step = lsq_linear(jacobian, -r, bounds=(-u, 1.0 - u)).x
     predicted = float(np.sum((r + jacobian @ step) ** 2))
     return (1.0 - predicted / chi2_baseline if chi2_baseline > 0 else 0.0), np.clip(u + step, 0.0, 1.0)
