@@ -125,8 +125,8 @@ def fit_candidate(
 ) -> Fit:
     """Fits one candidate effect (module docstring). With `start` (a measurement effect's fit on
     the calibrated baseline), refits it jointly with the baseline from there. With `screen`, an
-    effect on the physics or the motion with one parameter takes one Gauss-Newton step from its
-    scan first, every parameter of the effect in the step (the scan explores only the first: a
+    effect on the physics or the motion takes one Gauss-Newton step from its scan first, every
+    parameter of the effect in the step (the scan explores only the first: a
     step in it alone sees nothing of a viscoelastic branch's strength), and where that lowers the
     fitted chi-square by less than SCREEN_DROP, is left there (`Fit.screened`)."""
     effect = make_effect()

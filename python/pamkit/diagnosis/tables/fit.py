@@ -236,7 +236,8 @@ def fit_table(
     noise: dict[str, float] | None = None,
 ) -> TableFit:
     """Fits on the `used` rows (not censored), from `starts` (by default the declared values and
-    STARTS), and again without each group; censored rows are predicted, and held out as NaN. With
+    STARTS) and, where it fits better, from the refit without one group that improved most on its
+    own rows; and again without each group. Censored rows are predicted, and held out as NaN. With
     the channels' `noise`, finds the groups whose held-out prediction rests on values only they
     determine (rests_on)."""
     fitter = Fitter(model, channels, scales, make_effects)
