@@ -96,7 +96,7 @@ def test_isometric_sweeps_name_the_slip_and_carry_to_held_lengths_left_out(tmp_p
 ONE_WITHIN_M = [0.25, 0.245, 0.215, 0.205]
 
 
-def test_a_held_length_that_alone_tells_a_value_says_so_when_held_out(tmp_path):
+def test_a_held_length_that_alone_tells_a_value_says_so_when_held_out(tmp_path, monkeypatch):
     # Held out, that length is predicted with a break-away distance the others leave open: its
     # error is the experiment's design, and the remainder says which value it rests on. The whole
     # fit, which all lengths inform, still finds the truth (a refit without one length that fits
@@ -109,6 +109,14 @@ def test_a_held_length_that_alone_tells_a_value_says_so_when_held_out(tmp_path):
         assert where["group"] == "L=0.245" and where["rests_on"] == ["slip_distance_m"], verdict(d)
         assert "predicted with slip_distance_m, which the other held lengths do not determine" in verdict(d)
         assert all(within_intervals(d.extended, t).values()), (within_intervals(d.extended, t), verdict(d))
+    # The figure says it beside that length's curve.
+    import pamkit.diagnosis.tables.report as table_report
+
+    drawn = []
+    monkeypatch.setattr(table_report, "save_figure", lambda figure, path: drawn.append(figure) or path)
+    table_report.plot(d, tmp_path / "map.png")
+    labels = [text.get_text() for axis in drawn[0].axes if axis.get_legend() for text in axis.get_legend().get_texts()]
+    assert "L=0.245 (held out: rests on slip_distance_m)" in labels, labels
 
 
 def test_the_whole_fit_starts_again_from_a_refit_that_found_a_deeper_basin(tmp_path):

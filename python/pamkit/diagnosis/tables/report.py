@@ -299,15 +299,19 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
         shown_unit = "mm" if unit == "m" else unit
         mine = c.predicts(channel) & ~cyclic
         drawn = np.unique(curves[mine])
-        # The group the remainder lies in, beyond the others' lengths: its held-out curve extrapolates.
+        # The group the remainder lies in, beyond the others' lengths: its held-out curve extrapolates;
+        # a group predicted with a value only it determines: its held-out curve rests on that value.
         where = d.remainder_where.get(channel, {})
         beyond = where.get("group") if by_group and where.get("rows_beyond") else None
+        resting = {c.group_labels[g]: values for g, values in d.extended.rests_on.items()} if by_group else {}
         colors = plt.cm.viridis(np.linspace(0, 0.9, len(drawn)))
         for curve, color in zip(drawn, colors):
             rows = np.flatnonzero((curves == curve) & mine)
             if c.kinds[c.test[rows[0]]] != "isotonic":  # an isotonic sweep is drawn as measured: up, down
                 rows = rows[np.argsort(pressure[rows])]
             label = names[curve] + (" (held out: extrapolated)" if names[curve] == beyond else "")
+            if names[curve] in resting:
+                label += f" (held out: rests on {', '.join(resting[names[curve]])})"
             axis.plot(pressure[rows], scale * c.columns[channel][rows], "o", color=color, ms=4, label=label)
             axis.plot(pressure[rows], scale * d.baseline.heldout[channel][rows], ":", color=color, lw=1)
             if d.extended is not d.baseline:
