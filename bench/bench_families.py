@@ -12,7 +12,8 @@ files only, as a user would. Per family, the verdicts are counted as
 - wrong: any other catalog name (listed; "truth_only_as_partner" in the JSON counts those whose
   extended model pairs the wrong cause with the true effect);
 - none+structure: ``none`` while some channel's held-out baseline RMSE exceeds 1.5x its noise
-  (the factor of rule 5 of docs/diagnosis.md; ``baseline.rmse`` against ``evidence.noise``);
+  (the factor of rule 5 of docs/diagnosis.md; ``baseline.rmse`` against ``evidence.noise``; a
+  table's report states what it leaves above the noise, ``remainder.channels``);
 - error: a non-zero exit or a timeout, with the last line of stderr.
 
 The median decision margin (the smallest of the report's ``decision.margins``) is printed, and the median held-out
@@ -84,9 +85,18 @@ def margin_of(report: dict):
     return min(values) if values else None
 
 
+def noise_of(report: dict) -> dict:
+    """Each channel's noise as the report states it: a time series' under `evidence`, a table's at
+    the top."""
+    return report["evidence"]["noise"] if "evidence" in report else report["noise"]
+
+
 def structure_left(report: dict) -> dict:
     """Channels whose held-out baseline RMSE exceeds the report's stated factor of their noise
-    (rule 5 of docs/diagnosis.md; `evidence.none_within_noise`): ratio."""
+    (rule 5 of docs/diagnosis.md; `evidence.none_within_noise`): ratio. A table's report states
+    what is left above that factor itself (`remainder.channels`)."""
+    if "evidence" not in report:
+        return dict((report.get("remainder") or {}).get("channels", {}))
     rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
     factor = report["evidence"]["none_within_noise"]
     return {c: rmse[c] / noise[c] for c in rmse if c in noise and noise[c] > 0 and rmse[c] > factor * noise[c]}
@@ -97,7 +107,7 @@ def classify(expected: str, outcome: dict, present: tuple[str, ...] = ()) -> dic
         return {"outcome": "error", "cause": None, "message": outcome["error"]}
     report = outcome["report"]
     cause = report["cause"]
-    rmse, noise = report["baseline"]["rmse"], report["evidence"]["noise"]
+    rmse, noise = report["baseline"]["rmse"], noise_of(report)
     extended = report.get("extended", {}).get("rmse", {})
     # Every cause a report names (its `causes` where it lists them), by effect name.
     named = (

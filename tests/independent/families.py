@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import bench
+from . import bench, dmsp
 from .physics import Build, Geometry, Motion, Physics, SealedMuscle, supplied_tension
 
 HONEST = "honest"
@@ -416,6 +416,44 @@ def isometric_transducer_offset(seed, folder):
     )
 
 
+# ----------------------------------------------------------------------------------------------
+# a commercial muscle's settled tables (dmsp.py: fibres in the membrane, flat flanges, friction
+# with memory in 400 elements)
+
+
+def _dmsp_truth(seed: int, friction: bool = True) -> dmsp.DmspTruth:
+    """A DMSP-10-like muscle: its braid angle, end zones and friction drawn per seed."""
+    rng = np.random.default_rng([seed, 16])
+    return dmsp.DmspTruth(
+        braid_angle_deg=float(rng.uniform(20.0, 25.0)),
+        end_zone_m=float(rng.uniform(0.006, 0.010)),
+        slip_force_N=float(rng.uniform(60.0, 200.0)) if friction else 0.0,
+        slip_distance_m=float(rng.uniform(0.01, 0.025)),
+    )
+
+
+def dmsp_map_one_within(seed, folder):
+    """An isometric map at four held lengths of which one (5 mm short of rest) contracts less than
+    the friction's break-away distance: held out, it is predicted with a distance only it tells."""
+    truth = _dmsp_truth(seed)
+    path = dmsp.write_dmsp_isometric(folder, truth, lengths_m=[0.25, 0.245, 0.215, 0.205], top_kPa=600, seed=seed)
+    return Dataset(path, "slip_hysteresis", asdict(truth))
+
+
+def dmsp_map_frictionless(seed, folder):
+    """The same map of a muscle without friction: its braid only goes slack, as an embedded one must."""
+    truth = _dmsp_truth(seed, friction=False)
+    path = dmsp.write_dmsp_isometric(folder, truth, lengths_m=[0.25, 0.245, 0.215, 0.205], top_kPa=600, seed=seed)
+    return Dataset(path, HONEST, asdict(truth))
+
+
+def dmsp_isotonic(seed, folder):
+    """Three isotonic sweeps to 6 bar under a weighed 120 N, settled steps, the length by laser."""
+    truth = _dmsp_truth(seed)
+    path = dmsp.write_dmsp_isotonic(folder, truth, load_N=120.0, top_kPa=600, sweeps=3, seed=seed)
+    return Dataset(path, "slip_hysteresis", asdict(truth))
+
+
 FAMILIES = {
     f.__name__: f
     for f in (
@@ -438,5 +476,8 @@ FAMILIES = {
         isometric_null,
         isometric_held_exactly,
         isometric_transducer_offset,
+        dmsp_map_one_within,
+        dmsp_map_frictionless,
+        dmsp_isotonic,
     )
 }
