@@ -46,6 +46,7 @@ def test_an_effect_every_test_shares_carries_from_the_others_to_each(diagnosed, 
     write(c, tmp_path / "campaign.json", tmp_path / "campaign.png")
     report = json.loads((tmp_path / "campaign.json").read_text())
     assert report["held_out"] == "test" and len(report["per_test"]) == 3
+    assert report["verdict"] == verdict(c)  # the JSON says what the command line prints
     assert (tmp_path / "campaign.png").stat().st_size > 0
     assert c.cause == "heat_transfer", verdict(c)
     carried = report["carried"]["heat_transfer"]

@@ -4,6 +4,7 @@ lengths. Checked on the published Festo maps (held-out force RMSE over lengths l
 21.2 N; no force below 0; a braid angle of 15-35 degrees) and on maps written by an independent
 model (tests/independent/static_map.py) whose truth is known."""
 
+import json
 import sys
 
 import numpy as np
@@ -192,6 +193,8 @@ def test_the_command_line_writes_the_table_report_and_plot(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "cause: slip_hysteresis" in out and "calibrated (jackknife 95 %)" in out
     assert (tmp_path / "r.png").read_bytes()[:4] == b"\x89PNG"
+    # The JSON holds what the command line printed.
+    assert json.loads((tmp_path / "r.json").read_text())["verdict"] in out
 
 
 def test_table_3_4_as_a_free_inflation_campaign_calibrates_the_bladder_the_thesis_ran():

@@ -60,11 +60,6 @@ def diagnose(toml: Path) -> dict:
     return json.loads(report.read_text())
 
 
-def said(report: dict) -> str:
-    """What the report says in words: a time series' verdict, a table's reason for its cause."""
-    return report["verdict"] if "verdict" in report else f"{report['cause']}: {report['reason']}"
-
-
 def named(dataset: Dataset, report: dict) -> set[str]:
     """The catalog names a report gives, less the physics the dataset shows by construction."""
     return {c["effect"].split(":")[0] for c in report["causes"]} - set(dataset.present)
@@ -74,7 +69,7 @@ def named(dataset: Dataset, report: dict) -> set[str]:
 def test_diagnosis_of_a_family(family, tmp_path):
     dataset = FAMILIES[family](SEED, tmp_path / "seen")
     report = diagnose(dataset.experiment)
-    cause, verdict = report["cause"], said(report)
+    cause, verdict = report["cause"], report["verdict"]
     # ACCEPTANCE ("never a wrong name"): every cause named is the truth, or physics the independent
     # model has built in and this dataset shows (its braid went slack where its force would turn
     # negative); for a cause outside the catalog or below what the sampling resolves, none.
@@ -100,13 +95,13 @@ def seed_reports(family: str, tmp_path) -> list[tuple[Dataset, dict]]:
     for seed in RATE_SEEDS:
         dataset = FAMILIES[family](seed, tmp_path / str(seed))
         report = diagnose(dataset.experiment)
-        assert named(dataset, report) <= {dataset.expected}, f"seed {seed}: {said(report)}"
+        assert named(dataset, report) <= {dataset.expected}, f"seed {seed}: {report['verdict']}"
         runs.append((dataset, report))
     return runs
 
 
 def verdicts(runs) -> str:
-    return "\n".join(f"seed {seed}: {said(report)[:400]}" for seed, (_, report) in zip(RATE_SEEDS, runs))
+    return "\n".join(f"seed {seed}: {report['verdict'][:400]}" for seed, (_, report) in zip(RATE_SEEDS, runs))
 
 
 def expected_to_fail(families, why):

@@ -186,6 +186,7 @@ def to_json(c: SeriesCampaign, test_report) -> dict:
     report (`test_report`, pamkit.diagnosis.report.to_json)."""
     return {
         "kind": "campaign",
+        "verdict": verdict(c),
         "tests": c.paths,
         "held_out": "test",
         "cause": c.cause,

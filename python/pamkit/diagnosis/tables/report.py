@@ -41,6 +41,7 @@ def to_json(d: TableDiagnosis) -> dict:
 
     report = {
         "kind": d.campaign.kind,
+        "verdict": verdict(d),
         "tests": [str(e.path) for e in d.campaign.experiments],
         "held_out": d.campaign.group_name,
         "censored_rows": int((~used).sum()),
