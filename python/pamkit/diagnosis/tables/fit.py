@@ -163,6 +163,10 @@ class Fitter:
     def cost(self, x: np.ndarray, rows: np.ndarray) -> float:
         return 0.5 * float(np.sum(self.residual(x, rows) ** 2))
 
+    def entry_rows(self, rows: np.ndarray) -> np.ndarray:
+        """The row of each entry of `residual(x, rows)`: each channel's predicted rows in turn."""
+        return np.concatenate([rows[self.model.predicts[c][rows]] for c in self.channels])
+
     def jacobian(self, x: np.ndarray, rows: np.ndarray, scales: dict[str, float] | None = None) -> np.ndarray:
         """d residual / d coordinate at `x` over the unit box (central differences at JACOBIAN_STEP of
         each search interval; one-sided at an end of it, beyond which the model may not exist)."""
@@ -257,7 +261,9 @@ def fit_table(
     # on): a few steps of the whole fit from there tell, and where they already fit every row
     # better than the whole fit by more than the least squares' own tolerance, the whole fit goes
     # on from there and its folds start from the new fit.
-    deepest = min(folds, key=lambda fold: _fold_drop(fitter, x, fold, rows))[1]
+    at_x = fitter.residual(x, rows) ** 2  # the whole fit's squares, each fold's kept rows among them
+    entries = fitter.entry_rows(rows)
+    deepest = min(folds, key=lambda fold: _fold_drop(fitter, at_x, entries, fold, rows))[1]
     probe = fitter.fit(rows, [deepest], steps=PROBE_STEPS)
     if fitter.cost(probe, rows) < (1.0 - BETTER) * fitter.cost(x, rows):
         x = fitter.fit(rows, [probe])
@@ -322,8 +328,7 @@ def rests_on(
         return {}
     rows = np.flatnonzero(used)
     jacobian = fitter.jacobian(x, rows, noise)
-    # The residual's entries are each channel's predicted rows in turn: the row of each entry.
-    entry_rows = np.concatenate([rows[fitter.model.predicts[c][rows]] for c in fitter.channels])
+    entry_rows = fitter.entry_rows(rows)
     names = fitter.names()
     out = {}
     for label in np.unique(groups[used]):
@@ -340,12 +345,12 @@ def rests_on(
     return out
 
 
-def _fold_drop(fitter: Fitter, x: np.ndarray, fold, rows: np.ndarray) -> float:
-    """A fold's cost over the rows it kept, as a share of the whole fit's cost there."""
+def _fold_drop(fitter: Fitter, at_x: np.ndarray, entries: np.ndarray, fold, rows: np.ndarray) -> float:
+    """A fold's cost over the rows it kept, as a share of the whole fit's cost there (`at_x`: the
+    whole fit's squared residual on `rows`, entry by entry; `entries`: the row of each)."""
     held, x_fold, _ = fold
-    kept = rows[~np.isin(rows, held)]
-    before = fitter.cost(x, kept)
-    return fitter.cost(x_fold, kept) / before if before > 0 else 1.0
+    before = 0.5 * float(np.sum(at_x[~np.isin(entries, held)]))
+    return fitter.cost(x_fold, rows[~np.isin(rows, held)]) / before if before > 0 else 1.0
 
 
 def heldout_rmse(fit: TableFit, measured, channel: str, rows=None) -> float:
