@@ -41,6 +41,7 @@ from pamkit.diagnosis.series.joint import check_one_muscle
 from pamkit.diagnosis.series.kinds import Problem, build_problem
 from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.diagnosis.series.score import score
+from pamkit.diagnosis.series.separate import separating_test
 from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
 from pamkit.diagnosis.tables.engine import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
@@ -416,6 +417,13 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
         warnings += [
             replace(f, parameter=f"{decision.rejected.fit.name}: {f.parameter}") for f in decision.rejected.findings
         ]
+    separation = None
+    tied = decision.rejected
+    if tied is not None and tied.tied_with is not None:
+        report(f"looking for a test that tells {tied.fit.name} from {tied.tied_with.fit.name}")
+        phase = clock.perf_counter()
+        separation = separating_test(problem, tied.fit, tied.tied_with.fit)
+        seconds["separate"] = clock.perf_counter() - phase
     discovered = {}
     if decision.cause == "unexplained" or decision.left_structure:
         report("looking for what the catalog lacks in the residual (sparse regression)")
@@ -429,7 +437,7 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
         + f" ({seconds['total']:.1f} s)"
     )
     return Diagnosis(
-        problem, baseline, judged, skipped, decision, extended, named, warnings, discovered, seconds, notes
+        problem, baseline, judged, skipped, decision, extended, named, warnings, discovered, seconds, notes, separation
     )
 
 

@@ -19,6 +19,7 @@ from pamkit.diagnosis.series.kinds import driving_signal
 from pamkit.diagnosis.series.remainder import describe, where_left
 from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.diagnosis.series.score import credited_channels
+from pamkit.diagnosis.series.separate import SEPARATES, Separation
 from pamkit.diagnosis.significance import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE
 from pamkit.diagnosis.tables import report as table_report
 from pamkit.diagnosis.tables.engine import TableDiagnosis
@@ -134,6 +135,7 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
         "causes": causes_json(d),
         "remainder": remainder_json(d),
         "discovered": d.discovered,
+        "separation": d.separation.to_json() if d.separation else None,
         "warnings": [f.to_json() for f in d.warnings] + d.data_notes,
         "verdict": verdict(d),
         "timing_s": d.seconds,
@@ -297,7 +299,7 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
             tail = ""
         return (
             f"no cause named: the calibrated model explains the data to within its noise (held-out RMSE "
-            f"{_sizes(d, d.baseline)}){tail}{bounds}"
+            f"{_sizes(d, d.baseline)}){tail}{_separation_phrase(d)}{bounds}"
         )
     if decision.cause == "unexplained":
         left = ", ".join(file_name(c) for c in decision.left_structure) or "the residual"
@@ -324,7 +326,7 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
         shape = "".join(f"{file_name(c)} {describe(w)}; " for c, w in where.items())
         return (
             f"unexplained: structure is left in {left} (held-out RMSE {_sizes(d, d.baseline)}); "
-            f"{shape}{looks}{discovered}{bounds}"
+            f"{shape}{looks}{_separation_phrase(d)}{discovered}{bounds}"
         )
     causes = causes_json(d)
     first, lead = causes[0], decision.causes[0]
@@ -343,6 +345,51 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
             f"{_gain_with_interval(more['gain_own_channels'], more['gain_own_channels_ci95'])})"
         )
     return text + _remainder_phrase(d) + bounds
+
+
+def _variant_phrase(s: Separation) -> str:
+    """The separating variant as a lab would set it up, in the file's units."""
+    test = s.variant.describe(s.declared_Pa)
+    if s.variant.zero_reading:
+        return "a zero run (the instruments read with the muscle vented and unloaded)"
+    if "pressure_scale" in test:
+        change = "higher" if test["pressure_scale"] > 1 else "lower"
+        return f"the same sweep with the supplied pressure {abs(test['pressure_scale'] - 1):.0%} {change}"
+    if "inflation_gauge_pressure_Pa" in test:
+        pressure = value_from_si("gauge_pressure_Pa", test["inflation_gauge_pressure_Pa"])
+        declared = value_from_si("gauge_pressure_Pa", s.declared_Pa)
+        unit = _unit("gauge_pressure_Pa")
+        return (
+            f"the same stretches with the muscle inflated freely to {pressure:.0f} {unit} and sealed (this test: "
+            f"{declared:.0f} {unit})"
+        )
+    scale = test["time_scale"]
+    motion = "stretches" if s.declared_Pa is not None else "sweep"
+    return f"the same {motion} {scale:g} times slower" if scale > 1 else f"the same {motion} {1 / scale:g} times faster"
+
+
+def _over_noise(ratios: dict[str, float], channels: list[str]) -> str:
+    return ", ".join(f"{ratios[c]:.1f}x the {file_name(c)} noise" for c in channels)
+
+
+def _separation_phrase(d: Diagnosis) -> str:
+    """What would tell a tie apart (separate.py): the test, and how far apart the two fits are on
+    it and on this one."""
+    s = d.separation
+    if s is None:
+        return ""
+    a, b = s.between
+    if not s.separates:
+        largest = max((v for v in s.tried.values() if isinstance(v, float)), default=0.0)
+        return (
+            f"; no other test pamkit tried tells {a} from {b} (their predictions differ by at most {largest:.1f}x "
+            "the noise)"
+        )
+    shown = sorted((c for c in s.apart if s.apart[c] >= SEPARATES), key=lambda c: -s.apart[c])[:2]
+    return (
+        f"; to tell {a} from {b}: {_variant_phrase(s)}, where their predictions differ by "
+        f"{_over_noise(s.apart, shown)} (RMS; here {_over_noise(s.here, shown)})"
+    )
 
 
 def _gain_with_interval(gain: float, interval) -> str:
@@ -396,8 +443,10 @@ def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Pa
     p = d.problem
     time = p.experiment.time_s
     rows = len(p.channels)
-    figure = plt.figure(figsize=(18, 3.0 * rows + 3.2), constrained_layout=True)
-    grid = figure.add_gridspec(rows + 1, 3, width_ratios=(1.0, 1.0, 0.7))
+    s = d.separation
+    parted = s is not None and s.separates and not s.variant.zero_reading
+    figure = plt.figure(figsize=(18, 3.0 * rows + 3.2 + (2.8 if parted else 0.0)), constrained_layout=True)
+    grid = figure.add_gridspec(rows + 1 + parted, 3, width_ratios=(1.0, 1.0, 0.7))
     held = p.held_mask
     driver, driven, _ = driving_signal(p.experiment)
     driven = value_from_si(driver, driven)
@@ -459,8 +508,27 @@ def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Pa
     ranking.set_ylim(min(-0.1, min(gains, default=0) - 0.05), 1.0)
     ranking.legend(loc="upper right", fontsize="small")
     ranking.grid(alpha=0.3, axis="y")
+    if parted:
+        _plot_separation(figure.add_subplot(grid[rows + 1, :]), s)
     figure.suptitle(verdict(d), fontsize="medium", wrap=True)
     return save_figure(figure, path, dpi=100)
+
+
+def _plot_separation(axis, s: Separation) -> None:
+    """The two tied models on the test that parts them, on the channel where they differ most."""
+    channel = max(s.apart, key=lambda c: s.apart[c])
+    for name, m, color in zip(s.between, s.predictions, ("C0", "C1")):
+        axis.plot(
+            np.asarray(m.time_s), value_from_si(channel, np.asarray(getattr(m, channel))), color=color, label=name
+        )
+    axis.set_title(
+        f"to tell {s.between[0]} from {s.between[1]}: {_variant_phrase(s)} "
+        f"({s.apart[channel]:.1f}x the noise apart, RMS)"
+    )
+    axis.set_xlabel("time [s]")
+    axis.set_ylabel(file_name(channel))
+    axis.legend(loc="upper right", fontsize="small")
+    axis.grid(alpha=0.3)
 
 
 def _shade(axis, time, mask):

@@ -88,6 +88,8 @@ class Judgement:
     below_resolution: list[str] = field(default_factory=list)
     # every such parameter's interval reaches one sample (findings.within_resolution)
     near_resolution: bool = False
+    # the candidate that explains the held-out units as well (rule 6): the data do not tell them apart
+    tied_with: Judgement | None = None
 
     @property
     def credible(self) -> bool:
@@ -437,6 +439,7 @@ def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision
             low, high = np.percentile(lead.score.combined_samples - rival.score.combined_samples, [2.5, 97.5])
             margins["over_rival"] = float(low)
             if low <= 0.0:  # rule 6: the data cannot tell the two apart
+                lead.tied_with = rival
                 lead.objections.append(
                     f"{rival.fit.name} explains the held-out units as well (gain {rival.score.combined_gain:.3f} "
                     f"against {lead.score.combined_gain:.3f}; the difference's 95 % interval [{low:.3f}, {high:.3f}] "

@@ -9,6 +9,7 @@ from pamkit.diagnosis.coordinates import Finding
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.decide import Decision, Judgement
 from pamkit.diagnosis.series.kinds import Problem
+from pamkit.diagnosis.series.separate import Separation
 
 
 @dataclass
@@ -26,6 +27,7 @@ class Diagnosis:
     discovered: dict = field(default_factory=dict)
     seconds: dict[str, float] = field(default_factory=dict)
     data_notes: list[dict] = field(default_factory=list)  # what was done to the data first (thinned)
+    separation: Separation | None = None  # the test that would tell a tie apart (separate.py)
 
     @property
     def cause(self) -> str:

@@ -1,0 +1,180 @@
+"""The test that would tell two explanations apart which this one cannot.
+
+When two candidates explain the held-out units alike (rule 6 of decide.py), naming either would be
+a guess, and the user's next question is what to measure. Each fitted model is run on a few
+variants of the test the lab can run on the same muscle and rig — inflated higher or lower (a
+supplied test: the supplied pressure raised or lowered), the same motion slower or faster, the
+instruments read with the muscle vented and unloaded (a zero run) — and the variant on which
+their predictions differ most, in units of each channel's noise, is the one to run. Model
+discrimination by the largest predicted difference (Hunter and Reiner's criterion for two rival
+models, with the noise as the yardstick), on protocols a lab changes without rebuilding anything.
+Run, that test is diagnosed beside this one as a campaign (series/campaign.py), which carries both
+candidates of the tie to each test and names the one that holds on both.
+
+Why these variants: the catalog's effects that tie on one test differ in how they scale. A dead
+volume changes the gas's relative pressure swing whatever the pressure; stretching fibres
+carry a tension that grows with it, so the two part at another inflation pressure. Heat exchange,
+a leak, a viscous bladder and a lagging sensor have time constants, which a slower or faster
+stretch shows. An instrument's offset is read directly where the true value is known: vented,
+unloaded, at ambient.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from pamkit._core import (
+    EffectStage,
+    ElongationTrajectory,
+    GasMode,
+    InvalidInput,
+    Measurement,
+    SolverError,
+    inflated_and_sealed,
+    simulate_measurement,
+    simulate_supplied_measurement,
+)
+from pamkit.diagnosis.series.calibrate import Fit
+from pamkit.diagnosis.series.kinds import Problem
+from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
+from pamkit.simulation import initial_length
+
+# A variant separates two models when they differ on a channel by this many times its noise (RMS
+# over the run): the difference the "none" rule reads as structure left, so that the model which
+# is wrong would leave it.
+SEPARATES = NONE_WITHIN_NOISE
+
+
+@dataclass(frozen=True)
+class Variant:
+    """A test the lab can run on the same muscle and rig instead of this one."""
+
+    key: str
+    # a sealed test: added to the calibrated inflation gauge pressure, as a share of the declared
+    # one, the muscle then inflated freely and sealed (the thesis's protocol); a supplied test: the
+    # supplied pressure raised or lowered by this share at every sample
+    pressure_share: float = 0.0
+    time_scale: float = 1.0  # the motion's times multiplied by this (10: ten times slower)
+    zero_reading: bool = False  # the instruments read a vented, unloaded muscle at ambient
+
+    def describe(self, declared_Pa: float | None) -> dict:
+        """What the variant is, in SI (the report turns it into the file's units), for a sealed
+        test inflated to `declared_Pa` or a supplied test (None)."""
+        text: dict = {"key": self.key}
+        if self.pressure_share and declared_Pa is not None:
+            text["inflation_gauge_pressure_Pa"] = declared_Pa * (1.0 + self.pressure_share)
+        elif self.pressure_share:
+            text["pressure_scale"] = 1.0 + self.pressure_share
+        if self.time_scale != 1.0:
+            text["time_scale"] = self.time_scale
+        return text
+
+
+AS_RUN = Variant("as_run")
+VARIANTS = (
+    Variant("pressure_higher", pressure_share=0.5),
+    Variant("pressure_lower", pressure_share=-0.5),
+    Variant("slower", time_scale=10.0),
+    Variant("faster", time_scale=0.2),
+    Variant("zero_run", zero_reading=True),
+)
+
+
+@dataclass
+class Separation:
+    """Which variant tells two fits apart, and by how much."""
+
+    between: tuple[str, str]
+    variant: Variant | None  # the variant that separates most; None if none could be run
+    declared_Pa: float | None  # a sealed test's declared inflation gauge pressure [Pa]; None: supplied
+    apart: dict[str, float]  # per channel: RMS difference over the noise on that variant
+    here: dict[str, float]  # the same on this test as run
+    tried: dict[str, float | str] = field(default_factory=dict)  # variant key: largest ratio, or why not run
+    # the two models' measurements on that variant, in `between`'s order (the report's figure)
+    predictions: tuple[Measurement, Measurement] | None = field(default=None, repr=False)
+
+    @property
+    def separates(self) -> bool:
+        return self.variant is not None and max(self.apart.values(), default=0.0) >= SEPARATES
+
+    def to_json(self) -> dict:
+        return {
+            "between": list(self.between),
+            "test": self.variant.describe(self.declared_Pa) if self.variant else None,
+            "separates": self.separates,
+            "difference_over_noise": self.apart,
+            "here_over_noise": self.here,
+            "tried": self.tried,
+            "separates_from": SEPARATES,
+        }
+
+
+def _run(problem: Problem, fit: Fit, variant: Variant) -> Measurement:
+    """The fitted model's measurement on `variant` of the test."""
+    predictor = problem.predictor
+    params, inflation_Pa = predictor.baseline.model_params(fit.baseline_x)
+    if variant.zero_reading:
+        # Two readings a second apart: an instrument's lag or skew reads a constant as it is.
+        m = Measurement()
+        m.time_s = [0.0, 1.0]
+        m.elongation_m = [0.0, 0.0]
+        m.force_N = [0.0, 0.0]
+        m.gauge_pressure_Pa = [0.0, 0.0]
+        m.temperature_K = [params.gas.ambient_temperature_K] * 2
+        for effect in fit.effects:
+            if effect.stage() == EffectStage.measurement:
+                m = effect.apply_to_measurement(m)
+        return m
+    motion = predictor.motion
+    trajectory = ElongationTrajectory(np.asarray(motion.time_s) * variant.time_scale, motion.elongation_m)
+    experiment = problem.experiment
+    if experiment.gas == GasMode.supplied:
+        supplied = np.asarray(experiment.columns["gauge_pressure_Pa"]) * (1.0 + variant.pressure_share)
+        return simulate_supplied_measurement(
+            params, initial_length(experiment, params), trajectory, supplied, fit.effects
+        )
+    if variant.pressure_share:
+        declared = experiment.inflation_gauge_pressure_Pa
+        start = inflated_and_sealed(params, inflation_Pa + variant.pressure_share * declared)
+    else:
+        start = predictor.initial_state(params, inflation_Pa)
+    return simulate_measurement(params, start, trajectory, fit.effects, predictor.simulator)
+
+
+def _differences(problem: Problem, a: Fit, b: Fit, variant: Variant):
+    """Per channel, the RMS of the two fits' difference over the channel's noise on `variant`;
+    and the two measurements."""
+    ma, mb = _run(problem, a, variant), _run(problem, b, variant)
+    ratios = {
+        c: float(np.sqrt(np.mean(((np.asarray(getattr(ma, c)) - np.asarray(getattr(mb, c))) / problem.sigma[c]) ** 2)))
+        for c in problem.channels
+    }
+    return ratios, (ma, mb)
+
+
+def separating_test(problem: Problem, a: Fit, b: Fit) -> Separation | None:
+    """The variant of the test on which fits `a` and `b` differ most (see the module docstring)."""
+    experiment = problem.experiment
+    declared = experiment.inflation_gauge_pressure_Pa if experiment.gas == GasMode.sealed else None
+    here, _ = _differences(problem, a, b, AS_RUN)
+    best = None
+    tried: dict[str, float | str] = {}
+    for variant in VARIANTS:
+        try:
+            apart, runs = _differences(problem, a, b, variant)
+        except (InvalidInput, SolverError) as error:  # a variant beyond the braid's range or the solver's
+            tried[variant.key] = f"not run: {error}"
+            continue
+        largest = max(apart.values())
+        if not math.isfinite(largest):
+            tried[variant.key] = "not run: a prediction is not finite"
+            continue
+        tried[variant.key] = largest
+        if best is None or largest > best[0]:
+            best = (largest, variant, apart, runs)
+    if best is None:
+        return Separation((a.name, b.name), None, declared, {}, here, tried)
+    return Separation((a.name, b.name), best[1], declared, best[2], here, tried, best[3])

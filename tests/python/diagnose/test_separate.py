@@ -1,0 +1,109 @@
+"""The test a tie asks for (pamkit/diagnosis/series/separate.py): where two candidates explain one
+sealed test alike, the diagnosis names a test on the same muscle that parts them. Checked on data
+pamkit did not make (tests/independent): the test it names, run on the independent muscle, decides
+for the cause that is there."""
+
+import sys
+from dataclasses import replace
+
+import numpy as np
+import pytest
+import tomllib
+from conftest import SOURCE_DIR
+
+from pamkit.diagnosis import diagnose, to_json, verdict
+from pamkit.diagnosis.series.separate import SEPARATES, VARIANTS, _run, separating_test
+from pamkit.effects import catalog
+
+sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
+from independent.families import independent_dead_volume  # noqa: E402
+from independent.physics import Build, Motion, Physics, SealedMuscle  # noqa: E402
+
+# bench_families: a dead volume ties with stretching fibres on 3 of 3 seeds (both lower the
+# pressure's swing in a sealed stretch; their held-out gains agree to 0.004), and over these six
+# with another candidate on 5.
+SEEDS = range(1, 7)
+
+
+@pytest.fixture(scope="module")
+def dead_volumes(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("dead_volume")
+    out = []
+    for seed in SEEDS:
+        dataset = independent_dead_volume(seed, folder / str(seed))
+        out.append((dataset, diagnose(str(dataset.experiment), threads=2)))
+    return out
+
+
+def _truth_on(dataset, d, variant) -> dict[str, np.ndarray]:
+    """The independent muscle (its true dead volume) on `variant`, a free inflation at a
+    pressure of its own: what the lab would measure, without noise."""
+    test = tomllib.loads(dataset.experiment.read_text())["test"]
+    pressure_kPa = variant.describe(d.separation.declared_Pa)["inflation_gauge_pressure_Pa"] / 1e3
+    muscle = SealedMuscle(
+        Build(),
+        Physics(dead_volume_fraction=dataset.truth["volume_fraction"]),
+        pressure_kPa,
+        test["ambient_temperature_C"],
+    )
+    motion = d.problem.predictor.motion
+    time = np.asarray(motion.time_s)
+    run = muscle.run(Motion(time, np.asarray(motion.elongation_m)), time)
+    return {"force_N": run.force_N, "gauge_pressure_Pa": run.gauge_kPa * 1e3}
+
+
+def _off(d, fit, variant, truth) -> float:
+    """How far `fit`'s prediction on `variant` lies from `truth`: the largest channel's RMS over
+    its noise."""
+    m = _run(d.problem, fit, variant)
+    return max(
+        float(np.sqrt(np.mean(((np.asarray(getattr(m, c)) - truth[c]) / d.problem.sigma[c]) ** 2))) for c in truth
+    )
+
+
+def test_the_test_named_for_a_tie_decides_for_the_cause_that_is_there(dead_volumes):
+    # Each tie of the dead volume with another candidate (stretching fibres on four seeds, a load
+    # cell's error on one) names a test; run on the independent muscle, its truth lies nearer the
+    # dead volume's prediction, and the other's is off by at least SEPARATES (so the test rules it
+    # out). Raising the inflation parts them: the fibres' stretch grows with the pressure, a dead
+    # volume's share of the gas does not.
+    ties = 0
+    for dataset, d in dead_volumes:
+        s = d.separation
+        if s is None:
+            continue
+        ties += 1
+        assert "dead_volume" in s.between, verdict(d)
+        other = next(name for name in s.between if name != "dead_volume")
+        assert s.separates and s.variant.pressure_share != 0.0, s.to_json()
+        assert max(s.here.values()) < SEPARATES  # on the test as run they are not apart: a tie
+        fits = {j.fit.name: j.fit for j in d.candidates}
+        truth = _truth_on(dataset, d, s.variant)
+        right, wrong = _off(d, fits["dead_volume"], s.variant, truth), _off(d, fits[other], s.variant, truth)
+        assert right < wrong and wrong >= SEPARATES, (dataset.truth, other, right, wrong)
+        # The verdict says it in the file's units, the JSON in SI.
+        assert "inflated freely to" in verdict(d) and "kPa and sealed" in verdict(d)
+        assert to_json(d)["separation"]["test"]["inflation_gauge_pressure_Pa"] > 0.0
+    assert ties >= 4, ties  # measured: 5 of 6 (seed 3 leaves structure that neither explains)
+
+
+def test_two_fits_alike_are_apart_on_no_variant(dead_volumes):
+    # An invariant: a fit against itself differs by nothing on any variant.
+    _, d = next((dataset, d) for dataset, d in dead_volumes if d.separation is not None)
+    fit = d.candidates[0].fit
+    s = separating_test(d.problem, fit, fit)
+    assert not s.separates
+    assert all(v == 0.0 for v in s.tried.values()) and set(s.tried) == {v.key for v in VARIANTS}
+
+
+def test_a_zero_run_reads_a_transducers_offset(dead_volumes):
+    # The zero run: a vented, unloaded muscle, which a pressure offset reads as itself.
+    _, d = dead_volumes[0]
+    offset_Pa = 4000.0
+    plain = d.baseline
+    shifted = replace(plain, effects=[catalog().parse(f"sensor_offset:offset_Pa={offset_Pa}")])
+    zero = next(v for v in VARIANTS if v.zero_reading)
+    reading = np.asarray(_run(d.problem, shifted, zero).gauge_pressure_Pa)
+    assert reading == pytest.approx(offset_Pa)
+    assert np.asarray(_run(d.problem, plain, zero).gauge_pressure_Pa) == pytest.approx(0.0)
+
