@@ -102,13 +102,27 @@ def structure_left(report: dict) -> dict:
     return {c: rmse[c] / noise[c] for c in rmse if c in noise and noise[c] > 0 and rmse[c] > factor * noise[c]}
 
 
+def worst_test(report: dict) -> dict:
+    """A campaign's test whose baseline is furthest above its noise (its own report), else the
+    report itself: what the rows below read the held-out errors from."""
+    if report.get("kind") != "campaign":
+        return report
+    return max(
+        report["per_test"],
+        key=lambda test: max(
+            r / noise_of(test)[c] for c, r in test["baseline"]["rmse"].items() if noise_of(test)[c] > 0
+        ),
+    )
+
+
 def classify(expected: str, outcome: dict, present: tuple[str, ...] = ()) -> dict:
     if "error" in outcome:
         return {"outcome": "error", "cause": None, "message": outcome["error"]}
     report = outcome["report"]
     cause = report["cause"]
-    rmse, noise = report["baseline"]["rmse"], noise_of(report)
-    extended = report.get("extended", {}).get("rmse", {})
+    errors = worst_test(report)
+    rmse, noise = errors["baseline"]["rmse"], noise_of(errors)
+    extended = (errors.get("extended") or {}).get("rmse", {})
     # Every cause a report names (its `causes` where it lists them), by effect name.
     named = (
         [c["effect"].split(":")[0] for c in report["causes"]]
@@ -118,7 +132,7 @@ def classify(expected: str, outcome: dict, present: tuple[str, ...] = ()) -> dic
     row = {
         "cause": cause,
         "named": named,
-        "effects": report.get("extended", {}).get("effects", []),
+        "effects": (report.get("extended") or {}).get("effects", []),
         "margin": margin_of(report),
         "verdict": report.get("verdict", ""),
         "baseline_rmse_over_noise": {c: rmse[c] / noise[c] for c in rmse if noise.get(c, 0) > 0},
@@ -134,14 +148,17 @@ def classify(expected: str, outcome: dict, present: tuple[str, ...] = ()) -> dic
     else:
         row["outcome"] = "honest"
         if cause == "none":
-            row["structure"] = structure_left(report)
+            row["structure"] = structure_left(errors)
     return row
 
 
 def kind_of(toml: Path) -> str:
     """What kind of test a dataset is, as its file declares it: a time series by its gas (sealed
-    cyclic, supplied sweep), a table by its kind."""
-    test = tomllib.loads(toml.read_text()).get("test", {})
+    cyclic, supplied sweep), a table by its kind, or a campaign of tests."""
+    declared = tomllib.loads(toml.read_text())
+    if "campaign" in declared:
+        return "campaign"
+    test = declared.get("test", {})
     kind = test.get("kind", "series")
     return f"{kind} ({test.get('gas', 'sealed')})" if kind == "series" else kind
 

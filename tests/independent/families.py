@@ -13,7 +13,7 @@ streams spawned from it), so that families differ by their cause only.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -195,6 +195,22 @@ def independent_dead_volume(seed, folder):
         expected="dead_volume",
         truth={"volume_fraction": fraction},
     )
+
+
+def independent_dead_volume_two_inflations(seed, folder):
+    """independent_dead_volume's muscle and test, run again inflated half as high again: a
+    campaign of the two (the second test is the one a tie on the first names)."""
+    first = independent_dead_volume(seed, folder / "first")
+    gauge_kPa = round(1.5 * first.truth["gauge_kPa"], 2)
+    sealed_test(
+        seed,
+        folder / "second",
+        physics=Physics(dead_volume_fraction=first.truth["volume_fraction"]),
+        plan_change=lambda plan, rng: replace(plan, gauge_kPa=gauge_kPa),
+    )
+    campaign = folder / "campaign.toml"
+    campaign.write_text('[campaign]\ntests = ["first/test.toml", "second/test.toml"]\n')
+    return Dataset(campaign, "dead_volume", {**first.truth, "second_gauge_kPa": gauge_kPa})
 
 
 def independent_leak(seed, folder):
@@ -460,6 +476,7 @@ FAMILIES = {
         independent_null,
         independent_heat_transfer,
         independent_dead_volume,
+        independent_dead_volume_two_inflations,
         independent_leak,
         load_cell_tare,
         load_cell_nonlinear,

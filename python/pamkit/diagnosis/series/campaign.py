@@ -3,12 +3,17 @@
 Each test is diagnosed alone first (its baseline calibrated on its own cycles: the inflation
 pressure, friction and bladder scales are per-test nuisances). A cause must then hold across the
 campaign, held out by whole test: for each test, the effect's parameters are the median of what
-the *other* tests fitted, the test's own calibrated baseline carries them, and the gain is
-scored on its held-out cycles exactly as a candidate's is (score.score, credited channels).
-The campaign names the cause whose leave-one-test-out gain is significant in every test
-(at least MIN_GAIN, its 95 % interval above zero) and that at least one test named on its own;
-`none` when every test says `none`; otherwise `unexplained`, saying where the cause fails to
-carry or where the tests disagree.
+the *other* tests fitted, the test's baseline as calibrated beside the effect (its own candidate
+fit, on its fitted cycles) carries them, and the gain is scored on its held-out cycles exactly as
+a candidate's is (score.score, credited channels). The baseline calibrated without the effect
+would not do: it has absorbed what it could of the effect (a dead volume, in a braid wound
+tighter), and the effect added to it counts twice. What is carried: every cause a test named, and
+both candidates of a tie a test could not break (the test its diagnosis named to break it, run
+and diagnosed beside it, is such a campaign). The campaign names the cause whose
+leave-one-test-out gain is significant in every test (at least MIN_GAIN, its 95 % interval above
+zero) and above every other such cause's in every test (their intervals apart); `none` when every
+test says `none`; otherwise `unexplained`, saying where the cause fails to carry, which causes it
+does not tell apart, or where the tests disagree.
 
 Beside the per-test calibrations, one muscle is calibrated on all the tests at once (joint.py):
 its shared values and their intervals are the campaign's baseline, and a test the shared muscle
@@ -51,7 +56,7 @@ class SeriesCampaign:
     paths: list[str]
     tests: list[str]  # a short name for each (pamkit.io.experiment.test_names)
     diagnoses: list[Diagnosis]
-    transfers: dict[str, list[Transfer]]  # per effect named by some test: one per test
+    transfers: dict[str, list[Transfer]]  # per effect some test named or tied on: one per test
     cause: str
     reason: str
     joint: JointFit  # one muscle calibrated on every test
@@ -64,18 +69,20 @@ def _single_effect_fits(d: Diagnosis) -> dict[str, Fit]:
     return {j.fit.name: j.fit for j in d.candidates if len(j.fit.effects) == 1 and j.fit.error is None}
 
 
-def _carry(catalog, label: str, held: Diagnosis, others: list[Fit], name: str, seed: int) -> Transfer:
+def _carry(catalog, label: str, held: Diagnosis, own: Fit, others: list[Fit], name: str, seed: int) -> Transfer:
+    """`label` carried to the test `held` with the median parameters of `others` (the other tests'
+    fits), on the baseline `own` (the test's fit of the effect) calibrated beside it."""
     effect = catalog.parse(label)
     numeric = {p.name for p in effect.parameters()}.intersection(*(fit.params for fit in others))
     params = {key: float(np.median([fit.params[key] for fit in others])) for key in sorted(numeric)}
     for key, value in params.items():
         effect.set(key, value)
     problem, baseline = held.problem, held.baseline
-    predicted = problem.predictor.predict(baseline.baseline_x, [effect])
+    predicted = problem.predictor.predict(own.baseline_x, [effect])
     carried = Fit(
         label,
         [effect],
-        baseline.baseline_x,
+        own.baseline_x,
         params,
         predicted,
         problem.chi2_by_channel(predicted),
@@ -86,9 +93,27 @@ def _carry(catalog, label: str, held: Diagnosis, others: list[Fit], name: str, s
     return Transfer(name, params, float(s.credited_gain), [float(v) for v in s.credited_ci95], carries)
 
 
+def _tied(d: Diagnosis) -> list[Fit]:
+    """The two candidates of a tie the test could not break (decide.py, rule 6), or none."""
+    rejected = d.decision.rejected
+    if rejected is None or rejected.tied_with is None:
+        return []
+    return [rejected.fit, rejected.tied_with.fit]
+
+
+def _overlaps(lead: list[Transfer], other: list[Transfer]) -> list[str]:
+    """The tests where `lead`'s held-out gain is not above `other`'s, their 95 % intervals meeting."""
+    return [x.test for x, y in zip(lead, other) if x.gain_ci95[0] <= y.gain_ci95[1]]
+
+
+def _above(lead: list[Transfer], other: list[Transfer]) -> bool:
+    """Whether `lead` gains above `other` in every test, their 95 % intervals apart."""
+    return not _overlaps(lead, other)
+
+
 def campaign_of_series(diagnoses: list[Diagnosis], catalog, progress=None, threads: int = 2) -> SeriesCampaign:
-    """Calibrates one muscle on every test, carries every effect some test named to each test
-    from the others, and decides."""
+    """Calibrates one muscle on every test, carries every effect some test named (or could not
+    tell from another) to each test from the others, and decides."""
     with one_blas_thread():
         return _campaign_of_series(diagnoses, catalog, progress or (lambda message: None), threads)
 
@@ -99,7 +124,9 @@ def _campaign_of_series(diagnoses: list[Diagnosis], catalog, progress, threads: 
     progress(f"calibrating one muscle on all {len(diagnoses)} tests")
     joint = calibrate_jointly([d.problem for d in diagnoses], [d.baseline for d in diagnoses], names, threads)
     fits = [_single_effect_fits(d) for d in diagnoses]
-    named = {cause.label for d in diagnoses for cause in d.decision.causes}
+    named = {cause.label for d in diagnoses for cause in d.decision.causes} | {
+        fit.name for d in diagnoses for fit in _tied(d)
+    }
     transfers: dict[str, list[Transfer]] = {}
     for label in sorted(named):
         if not all(label in f for f in fits):
@@ -110,6 +137,7 @@ def _campaign_of_series(diagnoses: list[Diagnosis], catalog, progress, threads: 
                 catalog,
                 label,
                 d,
+                fits[k][label],
                 [fits[j][label] for j in range(len(diagnoses)) if j != k],
                 names[k],
                 seed=k,
@@ -117,10 +145,22 @@ def _campaign_of_series(diagnoses: list[Diagnosis], catalog, progress, threads: 
             for k, d in enumerate(diagnoses)
         ]
     holding = {label: t for label, t in transfers.items() if all(x.carries for x in t)}
-    if holding:
-        cause = max(holding, key=lambda label: float(np.mean([x.gain for x in holding[label]])))
+    leader = max(holding, key=lambda label: float(np.mean([x.gain for x in holding[label]])), default=None)
+    alike = [label for label in holding if label != leader and not _above(holding[leader], holding[label])]
+    if leader is not None and not alike:
+        cause = leader
         worst = min(x.gain for x in holding[cause])
         reason = f"its parameters from the other tests gain on every test's held-out cycles (the least {worst:.2f})"
+        others = [label for label in holding if label != leader]
+        if others:
+            reason += f", above {', '.join(others)} in every test"
+    elif leader is not None:
+        cause = "unexplained"
+        overlapping = [f"{label} in {', '.join(_overlaps(holding[leader], holding[label]))}" for label in alike]
+        reason = (
+            f"{leader} carries to every test, and so does {', '.join(alike)}, their held-out gains' intervals "
+            f"overlapping ({'; '.join(overlapping)}): the campaign does not tell them apart"
+        )
     elif all(d.cause == "none" for d in diagnoses):
         cause, reason = "none", "every test's calibrated model explains it within its noise"
     else:
