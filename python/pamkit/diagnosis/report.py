@@ -347,27 +347,6 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     return text + _remainder_phrase(d) + bounds
 
 
-def _variant_phrase(s: Separation) -> str:
-    """The separating variant as a lab would set it up, in the file's units."""
-    test = s.variant.describe(s.declared_Pa)
-    if s.variant.zero_reading:
-        return "a zero run (the instruments read with the muscle vented and unloaded)"
-    if "pressure_scale" in test:
-        change = "higher" if test["pressure_scale"] > 1 else "lower"
-        return f"the same sweep with the supplied pressure {abs(test['pressure_scale'] - 1):.0%} {change}"
-    if "inflation_gauge_pressure_Pa" in test:
-        pressure = value_from_si("gauge_pressure_Pa", test["inflation_gauge_pressure_Pa"])
-        declared = value_from_si("gauge_pressure_Pa", s.declared_Pa)
-        unit = _unit("gauge_pressure_Pa")
-        return (
-            f"the same stretches with the muscle inflated freely to {pressure:.0f} {unit} and sealed (this test: "
-            f"{declared:.0f} {unit})"
-        )
-    scale = test["time_scale"]
-    motion = "stretches" if s.declared_Pa is not None else "sweep"
-    return f"the same {motion} {scale:g} times slower" if scale > 1 else f"the same {motion} {1 / scale:g} times faster"
-
-
 def _over_noise(ratios: dict[str, float], channels: list[str]) -> str:
     return ", ".join(f"{ratios[c]:.1f}x the {file_name(c)} noise" for c in channels)
 
@@ -387,7 +366,7 @@ def _separation_phrase(d: Diagnosis) -> str:
         )
     shown = sorted((c for c in s.apart if s.apart[c] >= SEPARATES), key=lambda c: -s.apart[c])[:2]
     return (
-        f"; to tell {a} from {b}: {_variant_phrase(s)}, where their predictions differ by "
+        f"; to tell {a} from {b}: {s.test_phrase()}, where their predictions differ by "
         f"{_over_noise(s.apart, shown)} (RMS; here {_over_noise(s.here, shown)})"
     )
 
@@ -522,8 +501,7 @@ def _plot_separation(axis, s: Separation) -> None:
             np.asarray(m.time_s), value_from_si(channel, np.asarray(getattr(m, channel))), color=color, label=name
         )
     axis.set_title(
-        f"to tell {s.between[0]} from {s.between[1]}: {_variant_phrase(s)} "
-        f"({s.apart[channel]:.1f}x the noise apart, RMS)"
+        f"to tell {s.between[0]} from {s.between[1]}: {s.test_phrase()} ({s.apart[channel]:.1f}x the noise apart, RMS)"
     )
     axis.set_xlabel("time [s]")
     axis.set_ylabel(file_name(channel))

@@ -16,7 +16,7 @@ from pamkit.diagnosis.series.separate import SEPARATES, VARIANTS, _run, separati
 from pamkit.effects import catalog
 
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
-from independent.families import independent_dead_volume, sealed_test  # noqa: E402
+from independent.families import independent_dead_volume, isometric_null, sealed_test  # noqa: E402
 from independent.physics import Build, Motion, Physics, SealedMuscle  # noqa: E402
 
 # bench_families: a dead volume ties with stretching fibres on 3 of 3 seeds (both lower the
@@ -107,6 +107,17 @@ def test_two_fits_alike_are_apart_on_no_variant(dead_volumes):
     s = separating_test(d.problem, fit, fit)
     assert not s.separates
     assert all(v == 0.0 for v in s.tried.values()) and set(s.tried) == {v.key for v in VARIANTS}
+
+
+def test_a_supplied_sweep_has_variants_of_its_own(tmp_path):
+    # A supplied sweep's variants are its pressure raised and lowered at every sample, the same
+    # sweep faster and slower, and a zero run: each runs on an independent isometric sweep, and two
+    # fits alike are apart on none of them.
+    d = diagnose(str(isometric_null(1, tmp_path).experiment), threads=2)
+    s = separating_test(d.problem, d.baseline, d.baseline)
+    assert s.declared_Pa is None and not s.separates
+    assert set(s.tried) == {v.key for v in VARIANTS} and all(v == 0.0 for v in s.tried.values()), s.tried
+    assert "supplied pressure 50% higher" in replace(s, variant=VARIANTS[0]).test_phrase()
 
 
 def test_a_zero_run_reads_a_transducers_offset(dead_volumes):

@@ -279,7 +279,9 @@ def verdict(c: SeriesCampaign) -> str:
                 f"({alone}): a structural misfit, not one muscle's parameters"
             )
     for name, d in zip(c.tests, c.diagnoses):
-        lines.append(f"  {name}: alone, {d.cause}")
+        tie = d.separation
+        told = f"; to tell them apart: {tie.test_phrase()}" if tie is not None and tie.separates else ""
+        lines.append(f"  {name}: alone, {d.cause}" + (f" ({' and '.join(tie.between)} tied{told})" if tie else ""))
     for label, t in c.transfers.items():
         gains = ", ".join(f"{x.test} {x.gain:.2f} [{x.gain_ci95[0]:.2f}, {x.gain_ci95[1]:.2f}]" for x in t)
         lines.append(f"  {label} from the other tests: held-out gain {gains}")

@@ -40,7 +40,10 @@ from pamkit._core import (
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
+from pamkit.io.columns import file_unit, value_from_si
 from pamkit.simulation import initial_length
+
+PRESSURE = "gauge_pressure_Pa"
 
 # A variant separates two models when they differ on a channel by this many times its noise (RMS
 # over the run): the difference the "none" rule reads as structure left, so that the model which
@@ -99,6 +102,30 @@ class Separation:
     @property
     def separates(self) -> bool:
         return self.variant is not None and max(self.apart.values(), default=0.0) >= SEPARATES
+
+    def test_phrase(self) -> str:
+        """The separating variant as a lab would set it up, in the data file's units."""
+        test = self.variant.describe(self.declared_Pa)
+        if self.variant.zero_reading:
+            return "a zero run (the instruments read with the muscle vented and unloaded)"
+        if "pressure_scale" in test:
+            change = "higher" if test["pressure_scale"] > 1 else "lower"
+            return f"the same sweep with the supplied pressure {abs(test['pressure_scale'] - 1):.0%} {change}"
+        if "inflation_gauge_pressure_Pa" in test:
+            pressure = value_from_si(PRESSURE, test["inflation_gauge_pressure_Pa"])
+            declared = value_from_si(PRESSURE, self.declared_Pa)
+            unit = file_unit(PRESSURE)
+            return (
+                f"the same stretches with the muscle inflated freely to {pressure:.0f} {unit} and sealed (this "
+                f"test: {declared:.0f} {unit})"
+            )
+        scale = test["time_scale"]
+        motion = "stretches" if self.declared_Pa is not None else "sweep"
+        return (
+            f"the same {motion} {scale:g} times slower"
+            if scale > 1
+            else f"the same {motion} {1 / scale:g} times faster"
+        )
 
     def to_json(self) -> dict:
         return {
