@@ -419,10 +419,19 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
         ]
     separation = None
     tied = decision.rejected
-    if tied is not None and tied.tied_with is not None:
-        report(f"looking for a test that tells {tied.fit.name} from {tied.tied_with.fit.name}")
+    lead = decision.causes[0].judgement if decision.causes else None
+    pair = (
+        (tied, tied.tied_with, "tie")
+        if tied is not None and tied.tied_with is not None
+        else (lead, lead.close_rival, "confirm")
+        if lead is not None and lead.close_rival is not None
+        else None
+    )
+    if pair is not None:
+        first, second, purpose = pair
+        report(f"looking for a test that tells {first.fit.name} from {second.fit.name}")
         phase = clock.perf_counter()
-        separation = separating_test(problem, tied.fit, tied.tied_with.fit)
+        separation = separating_test(problem, first.fit, second.fit, purpose)
         seconds["separate"] = clock.perf_counter() - phase
     discovered = {}
     if decision.cause == "unexplained" or decision.left_structure:

@@ -14,7 +14,7 @@ from pamkit.diagnosis.identify import interval_numbers, why_undetermined
 from pamkit.diagnosis.series import campaign
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.campaign import SeriesCampaign
-from pamkit.diagnosis.series.decide import Judgement, noise_ratios
+from pamkit.diagnosis.series.decide import Judgement, gain_over, noise_ratios
 from pamkit.diagnosis.series.kinds import driving_signal
 from pamkit.diagnosis.series.remainder import describe, where_left
 from pamkit.diagnosis.series.result import Diagnosis
@@ -344,7 +344,7 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
             f"; and {more['effect']}{_numbers(more['params'])} (its own held-out gain on {', '.join(more['channels'])} "
             f"{_gain_with_interval(more['gain_own_channels'], more['gain_own_channels_ci95'])})"
         )
-    return text + _remainder_phrase(d) + bounds
+    return text + _remainder_phrase(d) + _separation_phrase(d) + bounds
 
 
 def _over_noise(ratios: dict[str, float], channels: list[str]) -> str:
@@ -358,6 +358,19 @@ def _separation_phrase(d: Diagnosis) -> str:
     if s is None:
         return ""
     a, b = s.between
+    if s.purpose == "confirm":
+        lead = d.decision.causes[0].judgement
+        close = (
+            f"; {b} explains nearly as much ({a} explains {100 * gain_over(lead, lead.close_rival):.1f} % of what it "
+            f"leaves, where a cause explains {100 * MIN_GAIN:.0f} %)"
+        )
+        if not s.separates:
+            return close + " and no other test pamkit tried tells them apart"
+        shown = sorted((c for c in s.apart if s.apart[c] >= SEPARATES), key=lambda c: -s.apart[c])[:2]
+        return (
+            f"{close}: to confirm {a}, {s.test_phrase()}, where their predictions differ by "
+            f"{_over_noise(s.apart, shown)} (RMS; here {_over_noise(s.here, shown)})"
+        )
     if not s.separates:
         largest = max((v for v in s.tried.values() if isinstance(v, float)), default=0.0)
         return (
@@ -494,15 +507,15 @@ def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Pa
 
 
 def _plot_separation(axis, s: Separation) -> None:
-    """The two tied models on the test that parts them, on the channel where they differ most."""
+    """The two models of a tie (or a cause and its close rival) on the test that parts them, on
+    the channel where they differ most."""
     channel = max(s.apart, key=lambda c: s.apart[c])
+    purpose = f"to tell {s.between[0]} from {s.between[1]}" if s.purpose == "tie" else f"to confirm {s.between[0]}"
     for name, m, color in zip(s.between, s.predictions, ("C0", "C1")):
         axis.plot(
             np.asarray(m.time_s), value_from_si(channel, np.asarray(getattr(m, channel))), color=color, label=name
         )
-    axis.set_title(
-        f"to tell {s.between[0]} from {s.between[1]}: {s.test_phrase()} ({s.apart[channel]:.1f}x the noise apart, RMS)"
-    )
+    axis.set_title(f"{purpose}: {s.test_phrase()} ({s.apart[channel]:.1f}x the noise apart, RMS)")
     axis.set_xlabel("time [s]")
     axis.set_ylabel(file_name(channel))
     axis.legend(loc="upper right", fontsize="small")

@@ -12,6 +12,7 @@ import tomllib
 from conftest import SOURCE_DIR
 
 from pamkit.diagnosis import diagnose, to_json, verdict
+from pamkit.diagnosis.series.decide import Cause
 from pamkit.diagnosis.series.separate import SEPARATES, VARIANTS, _run, separating_test
 from pamkit.effects import catalog
 
@@ -147,3 +148,21 @@ def test_the_named_test_diagnosed_beside_the_first_breaks_the_tie(dead_volumes, 
         named.append(campaign.cause)
     assert len(named) >= 3, named
     assert named.count("dead_volume") >= len(named) - 1 and set(named) <= {"dead_volume", "unexplained"}, named
+
+
+def test_a_cause_with_a_rival_close_behind_names_the_test_that_would_confirm_it(dead_volumes):
+    # A cause named narrowly ahead of a rival (decide.close_rival) is reported with the rival and
+    # the test that would confirm it; made here from a tie's two fits, the first named.
+    _, d = next((dataset, d) for dataset, d in dead_volumes if d.separation is not None)
+    first, second = (next(j for j in d.candidates if j.fit.name == name) for name in d.separation.between)
+    first.close_rival = second
+    named = replace(
+        d,
+        decision=replace(d.decision, cause=first.fit.name, causes=[Cause(first.fit.name, first, first.score)]),
+        extended=first.fit,
+        extended_judgement=first,
+        separation=separating_test(d.problem, first.fit, second.fit, "confirm"),
+    )
+    text = verdict(named)
+    assert f"{second.fit.name} explains nearly as much" in text and f"to confirm {first.fit.name}" in text, text
+    assert to_json(named)["separation"]["purpose"] == "confirm"

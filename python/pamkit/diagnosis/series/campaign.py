@@ -279,9 +279,14 @@ def verdict(c: SeriesCampaign) -> str:
                 f"({alone}): a structural misfit, not one muscle's parameters"
             )
     for name, d in zip(c.tests, c.diagnoses):
-        tie = d.separation
-        told = f"; to tell them apart: {tie.test_phrase()}" if tie is not None and tie.separates else ""
-        lines.append(f"  {name}: alone, {d.cause}" + (f" ({' and '.join(tie.between)} tied{told})" if tie else ""))
+        s = d.separation
+        told = f"; to tell them apart: {s.test_phrase()}" if s is not None and s.separates else ""
+        if s is None:
+            lines.append(f"  {name}: alone, {d.cause}")
+        elif s.purpose == "tie":
+            lines.append(f"  {name}: alone, {d.cause} ({' and '.join(s.between)} tied{told})")
+        else:
+            lines.append(f"  {name}: alone, {d.cause} ({s.between[1]} close behind{told})")
     for label, t in c.transfers.items():
         gains = ", ".join(f"{x.test} {x.gain:.2f} [{x.gain_ci95[0]:.2f}, {x.gain_ci95[1]:.2f}]" for x in t)
         lines.append(f"  {label} from the other tests: held-out gain {gains}")

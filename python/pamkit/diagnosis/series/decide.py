@@ -90,6 +90,8 @@ class Judgement:
     near_resolution: bool = False
     # the candidate that explains the held-out units as well (rule 6): the data do not tell them apart
     tied_with: Judgement | None = None
+    # the rival a named cause beats on the same draws, but by less than a cause explains (close_rival)
+    close_rival: Judgement | None = None
 
     @property
     def credible(self) -> bool:
@@ -405,6 +407,15 @@ def marginal(j: Judgement) -> bool:
     return True
 
 
+def gain_over(lead: Judgement, rival: Judgement) -> float:
+    """The lead's combined held-out gain with the rival's model for the baseline: the share of the
+    squared error the rival leaves that the lead explains. Below MIN_GAIN, the lead would not be a
+    cause over the rival (rule 1), though it beats it on the same draws: named, it carries the
+    rival as a close one (`close_rival`) and the test that would confirm it (separate.py)."""
+    left = 1.0 - rival.score.combined_gain
+    return (lead.score.combined_gain - rival.score.combined_gain) / left if left > 0.0 else 0.0
+
+
 def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision:
     """The leading cause (rules 3-6 of the module docstring), `judged` sorted by held-out gain,
     best first: the best candidate that is significant and credible. Its rivals are the other
@@ -438,6 +449,8 @@ def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision
         if rival is not None:
             low, high = np.percentile(lead.score.combined_samples - rival.score.combined_samples, [2.5, 97.5])
             margins["over_rival"] = float(low)
+            nearest = min(rivals, key=lambda j: gain_over(lead, j))
+            lead.close_rival = nearest if gain_over(lead, nearest) < MIN_GAIN else None
             if low <= 0.0:  # rule 6: the data cannot tell the two apart
                 lead.tied_with = rival
                 lead.objections.append(

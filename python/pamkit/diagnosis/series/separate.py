@@ -98,6 +98,9 @@ class Separation:
     tried: dict[str, float | str] = field(default_factory=dict)  # variant key: largest ratio, or why not run
     # the two models' measurements on that variant, in `between`'s order (the report's figure)
     predictions: tuple[Measurement, Measurement] | None = field(default=None, repr=False)
+    # "tie": neither could be named (decide.py, rule 6); "confirm": the first is named, the second
+    # explains nearly as much (decide.close_rival), and the test would confirm the first
+    purpose: str = "tie"
 
     @property
     def separates(self) -> bool:
@@ -129,6 +132,7 @@ class Separation:
 
     def to_json(self) -> dict:
         return {
+            "purpose": self.purpose,
             "between": list(self.between),
             "test": self.variant.describe(self.declared_Pa) if self.variant else None,
             "separates": self.separates,
@@ -182,8 +186,9 @@ def _differences(problem: Problem, a: Fit, b: Fit, variant: Variant):
     return ratios, (ma, mb)
 
 
-def separating_test(problem: Problem, a: Fit, b: Fit) -> Separation | None:
-    """The variant of the test on which fits `a` and `b` differ most (see the module docstring)."""
+def separating_test(problem: Problem, a: Fit, b: Fit, purpose: str = "tie") -> Separation:
+    """The variant of the test on which fits `a` and `b` differ most (see the module docstring),
+    for a tie or to confirm `a` against a close `b` (`purpose`)."""
     experiment = problem.experiment
     declared = experiment.inflation_gauge_pressure_Pa if experiment.gas == GasMode.sealed else None
     here, _ = _differences(problem, a, b, AS_RUN)
@@ -203,5 +208,5 @@ def separating_test(problem: Problem, a: Fit, b: Fit) -> Separation | None:
         if best is None or largest > best[0]:
             best = (largest, variant, apart, runs)
     if best is None:
-        return Separation((a.name, b.name), None, declared, {}, here, tried)
-    return Separation((a.name, b.name), best[1], declared, best[2], here, tried, best[3])
+        return Separation((a.name, b.name), None, declared, {}, here, tried, purpose=purpose)
+    return Separation((a.name, b.name), best[1], declared, best[2], here, tried, best[3], purpose)
