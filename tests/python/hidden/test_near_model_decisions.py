@@ -11,6 +11,7 @@ whatever absorbs the base model's misfit) both fail here."""
 
 import sys
 from concurrent.futures import ThreadPoolExecutor
+from dataclasses import replace
 
 import pytest
 from conftest import SOURCE_DIR
@@ -19,7 +20,8 @@ from pamkit.diagnosis import diagnose, to_json
 from pamkit.io.experiment import load_experiment
 
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
-from independent.near_families import FAMILIES  # noqa: E402 (needs the path above)
+import independent.near_families as near_families  # noqa: E402 (needs the path above)
+from independent.near_families import FAMILIES  # noqa: E402
 
 SEEDS = (1, 2, 3)
 STRENGTHS = ("medium", "strong")
@@ -59,6 +61,11 @@ def world(tmp_path_factory):
             "cause": report["cause"],
             "remainder": report["remainder"],
             "verdict": report["verdict"],
+            "separation": report["separation"],
+            "name": name,
+            "seed": seed,
+            "strength": strength,
+            "experiment": dataset.experiment,
         }
 
     with ThreadPoolExecutor(max_workers=2) as pool:
@@ -99,3 +106,29 @@ def test_nulls_name_nothing(world):
         assert not r["named"], r["verdict"]
         if r["cause"] == "unexplained":
             assert r["remainder"] and r["remainder"]["channels"], r["verdict"]
+
+
+def test_the_test_a_close_call_names_decides_it_beside_the_first(world, tmp_path, monkeypatch):
+    # A dead volume beside a load cell's error: compliant fibres explain it nearly as well, and are
+    # named on some seeds (wrong), the dead volume on others, each with the other close behind and
+    # a higher inflation to confirm it (`separation`). That test, written by the same generator
+    # (the same muscle, seed and instruments, inflated as the report says), diagnosed beside the
+    # first as a campaign names the dead volume, never the fibres. Measured: 3 of 3.
+    rows = [r for r in world if r["name"] == "dead_volume+load_cell" and r["separation"]]
+    found = []
+    for r in rows:
+        test = r["separation"]["test"]
+        assert "inflation_gauge_pressure_Pa" in test, r["verdict"]
+        pressure_kPa = round(test["inflation_gauge_pressure_Pa"] / 1e3, 2)
+        drawn = near_families.draw_sealed_plan
+        monkeypatch.setattr(
+            near_families,
+            "draw_sealed_plan",
+            lambda rng, drawn=drawn, kPa=pressure_kPa: replace(drawn(rng), gauge_kPa=kPa),
+        )
+        second = FAMILIES[r["name"]].make(r["seed"], tmp_path / f"{r['seed']}-{r['strength']}", r["strength"])
+        monkeypatch.setattr(near_families, "draw_sealed_plan", drawn)
+        campaign = to_json(diagnose([str(r["experiment"]), str(second.experiment)], threads=2))
+        found.append(named(campaign))
+        assert found[-1] <= r["hidden"], campaign["verdict"]
+    assert len(rows) >= 2 and sum("dead_volume" in n for n in found) >= len(rows) - 1, found

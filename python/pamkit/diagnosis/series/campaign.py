@@ -7,9 +7,10 @@ the *other* tests fitted, the test's baseline as calibrated beside the effect (i
 fit, on its fitted cycles) carries them, and the gain is scored on its held-out cycles exactly as
 a candidate's is (score.score, credited channels). The baseline calibrated without the effect
 would not do: it has absorbed what it could of the effect (a dead volume, in a braid wound
-tighter), and the effect added to it counts twice. What is carried: every cause a test named, and
-both candidates of a tie a test could not break (the test its diagnosis named to break it, run
-and diagnosed beside it, is such a campaign). The campaign names the cause whose
+tighter), and the effect added to it counts twice. What is carried: every cause a test named, both
+candidates of a tie a test could not break, and a named cause's close rival (the test its
+diagnosis named to break the tie or confirm the cause, run and diagnosed beside it, is such a
+campaign). The campaign names the cause whose
 leave-one-test-out gain is significant in every test (at least MIN_GAIN, its 95 % interval above
 zero) and above every other such cause's in every test (their intervals apart); `none` when every
 test says `none`; otherwise `unexplained`, saying where the cause fails to carry, which causes it
@@ -93,14 +94,6 @@ def _carry(catalog, label: str, held: Diagnosis, own: Fit, others: list[Fit], na
     return Transfer(name, params, float(s.credited_gain), [float(v) for v in s.credited_ci95], carries)
 
 
-def _tied(d: Diagnosis) -> list[Fit]:
-    """The two candidates of a tie the test could not break (decide.py, rule 6), or none."""
-    rejected = d.decision.rejected
-    if rejected is None or rejected.tied_with is None:
-        return []
-    return [rejected.fit, rejected.tied_with.fit]
-
-
 def _overlaps(lead: list[Transfer], other: list[Transfer]) -> list[str]:
     """The tests where `lead`'s held-out gain is not above `other`'s, their 95 % intervals meeting."""
     return [x.test for x, y in zip(lead, other) if x.gain_ci95[0] <= y.gain_ci95[1]]
@@ -124,8 +117,10 @@ def _campaign_of_series(diagnoses: list[Diagnosis], catalog, progress, threads: 
     progress(f"calibrating one muscle on all {len(diagnoses)} tests")
     joint = calibrate_jointly([d.problem for d in diagnoses], [d.baseline for d in diagnoses], names, threads)
     fits = [_single_effect_fits(d) for d in diagnoses]
+    # Beside the causes named, the two of a tie and a cause's close rival: what a test could not
+    # tell apart firmly, another test may.
     named = {cause.label for d in diagnoses for cause in d.decision.causes} | {
-        fit.name for d in diagnoses for fit in _tied(d)
+        label for d in diagnoses if d.separation is not None for label in d.separation.between
     }
     transfers: dict[str, list[Transfer]] = {}
     for label in sorted(named):
