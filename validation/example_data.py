@@ -9,6 +9,11 @@ simulate itself.
     data/experiments/supplied/   PAM 2 of the thesis held at a fixed length on a pressure regulator, the
                                  pressure stepped up to its top and vented, force and pressure logged
                                  at 20 Hz (tests/independent/families.py, isometric_sweep, seed 3)
+    data/experiments/tie/        a sealed cyclic test of a muscle with a dead volume (first/), which on
+                                 its own ties with stretching fibres, and the same test inflated half
+                                 as high again (second/), the test the tie names; campaign.toml
+                                 diagnoses the two together (independent_dead_volume_two_inflations,
+                                 seed 1)
 
 Run ``python validation/example_data.py [-o data/experiments]``; the committed files are what it
 writes (tests/python/test_example_data.py).
@@ -27,7 +32,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))  # tests/independent: a folder, not an installed package
 
-from independent.families import isometric_sweep  # noqa: E402 (needs the path above)
+from independent.families import independent_dead_volume_two_inflations, isometric_sweep  # noqa: E402
 from independent.static_map import write_isotonic  # noqa: E402
 
 # A 10 mm muscle as the independent model builds it (Gaylord's braid, a neo-Hookean wall
@@ -43,6 +48,7 @@ ISOTONIC_TRUTH = dict(
 ISOTONIC_LOAD_N = 100.0
 ISOTONIC_HYSTERESIS = 0.1
 SUPPLIED_SEED = 3
+TIE_SEED = 1
 
 
 def write(folder: Path) -> list[Path]:
@@ -76,7 +82,13 @@ def write(folder: Path) -> list[Path]:
         toml_text = "# validation/example_data.py: the independent rig's sweep of seed 3.\n" + toml_text
         (supplied / "isometric_sweep.toml").write_text(toml_text)
         del dataset
-    return sorted(p for p in [*isotonic.iterdir(), *supplied.iterdir()] if p.is_file())
+    tie = folder / "tie"
+    campaign = independent_dead_volume_two_inflations(TIE_SEED, tie).experiment
+    campaign.write_text(
+        "# validation/example_data.py: a dead volume the first test alone cannot tell from stretching fibres,\n"
+        "# and the test its diagnosis names to tell them, run on the same independent muscle.\n" + campaign.read_text()
+    )
+    return sorted(p for p in [*isotonic.iterdir(), *supplied.iterdir(), *tie.rglob("*")] if p.is_file())
 
 
 def main() -> int:

@@ -1,4 +1,4 @@
-"""The example tests of data/experiments/isotonic and data/experiments/supplied are what
+"""The example tests of data/experiments/isotonic, supplied and tie are what
 validation/example_data.py writes with the independent model (tests/independent): regenerated here
 and compared file by file."""
 
@@ -24,6 +24,11 @@ def test_the_committed_examples_are_what_the_generator_writes(tmp_path):
         "isotonic/isotonic.toml",
         "supplied/isometric_sweep.csv",
         "supplied/isometric_sweep.toml",
+        "tie/campaign.toml",
+        "tie/first/test.csv",
+        "tie/first/test.toml",
+        "tie/second/test.csv",
+        "tie/second/test.toml",
     ]
     for path in written:
         relative = path.relative_to(tmp_path)
