@@ -420,18 +420,25 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     separation = None
     tied = decision.rejected
     lead = decision.causes[0].judgement if decision.causes else None
+    # An instrument's error refused only because its channel was within the noise without it: the
+    # data neither need it nor rule it out, and a test may.
+    unneeded_only = (
+        tied is not None and tied.unneeded and not (tied.findings or tied.objections or tied.below_resolution)
+    )
     pair = (
-        (tied, tied.tied_with, "tie")
+        (tied.fit, tied.tied_with.fit, "tie")
         if tied is not None and tied.tied_with is not None
-        else (lead, lead.close_rival, "confirm")
+        else (lead.fit, lead.close_rival.fit, "confirm")
         if lead is not None and lead.close_rival is not None
+        else (tied.fit, baseline, "check")
+        if unneeded_only
         else None
     )
     if pair is not None:
         first, second, purpose = pair
-        report(f"looking for a test that tells {first.fit.name} from {second.fit.name}")
+        report(f"looking for a test that tells {first.name} from {second.name}")
         phase = clock.perf_counter()
-        separation = separating_test(problem, first.fit, second.fit, purpose)
+        separation = separating_test(problem, first, second, purpose)
         seconds["separate"] = clock.perf_counter() - phase
     discovered = {}
     if decision.cause == "unexplained" or decision.left_structure:

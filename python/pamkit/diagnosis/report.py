@@ -371,6 +371,14 @@ def _separation_phrase(d: Diagnosis) -> str:
             f"{close}: to confirm {a}, {s.test_phrase()}, where their predictions differ by "
             f"{_over_noise(s.apart, shown)} (RMS; here {_over_noise(s.here, shown)})"
         )
+    if s.purpose == "check":
+        if not s.separates:
+            return f"; no test pamkit tried would show whether {a} is there"
+        shown = sorted((c for c in s.apart if s.apart[c] >= SEPARATES), key=lambda c: -s.apart[c])[:2]
+        return (
+            f"; to check for {a}: {s.test_phrase()}, where the model with it and without it differ by "
+            f"{_over_noise(s.apart, shown)} (RMS; here {_over_noise(s.here, shown)})"
+        )
     if not s.separates:
         largest = max((v for v in s.tried.values() if isinstance(v, float)), default=0.0)
         return (
@@ -510,7 +518,11 @@ def _plot_separation(axis, s: Separation) -> None:
     """The two models of a tie (or a cause and its close rival) on the test that parts them, on
     the channel where they differ most."""
     channel = max(s.apart, key=lambda c: s.apart[c])
-    purpose = f"to tell {s.between[0]} from {s.between[1]}" if s.purpose == "tie" else f"to confirm {s.between[0]}"
+    purpose = {
+        "tie": f"to tell {s.between[0]} from {s.between[1]}",
+        "confirm": f"to confirm {s.between[0]}",
+        "check": f"to check for {s.between[0]}",
+    }[s.purpose]
     for name, m, color in zip(s.between, s.predictions, ("C0", "C1")):
         axis.plot(
             np.asarray(m.time_s), value_from_si(channel, np.asarray(getattr(m, channel))), color=color, label=name

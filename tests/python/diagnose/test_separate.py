@@ -13,7 +13,7 @@ from conftest import SOURCE_DIR
 
 from pamkit.diagnosis import diagnose, to_json, verdict
 from pamkit.diagnosis.series.decide import Cause
-from pamkit.diagnosis.series.separate import SEPARATES, VARIANTS, _run, separating_test
+from pamkit.diagnosis.series.separate import AS_RUN, SEPARATES, VARIANTS, _run, separating_test
 from pamkit.effects import catalog
 
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
@@ -119,6 +119,20 @@ def test_a_supplied_sweep_has_variants_of_its_own(tmp_path):
     assert s.declared_Pa is None and not s.separates
     assert set(s.tried) == {v.key for v in VARIANTS} and all(v == 0.0 for v in s.tried.values()), s.tried
     assert "supplied pressure 50% higher" in replace(s, variant=VARIANTS[0]).test_phrase()
+
+
+def test_a_higher_inflation_is_set_by_what_the_transducer_reads(dead_volumes):
+    # The lab inflates until its transducer reads half the declared pressure again: whatever the
+    # fit's transducer (here one reading 4 kPa high and 10 % steep), the first reading of the
+    # variant is the test's first reading plus that change; the gas's own pressure moves by the
+    # change over the transducer's gain.
+    _, d = dead_volumes[0]
+    higher = next(v for v in VARIANTS if v.pressure_share > 0)
+    change_Pa = higher.pressure_share * d.problem.experiment.inflation_gauge_pressure_Pa
+    transducer = catalog().parse("sensor_offset:offset_Pa=4000,gain=1.1")
+    for fit in (d.baseline, replace(d.baseline, effects=[transducer])):
+        first = [np.asarray(_run(d.problem, fit, v).gauge_pressure_Pa)[0] for v in (AS_RUN, higher)]
+        assert first[1] - first[0] == pytest.approx(change_Pa, rel=1e-6)
 
 
 def test_a_zero_run_reads_a_transducers_offset(dead_volumes):

@@ -120,7 +120,10 @@ def _campaign_of_series(diagnoses: list[Diagnosis], catalog, progress, threads: 
     # Beside the causes named, the two of a tie and a cause's close rival: what a test could not
     # tell apart firmly, another test may.
     named = {cause.label for d in diagnoses for cause in d.decision.causes} | {
-        label for d in diagnoses if d.separation is not None for label in d.separation.between
+        label
+        for d in diagnoses
+        if d.separation is not None and d.separation.purpose != "check"
+        for label in d.separation.between
     }
     transfers: dict[str, list[Transfer]] = {}
     for label in sorted(named):
@@ -280,6 +283,8 @@ def verdict(c: SeriesCampaign) -> str:
             lines.append(f"  {name}: alone, {d.cause}")
         elif s.purpose == "tie":
             lines.append(f"  {name}: alone, {d.cause} ({' and '.join(s.between)} tied{told})")
+        elif s.purpose == "check":
+            lines.append(f"  {name}: alone, {d.cause}")
         else:
             lines.append(f"  {name}: alone, {d.cause} ({s.between[1]} close behind{told})")
     for label, t in c.transfers.items():

@@ -29,8 +29,10 @@ import numpy as np
 from pamkit._core import (
     EffectStage,
     ElongationTrajectory,
+    Error,
     GasMode,
     InvalidInput,
+    InvalidParameter,
     Measurement,
     SolverError,
     inflated_and_sealed,
@@ -99,7 +101,9 @@ class Separation:
     # the two models' measurements on that variant, in `between`'s order (the report's figure)
     predictions: tuple[Measurement, Measurement] | None = field(default=None, repr=False)
     # "tie": neither could be named (decide.py, rule 6); "confirm": the first is named, the second
-    # explains nearly as much (decide.close_rival), and the test would confirm the first
+    # explains nearly as much (decide.close_rival), and the test would confirm the first; "check":
+    # the first, an instrument's error the data did not need (decide.unfounded), against the
+    # calibrated baseline (the second), and the test would show whether it is there
     purpose: str = "tie"
 
     @property
@@ -143,22 +147,28 @@ class Separation:
         }
 
 
+def _steady_reading(fit: Fit, gauge_Pa: float, ambient_K: float) -> Measurement:
+    """What the fit's instruments read of a muscle at rest, unloaded, at gauge pressure `gauge_Pa`:
+    two readings a second apart (an instrument's lag or skew reads a constant as it is)."""
+    m = Measurement()
+    m.time_s = [0.0, 1.0]
+    m.elongation_m = [0.0, 0.0]
+    m.force_N = [0.0, 0.0]
+    m.gauge_pressure_Pa = [gauge_Pa, gauge_Pa]
+    m.temperature_K = [ambient_K, ambient_K]
+    for effect in fit.effects:
+        if effect.stage() == EffectStage.measurement:
+            m = effect.apply_to_measurement(m)
+    return m
+
+
 def _run(problem: Problem, fit: Fit, variant: Variant) -> Measurement:
     """The fitted model's measurement on `variant` of the test."""
     predictor = problem.predictor
     params, inflation_Pa = predictor.baseline.model_params(fit.baseline_x)
+    ambient_K = params.gas.ambient_temperature_K
     if variant.zero_reading:
-        # Two readings a second apart: an instrument's lag or skew reads a constant as it is.
-        m = Measurement()
-        m.time_s = [0.0, 1.0]
-        m.elongation_m = [0.0, 0.0]
-        m.force_N = [0.0, 0.0]
-        m.gauge_pressure_Pa = [0.0, 0.0]
-        m.temperature_K = [params.gas.ambient_temperature_K] * 2
-        for effect in fit.effects:
-            if effect.stage() == EffectStage.measurement:
-                m = effect.apply_to_measurement(m)
-        return m
+        return _steady_reading(fit, 0.0, ambient_K)
     motion = predictor.motion
     trajectory = ElongationTrajectory(np.asarray(motion.time_s) * variant.time_scale, motion.elongation_m)
     experiment = problem.experiment
@@ -168,8 +178,11 @@ def _run(problem: Problem, fit: Fit, variant: Variant) -> Measurement:
             params, initial_length(experiment, params), trajectory, supplied, fit.effects
         )
     if variant.pressure_share:
-        declared = experiment.inflation_gauge_pressure_Pa
-        start = inflated_and_sealed(params, inflation_Pa + variant.pressure_share * declared)
+        # The lab inflates until its transducer reads the new pressure: the reading moves by the
+        # share of the declared pressure, and the gas by that through the fit's transducer.
+        change = variant.pressure_share * experiment.inflation_gauge_pressure_Pa
+        read = [_steady_reading(fit, p, ambient_K).gauge_pressure_Pa[0] for p in (inflation_Pa, inflation_Pa + change)]
+        start = inflated_and_sealed(params, inflation_Pa + change * change / (read[1] - read[0]))
     else:
         start = predictor.initial_state(params, inflation_Pa)
     return simulate_measurement(params, start, trajectory, fit.effects, predictor.simulator)
@@ -197,7 +210,12 @@ def separating_test(problem: Problem, a: Fit, b: Fit, purpose: str = "tie") -> S
     for variant in VARIANTS:
         try:
             apart, runs = _differences(problem, a, b, variant)
-        except (InvalidInput, SolverError) as error:  # a variant beyond the braid's range or the solver's
+        except (
+            Error,
+            InvalidInput,
+            InvalidParameter,
+            SolverError,
+        ) as error:  # beyond the braid's range or the solver's
             tried[variant.key] = f"not run: {error}"
             continue
         largest = max(apart.values())
