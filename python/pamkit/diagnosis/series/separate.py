@@ -1,15 +1,18 @@
 """The test that would tell two explanations apart which this one cannot.
 
 When two candidates explain the held-out units alike (rule 6 of decide.py), naming either would be
-a guess, and the user's next question is what to measure. Each fitted model is run on a few
-variants of the test the lab can run on the same muscle and rig — inflated higher or lower (a
-supplied test: the supplied pressure raised or lowered), the same motion slower or faster, the
-instruments read with the muscle vented and unloaded (a zero run) — and the variant on which
-their predictions differ most, in units of each channel's noise, is the one to run. Model
-discrimination by the largest predicted difference (Hunter and Reiner's criterion for two rival
-models, with the noise as the yardstick), on protocols a lab changes without rebuilding anything.
-Run, that test is diagnosed beside this one as a campaign (series/campaign.py), which carries both
-candidates of the tie to each test and names the one that holds on both.
+a guess, and the user's next question is what to measure; so too when a cause is named only
+narrowly ahead of a rival (decide.close_rival: to confirm it), and when an instrument's error was
+refused as not needed (decide.unfounded: to check for it, against the model without it). Each
+fitted model is run on a few variants of the test the lab can run on the same muscle and rig —
+inflated higher or lower (a supplied test: the supplied pressure raised or lowered), the same
+motion slower or faster, the instruments read with the muscle vented and unloaded (a zero run) —
+and the variant on which their predictions differ most, in units of each channel's noise, is the
+one to run. Model discrimination by the largest predicted difference (Hunter and Reiner's
+criterion for two rival models, with the noise as the yardstick), on protocols a lab changes
+without rebuilding anything. Run, that test is diagnosed beside this one as a campaign
+(series/campaign.py), which carries both candidates to each test and names the one that holds on
+both.
 
 Why these variants: the catalog's effects that tie on one test differ in how they scale. A dead
 volume changes the gas's relative pressure swing whatever the pressure; stretching fibres
@@ -46,6 +49,9 @@ from pamkit.io.columns import file_unit, value_from_si
 from pamkit.simulation import initial_length
 
 PRESSURE = "gauge_pressure_Pa"
+# What a variant the model cannot run raises: a length beyond the braid's range, a pressure it
+# cannot inflate to, a solver that fails.
+RUN_FAILURES = (Error, InvalidInput, InvalidParameter, SolverError)
 
 # A variant separates two models when they differ on a channel by this many times its noise (RMS
 # over the run): the difference the "none" rule reads as structure left, so that the model which
@@ -58,9 +64,9 @@ class Variant:
     """A test the lab can run on the same muscle and rig instead of this one."""
 
     key: str
-    # a sealed test: added to the calibrated inflation gauge pressure, as a share of the declared
-    # one, the muscle then inflated freely and sealed (the thesis's protocol); a supplied test: the
-    # supplied pressure raised or lowered by this share at every sample
+    # a sealed test: the inflation raised until the transducer reads this share of the declared
+    # pressure more, the muscle inflated freely and sealed (the thesis's protocol); a supplied
+    # test: the supplied pressure raised or lowered by this share at every sample
     pressure_share: float = 0.0
     time_scale: float = 1.0  # the motion's times multiplied by this (10: ten times slower)
     zero_reading: bool = False  # the instruments read a vented, unloaded muscle at ambient
@@ -182,6 +188,8 @@ def _run(problem: Problem, fit: Fit, variant: Variant) -> Measurement:
         # share of the declared pressure, and the gas by that through the fit's transducer.
         change = variant.pressure_share * experiment.inflation_gauge_pressure_Pa
         read = [_steady_reading(fit, p, ambient_K).gauge_pressure_Pa[0] for p in (inflation_Pa, inflation_Pa + change)]
+        if not (read[1] - read[0]) / change > 0.0:
+            raise InvalidInput(f"the fit's transducer reads {read[0]:.6g} Pa at both pressures")
         start = inflated_and_sealed(params, inflation_Pa + change * change / (read[1] - read[0]))
     else:
         start = predictor.initial_state(params, inflation_Pa)
@@ -201,7 +209,8 @@ def _differences(problem: Problem, a: Fit, b: Fit, variant: Variant):
 
 def separating_test(problem: Problem, a: Fit, b: Fit, purpose: str = "tie") -> Separation:
     """The variant of the test on which fits `a` and `b` differ most (see the module docstring),
-    for a tie or to confirm `a` against a close `b` (`purpose`)."""
+    for a tie, to confirm `a` against a close `b`, or to check for `a` against `b`, the model
+    without it (`purpose`)."""
     experiment = problem.experiment
     declared = experiment.inflation_gauge_pressure_Pa if experiment.gas == GasMode.sealed else None
     here, _ = _differences(problem, a, b, AS_RUN)
@@ -210,12 +219,7 @@ def separating_test(problem: Problem, a: Fit, b: Fit, purpose: str = "tie") -> S
     for variant in VARIANTS:
         try:
             apart, runs = _differences(problem, a, b, variant)
-        except (
-            Error,
-            InvalidInput,
-            InvalidParameter,
-            SolverError,
-        ) as error:  # beyond the braid's range or the solver's
+        except RUN_FAILURES as error:
             tried[variant.key] = f"not run: {error}"
             continue
         largest = max(apart.values())
