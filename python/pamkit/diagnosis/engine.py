@@ -194,8 +194,56 @@ def _add_cause(
             causes=[Cause(alone.fit.name, alone, alone.score)],
             left_structure=left,
         )
+    other = _other_first(problem, baseline, single, best, alone, judged, factories, seed, report)
+    if other is not None:
+        rival, pair = other
+        causes = [Cause(rival.fit.name, rival, rival.score), pair]
+        return replace(
+            decision,
+            cause=rival.fit.effects[0].name(),
+            causes=causes,
+            left_structure=structured(problem, pair.judgement.fit, NONE_WITHIN_NOISE),
+        )
     causes = [*decision.causes, best]
     return replace(decision, causes=causes, left_structure=structured(problem, best.judgement.fit, NONE_WITHIN_NOISE))
+
+
+def _other_first(problem, baseline, single, best, alone, judged, factories, seed, report):
+    """The first cause's nearest rival beside the second: alone the first may have won by taking a
+    part of what the second explains (compliant fibres absorbing a load cell's curvature, where the
+    truth is a dead volume). The significant, credible candidate behind the first that explains
+    most is fitted with the same second; if that pair explains the held-out units significantly
+    better on the same draws, with the second still gaining on its own beside it and the rival
+    beside the second, and every parameter credible, the rival leads in the first's place:
+    (the rival, the pair as a Cause), else None."""
+    second = best.judgement.fit.effects[1].name()
+    rivals = [
+        j
+        for j in judged
+        if j is not single
+        and j is not alone
+        and j.significant
+        and j.credible
+        and len(j.fit.effects) == 1
+        and j.fit.effects[0].name() != second
+    ]
+    if not rivals:
+        return None
+    rival = rivals[0]  # judged is sorted by held-out gain
+    label = f"{rival.fit.name}+{best.label}"
+    pair = fit_pair(problem, rival.fit, factories[rival.fit.name], factories[best.label], label)
+    if pair.error is not None:
+        return None
+    candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
+    low = float(np.percentile(candidate.score.combined_samples - best.judgement.score.combined_samples, 2.5))
+    if not (candidate.credible and low > 0.0):
+        return None
+    own = score(problem, rival.fit, pair, np.random.default_rng(seed), credit=pair.effects[1:])
+    first = score(problem, alone.fit, pair, np.random.default_rng(seed), credit=rival.fit.effects)
+    if not (keeps_gain(own) and keeps_gain(first)):
+        return None
+    report(f"{label} explains the held-out units better than {best.judgement.fit.name}: {rival.fit.name} leads")
+    return rival, Cause(best.label, candidate, own)
 
 
 def _reads_explained(problem: Problem, baseline: Fit, decision: Decision) -> Decision:

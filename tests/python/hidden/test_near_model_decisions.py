@@ -28,7 +28,7 @@ STRENGTHS = ("medium", "strong")
 NULLS = (("null", 1), ("null", 2), ("null", 3), ("supplied_null", 1), ("supplied_null", 2))
 
 
-MIN_RIGHT = 75
+MIN_RIGHT = 78
 MAX_WRONG = 6
 
 
@@ -83,8 +83,8 @@ def lines(rows) -> str:
 def test_the_hidden_causes_are_named(world):
     rows = [r for r in world if r["hidden"]]
     right = [r for r in rows if r["hidden"] <= r["named"] and not wrong(r)]
-    # The floor: the measured rate, 84 of 108 right (78 %; bench_near_model's medium and strong
-    # strengths, seeds 1-3), less two binomial standard deviations (2 sqrt(108 * 0.78 * 0.22) = 8.6).
+    # The floor: the measured rate, 87 of 108 right (81 %; bench_near_model's medium and strong
+    # strengths, seeds 1-3), less two binomial standard deviations (2 sqrt(108 * 0.81 * 0.19) = 8.2).
     # The aim, 90 %, is not reached: docs/validation.md lists the misses (a supplied transducer's
     # offset and gain at one held length are exactly a braid wound otherwise and a membrane's scale,
     # 1 of 6; a second cause the first's fit absorbs within the noise).
@@ -106,6 +106,17 @@ def test_nulls_name_nothing(world):
         assert not r["named"], r["verdict"]
         if r["cause"] == "unexplained":
             assert r["remainder"] and r["remainder"]["channels"], r["verdict"]
+
+
+def test_a_first_cause_gives_way_where_its_rival_explains_more_beside_the_second(world):
+    # A dead volume beside a load cell's error: alone, compliant fibres may win by taking a part of
+    # the load cell's curvature. With the load cell named second, the dead volume fitted beside it
+    # explains more (0.87 against 0.85 on strong seed 2) and leads in the fibres' place
+    # (engine._other_first): the fibres are never named beside the load cell, and the dead volume
+    # is, with it, at least once (measured: once; never before).
+    rows = [r for r in world if r["name"] == "dead_volume+load_cell"]
+    assert not any({"fiber_compliance", "load_cell"} <= r["named"] for r in rows), lines(rows)
+    assert any({"dead_volume", "load_cell"} <= r["named"] for r in rows), lines(rows)
 
 
 def test_the_test_a_close_call_names_decides_it_beside_the_first(world, tmp_path, monkeypatch):
