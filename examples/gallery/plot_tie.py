@@ -26,8 +26,8 @@ print(first.verdict())
 # %%
 # The test named, and how far apart the two fitted models are there and on the test as run, in
 # units of each channel's noise.
-separation = first.to_dict()["separation"]
-separation["test"], separation["difference_over_noise"], separation["here_over_noise"]
+separation = first.separation
+separation["purpose"], separation["test"], separation["difference_over_noise"], separation["here_over_noise"]
 
 # %%
 # The figure's last row: the two models on that test.

@@ -201,6 +201,17 @@ class Report:
         return rows.dropna(axis=1, how="all")  # the other candidates' parameters
 
     @property
+    def separation(self) -> dict[str, Any] | None:
+        """The test that would tell apart what this one could not, or None (a copy of the
+        document's ``separation``): its ``purpose`` (``tie``: two candidates explain the data
+        alike; ``confirm``: the cause named is only narrowly ahead of ``between[1]``; ``check``: an
+        instrument's error the data did not need), ``between`` (the two models), ``test`` (the
+        variant, in SI) and how far apart the two models are there and on this test, over each
+        channel's noise. A time series' report only."""
+        value = self._data.get("separation")
+        return copy.deepcopy(value) if value else None
+
+    @property
     def channels_summary(self) -> pd.DataFrame:
         """One row per channel: the noise, the calibrated baseline's and the extended model's
         held-out RMSE (in the channel's unit), the gain and its 95 % interval, where the

@@ -11,6 +11,7 @@ import pytest
 import tomllib
 from conftest import SOURCE_DIR
 
+from pamkit import Report
 from pamkit.diagnosis import diagnose, to_json, verdict
 from pamkit.diagnosis.series.decide import Cause
 from pamkit.diagnosis.series.separate import AS_RUN, SEPARATES, VARIANTS, _run, separating_test
@@ -98,6 +99,7 @@ def test_the_test_named_for_a_tie_decides_for_the_cause_that_is_there(dead_volum
         # The verdict says it in the file's units, the JSON in SI.
         assert "inflated freely to" in verdict(d) and "kPa and sealed" in verdict(d)
         assert to_json(d)["separation"]["test"]["inflation_gauge_pressure_Pa"] > 0.0
+        assert Report(to_json(d)).separation == to_json(d)["separation"]
     assert ties >= 4, ties  # measured: 5 of 6 (seed 3 leaves structure that neither explains)
 
 
