@@ -352,12 +352,15 @@ def _over_noise(ratios: dict[str, float], channels: list[str]) -> str:
 
 
 def _separation_phrase(d: Diagnosis) -> str:
-    """What would tell a tie apart (separate.py): the test, and how far apart the two fits are on
-    it and on this one."""
+    """What would tell apart what this test could not (separate.py): a tie's two candidates, a
+    cause and its close rival, or an instrument's unneeded error and the model without it; the
+    test, and how far apart the two models are there and on this test."""
     s = d.separation
     if s is None:
         return ""
     a, b = s.between
+    shown = sorted((c for c in s.apart if s.apart[c] >= SEPARATES), key=lambda c: -s.apart[c])[:2]
+    apart = f"{_over_noise(s.apart, shown)} (RMS; here {_over_noise(s.here, shown)})"
     if s.purpose == "confirm":
         lead = d.decision.causes[0].judgement
         close = (
@@ -366,30 +369,18 @@ def _separation_phrase(d: Diagnosis) -> str:
         )
         if not s.separates:
             return close + " and no other test pamkit tried tells them apart"
-        shown = sorted((c for c in s.apart if s.apart[c] >= SEPARATES), key=lambda c: -s.apart[c])[:2]
-        return (
-            f"{close}: to confirm {a}, {s.test_phrase()}, where their predictions differ by "
-            f"{_over_noise(s.apart, shown)} (RMS; here {_over_noise(s.here, shown)})"
-        )
+        return f"{close}: to confirm {a}, {s.test_phrase()}, where their predictions differ by {apart}"
     if s.purpose == "check":
         if not s.separates:
             return f"; no test pamkit tried would show whether {a} is there"
-        shown = sorted((c for c in s.apart if s.apart[c] >= SEPARATES), key=lambda c: -s.apart[c])[:2]
-        return (
-            f"; to check for {a}: {s.test_phrase()}, where the model with it and without it differ by "
-            f"{_over_noise(s.apart, shown)} (RMS; here {_over_noise(s.here, shown)})"
-        )
+        return f"; to check for {a}: {s.test_phrase()}, where the model with it and without it differ by {apart}"
     if not s.separates:
         largest = max((v for v in s.tried.values() if isinstance(v, float)), default=0.0)
         return (
             f"; no other test pamkit tried tells {a} from {b} (their predictions differ by at most {largest:.1f}x "
             "the noise)"
         )
-    shown = sorted((c for c in s.apart if s.apart[c] >= SEPARATES), key=lambda c: -s.apart[c])[:2]
-    return (
-        f"; to tell {a} from {b}: {s.test_phrase()}, where their predictions differ by "
-        f"{_over_noise(s.apart, shown)} (RMS; here {_over_noise(s.here, shown)})"
-    )
+    return f"; to tell {a} from {b}: {s.test_phrase()}, where their predictions differ by {apart}"
 
 
 def _gain_with_interval(gain: float, interval) -> str:
