@@ -10,7 +10,6 @@ import math
 import os
 import time as clock
 import warnings as python_warnings
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 from pathlib import Path
 
@@ -18,34 +17,21 @@ import numpy as np
 
 from pamkit._core import EffectCatalog, EffectStage, GasMode
 from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
-from pamkit.diagnosis.series.calibrate import Fit, fit_baseline, one_blas_thread
+from pamkit.diagnosis.series.calibrate import Fit, fit_baseline, one_blas_thread, thread_pool
 from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
-from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate, fit_pair
-from pamkit.diagnosis.series.decide import (
-    PAIR_PARTNERS,
-    PAIR_TRIGGER,
-    Cause,
-    Decision,
-    Judgement,
-    decide,
-    judge,
-    keeps_gain,
-    noise_ratios,
-    reads_left,
-    stands_out,
-    structured,
-    unfounded,
-)
+from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate
+from pamkit.diagnosis.series.causes import add_cause, reads_explained
+from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, judge, noise_ratios, structured
 from pamkit.diagnosis.series.findings import baseline_findings
 from pamkit.diagnosis.series.joint import check_one_muscle
 from pamkit.diagnosis.series.kinds import Problem, build_problem
 from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.diagnosis.series.score import score
 from pamkit.diagnosis.series.separate import separating_test
-from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
+from pamkit.diagnosis.significance import MIN_GAIN
 from pamkit.diagnosis.tables.engine import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.columns import OPTIONAL_COLUMNS
+from pamkit.io.columns import COLUMN_UNITS, OPTIONAL_COLUMNS
 from pamkit.io.experiment import Experiment, load_tests
 from pamkit.io.guards import ExperimentError
 
@@ -94,10 +80,6 @@ def data_seed(problem: Problem) -> int:
     return int.from_bytes(digest.digest()[:8], "little")
 
 
-def _pool(threads: int | None) -> ThreadPoolExecutor:
-    return ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1)
-
-
 def _better(refit: Judgement, fit: Judgement) -> bool:
     """Whether a measurement effect's refit with the baseline free replaces its fit on the
     calibrated baseline: when it explains more, unless it is the refit alone that cannot be named
@@ -105,168 +87,6 @@ def _better(refit: Judgement, fit: Judgement) -> bool:
     if fit.significant and fit.credible and not refit.credible:
         return False
     return refit.score.combined_gain > fit.score.combined_gain
-
-
-def _partners(problem: Problem, baseline: Fit, single: Judgement, others: list[Judgement]) -> list[Judgement]:
-    """The PAIR_PARTNERS candidates most likely to explain what `single` leaves: each candidate's
-    change of the prediction (its fit against the calibrated baseline) projected on that remainder,
-    on the fitted units, every channel in units of its noise — the share of the remainder a step of
-    it would take. Credible alone or not, significant alone or not: beside a first cause one may
-    be what it could not be alone (a slow leak under a logger's time skew that dwarfs it; a pressure
-    offset whose channel did not stand out from a heat exchange's misfit). The pair is judged."""
-    mask = problem.fit_mask
-
-    def stacked(values):
-        return np.concatenate([values[c][mask] / problem.sigma[c] for c in problem.channels])
-
-    left = stacked({c: problem.measured[c] - single.fit.predicted[c] for c in problem.channels})
-    shares = []
-    for j in others:
-        change = stacked({c: j.fit.predicted[c] - baseline.predicted[c] for c in problem.channels})
-        size = float(change @ change)
-        shares.append((float(change @ left) ** 2 / size / float(left @ left)) if size > 0 else 0.0)
-    order = np.argsort(shares)[::-1]
-    return [others[i] for i in order[:PAIR_PARTNERS] if shares[i] > 0.0]
-
-
-def _add_cause(
-    problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, threads, report
-) -> Decision:
-    """The causes named leave structure: try the next candidates beside them, and add the one that
-    gains most, if it gains significantly on its own channels over the causes alone (rule 6 of
-    docs/diagnosis.md) with every parameter of the pair credible. A real rig has more than one thing
-    wrong; what no partner explains stays the remainder."""
-    single = decision.causes[-1].judgement
-    taken = {e.name() for e in single.fit.effects}
-    partners = _partners(problem, baseline, single, [j for j in judged if j.fit.effects[0].name() not in taken])
-    if not partners:
-        return decision
-    report(
-        f"{single.fit.name} leaves {', '.join(structured(problem, single.fit, PAIR_TRIGGER))} above noise: "
-        f"trying it with {', '.join(p.fit.name for p in partners)}"
-    )
-    best: Cause | None = None
-    alone: Judgement | None = None  # the partner of `best` fitted alone
-    with _pool(threads) as pool:
-        futures = [
-            (
-                p,
-                pool.submit(
-                    fit_pair,
-                    problem,
-                    single.fit,
-                    factories[single.fit.name],
-                    factories[p.fit.name],
-                    f"{single.fit.name}+{p.fit.name}",
-                ),
-            )
-            for p in partners
-        ]
-        for partner, future in futures:
-            pair = future.result()
-            if pair.error is not None:
-                continue
-            own = score(problem, single.fit, pair, np.random.default_rng(seed), credit=pair.effects[1:])
-            candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
-            # The second's own channels, beside the first, must stand out from what the base model
-            # leaves on the channels it cannot change, as a single cause's must (decide.stands_out).
-            if (
-                keeps_gain(own)
-                and not stands_out(problem, single.fit, own, pair.effects[1:])
-                and not unfounded(problem, single.fit, pair.effects[1:])
-                and candidate.credible
-                and (best is None or candidate.score.combined_gain > best.judgement.score.combined_gain)
-            ):
-                best, alone = Cause(partner.fit.name, candidate, own), partner
-    if best is None:
-        return decision
-    # Each cause must gain on its own beside the other: the first may have been standing in for the
-    # second (a load cell's offset for a viscoelastic bladder's hysteresis), which then leads alone.
-    first = score(problem, alone.fit, best.judgement.fit, np.random.default_rng(seed), credit=single.fit.effects)
-    if not keeps_gain(first):
-        if not (alone.significant and alone.credible):
-            return decision  # the pair's second cannot be named alone, nor the first beside it
-        report(f"{single.fit.name} adds nothing significant beside {alone.fit.name}: {alone.fit.name} leads alone")
-        left = structured(problem, alone.fit, NONE_WITHIN_NOISE)
-        return replace(
-            decision,
-            cause=alone.fit.effects[0].name(),
-            causes=[Cause(alone.fit.name, alone, alone.score)],
-            left_structure=left,
-        )
-    other = _other_first(problem, baseline, single, best, alone, judged, factories, seed, report)
-    if other is not None:
-        rival, pair = other
-        causes = [Cause(rival.fit.name, rival, rival.score), pair]
-        return replace(
-            decision,
-            cause=rival.fit.effects[0].name(),
-            causes=causes,
-            left_structure=structured(problem, pair.judgement.fit, NONE_WITHIN_NOISE),
-        )
-    causes = [*decision.causes, best]
-    return replace(decision, causes=causes, left_structure=structured(problem, best.judgement.fit, NONE_WITHIN_NOISE))
-
-
-def _other_first(problem, baseline, single, best, alone, judged, factories, seed, report):
-    """The first cause's nearest rival beside the second: alone the first may have won by taking a
-    part of what the second explains (compliant fibres absorbing a load cell's curvature, where the
-    truth is a dead volume). The significant, credible candidate behind the first that explains
-    most is fitted with the same second; if that pair explains the held-out units significantly
-    better on the same draws, with the second still gaining on its own beside it and the rival
-    beside the second, and every parameter credible, the rival leads in the first's place:
-    (the rival, the pair as a Cause), else None."""
-    second = best.judgement.fit.effects[1].name()
-    rivals = [
-        j
-        for j in judged
-        if j is not single
-        and j is not alone
-        and j.significant
-        and j.credible
-        and len(j.fit.effects) == 1
-        and j.fit.effects[0].name() != second
-    ]
-    if not rivals:
-        return None
-    rival = rivals[0]  # judged is sorted by held-out gain
-    label = f"{rival.fit.name}+{best.label}"
-    pair = fit_pair(problem, rival.fit, factories[rival.fit.name], factories[best.label], label)
-    if pair.error is not None:
-        return None
-    candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
-    low = float(np.percentile(candidate.score.combined_samples - best.judgement.score.combined_samples, 2.5))
-    if not (candidate.credible and low > 0.0):
-        return None
-    own = score(problem, rival.fit, pair, np.random.default_rng(seed), credit=pair.effects[1:])
-    first = score(problem, alone.fit, pair, np.random.default_rng(seed), credit=rival.fit.effects)
-    if not (keeps_gain(own) and keeps_gain(first)):
-        return None
-    report(f"{label} explains the held-out units better than {best.judgement.fit.name}: {rival.fit.name} leads")
-    return rival, Cause(best.label, candidate, own)
-
-
-def _reads_explained(problem: Problem, baseline: Fit, decision: Decision) -> Decision:
-    """The causes less an instrument that reads off whose channel the causes named leave structured
-    (decide.reads_left). A second cause is dropped from the causes; a leading one carries the
-    objection, and none is left (the decision is to be taken again)."""
-    final = decision.named.fit
-    for k, cause in enumerate(decision.causes):
-        effects = cause.judgement.fit.effects[k:] if k else cause.judgement.fit.effects[:1]
-        why = reads_left(problem, final, effects)
-        if not why:
-            continue
-        if k:
-            kept = decision.causes[:k]
-            return replace(
-                decision, causes=kept, left_structure=structured(problem, kept[-1].judgement.fit, NONE_WITHIN_NOISE)
-            )
-        cause.judgement.objections += why
-        return replace(decision, causes=[])
-    return decision
-
-
-CHANNEL_UNITS = {"force_N": "N", "gauge_pressure_Pa": "Pa", "temperature_K": "K"}  # as the report prints them
 
 
 def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
@@ -305,7 +125,7 @@ def discover_remainder(problem: Problem, fit: Fit, seed: int) -> dict:
             problem.held_mask,
             problem.half_cycle,
             channel,
-            CHANNEL_UNITS[channel],
+            COLUMN_UNITS[channel],
             seed=seed % 2**32,
         )
     except DiscoveryError as error:
@@ -399,7 +219,7 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     phase = clock.perf_counter()
     report(f"fitting {len(todo)} candidate effects, {threads or os.cpu_count() or 1} at a time")
     factories = dict(todo)
-    with _pool(threads) as pool:
+    with thread_pool(threads) as pool:
         futures = [
             (label, pool.submit(fit_candidate, problem, baseline, factory, label, screen=True))
             for label, factory in todo
@@ -429,7 +249,7 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     leaders = measurement[:REFIT_LEADERS]
     if leaders:
         report(f"refitting {', '.join(judged[i].fit.name for i in leaders)} with the baseline")
-        with _pool(threads) as pool:
+        with thread_pool(threads) as pool:
             refits = {
                 i: pool.submit(
                     fit_candidate, problem, baseline, factories[judged[i].fit.name], judged[i].fit.name, judged[i].fit
@@ -449,8 +269,8 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     decision = decide(problem, baseline, judged)
     while decision.causes:
         if structured(problem, decision.named.fit, PAIR_TRIGGER):
-            decision = _add_cause(problem, baseline, decision, judged, factories, seed, threads, report)
-        checked = _reads_explained(problem, baseline, decision)
+            decision = add_cause(problem, baseline, decision, judged, factories, seed, threads, report)
+        checked = reads_explained(problem, baseline, decision)
         if checked.causes:
             decision = checked
             break
@@ -525,7 +345,7 @@ def _diagnose_series_campaign(tests: list[Experiment], effect_catalog, progress,
         # Two tests report at once: each line says whose it is.
         return diagnose(test, effect_catalog, lambda message: report(f"{test.path.name}: {message}"), 1, seed)
 
-    with ThreadPoolExecutor(max_workers=workers) as pool:
+    with thread_pool(workers) as pool:
         diagnoses = list(pool.map(one, enumerate(tests, start=1)))
     if len(diagnoses) < MIN_TESTS:
         raise ExperimentError(f"{tests[0].path}: a campaign needs at least {MIN_TESTS} tests")

@@ -112,7 +112,7 @@ def test_a_first_cause_gives_way_where_its_rival_explains_more_beside_the_second
     # A dead volume beside a load cell's error: alone, compliant fibres may win by taking a part of
     # the load cell's curvature. With the load cell named second, the dead volume fitted beside it
     # explains more (0.87 against 0.85 on strong seed 2) and leads in the fibres' place
-    # (engine._other_first): the fibres are never named beside the load cell, and the dead volume
+    # (series/causes.py, _other_first): the fibres are never named beside the load cell, and the dead volume
     # is, with it, at least once (measured: once; never before).
     rows = [r for r in world if r["name"] == "dead_volume+load_cell"]
     assert not any({"fiber_compliance", "load_cell"} <= r["named"] for r in rows), lines(rows)

@@ -5,6 +5,8 @@ least-squares machinery every fit shares."""
 from __future__ import annotations
 
 import functools
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -48,6 +50,11 @@ class Fit:
     # d chi / du on the fitted units at the solution, in the search box's unit coordinates (the
     # calibrated baseline's: a candidate's screening step starts from it)
     jacobian: np.ndarray | None = field(default=None, repr=False)
+
+
+def thread_pool(threads: int | None) -> ThreadPoolExecutor:
+    """The fits' pool: `threads` at a time, by default one per core (their runs release the GIL)."""
+    return ThreadPoolExecutor(max_workers=threads or os.cpu_count() or 1)
 
 
 def one_blas_thread():

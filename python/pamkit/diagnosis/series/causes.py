@@ -1,0 +1,187 @@
+"""More than one cause: what the causes named leave tried beside them (a second cause), the first
+cause's nearest rival fitted beside that second, and the instrument whose channel the causes leave
+structured dropped (rule 6 of docs/diagnosis.md). A real rig has more than one thing wrong."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from pamkit.diagnosis.series.calibrate import Fit, thread_pool
+from pamkit.diagnosis.series.candidates import fit_pair
+from pamkit.diagnosis.series.decide import (
+    PAIR_PARTNERS,
+    PAIR_TRIGGER,
+    Cause,
+    Decision,
+    Judgement,
+    judge,
+    keeps_gain,
+    reads_left,
+    stands_out,
+    structured,
+    unfounded,
+)
+from pamkit.diagnosis.series.kinds import Problem
+from pamkit.diagnosis.series.score import score
+from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
+
+
+def _partners(problem: Problem, baseline: Fit, single: Judgement, others: list[Judgement]) -> list[Judgement]:
+    """The PAIR_PARTNERS candidates most likely to explain what `single` leaves: each candidate's
+    change of the prediction (its fit against the calibrated baseline) projected on that remainder,
+    on the fitted units, every channel in units of its noise — the share of the remainder a step of
+    it would take. Credible alone or not, significant alone or not: beside a first cause one may
+    be what it could not be alone (a slow leak under a logger's time skew that dwarfs it; a pressure
+    offset whose channel did not stand out from a heat exchange's misfit). The pair is judged."""
+    mask = problem.fit_mask
+
+    def stacked(values):
+        return np.concatenate([values[c][mask] / problem.sigma[c] for c in problem.channels])
+
+    left = stacked({c: problem.measured[c] - single.fit.predicted[c] for c in problem.channels})
+    shares = []
+    for j in others:
+        change = stacked({c: j.fit.predicted[c] - baseline.predicted[c] for c in problem.channels})
+        size = float(change @ change)
+        shares.append((float(change @ left) ** 2 / size / float(left @ left)) if size > 0 else 0.0)
+    order = np.argsort(shares)[::-1]
+    return [others[i] for i in order[:PAIR_PARTNERS] if shares[i] > 0.0]
+
+
+def add_cause(
+    problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, threads, report
+) -> Decision:
+    """The causes named leave structure: try the next candidates beside them, and add the one that
+    gains most, if it gains significantly on its own channels over the causes alone (rule 6 of
+    docs/diagnosis.md) with every parameter of the pair credible. A real rig has more than one thing
+    wrong; what no partner explains stays the remainder."""
+    single = decision.causes[-1].judgement
+    taken = {e.name() for e in single.fit.effects}
+    partners = _partners(problem, baseline, single, [j for j in judged if j.fit.effects[0].name() not in taken])
+    if not partners:
+        return decision
+    report(
+        f"{single.fit.name} leaves {', '.join(structured(problem, single.fit, PAIR_TRIGGER))} above noise: "
+        f"trying it with {', '.join(p.fit.name for p in partners)}"
+    )
+    best: Cause | None = None
+    alone: Judgement | None = None  # the partner of `best` fitted alone
+    with thread_pool(threads) as pool:
+        futures = [
+            (
+                p,
+                pool.submit(
+                    fit_pair,
+                    problem,
+                    single.fit,
+                    factories[single.fit.name],
+                    factories[p.fit.name],
+                    f"{single.fit.name}+{p.fit.name}",
+                ),
+            )
+            for p in partners
+        ]
+        for partner, future in futures:
+            pair = future.result()
+            if pair.error is not None:
+                continue
+            own = score(problem, single.fit, pair, np.random.default_rng(seed), credit=pair.effects[1:])
+            candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
+            # The second's own channels, beside the first, must stand out from what the base model
+            # leaves on the channels it cannot change, as a single cause's must (decide.stands_out).
+            if (
+                keeps_gain(own)
+                and not stands_out(problem, single.fit, own, pair.effects[1:])
+                and not unfounded(problem, single.fit, pair.effects[1:])
+                and candidate.credible
+                and (best is None or candidate.score.combined_gain > best.judgement.score.combined_gain)
+            ):
+                best, alone = Cause(partner.fit.name, candidate, own), partner
+    if best is None:
+        return decision
+    # Each cause must gain on its own beside the other: the first may have been standing in for the
+    # second (a load cell's offset for a viscoelastic bladder's hysteresis), which then leads alone.
+    first = score(problem, alone.fit, best.judgement.fit, np.random.default_rng(seed), credit=single.fit.effects)
+    if not keeps_gain(first):
+        if not (alone.significant and alone.credible):
+            return decision  # the pair's second cannot be named alone, nor the first beside it
+        report(f"{single.fit.name} adds nothing significant beside {alone.fit.name}: {alone.fit.name} leads alone")
+        left = structured(problem, alone.fit, NONE_WITHIN_NOISE)
+        return replace(
+            decision,
+            cause=alone.fit.effects[0].name(),
+            causes=[Cause(alone.fit.name, alone, alone.score)],
+            left_structure=left,
+        )
+    other = _other_first(problem, baseline, single, best, alone, judged, factories, seed, report)
+    if other is not None:
+        rival, pair = other
+        causes = [Cause(rival.fit.name, rival, rival.score), pair]
+        return replace(
+            decision,
+            cause=rival.fit.effects[0].name(),
+            causes=causes,
+            left_structure=structured(problem, pair.judgement.fit, NONE_WITHIN_NOISE),
+        )
+    causes = [*decision.causes, best]
+    return replace(decision, causes=causes, left_structure=structured(problem, best.judgement.fit, NONE_WITHIN_NOISE))
+
+
+def _other_first(problem, baseline, single, best, alone, judged, factories, seed, report):
+    """The first cause's nearest rival beside the second: alone the first may have won by taking a
+    part of what the second explains (compliant fibres absorbing a load cell's curvature, where the
+    truth is a dead volume). The significant, credible candidate behind the first that explains
+    most is fitted with the same second; if that pair explains the held-out units significantly
+    better on the same draws, with the second still gaining on its own beside it and the rival
+    beside the second, and every parameter credible, the rival leads in the first's place:
+    (the rival, the pair as a Cause), else None."""
+    second = best.judgement.fit.effects[1].name()
+    rivals = [
+        j
+        for j in judged
+        if j is not single
+        and j is not alone
+        and j.significant
+        and j.credible
+        and len(j.fit.effects) == 1
+        and j.fit.effects[0].name() != second
+    ]
+    if not rivals:
+        return None
+    rival = rivals[0]  # judged is sorted by held-out gain
+    label = f"{rival.fit.name}+{best.label}"
+    pair = fit_pair(problem, rival.fit, factories[rival.fit.name], factories[best.label], label)
+    if pair.error is not None:
+        return None
+    candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
+    low = float(np.percentile(candidate.score.combined_samples - best.judgement.score.combined_samples, 2.5))
+    if not (candidate.credible and low > 0.0):
+        return None
+    own = score(problem, rival.fit, pair, np.random.default_rng(seed), credit=pair.effects[1:])
+    first = score(problem, alone.fit, pair, np.random.default_rng(seed), credit=rival.fit.effects)
+    if not (keeps_gain(own) and keeps_gain(first)):
+        return None
+    report(f"{label} explains the held-out units better than {best.judgement.fit.name}: {rival.fit.name} leads")
+    return rival, Cause(best.label, candidate, own)
+
+
+def reads_explained(problem: Problem, baseline: Fit, decision: Decision) -> Decision:
+    """The causes less an instrument that reads off whose channel the causes named leave structured
+    (decide.reads_left). A second cause is dropped from the causes; a leading one carries the
+    objection, and none is left (the decision is to be taken again)."""
+    final = decision.named.fit
+    for k, cause in enumerate(decision.causes):
+        effects = cause.judgement.fit.effects[k:] if k else cause.judgement.fit.effects[:1]
+        why = reads_left(problem, final, effects)
+        if not why:
+            continue
+        if k:
+            kept = decision.causes[:k]
+            return replace(
+                decision, causes=kept, left_structure=structured(problem, kept[-1].judgement.fit, NONE_WITHIN_NOISE)
+            )
+        cause.judgement.objections += why
+        return replace(decision, causes=[])
+    return decision
