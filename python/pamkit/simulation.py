@@ -257,13 +257,24 @@ def simulate_table(
     pressure = experiment.columns["gauge_pressure_Pa"][rows]
     try:
         if experiment.kind == "isometric_map":
-            # Each held length is its own record: its rows, in the order measured, give the
-            # pressurise/vent branch (a map laid out length by length starts each one low).
+            # Each held length is its own record: all its rows, in the order measured, give the
+            # pressurise/vent branch and the friction's memory (a map laid out length by length
+            # starts each one low), whichever of them are asked for.
+            every = np.round(experiment.columns["length_m"], 9)
             length = experiment.columns["length_m"][rows]
             force = np.empty(len(rows))
-            for held in np.unique(np.round(length, 9)):
-                at = np.flatnonzero(np.round(length, 9) == held)
-                force[at] = static_forces(params, length[at], pressure[at], list(effects))
+            for held in np.unique(every[rows]):
+                record = np.flatnonzero(every == held)
+                on_record = np.full(len(every), -1)
+                on_record[record] = np.arange(len(record))
+                at = np.flatnonzero(every[rows] == held)
+                path = static_forces(
+                    params,
+                    experiment.columns["length_m"][record],
+                    experiment.columns["gauge_pressure_Pa"][record],
+                    list(effects),
+                )
+                force[at] = np.asarray(path)[on_record[rows[at]]]
             return {"length_m": length, "gauge_pressure_Pa": pressure, "force_N": experiment.read("force_N", force)}
         if experiment.kind == "isotonic":
             load = experiment.load_N if load_N is None else load_N

@@ -167,9 +167,26 @@ def test_a_nonlinear_load_cell_is_no_catalog_effect_and_is_discovered(tmp_path):
     assert found["terms"][0]["name"] == "y"  # the largest term: the channel's own scale
 
 
-def test_a_map_at_two_lengths_cannot_hold_one_out(tmp_path):
+def test_a_map_at_too_few_lengths_holds_out_parts_of_its_pressure_runs(tmp_path):
+    # Two held lengths, each pressurised once: two groups cannot judge a model, so the first and
+    # second half of each run's rows are held out in turn. The truth has no catalog
+    # effect and the independent model is within the base model's reach: nothing is named.
     toml = write_map(tmp_path, lengths_m=[0.25, 0.24], pressures_kPa=np.arange(100, 651, 50), seed=3, **TRUTH)
-    with pytest.raises(ExperimentError, match="2 held length.*at least 3"):
+    d = diagnose(toml, threads=2)
+    assert d.campaign.group_labels == [  # in the order measured
+        "L=0.25 pressurising 1, first half",
+        "L=0.25 pressurising 1, second half",
+        "L=0.24 pressurising 1, first half",
+        "L=0.24 pressurising 1, second half",
+    ]
+    assert d.cause == "none", verdict(d)
+
+
+def test_a_map_too_short_to_split_is_refused_with_what_to_measure(tmp_path):
+    toml = write_map(tmp_path, lengths_m=[0.25], pressures_kPa=[300.0, 600.0], seed=3, **TRUTH)
+    with pytest.raises(
+        ExperimentError, match=r"2 half pressure run\(s\); holding out needs at least 3.*more held lengths"
+    ):
         diagnose(toml)
 
 

@@ -31,16 +31,13 @@ from pamkit.diagnosis.coordinates import findings
 from pamkit.diagnosis.significance import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
 from pamkit.diagnosis.tables.discover import discover_table
 from pamkit.diagnosis.tables.fit import Fitter, TableFit, TableModel, fit_table, heldout_rmse
-from pamkit.diagnosis.tables.kinds import Campaign, beyond_reach, campaign_of, noise_of
+from pamkit.diagnosis.tables.kinds import MIN_GROUPS, Campaign, beyond_reach, campaign_of, noise_of
 from pamkit.diagnosis.tables.remainder import where_left
 from pamkit.effects import catalog as builtin_catalog
 from pamkit.io.experiment import Experiment, test_names
 from pamkit.io.guards import ExperimentError
 
 CHANNEL_UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
-# Fewer held-out groups than this cannot say whether a model carries beyond its fitted rows.
-MIN_GROUPS = 3
-
 
 @dataclass
 class TableCandidate:
@@ -231,7 +228,11 @@ def diagnose_table(
     used = ~campaign.censored
     labels = np.unique(groups[used])
     if len(labels) < MIN_GROUPS:
-        what = "measure the map at more held lengths" if campaign.kind == "isometric_map" else "add rows"
+        what = (
+            "measure the map at more held lengths, or pressurise and vent it again"
+            if campaign.kind == "isometric_map"
+            else "add rows"
+        )
         raise ExperimentError(
             f"{campaign.name}: {len(labels)} {group_name}(s); holding out needs at least {MIN_GROUPS} ({what})"
         )

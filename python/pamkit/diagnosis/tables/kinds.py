@@ -37,6 +37,11 @@ PREDICTED = {
 }
 # What each kind holds out.
 GROUP_NAMES = {"isometric_map": "held length", "isotonic": "sweep", "free_inflation": "row", CYCLIC: "cycle"}
+# What a map held at fewer than MIN_GROUPS lengths holds out instead: its pressure runs, and
+# with too few of those, their halves.
+RUN_NAMES = ("pressure run", "half pressure run")
+# Fewer held-out groups than this cannot say whether a model carries beyond its fitted rows.
+MIN_GROUPS = 3
 
 
 def kind_of(experiment: Experiment) -> str:
@@ -97,6 +102,40 @@ class Campaign:
         return campaign_of([e for e in self.experiments if kind_of(e) == kind])
 
 
+def pressure_runs(gauge_pressure_Pa: np.ndarray) -> list[tuple[np.ndarray, bool, int]]:
+    """The record's pressurising and venting runs (pressure_branches): each run's rows, whether
+    the pressure rises along it, and its number among the runs of its direction."""
+    branch = np.asarray(pressure_branches(gauge_pressure_Pa))
+    run = np.concatenate([[0], np.cumsum(branch[1:] != branch[:-1])])
+    out, count = [], {True: 0, False: 0}
+    for number in np.unique(run):
+        rising = bool(branch[run == number][0] > 0)
+        count[rising] += 1
+        out.append((np.flatnonzero(run == number), rising, count[rising]))
+    return out
+
+
+def map_groups(experiment: Experiment) -> tuple[str, list[tuple[np.ndarray, str]]]:
+    """What an isometric map holds out (its unit's name, and each group's rows and label): its
+    held lengths; with fewer than MIN_GROUPS, each pressurising or venting run at each; with
+    fewer of those, the first and second half of each run's rows."""
+    lengths = np.round(experiment.columns["length_m"], 9)
+    held = [np.flatnonzero(lengths == length) for length in np.unique(lengths)]
+    names = [f"L={length:g}" for length in np.unique(lengths)]
+    if len(held) >= MIN_GROUPS:
+        return GROUP_NAMES["isometric_map"], list(zip(held, names))
+    runs = [
+        (at[run], f"{name} {'pressurising' if rising else 'venting'} {number}")
+        for at, name in zip(held, names)
+        for run, rising, number in pressure_runs(experiment.columns["gauge_pressure_Pa"][at])
+    ]
+    if len(runs) >= MIN_GROUPS:
+        return RUN_NAMES[0], runs
+    halves = [(rows[: len(rows) // 2], f"{label}, first half") for rows, label in runs]
+    halves += [(rows[len(rows) // 2 :], f"{label}, second half") for rows, label in runs]
+    return RUN_NAMES[1], sorted((part for part in halves if len(part[0])), key=lambda part: part[0][0])
+
+
 def campaign_of(experiments: list[Experiment]) -> Campaign:
     """Joins tables of one muscle, of one kind or several; a map's groups are its held lengths, an
     isotonic test's its sweeps, a free-inflation table's its rows: the held-out unit follows the
@@ -113,12 +152,15 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
     groups = np.empty(len(test), dtype=int)
     names = test_names(experiments)
     prefix = (lambda i: f"{names[i]} ") if len(experiments) > 1 else (lambda i: "")
+    units: list[str] = []  # what each test holds out, in the order met
     for i, e in enumerate(experiments):
         rows = np.flatnonzero(test == i)
         if e.kind == "isometric_map":
-            for length in np.unique(np.round(e.columns["length_m"], 9)):
-                groups[rows[np.round(e.columns["length_m"], 9) == length]] = len(labels)
-                labels.append(f"{prefix(i)}L={length:g}")
+            unit, parts = map_groups(e)
+            units.append(unit)
+            for part, label in parts:
+                groups[rows[part]] = len(labels)
+                labels.append(f"{prefix(i)}{label}")
         elif e.kind == "isotonic":
             # A sweep: pressurised, then vented; the next starts where the pressure rises again.
             branch = pressure_branches(e.columns["gauge_pressure_Pa"])
@@ -140,11 +182,14 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
             for row, pressure in zip(rows, value_from_si("gauge_pressure_Pa", e.columns["gauge_pressure_Pa"])):
                 groups[row] = len(labels)
                 labels.append(f"{prefix(i)}p={pressure:g}")  # in kPa, as the file gives it
-    name = " or ".join(GROUP_NAMES[k] for k in kinds)
+    name = " or ".join(dict.fromkeys(units + [GROUP_NAMES[k] for k in kinds if k != "isometric_map"]))
     censored = np.concatenate([e.censored for e in experiments])
-    maps = np.isin(test, [i for i, e in enumerate(experiments) if e.kind == "isometric_map"])
     # A branch runs along a record: a map's held length, another kind's whole test.
-    records = np.where(maps, groups, len(labels) + test)
+    records = np.empty(len(test))
+    for i, e in enumerate(experiments):
+        rows = np.flatnonzero(test == i)
+        records[rows] = np.round(e.columns["length_m"], 9) if e.kind == "isometric_map" else -1.0
+    records = np.unique(np.column_stack([test, records]), axis=0, return_inverse=True)[1].ravel()
     branch = np.empty(len(test))
     for record in np.unique(records):
         rows = np.flatnonzero(records == record)
