@@ -166,18 +166,25 @@ end_zone_m = [0.0, {2 * d}]
 
 
 def write_dmsp_isometric(
-    folder: Path, truth: DmspTruth, *, lengths_m, top_kPa: float, seed: int, noise_N: float = 1.0
+    folder: Path,
+    truth: DmspTruth,
+    *,
+    lengths_m,
+    top_kPa: float,
+    seed: int,
+    noise_N: float = 1.0,
+    sweeps: int = 2,
 ) -> Path:
     """An isometric test (TOML + CSV, kind isometric_map): at each held length, the muscle from
-    rest, the pressure stepped up to `top_kPa` and down to 0 twice, in 25 kPa steps. The TOML
-    declares the build as a datasheet does, the braid angle and end zones unknown."""
+    rest, the pressure stepped up to `top_kPa` and down to 0 `sweeps` times, in 25 kPa steps. The
+    TOML declares the build as a datasheet does, the braid angle and end zones unknown."""
     rng = np.random.default_rng(seed)
     folder.mkdir(parents=True, exist_ok=True)
     up = list(np.arange(0.0, top_kPa + 1e-9, 25.0))
     sweep = up + up[::-1][1:]
     rows = []
     for length in lengths_m:
-        pressures = sweep + sweep[1:]
+        pressures = sweep + sum((sweep[1:] for _ in range(sweeps - 1)), [])
         forces = isometric_forces(truth, [length] * len(pressures), [PA_PER_KPA * p for p in pressures])
         for pressure, force in zip(pressures, forces):
             reading = force + rng.normal(0, noise_N) if force > 0 else 0.0

@@ -1,10 +1,12 @@
 """The decision rules of python/pamkit/diagnosis/series/decide.py on scores made by hand: what each rule
 does with two candidates, without fitting anything."""
 
+import sys
 from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from conftest import SOURCE_DIR
 
 from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis.coordinates import NO_COST_AT_BOUND, Finding
@@ -15,6 +17,7 @@ from pamkit.diagnosis.series.decide import (
     Judgement,
     decide,
     gain_over,
+    holds_vacuum,
     judge,
     noise_ratios,
     reads_left,
@@ -24,6 +27,11 @@ from pamkit.diagnosis.series.decide import (
 from pamkit.diagnosis.series.findings import unresolved, within_resolution
 from pamkit.diagnosis.series.score import Score
 from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
+from pamkit.effects import catalog
+from pamkit.io.experiment import load_experiment
+
+sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
+from independent.dmsp import DmspTruth, write_dmsp_cyclic  # noqa: E402
 
 SAMPLES = 1000
 rng = np.random.default_rng(7)
@@ -398,3 +406,14 @@ def test_a_shift_is_placed_below_one_sample_only_by_its_interval():
         shifted.intervals = {"time_constant_s": interval}
         assert unresolved(p, shifted) != []
         assert within_resolution(p, shifted) is reaches
+
+
+def test_a_supplied_tests_transducer_error_that_implies_a_vacuum_is_an_objection(tmp_path):
+    # A cyclic test pressurised from 0 kPa by a regulator (tests/independent/dmsp.py): a
+    # transducer said to read 12 kPa high would have had the muscle at -12 kPa where it read 0.
+    toml = write_dmsp_cyclic(tmp_path, DmspTruth(), gauge_kPa=400, stroke_m=0.01, cycles=1, seed=1)
+    problem = SimpleNamespace(experiment=load_experiment(toml))
+    (objection,) = holds_vacuum(problem, SimpleNamespace(effects=[catalog().parse("sensor_offset:offset_Pa=12000")]))
+    assert "read 0 kPa" in objection and "-12 kPa" in objection
+    assert holds_vacuum(problem, SimpleNamespace(effects=[catalog().parse("sensor_offset:offset_Pa=-12000")])) == []
+    assert holds_vacuum(problem, SimpleNamespace(effects=[catalog().parse("slip_hysteresis")])) == []

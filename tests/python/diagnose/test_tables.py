@@ -12,6 +12,11 @@ import pytest
 from conftest import SOURCE_DIR
 
 from pamkit.diagnosis import diagnose, to_json, verdict
+from pamkit.diagnosis.tables.engine import TableCandidate, _decide, _vacuum
+from pamkit.diagnosis.tables.fit import TableFit
+from pamkit.diagnosis.tables.kinds import campaign_of
+from pamkit.effects import catalog
+from pamkit.io.experiment import load_experiment
 from pamkit.io.guards import ExperimentError
 
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
@@ -188,6 +193,60 @@ def test_a_map_too_short_to_split_is_refused_with_what_to_measure(tmp_path):
         ExperimentError, match=r"2 half pressure run\(s\); holding out needs at least 3.*more held lengths"
     ):
         diagnose(toml)
+
+
+def _candidate(name, score, samples, findings=()):
+    fit = TableFit(name, [], {}, {}, {}, {}, {})
+    spread = (float(np.min(samples)), float(np.max(samples)))
+    return TableCandidate(
+        fit, {"force_N": score}, {"force_N": spread}, score, True, list(findings), samples=np.asarray(samples)
+    )
+
+
+IMPLAUSIBLE_GAIN = {"parameter": "gain", "value": 0.78, "bound": None}
+DRAWS = np.linspace(-0.02, 0.02, 200)  # one spread of bootstrap draws, shared by every candidate
+
+
+def test_the_best_credible_candidate_is_named_beside_a_better_fit_that_cannot_be_named():
+    # Rule 3 of the time series, on tables: the implausible transducer fits the same loop as the
+    # friction to 1e-9 (a single held length, where the two are the same line): the friction is
+    # named, the transducer stands in the reason.
+    offset = _candidate("sensor_offset", 0.77 + 1e-9, 0.77 + 1e-9 + DRAWS, [IMPLAUSIBLE_GAIN])
+    slip = _candidate("slip_hysteresis", 0.77, 0.77 + DRAWS)
+    cause, reason, chosen, margins = _decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
+    assert cause == "slip_hysteresis" and chosen is slip
+    assert "sensor_offset fits only with gain = 0.78" in reason
+    # Better on every draw and by more than MIN_GAIN of what the credible one leaves: what that
+    # one fits is likely a piece of the better fit, and nothing is named.
+    offset = _candidate("sensor_offset", 0.9, 0.9 + DRAWS, [IMPLAUSIBLE_GAIN])
+    cause, reason, chosen, _ = _decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
+    assert cause == "unexplained" and chosen is None
+    assert "may be a part of it" in reason
+
+
+def test_two_credible_candidates_that_explain_the_units_alike_are_a_tie_not_a_name():
+    # Rule 6 of the time series, on tables: the paired difference's interval holds zero.
+    offset = _candidate("sensor_offset", 0.771, 0.771 + DRAWS[::-1])
+    slip = _candidate("slip_hysteresis", 0.770, 0.770 + DRAWS)
+    cause, reason, chosen, _ = _decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
+    assert cause == "unexplained" and chosen is None
+    assert "do not tell the two apart" in reason
+    # Ahead on every draw: named, with the margin over the rival.
+    slip = _candidate("slip_hysteresis", 0.70, 0.70 + DRAWS[::-1])
+    cause, _, chosen, margins = _decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
+    assert cause == "sensor_offset" and margins["over_rival"] > 0.0
+
+
+def test_a_transducer_error_that_would_have_the_vented_muscle_hold_a_vacuum_is_a_finding(tmp_path):
+    # Rows read at 0 kPa: a transducer said to read 12 kPa high would have had the muscle at -12
+    # kPa there, which a regulator cannot do; one said to read 12 kPa low, at +12 kPa: no finding.
+    toml = write_map(tmp_path, lengths_m=[0.25, 0.24, 0.23], pressures_kPa=np.arange(0, 651, 50), seed=3, **TRUTH)
+    campaign = campaign_of([load_experiment(toml)])
+    high = TableFit("sensor_offset", [catalog().parse("sensor_offset:offset_Pa=12000")], {}, {}, {}, {}, {})
+    (row,) = _vacuum(high, campaign)
+    assert row["value"] == pytest.approx(-12e3) and "read 0 kPa" in row["source"]
+    low = TableFit("sensor_offset", [catalog().parse("sensor_offset:offset_Pa=-12000")], {}, {}, {}, {}, {})
+    assert _vacuum(low, campaign) == []
 
 
 def test_the_command_line_writes_the_table_report_and_plot(tmp_path, capsys):

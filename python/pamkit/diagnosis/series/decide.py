@@ -44,6 +44,8 @@ from pamkit.diagnosis.series.findings import baseline_findings, unresolved, with
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.series.score import Score, credited_channels, significance_margin, significant
 from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
+from pamkit.diagnosis.supply import implied_vacuum
+from pamkit.io.columns import value_from_si
 
 # An effect on one instrument's channels is a cause beside structure the base model leaves on the
 # channels it cannot change only if its own channel stood this many times further above the noise:
@@ -194,6 +196,25 @@ def reads_left(problem: Problem, fit: Fit, effects) -> list[str]:
     return out
 
 
+def holds_vacuum(problem: Problem, fit: Fit) -> list[str]:
+    """A supplied test's transducer error that would have the muscle hold a vacuum where a
+    sample was read (supply.implied_vacuum), as an objection."""
+    e = problem.experiment
+    if e.gas != GasMode.supplied:
+        return []
+    read = ~e.censored
+    reading = e.columns["gauge_pressure_Pa"][read]
+    found = implied_vacuum(fit.effects, e.columns["time_s"][read], reading)
+    if found is None:
+        return []
+    k, true_Pa = found
+    return [
+        f"where the transducer read {value_from_si('gauge_pressure_Pa', reading[k]):.3g} kPa (t = "
+        f"{e.columns['time_s'][read][k]:.4g} s) the muscle would have held "
+        f"{value_from_si('gauge_pressure_Pa', true_Pa):.3g} kPa: a regulator supplies air or vents it, never a vacuum"
+    ]
+
+
 def uncredited(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> list[str]:
     """Why a fit's gain is not its effects' own: it does not gain significantly on the channels
     its effects change (the gain comes from the baseline moving on channels they cannot touch),
@@ -288,7 +309,7 @@ def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
         s,
         significant(s),
         own,
-        uncredited(problem, fit, s, baseline),
+        uncredited(problem, fit, s, baseline) + holds_vacuum(problem, fit),
         strain,
         unneeded=unfounded(problem, baseline, fit.effects),
         below_resolution=unresolved(problem, fit),

@@ -29,15 +29,18 @@ import numpy as np
 from pamkit._core import EffectCatalog, EffectStage, GasMode
 from pamkit.diagnosis.coordinates import findings
 from pamkit.diagnosis.significance import BOOTSTRAP_SAMPLES, MIN_GAIN, NONE_WITHIN_NOISE
+from pamkit.diagnosis.supply import VACUUM_TOLERANCE_PA, implied_vacuum
 from pamkit.diagnosis.tables.discover import discover_table
 from pamkit.diagnosis.tables.fit import Fitter, TableFit, TableModel, fit_table, heldout_rmse
 from pamkit.diagnosis.tables.kinds import MIN_GROUPS, Campaign, beyond_reach, campaign_of, noise_of
 from pamkit.diagnosis.tables.remainder import where_left
 from pamkit.effects import catalog as builtin_catalog
+from pamkit.io.columns import value_from_si
 from pamkit.io.experiment import Experiment, test_names
 from pamkit.io.guards import ExperimentError
 
 CHANNEL_UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
+
 
 @dataclass
 class TableCandidate:
@@ -53,6 +56,8 @@ class TableCandidate:
     # held-out groups left out of its judgement: each predicted, by it or the model it is judged
     # against, with values only that group determines (TableFit.rests_on), by the group's label
     untested: dict[str, list[str]] = field(default_factory=dict)
+    # the score on each bootstrap draw of the held-out groups (the same draws for every candidate)
+    samples: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def credible(self) -> bool:
@@ -96,6 +101,35 @@ def _findings(fit: TableFit) -> list[dict]:
     return [asdict(f) for f in findings(fit)]
 
 
+def _vacuum(fit: TableFit, campaign: Campaign) -> list[dict]:
+    """A transducer's error that would have the muscle hold a vacuum where a row was read
+    (supply.implied_vacuum), as a report row beside the parameters' findings."""
+    out = []
+    for i, experiment in enumerate(campaign.experiments):
+        rows = np.flatnonzero((campaign.test == i) & ~campaign.censored)
+        reading = campaign.columns["gauge_pressure_Pa"][rows]
+        found = implied_vacuum(fit.effects, [], reading)
+        if found is None:
+            continue
+        row, true_Pa = found
+        out.append(
+            {
+                "parameter": "lowest_true_gauge_Pa",
+                "value": true_Pa,
+                "bound": None,
+                "plausible": [-VACUUM_TOLERANCE_PA, None],
+                "source": (
+                    f"{experiment.path}: where the transducer read "
+                    f"{value_from_si('gauge_pressure_Pa', reading[row]):g} kPa the muscle would have held a vacuum; "
+                    "a regulator supplies air or vents it, never a vacuum"
+                ),
+                "beyond": None,
+                "rmse_drop": None,
+            }
+        )
+    return out
+
+
 def _seed(columns: dict[str, np.ndarray]) -> int:
     """The bootstrap's seed, drawn from the data: the same tables give the same report."""
     digest = hashlib.sha256()
@@ -123,11 +157,12 @@ def _squares(residual: np.ndarray) -> float:
     return float(np.nansum(residual**2))
 
 
-def _gains(base: np.ndarray, ext: np.ndarray, draws: np.ndarray) -> tuple[float, tuple[float, float]]:
-    """Held-out gain from per-group sums of squares, and its bootstrap interval over groups."""
+def _gains(base: np.ndarray, ext: np.ndarray, draws: np.ndarray) -> tuple[float, tuple[float, float], np.ndarray]:
+    """Held-out gain from per-group sums of squares, its bootstrap interval over groups and the
+    gain on each draw."""
     gain = 1.0 - math.sqrt(ext.sum() / base.sum()) if base.sum() > 0 else 0.0
     samples = 1.0 - np.sqrt(ext[draws].sum(axis=1) / np.maximum(base[draws].sum(axis=1), 1e-300))
-    return gain, (float(np.quantile(samples, 0.025)), float(np.quantile(samples, 0.975)))
+    return gain, (float(np.quantile(samples, 0.025)), float(np.quantile(samples, 0.975))), samples
 
 
 def _judge(
@@ -162,33 +197,43 @@ def _judge(
     index = [np.flatnonzero((groups == label) & used) for label in labels]
     rng = np.random.default_rng(seed)
     draws = rng.integers(0, len(labels), size=(BOOTSTRAP_SAMPLES, len(labels)))
-    gain, ci = {}, {}
+    gain, ci, samples = {}, {}, {}
     for c in channels:
         base = np.array([_squares(baseline.heldout[c][rows] - measured[c][rows]) for rows in index])
         ext = np.array([_squares(fit.heldout[c][rows] - measured[c][rows]) for rows in index])
-        gain[c], ci[c] = _gains(base, ext, draws)
+        gain[c], ci[c], samples[c] = _gains(base, ext, draws)
     between = campaign is not None and any(e.shows_between_branches() for e in (acting or fit.effects))
     judged_gain, judged_ci = gain, ci
     if between:
         pressure, branch = campaign.columns["gauge_pressure_Pa"], campaign.branch
-        judged_gain, judged_ci = {}, {}
+        judged_gain, judged_ci, samples = {}, {}, {}
         for c in channels:
             r_base, r_fit = baseline.heldout[c] - measured[c], fit.heldout[c] - measured[c]
             base = np.array([_squares(branch_difference(r_base, pressure, branch, rows)) for rows in index])
             ext = np.array([_squares(branch_difference(r_fit, pressure, branch, rows)) for rows in index])
-            judged_gain[c], judged_ci[c] = _gains(base, ext, draws)
+            judged_gain[c], judged_ci[c], samples[c] = _gains(base, ext, draws)
     score = float(np.mean([judged_gain[c] for c in channels]))
     significant = all(judged_gain[c] >= MIN_GAIN and judged_ci[c][0] > 0.0 for c in channels)
     own, strain = [], []
     corrector = all(e.stage() != EffectStage.physics for e in fit.effects)
-    for finding in _findings(fit):
+    for finding in _findings(fit) + (_vacuum(fit, campaign) if campaign is not None else []):
         inherited = calibrated is not None and any(
             finding["parameter"] == f["parameter"] and finding["bound"] == f["bound"] for f in calibrated
         )
         (strain if inherited and not corrector else own).append(finding)
     names = campaign.group_labels if campaign is not None else [str(label) for label in range(groups.max() + 1)]
     untested = {names[label]: values for label, values in sorted(untestable.items())}
-    candidate = TableCandidate(fit, gain, ci, score, significant, own, strain, untested=untested)
+    candidate = TableCandidate(
+        fit,
+        gain,
+        ci,
+        score,
+        significant,
+        own,
+        strain,
+        untested=untested,
+        samples=np.mean(list(samples.values()), axis=0),
+    )
     if between:
         candidate.between = {"gain": judged_gain, "gain_ci95": {c: list(v) for c, v in judged_ci.items()}}
     return candidate
@@ -412,18 +457,54 @@ def _decide(candidates, baseline, measured, channels, noise):
     margins: dict[str, float] = {}
     if significant:
         best = significant[0]
+        lead = next((j for j in significant if j.credible), None)
         if not best.credible:
             what = "; ".join(
                 f"{f['parameter']} = {f['value']:.4g}"
                 + (f" at its search bound {f['bound']:.4g}" if f["bound"] else "")
                 for f in best.findings
             )
-            return "unexplained", f"the best candidate, {best.fit.name}, fits only with {what}", None, margins
-        runner = next((j for j in candidates if j is not best), None)
-        margins["over_none"] = float(min(best.gain_ci95[c][0] for c in channels))
+            rejected = f"{best.fit.name} fits only with {what}"
+            if lead is None:
+                return "unexplained", f"the best candidate, {rejected}", None, margins
+            # The series' rule 3: a better fit that cannot be named stands beside the cause, not in
+            # its place, unless it explains the held-out groups better on the same draws, and by
+            # MIN_GAIN of what the credible one leaves (what that one fits is then likely a piece of it).
+            low = float(np.percentile(best.samples - lead.samples, 2.5))
+            ahead = (best.score - lead.score) / (1.0 - lead.score) if lead.score < 1.0 else 0.0
+            if low > 0.0 and ahead >= MIN_GAIN:
+                return (
+                    "unexplained",
+                    f"the best candidate, {rejected}; {lead.fit.name} explains significantly less (gain "
+                    f"{lead.score:.3f} against {best.score:.3f}) and may be a part of it",
+                    None,
+                    margins,
+                )
+            margins["under_rejected"] = max(-low, MIN_GAIN - ahead)
+        # The series' rule 6: the cause must beat every other credible one on the same draws;
+        # otherwise the two explain the held-out units alike (at a single held length a friction
+        # that took up the slack and a transducer's offset are the same line) and naming either
+        # is a guess.
+        for rival in (j for j in significant if j is not lead and j.credible):
+            low, high = np.percentile(lead.samples - rival.samples, [2.5, 97.5])
+            margins["over_rival"] = min(margins.get("over_rival", math.inf), float(low))
+            if low <= 0.0:
+                return (
+                    "unexplained",
+                    f"{lead.fit.name} and {rival.fit.name} explain the held-out units alike (gain {lead.score:.3f} "
+                    f"against {rival.score:.3f}; the difference's 95 % interval [{low:.3g}, {high:.3g}] holds zero): "
+                    "the data do not tell the two apart",
+                    None,
+                    margins,
+                )
+        runner = next((j for j in candidates if j is not lead), None)
+        margins["over_none"] = float(min(lead.gain_ci95[c][0] for c in channels))
         if runner is not None:
-            margins["over_runner_up"] = float(best.score - runner.score)
-        return best.fit.name, "its held-out gain is significant and its parameters plausible", best, margins
+            margins["over_runner_up"] = float(lead.score - runner.score)
+        reason = "its held-out gain is significant and its parameters plausible"
+        if lead is not best:
+            reason += f"; {rejected}, no better on the same draws"
+        return lead.fit.name, reason, lead, margins
     ratios = {c: heldout_rmse(baseline, measured, c) / noise[c] for c in channels if noise[c] > 0}
     if ratios and max(ratios.values()) <= NONE_WITHIN_NOISE:
         margins["within_noise"] = float(NONE_WITHIN_NOISE - max(ratios.values()))

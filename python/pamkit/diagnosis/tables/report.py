@@ -210,6 +210,10 @@ def verdict(d: TableDiagnosis) -> str:
         if lead.between:
             between = _gains(lead.between["gain"], lead.between["gain_ci95"], d.channels)
             lines.append(f"  between the pressurising and venting branches, where it acts: held-out gain {between}")
+        better = next(j for j in d.candidates if j.significant)
+        if better is not lead and not d.added:
+            rejected = "; ".join(f"{f['parameter']} = {f['value']:.4g}" for f in better.findings)
+            lines.append(f"  {better.fit.name} fits as well, but only with {rejected}: not named")
         if lead.strain:
             strained = "; ".join(f"{f['parameter']} = {f['value']:.4g}" for f in lead.strain)
             lines.append(f"  beside it the base model strains, as without it: {strained}")
