@@ -39,8 +39,6 @@ from pamkit.io.columns import value_from_si
 from pamkit.io.experiment import Experiment, test_names
 from pamkit.io.guards import ExperimentError
 
-CHANNEL_UNITS = {"force_N": "N", "length_m": "m", "diameter_m": "m"}
-
 
 @dataclass
 class TableCandidate:

@@ -9,10 +9,10 @@ from pathlib import Path
 import numpy as np
 
 from pamkit.diagnosis.identify import interval_numbers, why_undetermined
-from pamkit.diagnosis.tables.engine import CHANNEL_UNITS, TableCandidate, TableDiagnosis, TableFit, heldout_rmse
+from pamkit.diagnosis.tables.engine import TableCandidate, TableDiagnosis, TableFit, heldout_rmse
 from pamkit.diagnosis.tables.kinds import CYCLIC
 from pamkit.diagnosis.tables.remainder import describe
-from pamkit.io.columns import value_from_si
+from pamkit.io.columns import COLUMN_UNITS, value_from_si
 from pamkit.io.experiment import test_names
 from pamkit.plots import save_figure
 from pamkit.units import MILLIMETRE_PER_METRE
@@ -191,7 +191,7 @@ def verdict(d: TableDiagnosis) -> str:
     used = ~c.censored
     for name, fit in models:
         error = ", ".join(
-            f"{ch} {heldout_rmse(fit, measured, ch):.4g} {CHANNEL_UNITS[ch]} (noise {d.noise[ch]:.2g}; largest "
+            f"{ch} {heldout_rmse(fit, measured, ch):.4g} {COLUMN_UNITS[ch]} (noise {d.noise[ch]:.2g}; largest "
             f"{np.nanmax(np.abs(fit.heldout[ch] - measured[ch])[used]):.4g})"
             for ch in d.channels
         )
@@ -230,7 +230,7 @@ def verdict(d: TableDiagnosis) -> str:
                 lines.append(f"  {name}: {errors['error']}")
                 continue
             shown = ", ".join(
-                f"{ch} {e['heldout_rmse']:.4g} {CHANNEL_UNITS[ch]} (noise {e['noise']:.2g}; largest "
+                f"{ch} {e['heldout_rmse']:.4g} {COLUMN_UNITS[ch]} (noise {e['noise']:.2g}; largest "
                 f"{e['heldout_max_error']:.4g})"
                 for ch, e in errors.items()
             )
@@ -299,7 +299,7 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
         axis.grid(alpha=0.3)
         axis.legend(fontsize=7, loc="best")
     for axis, channel in zip(axes[0], d.channels):
-        unit = CHANNEL_UNITS[channel]
+        unit = COLUMN_UNITS[channel]
         scale = MILLIMETRE_PER_METRE if unit == "m" else 1.0
         shown_unit = "mm" if unit == "m" else unit
         mine = c.predicts(channel) & ~cyclic
