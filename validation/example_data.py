@@ -9,6 +9,9 @@ simulate itself.
     data/experiments/supplied/   PAM 2 of the thesis held at a fixed length on a pressure regulator, the
                                  pressure stepped up to its top and vented, force and pressure logged
                                  at 20 Hz (tests/independent/families.py, isometric_sweep, seed 3)
+    data/experiments/isometric/  a DMSP-10-like muscle cut to 10 cm, mounted 1.5 mm short of its rest
+                                 length, pressurised in 25 kPa steps to 600 kPa and vented twice at that
+                                 one held length, friction with memory hidden (tests/independent/dmsp.py)
     data/experiments/tie/        a sealed cyclic test of a muscle with a dead volume (first/), which on
                                  its own ties with stretching fibres, and the same test inflated half
                                  as high again (second/), the test the tie names; campaign.toml
@@ -32,6 +35,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))  # tests/independent: a folder, not an installed package
 
+from independent.dmsp import DmspTruth, write_dmsp_isometric  # noqa: E402
 from independent.families import independent_dead_volume_two_inflations, isometric_sweep  # noqa: E402
 from independent.static_map import write_isotonic  # noqa: E402
 
@@ -49,10 +53,15 @@ ISOTONIC_LOAD_N = 100.0
 ISOTONIC_HYSTERESIS = 0.1
 SUPPLIED_SEED = 3
 TIE_SEED = 1
+# A DMSP-10 cut to 10 cm: the braid and friction of tests/python/diagnose/test_dmsp.py's seed 21.
+ISOMETRIC_TRUTH = DmspTruth(
+    rest_length_m=0.10, braid_angle_deg=23.0, end_zone_m=0.008, slip_force_N=150.0, slip_distance_m=0.02
+)
+ISOMETRIC_HELD_M = 0.0985
 
 
 def write(folder: Path) -> list[Path]:
-    """Writes both examples under `folder` (data/experiments); returns the files written."""
+    """Writes the examples under `folder` (data/experiments); returns the files written."""
     up = list(np.arange(0.0, 601.0, 50.0))
     sweep = up + up[::-1][1:]
     isotonic = folder / "isotonic"
@@ -82,13 +91,22 @@ def write(folder: Path) -> list[Path]:
         toml_text = "# validation/example_data.py: the independent rig's sweep of seed 3.\n" + toml_text
         (supplied / "isometric_sweep.toml").write_text(toml_text)
         del dataset
+    isometric = write_dmsp_isometric(
+        folder / "isometric", ISOMETRIC_TRUTH, lengths_m=[ISOMETRIC_HELD_M], top_kPa=600, seed=21
+    )
+    isometric.write_text(
+        "# validation/example_data.py: the independent model's DMSP-10-like muscle (tests/independent/dmsp.py),\n"
+        "# cut to 10 cm and mounted 1.5 mm short, pressurised to 600 kPa and vented twice at one held length.\n"
+        + isometric.read_text()
+    )
     tie = folder / "tie"
     campaign = independent_dead_volume_two_inflations(TIE_SEED, tie).experiment
     campaign.write_text(
         "# validation/example_data.py: a dead volume the first test alone cannot tell from stretching fibres,\n"
         "# and the test its diagnosis names to tell them, run on the same independent muscle.\n" + campaign.read_text()
     )
-    return sorted(p for p in [*isotonic.iterdir(), *supplied.iterdir(), *tie.rglob("*")] if p.is_file())
+    examples = [*isotonic.iterdir(), *isometric.parent.iterdir(), *supplied.iterdir(), *tie.rglob("*")]
+    return sorted(p for p in examples if p.is_file())
 
 
 def main() -> int:

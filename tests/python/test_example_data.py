@@ -1,4 +1,4 @@
-"""The example tests of data/experiments/isotonic, supplied and tie are what
+"""The example tests of data/experiments/isometric, isotonic, supplied and tie are what
 validation/example_data.py writes with the independent model (tests/independent): regenerated here
 and compared file by file."""
 
@@ -20,6 +20,8 @@ def generator():
 def test_the_committed_examples_are_what_the_generator_writes(tmp_path):
     written = generator().write(tmp_path)
     assert [p.relative_to(tmp_path).as_posix() for p in written] == [
+        "isometric/isometric.csv",
+        "isometric/isometric.toml",
         "isotonic/isotonic.csv",
         "isotonic/isotonic.toml",
         "supplied/isometric_sweep.csv",
