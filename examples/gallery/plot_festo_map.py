@@ -11,7 +11,6 @@ nominal; the diagnosis calibrates them and predicts each held length from the ot
 
 # %%
 # The experiment file declares the muscle as its datasheet does and what is unknown.
-import tempfile
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -40,9 +39,5 @@ report.causes.filter(regex="^(effect|score|params)")
 # %%
 # The map as measured and as the calibrated baseline and extended model predict it, each held
 # length predicted by the model fitted without it.
-with tempfile.TemporaryDirectory() as folder:
-    image = plt.imread(report.plot(Path(folder) / "festo.png"))
-plt.figure(figsize=(9, 6))
-plt.imshow(image)
-plt.axis("off")
+report.figure()
 plt.show()

@@ -12,7 +12,6 @@ against others, so the diagnosis holds out each pressurising and venting run in 
 """
 
 # %%
-import tempfile
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -33,9 +32,5 @@ report.candidates[["effect", "score", "significant", "credible"]]
 # %%
 # Each run as measured and as predicted by the model fitted without it: dotted the calibrated
 # baseline, which misses the force the friction took up while the slack muscle contracted.
-with tempfile.TemporaryDirectory() as folder:
-    image = plt.imread(report.plot(Path(folder) / "isometric.png"))
-plt.figure(figsize=(9, 6))
-plt.imshow(image)
-plt.axis("off")
+report.figure()
 plt.show()

@@ -12,7 +12,6 @@ tests name the cause. Data written by an independent model of the muscle and rig
 
 # %%
 # The first test alone: a tie, and the test that would break it.
-import tempfile
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -31,11 +30,7 @@ separation["purpose"], separation["test"], separation["difference_over_noise"], 
 
 # %%
 # The figure's last row: the two models on that test.
-with tempfile.TemporaryDirectory() as folder:
-    image = plt.imread(first.plot(Path(folder) / "tie.png"))
-plt.figure(figsize=(9, 7.5))
-plt.imshow(image)
-plt.axis("off")
+first.figure()
 plt.show()
 
 # %%

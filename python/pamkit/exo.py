@@ -58,7 +58,7 @@ from pamkit._core import (
     with_ankle_range,
 )
 from pamkit.io.columns import value_from_si
-from pamkit.plots import save_figure
+from pamkit.plots import pyplot, save_figure
 from pamkit.units import MILLIMETRE_PER_METRE
 
 GAIT_COLUMNS = ("frame", "hip_deg", "leg_deg", "foot_deg", "ankle_moment_Nm")
@@ -346,10 +346,7 @@ def plot_exo(path: str | Path, study: ExoStudy, title: str = "") -> Path:
     """Device torque against the target share of the biological moment over the gait cycle
     with the clutch's mode shaded; and, if run, force, pressure and gas temperature of the
     muscle at walking cadence next to the slow bench test."""
-    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     walking = study.walking
     rows = 2 if walking is not None else 1

@@ -12,6 +12,22 @@ from pamkit.io.columns import value_from_si
 from pamkit.units import MILLIMETRE_PER_METRE
 
 
+def pyplot():
+    """matplotlib.pyplot, imported where a figure is drawn (it adds a third of a second to every
+    start). A process that has not imported it yet (the command line, a batch) draws without a
+    display (Agg); a session that has (a notebook, a script showing its own figures) keeps its
+    backend."""
+    import sys
+
+    import matplotlib
+
+    if "matplotlib.pyplot" not in sys.modules:
+        matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
 def save_figure(figure, path: str | Path, dpi: int = 110) -> Path:
     """Writes `figure` to `path` (its folder made if missing), closes it and returns the path."""
     import matplotlib.pyplot as plt  # imported where a figure is drawn: it adds a third of a second to every start
@@ -37,10 +53,7 @@ def plot_simulation(
     """Writes a 2x2 figure: force, pressure and temperature against time, and force against
     elongation (the hysteresis loop); measured channels, when given, are drawn under the
     prediction."""
-    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     measured = measured or {}
     figure, axes = plt.subplots(2, 2, figsize=(11, 7.5), constrained_layout=True)
@@ -76,10 +89,7 @@ def plot_supplied(
     """A supplied-pressure test: the force against time, the supplied pressure (the model's input)
     against time, and the force against the pressure with its pressurise and vent branches apart
     (the isometric user's curve); the force against elongation only when the length moved."""
-    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     measured = measured or {}
     moved = np.ptp(predicted["elongation_m"]) > 0
@@ -129,10 +139,7 @@ def plot_table(path: str | Path, experiment, predicted: dict[str, np.ndarray], t
     curve per held length of an isometric map; the length of an isotonic test in the order
     measured (its pressurise and vent branches); free length and diameter of a free-inflation
     table."""
-    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     channels = {"isometric_map": ["force_N"], "isotonic": ["length_m"]}.get(experiment.kind, ["length_m", "diameter_m"])
     pressure = value_from_si("gauge_pressure_Pa", experiment.columns["gauge_pressure_Pa"])

@@ -17,6 +17,7 @@ from pamkit.io.experiment import Experiment
 
 if TYPE_CHECKING:
     import pandas as pd
+    from matplotlib.figure import Figure
 
     from pamkit._core import EffectCatalog
 
@@ -160,6 +161,26 @@ class Report:
         from pamkit.diagnosis.report import plot  # imported here: see diagnose()
 
         return plot(self.diagnosis, path)  # type: ignore[arg-type]
+
+    def figure(self) -> Figure:
+        """The report's figure, as `plot` writes it, to look at where the session draws: a
+        notebook shows it inline, a script with ``matplotlib.pyplot.show()``.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            Open in pyplot (close it with ``matplotlib.pyplot.close``).
+
+        Raises
+        ------
+        ValueError
+            For a report read from JSON (the figure needs the diagnosis's predictions).
+        """
+        if self.diagnosis is None:
+            raise ValueError("a report read from JSON holds no predictions to draw: diagnose the data again")
+        from pamkit.diagnosis.report import figure  # imported here: see diagnose()
+
+        return figure(self.diagnosis)  # type: ignore[arg-type,no-any-return]
 
     @property
     def candidates(self) -> pd.DataFrame:

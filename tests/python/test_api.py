@@ -8,6 +8,8 @@ import inspect
 import json
 import pydoc
 import re
+import subprocess
+import sys
 import types
 
 import numpy as np
@@ -105,6 +107,22 @@ def test_diagnose_returns_a_report(tmp_path, thesis_dir):
     assert report.kind == "isometric_map" and report.channels == ["force_N"]
     assert report.plot(tmp_path / "report.png").read_bytes()[:4] == b"\x89PNG"
     assert report.verdict() in repr(report)
+    # The same figure, open to look at; plot closed its own.
+    import matplotlib.pyplot as plt
+
+    figure = report.figure()
+    assert plt.fignum_exists(figure.number) and figure.get_axes()
+    plt.close(figure)
+
+
+def test_drawing_keeps_a_sessions_backend_and_needs_no_display_where_none_is_chosen():
+    # A notebook or a script that imported pyplot keeps its backend; a process that has not (the
+    # command line) draws with Agg, which needs no display.
+    draw = "from pamkit.plots import pyplot; pyplot(); import matplotlib; print(matplotlib.get_backend())"
+    chosen = "import matplotlib; matplotlib.use('pdf'); import matplotlib.pyplot; " + draw
+    for code, backend in ((chosen, "pdf"), (draw, "agg")):
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+        assert out.stdout.strip().lower() == backend, out.stderr
 
 
 def test_the_reports_tables_are_its_documents_entries(thesis_dir):
@@ -132,6 +150,8 @@ def test_a_report_read_back_from_json_keeps_its_answers(tmp_path):
     pd.testing.assert_frame_equal(again.candidates, report.candidates)
     with pytest.raises(ValueError, match="holds no predictions to draw"):
         again.plot(tmp_path / "again.png")
+    with pytest.raises(ValueError, match="holds no predictions to draw"):
+        again.figure()
     (tmp_path / "broken.json").write_text('{"cause": "none",\n  "baseline": }')
     with pytest.raises(ValueError, match=r"broken.json:2:15: not JSON"):
         pamkit.Report.read_json(tmp_path / "broken.json")

@@ -14,15 +14,17 @@ from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.diagnosis.series.separate import Separation
 from pamkit.diagnosis.significance import MIN_GAIN
 from pamkit.io.columns import COLUMN_UNITS, file_name, file_unit, value_from_si
-from pamkit.plots import save_figure
+from pamkit.plots import pyplot, save_figure
 
 
 def plot_series(d: Diagnosis, path: str | Path, title: str) -> Path:
     """Draws `d` into `path` (PNG or PDF by its suffix) under `title`, the verdict."""
-    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
+    return save_figure(series_figure(d, title), path, dpi=100)
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+
+def series_figure(d: Diagnosis, title: str):
+    """`d`'s figure under `title`, the verdict: a matplotlib Figure, open in pyplot."""
+    plt = pyplot()
 
     p = d.problem
     time = p.experiment.time_s
@@ -95,7 +97,7 @@ def plot_series(d: Diagnosis, path: str | Path, title: str) -> Path:
     if parted:
         _plot_separation(figure.add_subplot(grid[rows + 1, :]), s)
     figure.suptitle(title, fontsize="medium", wrap=True)
-    return save_figure(figure, path, dpi=100)
+    return figure
 
 
 def _plot_separation(axis, s: Separation) -> None:

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from pamkit.diagnosis import evidence
-from pamkit.diagnosis.figure import plot_series
+from pamkit.diagnosis.figure import plot_series, series_figure
 from pamkit.diagnosis.identify import interval_numbers, why_undetermined
 from pamkit.diagnosis.series import campaign
 from pamkit.diagnosis.series.calibrate import Fit
@@ -414,6 +414,15 @@ def _remainder_phrase(d: Diagnosis) -> str:
             f"{found['gain'][found['channel']]:.2f}), which resembles {found['terms'][0]['resembles']}"
         )
     return f"; still left: {left}, which no catalog effect explains"
+
+
+def figure(d: Diagnosis | TableDiagnosis | SeriesCampaign):
+    """The diagnosis's figure, as `plot` writes it: a matplotlib Figure, open in pyplot."""
+    if isinstance(d, TableDiagnosis):
+        return table_report.figure(d)
+    if isinstance(d, SeriesCampaign):
+        return campaign.figure(d)
+    return series_figure(d, verdict(d))
 
 
 def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Path:

@@ -35,7 +35,7 @@ from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.diagnosis.series.score import score
 from pamkit.diagnosis.significance import MIN_GAIN
 from pamkit.io.experiment import test_names
-from pamkit.plots import save_figure
+from pamkit.plots import pyplot, save_figure
 
 # Fewer tests than this cannot hold a test out and still fit the effect on the others.
 MIN_TESTS = 2
@@ -294,15 +294,17 @@ def verdict(c: SeriesCampaign) -> str:
 
 
 def plot(c: SeriesCampaign, path: str | Path) -> Path:
+    """Writes `figure(c)` to `path` (PNG or PDF by its suffix)."""
+    return save_figure(figure(c), path)
+
+
+def figure(c: SeriesCampaign):
     """Three panels, test by test: each effect some test named, carried to the test from the
     others (held-out gain with its 95 % interval, against MIN_GAIN); how the one shared muscle
     fits the test against its own fit (fitted units, and held-out units with the muscle fitted
     without the test, against DISAGREES); and each shared value as the test fitted it alone,
-    relative to the shared value and its interval."""
-    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    relative to the shared value and its interval. A matplotlib Figure, open in pyplot."""
+    plt = pyplot()
 
     figure, (carried, shared, values) = plt.subplots(3, 1, figsize=(7.5, 9.6))
     positions = np.arange(len(c.tests))
@@ -349,4 +351,4 @@ def plot(c: SeriesCampaign, path: str | Path) -> Path:
     for axis in (carried, shared, values):
         axis.grid(alpha=0.3, axis="y")
     figure.tight_layout()
-    return save_figure(figure, path)
+    return figure

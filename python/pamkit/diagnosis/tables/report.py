@@ -14,7 +14,7 @@ from pamkit.diagnosis.tables.kinds import CYCLIC
 from pamkit.diagnosis.tables.remainder import describe
 from pamkit.io.columns import COLUMN_UNITS, value_from_si
 from pamkit.io.experiment import test_names
-from pamkit.plots import save_figure
+from pamkit.plots import pyplot, save_figure
 from pamkit.units import MILLIMETRE_PER_METRE
 
 
@@ -262,13 +262,16 @@ def verdict(d: TableDiagnosis) -> str:
 
 
 def plot(d: TableDiagnosis, path: str | Path) -> Path:
+    """Writes `figure(d)` to `path` (PNG or PDF by its suffix)."""
+    return save_figure(figure(d), path)
+
+
+def figure(d: TableDiagnosis):
     """Each channel against the supplied pressure: measured points, and each group as the
     calibrated baseline (dotted) and the named cause's model (solid) predicted it held out. A
-    map draws one curve per held length; a free-inflation table one per test."""
-    import matplotlib  # imported where a figure is drawn: it adds a third of a second to every start
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    map draws one curve per held length; a free-inflation table one per test. A matplotlib
+    Figure, open in pyplot."""
+    plt = pyplot()
 
     c = d.campaign
     pressure = value_from_si("gauge_pressure_Pa", c.columns["gauge_pressure_Pa"])  # drawn in kPa
@@ -341,4 +344,4 @@ def plot(d: TableDiagnosis, path: str | Path) -> Path:
         fontsize=8,
     )
     figure.tight_layout()
-    return save_figure(figure, path)
+    return figure
