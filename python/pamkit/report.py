@@ -156,11 +156,9 @@ class Report:
         ValueError
             For a report read from JSON (the figure needs the diagnosis's predictions).
         """
-        if self.diagnosis is None:
-            raise ValueError("a report read from JSON holds no predictions to draw: diagnose the data again")
         from pamkit.diagnosis.report import plot  # imported here: see diagnose()
 
-        return plot(self.diagnosis, path)  # type: ignore[arg-type]
+        return plot(self._drawable(), path)  # type: ignore[arg-type]
 
     def figure(self) -> Figure:
         """The report's figure, as `plot` writes it, to look at where the session draws: a
@@ -176,11 +174,15 @@ class Report:
         ValueError
             For a report read from JSON (the figure needs the diagnosis's predictions).
         """
-        if self.diagnosis is None:
-            raise ValueError("a report read from JSON holds no predictions to draw: diagnose the data again")
         from pamkit.diagnosis.report import figure  # imported here: see diagnose()
 
-        return figure(self.diagnosis)  # type: ignore[arg-type,no-any-return]
+        return figure(self._drawable())  # type: ignore[arg-type,no-any-return]
+
+    def _drawable(self) -> object:
+        """The diagnosis a figure is drawn from; a report read from JSON has none."""
+        if self.diagnosis is None:
+            raise ValueError("a report read from JSON holds no predictions to draw: diagnose the data again")
+        return self.diagnosis
 
     @property
     def candidates(self) -> pd.DataFrame:
