@@ -395,9 +395,10 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
         const std::vector<double> branch = pressure_branches(vector(gauge_pressure_Pa), play_Pa);
         return py::array_t<double>(static_cast<py::ssize_t>(branch.size()), branch.data());
       },
-      py::arg("gauge_pressure_Pa"), py::arg("play_Pa") = 2e3,
+      py::arg("gauge_pressure_Pa"), py::arg("play_Pa") = kPressureBranchPlay_Pa,
       "+1 where a supplied gauge pressure [Pa] is being raised, -1 where lowered (a play operator of half-width "
       "play_Pa [Pa]).");
+  m.attr("PRESSURE_BRANCH_PLAY_PA") = kPressureBranchPlay_Pa;  // half the change that turns a branch [Pa]
 }
 
 }  // namespace pamkit::python

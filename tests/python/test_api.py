@@ -133,7 +133,7 @@ def test_the_reports_tables_are_its_documents_entries(thesis_dir):
     assert list(candidates["effect"]) == [c["effect"] for c in document["candidates"]]
     assert list(candidates["score"]) == [c["score"] for c in document["candidates"]]
     assert list(candidates["gain.force_N"]) == [c["gain"]["force_N"] for c in document["candidates"]]
-    # The cause named (braid_slack on this map, README's Festo table) is the one row of causes.
+    # The cause named (slip_hysteresis on this map, README's Festo table) is the one row of causes.
     causes = report.causes
     assert report.cause not in ("none", "unexplained")
     assert list(causes["effect"]) == [report.cause] == document["extended"]["effects"]

@@ -120,12 +120,16 @@ inline SolverStatistics simulate_measurement_blocks(const MuscleParams& params, 
   return detail::sealed_measurement_blocks(params, initial, crosshead, effects, simulator, block_size, sink, shapes);
 }
 
+/// Half the change of a supplied pressure that turns its branch [Pa]: above a settled step's noise.
+constexpr double kPressureBranchPlay_Pa = 2e3;
+
 /// The branch of each sample of a supplied pressure: +1 while it is raised, -1 while it is
 /// lowered. A play operator of half-width `play_Pa` decides, so that noise in a hold or a
 /// settled step does not flip it; the record starts on the pressurising branch.
 /// \param gauge_pressure_Pa  the supplied gauge pressure, sample by sample [Pa]
 /// \param play_Pa            half the change that turns the branch [Pa]
-inline std::vector<double> pressure_branches(const std::vector<double>& gauge_pressure_Pa, double play_Pa = 2e3) {
+inline std::vector<double> pressure_branches(const std::vector<double>& gauge_pressure_Pa,
+                                             double play_Pa = kPressureBranchPlay_Pa) {
   std::vector<double> branch(gauge_pressure_Pa.size(), 1.0);
   if (gauge_pressure_Pa.empty()) return branch;
   double extreme = gauge_pressure_Pa.front();

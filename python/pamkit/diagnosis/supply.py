@@ -11,11 +11,11 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from pamkit._core import Effect
+from pamkit._core import PRESSURE_BRANCH_PLAY_PA, Effect
 
 # How far below zero gauge a supplied pressure may seem before it is a vacuum: a settled step's
-# noise, which pressure_branches' play ignores (2 kPa).
-VACUUM_TOLERANCE_PA = 2e3
+# noise, which a pressure's branch ignores too.
+VACUUM_TOLERANCE_PA = PRESSURE_BRANCH_PLAY_PA
 
 
 def implied_vacuum(effects: Sequence[Effect], time_s, reading_Pa) -> tuple[int, float] | None:

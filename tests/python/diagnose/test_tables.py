@@ -11,10 +11,11 @@ import numpy as np
 import pytest
 from conftest import SOURCE_DIR
 
+from pamkit._core import pressure_branches
 from pamkit.diagnosis import diagnose, to_json, verdict
 from pamkit.diagnosis.tables.engine import TableCandidate, _decide, _vacuum
 from pamkit.diagnosis.tables.fit import TableFit
-from pamkit.diagnosis.tables.kinds import campaign_of
+from pamkit.diagnosis.tables.kinds import campaign_of, held_out_branches, pressure_runs
 from pamkit.effects import catalog
 from pamkit.io.experiment import load_experiment
 from pamkit.io.guards import ExperimentError
@@ -185,6 +186,24 @@ def test_a_map_at_too_few_lengths_holds_out_parts_of_its_pressure_runs(tmp_path)
         "L=0.24 pressurising 1, second half",
     ]
     assert d.cause == "none", verdict(d)
+
+
+def test_a_regulators_overshoot_does_not_end_a_held_out_run():
+    # Steps of 25 kPa to 600 and back, each first read 6 kPa past its setting and then settled:
+    # the friction's branch turns at each overshoot (2 kPa play), a held-out run only at the top
+    # and bottom of the sweep.
+    steps = list(np.arange(0.0, 601.0, 25.0)) + list(np.arange(575.0, -1.0, -25.0))
+    pressure = []
+    for before, after in zip([0.0] + steps, steps):
+        pressure += [after + 6.0 * np.sign(after - before), after, after]
+    pressure = 1e3 * np.array(pressure)
+    runs = pressure_runs(pressure)
+    assert [(rising, number) for _, rising, number in runs] == [(True, 1), (False, 1)]
+    assert runs[1][0][0] == 3 * 25  # the venting run starts at the first step down
+    assert np.count_nonzero(np.diff(pressure_branches(pressure))) > 40
+    # Settled without overshoot, the runs are the friction's branches, row for row.
+    settled = 1e3 * np.repeat(steps + steps[1:], 3)
+    assert np.array_equal(held_out_branches(settled), pressure_branches(settled))
 
 
 def test_a_map_too_short_to_split_is_refused_with_what_to_measure(tmp_path):

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from pamkit._core import BraidGeometry, GasMode, pressure_branches
+from pamkit._core import PRESSURE_BRANCH_PLAY_PA, BraidGeometry, GasMode, pressure_branches
 from pamkit.diagnosis.cycles import find_cycles
 from pamkit.diagnosis.series.kinds import LOCKING_ANGLE_DEG
 from pamkit.io.columns import value_from_si
@@ -42,6 +42,10 @@ GROUP_NAMES = {"isometric_map": "held length", "isotonic": "sweep", "free_inflat
 RUN_NAMES = ("pressure run", "half pressure run")
 # Fewer held-out groups than this cannot say whether a model carries beyond its fitted rows.
 MIN_GROUPS = 3
+# A held-out run (a sweep's pressurising or venting part) ends where the pressure turns by more
+# than this share of the record's span: a regulator's overshoot of a few kPa on a 600 kPa sweep
+# turns back by under 1 %, a sweep's top or bottom by all of it.
+RUN_TURN = 0.05
 
 
 def kind_of(experiment: Experiment) -> str:
@@ -102,10 +106,31 @@ class Campaign:
         return campaign_of([e for e in self.experiments if kind_of(e) == kind])
 
 
+def held_out_branches(gauge_pressure_Pa: np.ndarray) -> np.ndarray:
+    """Each row's pressurising (+1) or venting (-1) run as a held-out unit sees it: a turn of the
+    pressure by less than RUN_TURN of the record's span (a regulator overshooting a step, a
+    settled step's noise) does not end a run, where the friction's branch may turn
+    (PRESSURE_BRANCH_PLAY_PA). A run ends at its last row within that play of its extreme (the
+    top or bottom step, settled or overshooting), not where the turn is first told."""
+    pressure = np.asarray(gauge_pressure_Pa, dtype=float)
+    span = float(np.ptp(pressure)) if len(pressure) else 0.0
+    play = max(0.5 * RUN_TURN * span, PRESSURE_BRANCH_PLAY_PA)
+    told = np.asarray(pressure_branches(pressure, play))
+    branch = told.copy()
+    start = 0
+    for turn in np.flatnonzero(np.diff(told)) + 1:
+        run = pressure[start:turn]
+        near = run >= run.max() - play if told[turn - 1] > 0 else run <= run.min() + play
+        end = start + int(np.flatnonzero(near)[-1]) + 1
+        branch[end:turn] = told[turn]
+        start = end
+    return branch
+
+
 def pressure_runs(gauge_pressure_Pa: np.ndarray) -> list[tuple[np.ndarray, bool, int]]:
-    """The record's pressurising and venting runs (pressure_branches): each run's rows, whether
+    """The record's pressurising and venting runs (held_out_branches): each run's rows, whether
     the pressure rises along it, and its number among the runs of its direction."""
-    branch = np.asarray(pressure_branches(gauge_pressure_Pa))
+    branch = held_out_branches(gauge_pressure_Pa)
     run = np.concatenate([[0], np.cumsum(branch[1:] != branch[:-1])])
     out, count = [], {True: 0, False: 0}
     for number in np.unique(run):
@@ -163,7 +188,7 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
                 labels.append(f"{prefix(i)}{label}")
         elif e.kind == "isotonic":
             # A sweep: pressurised, then vented; the next starts where the pressure rises again.
-            branch = pressure_branches(e.columns["gauge_pressure_Pa"])
+            branch = held_out_branches(e.columns["gauge_pressure_Pa"])
             sweep = np.concatenate([[0], np.cumsum((branch[1:] > 0) & (branch[:-1] < 0))])
             for number in np.unique(sweep):
                 groups[rows[sweep == number]] = len(labels)
