@@ -206,6 +206,9 @@ def verdict(d: TableDiagnosis) -> str:
         for added in d.added:
             more = _gains(added["gain"], added["gain_ci95"], d.channels)
             lines.append(f"also: {added['effect']} — held-out gain over {d.cause} alone {more}")
+            if added.get("between"):  # what it was judged on: the branches' difference, where it acts
+                between = _gains(added["between"]["gain"], added["between"]["gain_ci95"], d.channels)
+                lines.append(f"  between the pressurising and venting branches, where it acts: {between}")
         lead = next(j for j in d.candidates if j.fit.name == d.cause)
         if lead.between:
             between = _gains(lead.between["gain"], lead.between["gain_ci95"], d.channels)
