@@ -13,7 +13,7 @@ from conftest import SOURCE_DIR
 
 from pamkit._core import pressure_branches
 from pamkit.diagnosis import diagnose, to_json, verdict
-from pamkit.diagnosis.tables.engine import TableCandidate, _decide, _vacuum
+from pamkit.diagnosis.tables.decide import TableCandidate, decide, vacuum_findings
 from pamkit.diagnosis.tables.fit import TableFit
 from pamkit.diagnosis.tables.kinds import campaign_of, held_out_branches, pressure_runs
 from pamkit.effects import catalog
@@ -232,13 +232,13 @@ def test_the_best_credible_candidate_is_named_beside_a_better_fit_that_cannot_be
     # named, the transducer stands in the reason.
     offset = _candidate("sensor_offset", 0.77 + 1e-9, 0.77 + 1e-9 + DRAWS, [IMPLAUSIBLE_GAIN])
     slip = _candidate("slip_hysteresis", 0.77, 0.77 + DRAWS)
-    cause, reason, chosen, margins = _decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
+    cause, reason, chosen, margins = decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
     assert cause == "slip_hysteresis" and chosen is slip
     assert "sensor_offset fits only with gain = 0.78" in reason
     # Better on every draw and by more than MIN_GAIN of what the credible one leaves: what that
     # one fits is likely a piece of the better fit, and nothing is named.
     offset = _candidate("sensor_offset", 0.9, 0.9 + DRAWS, [IMPLAUSIBLE_GAIN])
-    cause, reason, chosen, _ = _decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
+    cause, reason, chosen, _ = decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
     assert cause == "unexplained" and chosen is None
     assert "may be a part of it" in reason
 
@@ -247,12 +247,12 @@ def test_two_credible_candidates_that_explain_the_units_alike_are_a_tie_not_a_na
     # Rule 6 of the time series, on tables: the paired difference's interval holds zero.
     offset = _candidate("sensor_offset", 0.771, 0.771 + DRAWS[::-1])
     slip = _candidate("slip_hysteresis", 0.770, 0.770 + DRAWS)
-    cause, reason, chosen, _ = _decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
+    cause, reason, chosen, _ = decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
     assert cause == "unexplained" and chosen is None
     assert "do not tell the two apart" in reason
     # Ahead on every draw: named, with the margin over the rival.
     slip = _candidate("slip_hysteresis", 0.70, 0.70 + DRAWS[::-1])
-    cause, _, chosen, margins = _decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
+    cause, _, chosen, margins = decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
     assert cause == "sensor_offset" and margins["over_rival"] > 0.0
 
 
@@ -262,10 +262,10 @@ def test_a_transducer_error_that_would_have_the_vented_muscle_hold_a_vacuum_is_a
     toml = write_map(tmp_path, lengths_m=[0.25, 0.24, 0.23], pressures_kPa=np.arange(0, 651, 50), seed=3, **TRUTH)
     campaign = campaign_of([load_experiment(toml)])
     high = TableFit("sensor_offset", [catalog().parse("sensor_offset:offset_Pa=12000")], {}, {}, {}, {}, {})
-    (row,) = _vacuum(high, campaign)
+    (row,) = vacuum_findings(high, campaign)
     assert row["value"] == pytest.approx(-12e3) and "read 0 kPa" in row["source"]
     low = TableFit("sensor_offset", [catalog().parse("sensor_offset:offset_Pa=-12000")], {}, {}, {}, {}, {})
-    assert _vacuum(low, campaign) == []
+    assert vacuum_findings(low, campaign) == []
 
 
 def test_the_command_line_writes_the_table_report_and_plot(tmp_path, capsys):

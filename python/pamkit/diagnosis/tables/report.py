@@ -9,7 +9,9 @@ from pathlib import Path
 import numpy as np
 
 from pamkit.diagnosis.identify import interval_numbers, why_undetermined
-from pamkit.diagnosis.tables.engine import TableCandidate, TableDiagnosis, TableFit, heldout_rmse
+from pamkit.diagnosis.tables.decide import TableCandidate
+from pamkit.diagnosis.tables.engine import TableDiagnosis
+from pamkit.diagnosis.tables.fit import TableFit, heldout_rmse
 from pamkit.diagnosis.tables.kinds import CYCLIC
 from pamkit.diagnosis.tables.remainder import describe
 from pamkit.io.columns import COLUMN_UNITS, value_from_si
