@@ -203,14 +203,14 @@ def holds_vacuum(problem: Problem, fit: Fit) -> list[str]:
     if e.gas != GasMode.supplied:
         return []
     read = ~e.censored
-    reading = e.columns["gauge_pressure_Pa"][read]
-    found = implied_vacuum(fit.effects, e.columns["time_s"][read], reading)
+    time, reading = e.columns["time_s"][read], e.columns["gauge_pressure_Pa"][read]
+    found = implied_vacuum(fit.effects, time, reading)
     if found is None:
         return []
     k, true_Pa = found
     return [
         f"where the transducer read {value_from_si('gauge_pressure_Pa', reading[k]):.3g} kPa (t = "
-        f"{e.columns['time_s'][read][k]:.4g} s) the muscle would have held "
+        f"{time[k]:.4g} s) the muscle would have held "
         f"{value_from_si('gauge_pressure_Pa', true_Pa):.3g} kPa: a regulator supplies air or vents it, never a vacuum"
     ]
 

@@ -48,6 +48,14 @@ def findings_of(fit: TableFit) -> list[dict]:
     return [asdict(f) for f in findings(fit)]
 
 
+def findings_text(rows: list[dict]) -> str:
+    """Report rows of findings as the verdict says them: "gain = 0.7844 at its search bound …"."""
+    return "; ".join(
+        f"{f['parameter']} = {f['value']:.4g}" + (f" at its search bound {f['bound']:.4g}" if f["bound"] else "")
+        for f in rows
+    )
+
+
 def vacuum_findings(fit: TableFit, campaign: Campaign) -> list[dict]:
     """A transducer's error that would have the muscle hold a vacuum where a row was read
     (supply.implied_vacuum), as a report row beside the parameters' findings."""
@@ -179,18 +187,18 @@ def judge(
 
 
 def decide(candidates, baseline, measured, channels, noise):
+    """The verdict on `candidates` (judged, best score first): the cause, why, the candidate named
+    (or None) and each deciding rule's margin. The best significant, credible candidate is named,
+    unless a better fit that cannot be named outdoes it (rule 3) or a credible rival explains the
+    held-out groups as well (rule 6); with none significant, `none` within NONE_WITHIN_NOISE of the
+    noise, else `unexplained`."""
     significant = [j for j in candidates if j.significant]
     margins: dict[str, float] = {}
     if significant:
         best = significant[0]
         lead = next((j for j in significant if j.credible), None)
         if not best.credible:
-            what = "; ".join(
-                f"{f['parameter']} = {f['value']:.4g}"
-                + (f" at its search bound {f['bound']:.4g}" if f["bound"] else "")
-                for f in best.findings
-            )
-            rejected = f"{best.fit.name} fits only with {what}"
+            rejected = f"{best.fit.name} fits only with {findings_text(best.findings)}"
             if lead is None:
                 return "unexplained", f"the best candidate, {rejected}", None, margins
             # The series' rule 3: a better fit that cannot be named stands beside the cause, not in

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from pamkit.diagnosis.identify import interval_numbers, why_undetermined
-from pamkit.diagnosis.tables.decide import TableCandidate
+from pamkit.diagnosis.tables.decide import TableCandidate, findings_text
 from pamkit.diagnosis.tables.engine import TableDiagnosis
 from pamkit.diagnosis.tables.fit import TableFit, heldout_rmse
 from pamkit.diagnosis.tables.kinds import CYCLIC
@@ -217,8 +217,7 @@ def verdict(d: TableDiagnosis) -> str:
             lines.append(f"  between the pressurising and venting branches, where it acts: held-out gain {between}")
         better = next(j for j in d.candidates if j.significant)
         if better is not lead and not d.added:
-            rejected = "; ".join(f"{f['parameter']} = {f['value']:.4g}" for f in better.findings)
-            lines.append(f"  {better.fit.name} fits as well, but only with {rejected}: not named")
+            lines.append(f"  {better.fit.name} fits as well, but only with {findings_text(better.findings)}: not named")
         if lead.strain:
             strained = "; ".join(f"{f['parameter']} = {f['value']:.4g}" for f in lead.strain)
             lines.append(f"  beside it the base model strains, as without it: {strained}")
