@@ -13,9 +13,10 @@ from conftest import SOURCE_DIR
 
 from pamkit._core import pressure_branches
 from pamkit.diagnosis import diagnose, to_json, verdict
+from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
 from pamkit.diagnosis.tables.decide import TableCandidate, decide, vacuum_findings
 from pamkit.diagnosis.tables.fit import TableFit
-from pamkit.diagnosis.tables.kinds import campaign_of, held_out_branches, pressure_runs
+from pamkit.diagnosis.tables.kinds import campaign_of, difference_residuals, held_out_branches, pressure_runs
 from pamkit.effects import catalog
 from pamkit.io.experiment import load_experiment
 from pamkit.io.guards import ExperimentError
@@ -188,6 +189,40 @@ def test_a_map_at_too_few_lengths_holds_out_parts_of_its_pressure_runs(tmp_path)
     assert d.cause == "none", verdict(d)
 
 
+def test_an_isotonic_test_of_one_or_two_sweeps_holds_out_its_pressure_runs(tmp_path):
+    # A sweep is the natural unit; with fewer than three in the campaign, each pressurising and
+    # venting run, and with fewer than three of those, each run's halves.
+    sweep = [150.0, 250.0, 350.0, 450.0, 550.0, 450.0, 350.0, 250.0, 150.0]
+    labels = {}
+    for count in (1, 2, 3):
+        toml = write_isotonic(
+            tmp_path / str(count), sweeps=[sweep] * count, load_N=80.0, hysteresis=0.1, seed=7, **TRUTH
+        )
+        campaign = campaign_of([load_experiment(toml)])
+        labels[count] = (campaign.group_name, campaign.group_labels)
+    assert labels[1] == (
+        "half pressure run",
+        [
+            "pressurising 1, first half",
+            "pressurising 1, second half",
+            "venting 1, first half",
+            "venting 1, second half",
+        ],
+    )
+    assert labels[2] == ("pressure run", ["pressurising 1", "venting 1", "pressurising 2", "venting 2"])
+    assert labels[3] == ("sweep", ["sweep 1", "sweep 2", "sweep 3"])
+
+
+def test_the_difference_residuals_cancel_a_quadratic_and_keep_the_noise():
+    # Four rows at any spacing, each step read once or three times: a quadratic leaves nothing (to
+    # rounding), white noise its spread.
+    rng = np.random.default_rng(0)
+    for x in (np.array([0.0, 1.0, 2.5, 4.0, 4.5, 7.0, 8.0]), np.repeat([0.0, 1.0, 2.5, 4.0], 3)):
+        assert np.allclose(difference_residuals(x, 3.0 - 2.0 * x + 0.7 * x**2), 0.0, atol=1e-12)
+        draws = np.concatenate([difference_residuals(x, rng.normal(0.0, 2.0, len(x))) for _ in range(2000)])
+        assert np.std(draws) == pytest.approx(2.0, rel=0.03)  # >= 8000 draws: the spread's error <= 0.8 %
+
+
 def test_a_regulators_overshoot_does_not_end_a_held_out_run():
     # Steps of 25 kPa to 600 and back, each first read 6 kPa past its setting and then settled:
     # the friction's branch turns at each overshoot (2 kPa play), a held-out run only at the top
@@ -206,11 +241,14 @@ def test_a_regulators_overshoot_does_not_end_a_held_out_run():
     assert np.array_equal(held_out_branches(settled), pressure_branches(settled))
 
 
-def test_a_map_too_short_to_split_is_refused_with_what_to_measure(tmp_path):
-    toml = write_map(tmp_path, lengths_m=[0.25], pressures_kPa=[300.0, 600.0], seed=3, **TRUTH)
+def test_a_table_too_short_to_split_is_refused_with_what_to_measure(tmp_path):
+    toml = write_map(tmp_path / "map", lengths_m=[0.25], pressures_kPa=[300.0, 600.0], seed=3, **TRUTH)
     with pytest.raises(
         ExperimentError, match=r"2 half pressure run\(s\); holding out needs at least 3.*more held lengths"
     ):
+        diagnose(toml)
+    toml = write_isotonic(tmp_path / "isotonic", sweeps=[[300.0, 600.0]], load_N=80.0, hysteresis=0.0, seed=3, **TRUTH)
+    with pytest.raises(ExperimentError, match=r"2 half pressure run\(s\).*sweep the pressure again"):
         diagnose(toml)
 
 
@@ -254,6 +292,18 @@ def test_two_credible_candidates_that_explain_the_units_alike_are_a_tie_not_a_na
     slip = _candidate("slip_hysteresis", 0.70, 0.70 + DRAWS[::-1])
     cause, _, chosen, margins = decide([offset, slip], None, {}, ("force_N",), {"force_N": 1.0})
     assert cause == "sensor_offset" and margins["over_rival"] > 0.0
+
+
+def test_a_fit_that_cannot_be_named_does_not_unexplain_a_baseline_within_the_noise():
+    # The series' rule 4 on tables: with only an implausible fit significant, the baseline that
+    # already carries to held-out groups within NONE_WITHIN_NOISE of the noise is the answer.
+    offset = _candidate("sensor_offset", 0.2, 0.2 + DRAWS, [IMPLAUSIBLE_GAIN])
+    measured = {"force_N": np.zeros(4)}
+    for error, expected in ((NONE_WITHIN_NOISE - 0.1, "none"), (NONE_WITHIN_NOISE + 0.1, "unexplained")):
+        baseline = TableFit("baseline", [], {}, {}, {}, {"force_N": np.full(4, error)}, {})
+        cause, reason, chosen, _ = decide([offset], baseline, measured, ("force_N",), {"force_N": 1.0})
+        assert cause == expected and chosen is None
+        assert "sensor_offset fits only with gain = 0.78" in reason
 
 
 def test_a_transducer_error_that_would_have_the_vented_muscle_hold_a_vacuum_is_a_finding(tmp_path):

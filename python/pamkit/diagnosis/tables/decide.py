@@ -190,16 +190,32 @@ def decide(candidates, baseline, measured, channels, noise):
     """The verdict on `candidates` (judged, best score first): the cause, why, the candidate named
     (or None) and each deciding rule's margin. The best significant, credible candidate is named,
     unless a better fit that cannot be named outdoes it (rule 3) or a credible rival explains the
-    held-out groups as well (rule 6); with none significant, `none` within NONE_WITHIN_NOISE of the
-    noise, else `unexplained`."""
+    held-out groups as well (rule 6); with none significant, or only fits that cannot be named,
+    `none` within NONE_WITHIN_NOISE of the noise, else `unexplained`."""
     significant = [j for j in candidates if j.significant]
     margins: dict[str, float] = {}
+
+    def noise_ratios() -> dict[str, float]:
+        return {c: heldout_rmse(baseline, measured, c) / noise[c] for c in channels if noise[c] > 0}
+
     if significant:
         best = significant[0]
         lead = next((j for j in significant if j.credible), None)
         if not best.credible:
             rejected = f"{best.fit.name} fits only with {findings_text(best.findings)}"
             if lead is None:
+                # The series' rule 4: with nothing named, the baseline that already reaches the
+                # noise is the answer; the rejected fit fitted what the noise allows.
+                ratios = noise_ratios()
+                if ratios and max(ratios.values()) <= NONE_WITHIN_NOISE:
+                    margins["within_noise"] = float(NONE_WITHIN_NOISE - max(ratios.values()))
+                    return (
+                        "none",
+                        f"the calibrated model carries to held-out groups within the noise; the best candidate, "
+                        f"{rejected}, is not needed",
+                        None,
+                        margins,
+                    )
                 return "unexplained", f"the best candidate, {rejected}", None, margins
             # The series' rule 3: a better fit that cannot be named stands beside the cause, not in
             # its place, unless it explains the held-out groups better on the same draws, and by
@@ -239,7 +255,7 @@ def decide(candidates, baseline, measured, channels, noise):
         if lead is not best:
             reason += f"; {rejected}, no better on the same draws"
         return lead.fit.name, reason, lead, margins
-    ratios = {c: heldout_rmse(baseline, measured, c) / noise[c] for c in channels if noise[c] > 0}
+    ratios = noise_ratios()
     if ratios and max(ratios.values()) <= NONE_WITHIN_NOISE:
         margins["within_noise"] = float(NONE_WITHIN_NOISE - max(ratios.values()))
         return "none", "the calibrated model carries to held-out groups within the noise", None, margins

@@ -111,11 +111,10 @@ def diagnose_table(
     used = ~campaign.censored
     labels = np.unique(groups[used])
     if len(labels) < MIN_GROUPS:
-        what = (
-            "measure the map at more held lengths, or pressurise and vent it again"
-            if campaign.kind == "isometric_map"
-            else "add rows"
-        )
+        what = {
+            "isometric_map": "measure the map at more held lengths, or pressurise and vent it again",
+            "isotonic": "sweep the pressure again, or in more steps",
+        }.get(campaign.kind, "add rows")
         raise ExperimentError(
             f"{campaign.name}: {len(labels)} {group_name}(s); holding out needs at least {MIN_GROUPS} ({what})"
         )

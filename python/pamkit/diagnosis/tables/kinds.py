@@ -37,8 +37,9 @@ PREDICTED = {
 }
 # What each kind holds out.
 GROUP_NAMES = {"isometric_map": "held length", "isotonic": "sweep", "free_inflation": "row", CYCLIC: "cycle"}
-# What a map held at fewer than MIN_GROUPS lengths holds out instead: its pressure runs, and
-# with too few of those, their halves.
+# What a campaign of too few natural units (held_out_units) holds out instead in the kinds whose
+# pressure runs: their pressure runs, and with too few of those, their halves.
+RUN_KINDS = ("isometric_map", "isotonic")
 RUN_NAMES = ("pressure run", "half pressure run")
 # Fewer held-out groups than this cannot say whether a model carries beyond its fitted rows.
 MIN_GROUPS = 3
@@ -140,31 +141,87 @@ def pressure_runs(gauge_pressure_Pa: np.ndarray) -> list[tuple[np.ndarray, bool,
     return out
 
 
-def map_groups(experiment: Experiment) -> tuple[str, list[tuple[np.ndarray, str]]]:
-    """What an isometric map holds out (its unit's name, and each group's rows and label): its
-    held lengths; with fewer than MIN_GROUPS, each pressurising or venting run at each; with
-    fewer of those, the first and second half of each run's rows."""
-    lengths = np.round(experiment.columns["length_m"], 9)
-    held = [np.flatnonzero(lengths == length) for length in np.unique(lengths)]
-    names = [f"L={length:g}" for length in np.unique(lengths)]
-    if len(held) >= MIN_GROUPS:
-        return GROUP_NAMES["isometric_map"], list(zip(held, names))
-    runs = [
-        (at[run], f"{name} {'pressurising' if rising else 'venting'} {number}")
-        for at, name in zip(held, names)
-        for run, rising, number in pressure_runs(experiment.columns["gauge_pressure_Pa"][at])
+def isotonic_sweeps(gauge_pressure_Pa: np.ndarray) -> np.ndarray:
+    """Each row's sweep (0, 1, ...): pressurised, then vented; the next starts where the pressure
+    rises again (held_out_branches)."""
+    branch = held_out_branches(gauge_pressure_Pa)
+    return np.concatenate([[0], np.cumsum((branch[1:] > 0) & (branch[:-1] < 0))])
+
+
+Parts = list[tuple[np.ndarray, str]]  # a test's held-out groups: each one's rows and label
+
+
+def natural_units(experiment: Experiment) -> Parts:
+    """What a test holds out when a campaign has enough of them: a map's held lengths, an
+    isotonic test's sweeps, a cyclic test's stretch cycles, a free-inflation table's rows."""
+    kind = kind_of(experiment)
+    pressure = experiment.columns["gauge_pressure_Pa"]
+    if kind == "isometric_map":
+        lengths = np.round(experiment.columns["length_m"], 9)
+        return [(np.flatnonzero(lengths == length), f"L={length:g}") for length in np.unique(lengths)]
+    if kind == "isotonic":
+        sweep = isotonic_sweeps(pressure)
+        return [(np.flatnonzero(sweep == number), f"sweep {number + 1}") for number in np.unique(sweep)]
+    if kind == CYCLIC:
+        # A stretch cycle from one low turn of the crosshead to the next; what comes before the
+        # first (the mounting, the pressurising) belongs to it, what follows the last to that.
+        cycles = find_cycles(experiment.elongation_m)
+        number = np.clip(cycles.index(len(pressure)), 0, None) if len(cycles) else np.zeros(len(pressure), dtype=int)
+        if len(cycles):
+            number[cycles.ends[-1] :] = len(cycles) - 1
+        return [(np.flatnonzero(number == cycle), f"cycle {cycle + 1}") for cycle in np.unique(number)]
+    kPa = value_from_si("gauge_pressure_Pa", pressure)  # labelled in the file's unit
+    return [(np.array([row]), f"p={value:g}") for row, value in enumerate(kPa)]
+
+
+def runs_of(experiment: Experiment) -> Parts:
+    """A map's or an isotonic test's pressurising and venting runs (pressure_runs): at each held
+    length of a map, along the whole record of an isotonic test. Other kinds keep their units."""
+    if kind_of(experiment) not in RUN_KINDS:
+        return natural_units(experiment)
+    pressure = experiment.columns["gauge_pressure_Pa"]
+    whole = [(np.arange(len(pressure)), "")]
+    records = natural_units(experiment) if kind_of(experiment) == "isometric_map" else whole
+    return [
+        (at[run], " ".join(filter(None, (name, "pressurising" if rising else "venting", str(number)))))
+        for at, name in records
+        for run, rising, number in pressure_runs(pressure[at])
     ]
-    if len(runs) >= MIN_GROUPS:
-        return RUN_NAMES[0], runs
+
+
+def halves_of(experiment: Experiment) -> Parts:
+    """The first and second half of each of runs_of's runs, in the order measured."""
+    runs = runs_of(experiment)
+    if kind_of(experiment) not in RUN_KINDS:
+        return runs
     halves = [(rows[: len(rows) // 2], f"{label}, first half") for rows, label in runs]
     halves += [(rows[len(rows) // 2 :], f"{label}, second half") for rows, label in runs]
-    return RUN_NAMES[1], sorted((part for part in halves if len(part[0])), key=lambda part: part[0][0])
+    return sorted((part for part in halves if len(part[0])), key=lambda part: part[0][0])
+
+
+def held_out_units(experiments: list[Experiment]) -> tuple[str, list[Parts]]:
+    """What a campaign holds out (its unit's name, and each test's groups): its tests' natural
+    units; with fewer than MIN_GROUPS of them in all, each map's and isotonic test's pressurising
+    and venting runs; with fewer of those, the first and second half of each run. A lab's first
+    test of a muscle (one held length, one or two sweeps under a load) is judged on parts of its
+    own record rather than refused."""
+    for split, unit in ((natural_units, None), (runs_of, RUN_NAMES[0])):
+        parts = [split(e) for e in experiments]
+        if sum(map(len, parts)) >= MIN_GROUPS:
+            return _unit_name(experiments, unit), parts
+    return _unit_name(experiments, RUN_NAMES[1]), [halves_of(e) for e in experiments]
+
+
+def _unit_name(experiments: list[Experiment], split_unit: str | None) -> str:
+    """The held-out unit's name: `split_unit` for the kinds whose runs were split, each other
+    kind's own; several joined by " or "."""
+    names = [split_unit if split_unit and kind_of(e) in RUN_KINDS else GROUP_NAMES[kind_of(e)] for e in experiments]
+    return " or ".join(dict.fromkeys(names))
 
 
 def campaign_of(experiments: list[Experiment]) -> Campaign:
-    """Joins tables of one muscle, of one kind or several; a map's groups are its held lengths, an
-    isotonic test's its sweeps, a free-inflation table's its rows: the held-out unit follows the
-    kind."""
+    """Joins tables of one muscle, of one kind or several, each test's rows held out by the
+    units held_out_units gives it."""
     kinds = list(dict.fromkeys(kind_of(e) for e in experiments))
     kind = " + ".join(kinds)
     names_of_columns = list(dict.fromkeys(c for e in experiments for c in e.columns))
@@ -177,37 +234,12 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
     groups = np.empty(len(test), dtype=int)
     names = test_names(experiments)
     prefix = (lambda i: f"{names[i]} ") if len(experiments) > 1 else (lambda i: "")
-    units: list[str] = []  # what each test holds out, in the order met
-    for i, e in enumerate(experiments):
+    name, parts_of_tests = held_out_units(experiments)
+    for i, parts in enumerate(parts_of_tests):
         rows = np.flatnonzero(test == i)
-        if e.kind == "isometric_map":
-            unit, parts = map_groups(e)
-            units.append(unit)
-            for part, label in parts:
-                groups[rows[part]] = len(labels)
-                labels.append(f"{prefix(i)}{label}")
-        elif e.kind == "isotonic":
-            # A sweep: pressurised, then vented; the next starts where the pressure rises again.
-            branch = held_out_branches(e.columns["gauge_pressure_Pa"])
-            sweep = np.concatenate([[0], np.cumsum((branch[1:] > 0) & (branch[:-1] < 0))])
-            for number in np.unique(sweep):
-                groups[rows[sweep == number]] = len(labels)
-                labels.append(f"{prefix(i)}sweep {number + 1}")
-        elif kind_of(e) == CYCLIC:
-            # A stretch cycle from one low turn of the crosshead to the next; what comes before
-            # the first (the mounting, the pressurising) belongs to it, what follows the last to that.
-            cycles = find_cycles(e.elongation_m)
-            number = np.clip(cycles.index(len(rows)), 0, None) if len(cycles) else np.zeros(len(rows), dtype=int)
-            if len(cycles):
-                number[cycles.ends[-1] :] = len(cycles) - 1
-            for cycle in np.unique(number):
-                groups[rows[number == cycle]] = len(labels)
-                labels.append(f"{prefix(i)}cycle {cycle + 1}")
-        else:
-            for row, pressure in zip(rows, value_from_si("gauge_pressure_Pa", e.columns["gauge_pressure_Pa"])):
-                groups[row] = len(labels)
-                labels.append(f"{prefix(i)}p={pressure:g}")  # in kPa, as the file gives it
-    name = " or ".join(dict.fromkeys(units + [GROUP_NAMES[k] for k in kinds if k != "isometric_map"]))
+        for part, label in parts:
+            groups[rows[part]] = len(labels)
+            labels.append(f"{prefix(i)}{label}")
     censored = np.concatenate([e.censored for e in experiments])
     # A branch runs along a record: a map's held length, another kind's whole test.
     records = np.empty(len(test))
@@ -291,8 +323,10 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
     if campaign.kind == "isometric_map":
         key = np.column_stack([key, np.round(campaign.columns["length_m"], 9)])
     if campaign.kind == "isotonic":
-        first_sweep = {test: campaign.groups[campaign.test == test].min() for test in np.unique(campaign.test)}
-        first = campaign.groups == np.array([first_sweep[test] for test in campaign.test])
+        first = np.zeros(len(pressure), dtype=bool)
+        for test in np.unique(campaign.test):
+            rows = np.flatnonzero(campaign.test == test)
+            first[rows] = isotonic_sweeps(pressure[rows]) == 0
         # Each row of a first sweep a key of its own: no repeat of anything.
         key = np.column_stack([key, np.where(first, np.arange(len(pressure)), -1)])
     out = {}
@@ -306,12 +340,14 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
             squares = float(np.sum((values - means[repeat]) ** 2))
             out[channel] = math.sqrt(squares / float(np.sum(counts - 1)))
             continue
-        # A map's held lengths; an isotonic test's pressurising and venting rows apart (a loop
-        # between them is no noise); a free-inflation table.
+        if campaign.kind == "isotonic":
+            out[channel] = sweep_noise(campaign, channel)
+            continue
+        # A map's held lengths; a free-inflation table.
         if campaign.kind == "isometric_map":
             units = campaign.groups[rows]
         else:
-            units = (2 * campaign.test + (branch > 0))[rows]
+            units = campaign.test[rows]
         at = pressure[rows]
         squares, dof = 0.0, 0
         for unit in np.unique(units):
@@ -323,6 +359,54 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
             dof += int(mine.sum()) - 4
         out[channel] = math.sqrt(squares / dof) if dof > 0 else float("nan")
     return out
+
+
+# A standard normal's variance within three of its deviations of zero.
+TRUNCATED_VARIANCE_3 = 0.9733
+# Consecutive rows whose difference sweep_noise takes: four, so that a quadratic cancels.
+DIFFERENCE_ROWS = 4
+
+
+def difference_residuals(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The noise in y as each DIFFERENCE_ROWS consecutive rows tell it: a combination of their
+    values that cancels every quadratic in x (a third divided difference), scaled to unit norm,
+    so that its spread is the noise's where the signal is locally quadratic (the difference-based
+    variance estimators of Hall, Kay and Titterington, 1990, at unequal spacing). Rows read at
+    one pressure (a settled step read several times) leave more than one such combination; any
+    of them serves."""
+    out = []
+    for start in range(len(x) - DIFFERENCE_ROWS + 1):
+        window = x[start : start + DIFFERENCE_ROWS]
+        scaled = (window - window.mean()) / (np.ptp(window) or 1.0)  # one step read four times: any difference
+        powers = np.vander(scaled, DIFFERENCE_ROWS - 1, increasing=True).T
+        weights = np.linalg.svd(powers)[2][-1]  # spans what the powers leave
+        out.append(float(weights @ y[start : start + DIFFERENCE_ROWS]))
+    return np.array(out)
+
+
+def sweep_noise(campaign: Campaign, channel: str) -> float:
+    """The noise of isotonic tests whose steps do not repeat (fewer than three sweeps), model-free.
+    Along a pressurising or venting run the length is smooth in the pressure except where the
+    friction breaks away, a knee no low-order polynomial follows over a whole run: here each
+    four consecutive rows of a run tell the noise (difference_residuals), except the few around a
+    knee, left out beyond three spreads by the median absolute deviation; the rest's RMS,
+    corrected for that cut, is the noise."""
+    residuals = []
+    for test in np.unique(campaign.test):
+        rows = np.flatnonzero((campaign.test == test) & ~campaign.censored)
+        pressure, values = campaign.columns["gauge_pressure_Pa"][rows], campaign.columns[channel][rows]
+        for run, _, _ in pressure_runs(pressure):
+            x, y = pressure[run], values[run]
+            if len(run) >= DIFFERENCE_ROWS:
+                residuals.append(difference_residuals(x, y))
+    if not residuals:
+        return float("nan")
+    joined = np.concatenate(residuals)
+    spread = 1.4826 * np.median(np.abs(joined))
+    if spread == 0.0:  # more than half the windows exact: a quantised record
+        return float(np.sqrt(np.mean(joined**2)))
+    kept = joined[np.abs(joined) <= 3.0 * spread]
+    return float(np.sqrt(np.mean(kept**2) / TRUNCATED_VARIANCE_3))
 
 
 def cyclic_noise(campaign: Campaign, channel: str) -> float:
