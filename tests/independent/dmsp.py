@@ -174,10 +174,12 @@ def write_dmsp_isometric(
     seed: int,
     noise_N: float = 1.0,
     sweeps: int = 2,
+    pressure_offset_kPa: float = 0.0,
 ) -> Path:
     """An isometric test (TOML + CSV, kind isometric_map): at each held length, the muscle from
     rest, the pressure stepped up to `top_kPa` and down to 0 `sweeps` times, in 25 kPa steps. The
-    TOML declares the build as a datasheet does, the braid angle and end zones unknown."""
+    transducer reads the pressure plus `pressure_offset_kPa`. The TOML declares the build as a
+    datasheet does, the braid angle and end zones unknown."""
     rng = np.random.default_rng(seed)
     folder.mkdir(parents=True, exist_ok=True)
     up = list(np.arange(0.0, top_kPa + 1e-9, 25.0))
@@ -188,7 +190,7 @@ def write_dmsp_isometric(
         forces = isometric_forces(truth, [length] * len(pressures), [PA_PER_KPA * p for p in pressures])
         for pressure, force in zip(pressures, forces):
             reading = force + rng.normal(0, noise_N) if force > 0 else 0.0
-            rows.append((length, pressure, max(round(reading / 0.1) * 0.1, 0.0)))
+            rows.append((length, pressure + pressure_offset_kPa, max(round(reading / 0.1) * 0.1, 0.0)))
     with (folder / "isometric.csv").open("w") as handle:
         handle.write("length_m,pressure_kPa,force_N\n")
         handle.writelines(f"{length:.4f},{pressure:.1f},{force:.1f}\n" for length, pressure, force in rows)

@@ -470,6 +470,62 @@ def dmsp_isotonic(seed, folder):
     return Dataset(path, "slip_hysteresis", asdict(truth))
 
 
+# A lab's first tests of a cut muscle: one held length, one or two isotonic sweeps.
+CUT_M = (0.10, 0.40)
+MOUNTED_SHORT = 0.015  # kinked, or the clamps' play: the muscle contracts slack until taut
+
+
+def _cut(seed: int, friction: bool = True) -> dmsp.DmspTruth:
+    return replace(_dmsp_truth(seed, friction), rest_length_m=CUT_M[seed % 2])
+
+
+def dmsp_one_length_short(seed, folder):
+    """A cut muscle held 1.5 % short of its rest length, pressurised to 6 bar and vented once:
+    it contracts slack until taut, and its friction keeps what it took up."""
+    truth = _cut(seed)
+    held = [truth.rest_length_m * (1.0 - MOUNTED_SHORT)]
+    path = dmsp.write_dmsp_isometric(folder, truth, lengths_m=held, top_kPa=600, seed=seed, sweeps=1)
+    return Dataset(path, "slip_hysteresis", asdict(truth))
+
+
+def dmsp_one_length_straight(seed, folder):
+    """The same muscle held straight at its rest length: its braid never moves, nothing to name."""
+    truth = _cut(seed)
+    path = dmsp.write_dmsp_isometric(folder, truth, lengths_m=[truth.rest_length_m], top_kPa=600, seed=seed, sweeps=1)
+    return Dataset(path, HONEST, asdict(truth))
+
+
+def dmsp_isotonic_one_sweep(seed, folder):
+    """One isotonic sweep to 6 bar and back under a weighed 120 N."""
+    truth = _dmsp_truth(seed)
+    path = dmsp.write_dmsp_isotonic(folder, truth, load_N=120.0, top_kPa=600, sweeps=1, seed=seed)
+    return Dataset(path, "slip_hysteresis", asdict(truth))
+
+
+def dmsp_isotonic_two_sweeps(seed, folder):
+    """Two isotonic sweeps under a weighed 120 N: the first from rest."""
+    truth = _dmsp_truth(seed)
+    path = dmsp.write_dmsp_isotonic(folder, truth, load_N=120.0, top_kPa=600, sweeps=2, seed=seed)
+    return Dataset(path, "slip_hysteresis", asdict(truth))
+
+
+def dmsp_isotonic_frictionless(seed, folder):
+    """Two sweeps of a muscle without friction, from 2 bar (vented, nothing would hold the load)."""
+    truth = _dmsp_truth(seed, friction=False)
+    path = dmsp.write_dmsp_isotonic(folder, truth, load_N=120.0, top_kPa=600, sweeps=2, seed=seed, bottom_kPa=200.0)
+    return Dataset(path, HONEST, asdict(truth))
+
+
+def dmsp_map_transducer_offset(seed, folder):
+    """The frictionless map, its pressure read 10 kPa high (within the catalog's realistic 12 kPa):
+    every held length's line shifted."""
+    truth = _dmsp_truth(seed, friction=False)
+    path = dmsp.write_dmsp_isometric(
+        folder, truth, lengths_m=[0.25, 0.245, 0.215, 0.205], top_kPa=600, seed=seed, pressure_offset_kPa=10.0
+    )
+    return Dataset(path, "sensor_offset", {**asdict(truth), "offset_kPa": 10.0})
+
+
 FAMILIES = {
     f.__name__: f
     for f in (
@@ -496,5 +552,11 @@ FAMILIES = {
         dmsp_map_one_within,
         dmsp_map_frictionless,
         dmsp_isotonic,
+        dmsp_one_length_short,
+        dmsp_one_length_straight,
+        dmsp_isotonic_one_sweep,
+        dmsp_isotonic_two_sweeps,
+        dmsp_isotonic_frictionless,
+        dmsp_map_transducer_offset,
     )
 }

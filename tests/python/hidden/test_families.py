@@ -37,6 +37,7 @@ CATALOG_FAMILIES = (
     "independent_leak",
     "dmsp_map_one_within",
     "dmsp_isotonic",
+    "dmsp_map_transducer_offset",
     "independent_dead_volume_two_inflations",
 )
 LOAD_CELL_FAMILIES = ("load_cell_tare", "load_cell_nonlinear")

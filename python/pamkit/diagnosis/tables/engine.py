@@ -277,7 +277,11 @@ def _second_effect(first, candidates, baseline, model, catalog, progress, pool, 
         over_cause = judge(
             pair, first.fit, measured, channels, campaign.groups, used, seed, campaign, acting=pair.effects[1:]
         )
-        if over_cause.significant and over_cause.credible and (best is None or over_cause.score > best.score):
+        # An added effect none of whose own values the data determine explains nothing of its own:
+        # what its pair gains then comes from where the folds' refits stopped, not from it.
+        own = [f"{names[1]}.{c.name}" for c in fitter.effect_spaces[1]]
+        told = any(name not in pair.undetermined for name in own)
+        if over_cause.significant and over_cause.credible and told and (best is None or over_cause.score > best.score):
             best = over_cause
     if best is None:
         return first, []

@@ -111,6 +111,21 @@ class TableModel:
         return out
 
 
+# Effect parameters a static table cannot tell from the muscle's build, held at their neutral
+# values. The gain of the transducer whose reading drives the model scales the gas's force,
+# -p dV/dL, exactly as the muscle's area does, and nearly as its braid angle does (on an
+# independent DMSP map read 10 kPa high, the gain fitted 0.65 beside the braid angle and the
+# offset alone was refused with it); its offset shifts each held length's line in pressure, which
+# no build can.
+HELD_IN_TABLES = {"sensor_offset": ("gain",)}
+
+
+def table_space(effect: Effect) -> list[Coordinate]:
+    """An effect's fit coordinates in a table: effect_space's, less HELD_IN_TABLES."""
+    held = HELD_IN_TABLES.get(effect.name(), ())
+    return [c for c in effect_space(effect) if c.name not in held]
+
+
 class Fitter:
     """Least squares of one model (unknowns plus its effects' parameters) on chosen rows."""
 
@@ -119,7 +134,7 @@ class Fitter:
         self.channels = channels
         self.scales = scales
         self.make_effects = list(make_effects)  # fresh effects per evaluation: folds run in threads
-        self.effect_spaces = [effect_space(make()) for make in self.make_effects]
+        self.effect_spaces = [table_space(make()) for make in self.make_effects]
         self.effect_space = [c for space in self.effect_spaces for c in space]
         self.space = model.unknowns + self.effect_space
 

@@ -11,7 +11,7 @@ import numpy as np
 from pamkit.diagnosis.identify import interval_numbers, why_undetermined
 from pamkit.diagnosis.tables.decide import TableCandidate, findings_text
 from pamkit.diagnosis.tables.engine import TableDiagnosis
-from pamkit.diagnosis.tables.fit import TableFit, heldout_rmse
+from pamkit.diagnosis.tables.fit import HELD_IN_TABLES, TableFit, heldout_rmse
 from pamkit.diagnosis.tables.kinds import CYCLIC
 from pamkit.diagnosis.tables.remainder import describe
 from pamkit.io.columns import COLUMN_UNITS, value_from_si
@@ -119,6 +119,17 @@ def _effect_params(fit: TableFit, name: str) -> dict:
     return {k.split(".", 1)[1]: v for k, v in fit.params.items() if k.startswith(f"{name}.")}
 
 
+def _held_params(fit: TableFit, name: str) -> dict:
+    """One effect's parameters held at their neutral values in a table (HELD_IN_TABLES)."""
+    return {
+        p.name: p.value
+        for e in fit.effects
+        if e.name() == name
+        for p in e.parameters()
+        if p.name in HELD_IN_TABLES.get(name, ())
+    }
+
+
 def causes_json(d: TableDiagnosis) -> list[dict]:
     """Each cause present, the leading one first, with its own held-out gain: the first over the
     calibrated baseline, one added beside it over the first alone; an effect between the
@@ -130,6 +141,7 @@ def causes_json(d: TableDiagnosis) -> list[dict]:
         {
             "effect": d.cause,
             "params": _effect_params(d.extended, d.cause),
+            "held": _held_params(d.extended, d.cause),
             "gain": lead.gain,
             "gain_ci95": {c: list(v) for c, v in lead.gain_ci95.items()},
             "between_branches": lead.between,
@@ -142,6 +154,7 @@ def causes_json(d: TableDiagnosis) -> list[dict]:
             {
                 "effect": more["effect"],
                 "params": _effect_params(d.extended, more["effect"]),
+                "held": _held_params(d.extended, more["effect"]),
                 "gain": more["gain"],
                 "gain_ci95": more["gain_ci95"],
                 "between_branches": more.get("between"),
@@ -161,7 +174,12 @@ def _calibrated(fit: TableFit) -> str:
         why = why_undetermined(fit.undetermined[k], coordinate.at_bound(x) is not None)
         return f"{k} = {v:.4g} (not determined by the data: {why})"
 
-    return ", ".join(one(k, v) for k, v in fit.params.items())
+    held = [
+        f"{k} = {v:.4g} (held: a table cannot tell it from the build)"
+        for e in fit.effects
+        for k, v in _held_params(fit, e.name()).items()
+    ]
+    return ", ".join([one(k, v) for k, v in fit.params.items()] + held)
 
 
 def _untested(j: TableCandidate, group_name: str) -> str:
