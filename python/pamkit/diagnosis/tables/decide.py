@@ -48,10 +48,17 @@ def findings_of(fit: TableFit) -> list[dict]:
     return [asdict(f) for f in findings(fit)]
 
 
+# The report row of an instrument's error that the model without it does not need (not_needed).
+NOT_NEEDED = "heldout_rmse_over_noise_before"
+
+
 def findings_text(rows: list[dict]) -> str:
-    """Report rows of findings as the verdict says them: "gain = 0.7844 at its search bound …"."""
+    """Report rows of findings as the verdict says them, after "fits only with": "gain = 0.7844 at
+    its search bound …"; an instrument's error not needed, as "the model without it …"."""
     return "; ".join(
-        f"{f['parameter']} = {f['value']:.4g}" + (f" at its search bound {f['bound']:.4g}" if f["bound"] else "")
+        f["source"]
+        if f["parameter"] == NOT_NEEDED
+        else f"{f['parameter']} = {f['value']:.4g}" + (f" at its search bound {f['bound']:.4g}" if f["bound"] else "")
         for f in rows
     )
 
@@ -83,6 +90,29 @@ def vacuum_findings(fit: TableFit, campaign: Campaign) -> list[dict]:
             }
         )
     return out
+
+
+def not_needed(before: TableFit, measured, channels, noise: dict[str, float]) -> list[dict]:
+    """A report row against an instrument's error where `before` (the model without it) already
+    carries to held-out groups within NONE_WITHIN_NOISE of the noise on every channel."""
+    ratios = {c: heldout_rmse(before, measured, c) / noise[c] for c in channels if noise[c] > 0}
+    if not ratios or max(ratios.values()) > NONE_WITHIN_NOISE:
+        return []
+    worst = max(ratios.values())
+    return [
+        {
+            "parameter": NOT_NEEDED,
+            "value": worst,
+            "bound": None,
+            "plausible": [NONE_WITHIN_NOISE, None],
+            "source": (
+                f"the model without it carrying held-out groups within the noise ({worst:.2f}x, "
+                f"{NONE_WITHIN_NOISE:g}x allowed): no error of the instrument is needed there"
+            ),
+            "beyond": None,
+            "rmse_drop": None,
+        }
+    ]
 
 
 def branch_difference(residual: np.ndarray, pressure: np.ndarray, branch: np.ndarray, rows: np.ndarray) -> np.ndarray:
@@ -123,6 +153,7 @@ def judge(
     campaign: Campaign | None = None,
     calibrated: list[dict] | None = None,
     acting=None,
+    noise: dict[str, float] | None = None,
 ) -> TableCandidate:
     """`fit` scored on held-out groups against `baseline`. An effect that shows only between the
     pressurising and venting branches is judged on what differs between them (branch_difference),
@@ -133,7 +164,10 @@ def judge(
     of `fit`'s; a second effect judged beside a first: that one). A group that either model
     predicts with values only that group determines (TableFit.rests_on) tests neither: it is left
     out of the judgement, and said so (`untested`), while MIN_GROUPS groups are left to judge on;
-    with fewer, every group is judged, as a table of so few groups would be."""
+    with fewer, every group is judged, as a table of so few groups would be. An instrument's error
+    (`acting` all instruments) is not needed where the model it is judged against already carries
+    to held-out groups within NONE_WITHIN_NOISE of the `noise` on every channel (the time series'
+    rule 6): there it would fit what the build leaves, a finding against it."""
     untestable = {**baseline.rests_on, **fit.rests_on}
     labels = np.unique(groups[used])
     tested = np.array([label for label in labels if int(label) not in untestable])
@@ -163,7 +197,9 @@ def judge(
     significant = all(judged_gain[c] >= MIN_GAIN and judged_ci[c][0] > 0.0 for c in channels)
     own, strain = [], []
     corrector = all(e.stage() != EffectStage.physics for e in fit.effects)
-    for finding in findings_of(fit) + (vacuum_findings(fit, campaign) if campaign is not None else []):
+    instrument = all(e.stage() != EffectStage.physics for e in (acting or fit.effects))
+    unneeded = not_needed(baseline, measured, channels, noise) if instrument and noise is not None else []
+    for finding in findings_of(fit) + (vacuum_findings(fit, campaign) if campaign is not None else []) + unneeded:
         inherited = calibrated is not None and any(
             finding["parameter"] == f["parameter"] and finding["bound"] == f["bound"] for f in calibrated
         )
@@ -212,7 +248,7 @@ def decide(candidates, baseline, measured, channels, noise):
                     return (
                         "none",
                         f"the calibrated model carries to held-out groups within the noise; the best candidate, "
-                        f"{rejected}, is not needed",
+                        f"{rejected}",
                         None,
                         margins,
                     )

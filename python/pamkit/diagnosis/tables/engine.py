@@ -160,7 +160,9 @@ def diagnose_table(
             progress(f"fitting {name}")
             fit = fit_table(name, model, channels, scales, [make_effect], groups, used, pool, noise=noise)
             candidates.append(
-                judge(fit, baseline, measured, channels, groups, used, seed, campaign, findings_of(baseline))
+                judge(
+                    fit, baseline, measured, channels, groups, used, seed, campaign, findings_of(baseline), noise=noise
+                )
             )
         candidates.sort(key=lambda j: -j.score)
         cause, reason, chosen, margins = decide(candidates, baseline, measured, channels, noise)
@@ -275,7 +277,16 @@ def _second_effect(first, candidates, baseline, model, catalog, progress, pool, 
             " + ".join(names), model, channels, scales, makes, campaign.groups, used, pool, [start], noise=noise
         )
         over_cause = judge(
-            pair, first.fit, measured, channels, campaign.groups, used, seed, campaign, acting=pair.effects[1:]
+            pair,
+            first.fit,
+            measured,
+            channels,
+            campaign.groups,
+            used,
+            seed,
+            campaign,
+            acting=pair.effects[1:],
+            noise=noise,
         )
         # An added effect none of whose own values the data determine explains nothing of its own:
         # what its pair gains then comes from where the folds' refits stopped, not from it.
