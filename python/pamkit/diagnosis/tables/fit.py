@@ -115,8 +115,8 @@ class TableModel:
 # values. The gain of the transducer whose reading drives the model scales the gas's force,
 # -p dV/dL, exactly as the muscle's area does, and nearly as its braid angle does (on an
 # independent DMSP map read 10 kPa high, the gain fitted 0.65 beside the braid angle and the
-# offset alone was refused with it); its offset shifts each held length's line in pressure, which
-# no build can.
+# transducer was refused, on 6 seeds of 6); its offset shifts each held length's line in pressure,
+# which no build can.
 HELD_IN_TABLES = {"sensor_offset": ("gain",)}
 
 
