@@ -324,10 +324,10 @@ def experiment_keys() -> list[Key]:
             name,
             unit if unit != "1" else "",
             f"{DEFAULT_WIND_TOLERANCE:.0%} of the declared revolutions" if name == "fiber_revolutions" else "exact",
-            "how far the built muscle may be from the declared value (±, in its unit): the diagnosis of a time "
-            "series checks each cause with the build free within it (a static table calibrates only what "
-            "[calibrate] declares: give it the bounds there); without the section the braid's wind is uncertain by "
-            f"{DEFAULT_WIND_TOLERANCE:.0%}, an empty section declares the build exact",
+            "how far the built muscle may be from the declared value (±, in its unit): the diagnosis checks each "
+            "cause with the build free within it; without the section the braid's wind is uncertain by "
+            f"{DEFAULT_WIND_TOLERANCE:.0%} in a time series (a static table frees only the fields its file gives "
+            "here), an empty section declares the build exact",
             allowed="> 0",
         )
         for name, (_, _, unit) in calibratable_fields().items()

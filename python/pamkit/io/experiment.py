@@ -65,6 +65,7 @@ class Experiment:
     calibrate: dict[str, tuple[float, float]] = field(default_factory=dict)
     # [uncertain]: each build field the muscle may be off by, ± in its unit (default: the wind's 5 %)
     uncertain: dict[str, float] = field(default_factory=dict)
+    uncertain_declared: bool = False  # the file gave [uncertain] (a static table frees only what a file declares)
     load_N: float | None = None
     load_mass_kg: float | None = None
     zeroed: dict[str, float] = field(default_factory=dict)  # offsets the zero run took off each channel
@@ -343,6 +344,7 @@ def _experiment_of(path: Path, document: dict) -> Experiment:
         kind=kind,
         calibrate=calibrate,
         uncertain=uncertain,
+        uncertain_declared="uncertain" in document,
         load_N=load,
         preload_N=preload,
         ranges=ranges,

@@ -15,7 +15,7 @@ from pamkit._core import pressure_branches
 from pamkit.diagnosis import diagnose, to_json, verdict
 from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
 from pamkit.diagnosis.tables.decide import NOT_NEEDED, TableCandidate, decide, findings_text, judge, vacuum_findings
-from pamkit.diagnosis.tables.fit import TableFit
+from pamkit.diagnosis.tables.fit import TableFit, TableModel
 from pamkit.diagnosis.tables.kinds import campaign_of, difference_residuals, held_out_branches, pressure_runs
 from pamkit.effects import catalog
 from pamkit.io.experiment import load_experiment
@@ -221,6 +221,21 @@ def test_the_difference_residuals_cancel_a_quadratic_and_keep_the_noise():
         assert np.allclose(difference_residuals(x, 3.0 - 2.0 * x + 0.7 * x**2), 0.0, atol=1e-12)
         draws = np.concatenate([difference_residuals(x, rng.normal(0.0, 2.0, len(x))) for _ in range(2000)])
         assert np.std(draws) == pytest.approx(2.0, rel=0.03)  # >= 8000 draws: the spread's error <= 0.8 %
+
+
+def test_a_tables_own_uncertain_section_frees_the_build_within_its_tolerance(tmp_path):
+    # A table calibrates what its file declares: [calibrate]'s unknowns, and [uncertain]'s fields
+    # within their tolerance when the file gives the section (never the default 5 % wind of a file
+    # without it, which the time series' build check uses).
+    sweep = [150.0, 350.0, 550.0, 350.0, 150.0]
+    toml = write_isotonic(tmp_path, sweeps=[sweep] * 3, load_N=80.0, hysteresis=0.1, seed=7, **TRUTH)
+    plain = TableModel(campaign_of([load_experiment(toml)]))
+    toml.write_text(toml.read_text().replace("[calibrate]", "[uncertain]\nlength_m = 0.001\n\n[calibrate]"))
+    declared = TableModel(campaign_of([load_experiment(toml)]))
+    assert [c.name for c in declared.unknowns] == [c.name for c in plain.unknowns] + ["length_m"]
+    (length,) = [c for c in declared.unknowns if c.name == "length_m"]
+    assert (length.lower, length.upper) == pytest.approx((0.249, 0.251))
+    assert "fiber_revolutions" not in [c.name for c in plain.unknowns]
 
 
 def test_a_regulators_overshoot_does_not_end_a_held_out_run():

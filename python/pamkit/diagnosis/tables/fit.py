@@ -11,7 +11,15 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from pamkit._core import Effect, MuscleParams
-from pamkit.diagnosis.coordinates import Coordinate, configure, effect_space, unknown_coordinate, with_unknowns
+from pamkit.diagnosis.coordinates import (
+    Coordinate,
+    configure,
+    effect_space,
+    uncertain_coordinate,
+    uncertain_fields,
+    unknown_coordinate,
+    with_unknowns,
+)
 from pamkit.diagnosis.identify import identify
 from pamkit.diagnosis.tables.kinds import CYCLIC, PREDICTED, Campaign, kind_of
 from pamkit.io.experiment import Experiment, test_names
@@ -79,6 +87,28 @@ class TableModel:
                     )
                 declared.setdefault(name, (bounds, e))
         self.unknowns = [unknown_coordinate(name, bounds, e) for name, (bounds, e) in declared.items()]
+        self.unknowns += self._uncertain(set(declared))
+
+    def _uncertain(self, calibrated: set[str]) -> list[Coordinate]:
+        """The build fields a file's own [uncertain] frees within its tolerance, beside the
+        [calibrate] unknowns (not the default wind a file without the section gets: a table's
+        build is what its file declares). A campaign shares them, so its tests must agree."""
+        out: dict[str, tuple[Coordinate, Experiment]] = {}
+        for e in self.campaign.experiments:
+            if not e.uncertain_declared:
+                continue
+            for name in uncertain_fields(e):
+                if name in calibrated:
+                    continue
+                coordinate = uncertain_coordinate(name, e)
+                if name in out and (out[name][0].lower, out[name][0].upper) != (coordinate.lower, coordinate.upper):
+                    raise ExperimentError(
+                        f"{e.path}: [uncertain] {name} gives {coordinate.lower:g} to {coordinate.upper:g}, "
+                        f"{out[name][1].path} {out[name][0].lower:g} to {out[name][0].upper:g}: a campaign shares "
+                        "its build"
+                    )
+                out.setdefault(name, (coordinate, e))
+        return [coordinate for coordinate, _ in out.values()]
 
     def unknown_of(self, name: str, experiment: Experiment) -> str:
         """The unknown's name: a test's own unknown (its load) carries the test's name in a campaign."""
