@@ -235,7 +235,14 @@ def test_a_tables_own_uncertain_section_frees_the_build_within_its_tolerance(tmp
     assert [c.name for c in declared.unknowns] == [c.name for c in plain.unknowns] + ["length_m"]
     (length,) = [c for c in declared.unknowns if c.name == "length_m"]
     assert (length.lower, length.upper) == pytest.approx((0.249, 0.251))
-    assert "fiber_revolutions" not in [c.name for c in plain.unknowns]
+    # With the braid angle no longer calibrated, a file without [uncertain] still frees no wind.
+    toml.write_text(
+        toml.read_text()
+        .replace("[uncertain]\nlength_m = 0.001\n\n", "")
+        .replace("braid_angle_deg = [10.0, 45.0]\n", "")
+    )
+    assert "fiber_revolutions" in load_experiment(toml).uncertain  # the time series' default
+    assert "fiber_revolutions" not in [c.name for c in TableModel(campaign_of([load_experiment(toml)])).unknowns]
 
 
 def test_a_regulators_overshoot_does_not_end_a_held_out_run():

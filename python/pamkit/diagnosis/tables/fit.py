@@ -24,6 +24,7 @@ from pamkit.diagnosis.identify import identify
 from pamkit.diagnosis.tables.kinds import CYCLIC, PREDICTED, Campaign, kind_of
 from pamkit.io.experiment import Experiment, test_names
 from pamkit.io.guards import ExperimentError
+from pamkit.io.sections import BRAID_ANGLE_KEY
 from pamkit.simulation import muscle_params, simulate_experiment, simulate_table
 
 # [calibrate] names each test of a campaign has its own value of (the rest are shared).
@@ -93,6 +94,8 @@ class TableModel:
         """The build fields a file's own [uncertain] frees within its tolerance, beside the
         [calibrate] unknowns (not the default wind a file without the section gets: a table's
         build is what its file declares). A campaign shares them, so its tests must agree."""
+        if {"fiber_revolutions", BRAID_ANGLE_KEY} & calibrated:  # one number: calibrated, it is not uncertain
+            calibrated = calibrated | {"fiber_revolutions", BRAID_ANGLE_KEY}
         out: dict[str, tuple[Coordinate, Experiment]] = {}
         for e in self.campaign.experiments:
             if not e.uncertain_declared:
