@@ -40,6 +40,7 @@ PYBIND11_MODULE(_core, m) {
       m.def_submodule("units", "Conversions for quantities that cross a boundary in other units (units.hpp).");
   units.attr("PASCAL_PER_KILOPASCAL") = pamkit::units::kPascalPerKilopascal;
   units.attr("KILOPASCAL_PER_PSI") = pamkit::units::kKilopascalPerPsi;
+  units.attr("KILOPASCAL_PER_BAR") = pamkit::units::kKilopascalPerBar;
   units.attr("KELVIN_AT_ZERO_CELSIUS") = pamkit::units::kKelvinAtZeroCelsius;
   units.attr("MILLIMETRE_PER_METRE") = pamkit::units::kMillimetrePerMetre;
 }

@@ -77,7 +77,7 @@ def test_missing_required_key(write_experiment):
         ("time_s,elongation_m\n0,0\n1,abc\n", r"run.csv:3: column 2 \(elongation_m\) = 'abc' is not a number"),
         ("time_s,elongation_m\n0,0\n2,0.001\n1.5,0.002\n", r"run.csv:4: column 1 \(time_s\) = 1.5 does not increase"),
         ("time_s,force_N\n0,0\n1,1\n", r"run.csv:1: required column 'elongation_m' is missing"),
-        ("time_s,elongation_m,force_kN\n0,0,1\n1,1,1\n", r"run.csv:1: column 3 'force_kN' is not a known channel"),
+        ("time_s,elongation_m,force_lbf\n0,0,1\n1,1,1\n", r"run.csv:1: column 3 'force_lbf' is not a known channel"),
         ("time_s,elongation_m\n0,0\n1\n", r"run.csv:3: 1 values, the header has 2"),
         ("time_s,elongation_m\n0,0\n", r"needs at least 2 data rows"),
         ("", r"empty file"),
@@ -221,6 +221,81 @@ def test_spreadsheet_exports_load_a_bom_semicolons_and_decimal_commas(tmp_path):
     path.write_text("time_s;elongation_m\n0;0\n1;abc\n")
     with pytest.raises(ExperimentError, match=r"run.csv:3: column 2 \(elongation_m\) = 'abc' is not a number"):
         read_series(path)
+
+
+def test_columns_in_other_units_are_read_in_pamkits(tmp_path):
+    # A lab's files in millimetres, bar, kN, psi and milliseconds: the same SI columns as the file
+    # in pamkit's units (1 bar = 100 kPa, 1 psi = 6.894757 kPa: units.hpp).
+    path = tmp_path / "run.csv"
+    path.write_text("time_s,elongation_m,force_N,pressure_kPa\n0,0,10,150\n0.5,0.002,250,165\n")
+    expected = read_series(path)
+    for header, rows in (
+        ("time_ms,elongation_mm,force_kN,pressure_bar", "0,0,0.01,1.5\n500,2,0.25,1.65\n"),
+        ("time_s,elongation_m,force_N,pressure_MPa", "0,0,10,0.15\n0.5,0.002,250,0.165\n"),
+        ('"time_s";"elongation_mm";"force_N";"pressure_bar"', "0;0;10;1,5\n0,5;2;250;1,65\n"),  # row by row
+    ):
+        path.write_text(f"{header}\n{rows}")
+        columns = read_series(path)
+        assert list(columns) == list(expected)
+        for name in expected:
+            np.testing.assert_allclose(columns[name], expected[name], rtol=1e-15, err_msg=f"{header}: {name}")
+    path.write_text("time_s,elongation_m,pressure_psi\n0,0,20\n1,0.001,21\n")
+    np.testing.assert_allclose(read_series(path)["gauge_pressure_Pa"], [137895.14586336722, 144789.90315653558])
+    # An isotonic test's contraction in millimetres, from the deflated length.
+    (tmp_path / "iso.csv").write_text("pressure_bar,contraction_mm\n2,10\n4,30\n")
+    iso = tmp_path / "iso.toml"
+    iso.write_text(
+        _commercial(tmp_path, "braid_angle_deg = 21.0")
+        .read_text()
+        .replace('"isometric_map"', '"isotonic"')
+        .replace('data = "map.csv"', 'data = "iso.csv"\nload_N = 100')
+    )
+    columns = load_experiment(iso).columns
+    np.testing.assert_allclose(columns["length_m"], [0.24, 0.22])
+    np.testing.assert_allclose(columns["gauge_pressure_Pa"], [2e5, 4e5])
+
+
+@pytest.mark.parametrize(
+    "header, message",
+    [
+        ("time_s,elongation_m,elongation_mm", r"run.csv:1: columns 'elongation_m' and 'elongation_mm' both give"),
+        (
+            "time_s,elongation_m,force_lbf",
+            r"column 3 'force_lbf' is not a known channel .*or in other units: .*force_kN",
+        ),
+    ],
+)
+def test_a_column_in_another_unit_is_named_where_it_clashes_or_is_unknown(tmp_path, header, message):
+    path = tmp_path / "run.csv"
+    path.write_text(f"{header}\n0,0,0\n1,0.001,0.001\n")
+    with pytest.raises(ExperimentError, match=message):
+        read_series(path)
+
+
+def test_values_in_another_unit_than_the_column_names_are_refused(tmp_path):
+    # Pascals under a kPa name in an isotonic test (as in a time series): a muscle at 575 MPa
+    # would be diagnosed as it stands. 2000 kPa: the highest inflation pressure a file may declare.
+    iso = _commercial(tmp_path, "braid_angle_deg = 21.0")
+    iso.write_text(
+        iso.read_text().replace('"isometric_map"', '"isotonic"').replace('"map.csv"', '"iso.csv"\nload_N = 9')
+    )
+    (tmp_path / "iso.csv").write_text("pressure_kPa,length_m\n150000,0.24\n575000,0.22\n")
+    with pytest.raises(
+        ExperimentError,
+        match=r"iso.csv:2: column 1 \(pressure_kPa\) = 150000 is outside \[-101, 2000\]: "
+        r"is it in pascals or psi\? \(a file may give pressure_kPa as pressure_bar",
+    ):
+        load_experiment(iso)
+    (tmp_path / "iso.csv").write_text("pressure_bar,length_m\n150,0.24\n165,0.22\n")  # kPa under a bar name
+    with pytest.raises(ExperimentError, match=r"iso.csv:2: column 1 \(pressure_kPa\) = 15000 is outside"):
+        load_experiment(iso)
+    # Metres under a millimetre name: a 0.25 mm muscle, against the 250 mm [muscle] declares.
+    map_toml = _commercial(tmp_path, "braid_angle_deg = 21.0")
+    (tmp_path / "map.csv").write_text("length_mm,pressure_kPa,force_N\n0.25,100,50\n0.24,100,20\n")
+    with pytest.raises(ExperimentError, match=r"map.csv: the muscle's length spans 0.00024 to 0.00025 m, outside"):
+        load_experiment(map_toml)
+    (tmp_path / "map.csv").write_text("length_mm,pressure_kPa,force_N\n250,100,50\n240,100,20\n")
+    np.testing.assert_allclose(load_experiment(map_toml).columns["length_m"], [0.25, 0.24])
 
 
 def test_what_is_not_a_readable_text_file_is_named(tmp_path, write_experiment):

@@ -14,7 +14,7 @@ import tomllib
 
 import pamkit
 from pamkit.cli import command_help, main
-from pamkit.io.columns import file_name
+from pamkit.io.columns import OTHER_UNITS, file_name
 from pamkit.io.experiment import load_experiment, load_tests
 from pamkit.io.guards import ExperimentError
 from pamkit.io.schema import CAMPAIGN_SECTIONS, TEST_KEYS
@@ -268,3 +268,9 @@ def test_pamkit_version_is_the_projects():
     with pytest.raises(SystemExit) as done:
         main(["--version"])
     assert done.value.code == 0
+
+
+def test_every_other_unit_a_reader_takes_is_in_the_data_columns_page():
+    page = (Path(__file__).resolve().parents[2] / "docs" / "reference" / "data-columns.rst").read_text()
+    missing = [unit.file_name for unit in OTHER_UNITS if f"``{unit.file_name}``" not in page]
+    assert not missing, f"docs/reference/data-columns.rst does not name {missing}"

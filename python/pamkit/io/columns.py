@@ -12,7 +12,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from pamkit._core import measured_channels
-from pamkit.units import KELVIN_AT_ZERO_CELSIUS, PASCAL_PER_KILOPASCAL
+from pamkit.units import (
+    KELVIN_AT_ZERO_CELSIUS,
+    KILOPASCAL_PER_BAR,
+    KILOPASCAL_PER_PSI,
+    MILLIMETRE_PER_METRE,
+    PASCAL_PER_KILOPASCAL,
+)
 
 # The time base and the crosshead's motion are required; the channels the instruments read are
 # optional. Every module that lists them imports them from here.
@@ -100,6 +106,45 @@ def to_file(columns: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
 
 # The optional columns as a file names them.
 FILE_OPTIONAL_COLUMNS = tuple(file_name(name) for name in OPTIONAL_COLUMNS)
+
+
+@dataclass(frozen=True)
+class OtherUnit:
+    """A column a file may give in another unit than pamkit's file name says (a laser in
+    millimetres, a regulator in bar): its name there, the column pamkit's files name it, and the
+    factor that takes the one's values to the other's. The readers convert it on reading; the
+    writers always write the column pamkit names."""
+
+    file_name: str
+    column: str
+    factor: float
+
+
+OTHER_UNITS = (
+    OtherUnit("time_ms", "time_s", 1.0 / 1000.0),
+    OtherUnit("elongation_mm", "elongation_m", 1.0 / MILLIMETRE_PER_METRE),
+    OtherUnit("length_mm", "length_m", 1.0 / MILLIMETRE_PER_METRE),
+    OtherUnit("contraction_mm", "contraction_m", 1.0 / MILLIMETRE_PER_METRE),
+    OtherUnit("force_kN", "force_N", 1000.0),
+    OtherUnit("pressure_bar", "pressure_kPa", KILOPASCAL_PER_BAR),
+    OtherUnit("pressure_MPa", "pressure_kPa", 1000.0),
+    OtherUnit("pressure_psi", "pressure_kPa", KILOPASCAL_PER_PSI),
+)
+_OTHER_BY_FILE_NAME = {unit.file_name: unit for unit in OTHER_UNITS}
+
+
+def in_pamkit_units(name: str) -> tuple[str, float]:
+    """The column a file's `name` is in pamkit's files, and the factor to its unit there
+    (("length_m", 0.001) for length_mm; (name, 1.0) for a name pamkit's files use)."""
+    unit = _OTHER_BY_FILE_NAME.get(name)
+    return (unit.column, unit.factor) if unit else (name, 1.0)
+
+
+def other_units_of(columns) -> list[str]:
+    """The other names a file may give `columns` (pamkit's file names) under, in OTHER_UNITS' order."""
+    return [unit.file_name for unit in OTHER_UNITS if unit.column in columns]
+
+
 # The unit of each column inside pamkit, SI, as its name's suffix says: a time series' and a
 # static table's (length_m, diameter_m), as an Experiment holds them and pamkit.simulate returns them.
 COLUMN_UNITS = {

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pamkit._core import BladderLaw, FrictionParams, GasMode, GasParams, MuscleBuild
-from pamkit.io.columns import COLUMN_UNITS, OPTIONAL_COLUMNS, file_name, si_name, value_to_si
+from pamkit.io.columns import COLUMN_UNITS, OPTIONAL_COLUMNS, file_name, other_units_of, si_name, value_to_si
 from pamkit.io.guards import check_keys, fail, named_file, number, read_toml
 from pamkit.io.schema import (
     CAMPAIGN_SECTIONS,
@@ -36,7 +36,7 @@ from pamkit.io.schema import (
     TEST_KEYS,
 )
 from pamkit.io.sections import read_bladder, read_build, read_calibrate, read_friction, read_gas, read_uncertain
-from pamkit.io.series import read_isotonic, read_series, read_table
+from pamkit.io.series import check_units, read_isotonic, read_series, read_table
 from pamkit.io.writers import write_experiment
 
 # [test] gas: how the muscle's gas is held, by the name a file gives it.
@@ -387,6 +387,29 @@ def _given(path: Path, test: dict, key: str, kind: str | None = None) -> float |
     return value
 
 
+# The span of lengths a muscle can be measured at, as shares of its deflated length: the span an
+# isotonic test's equilibrium is searched over (pipeline.hpp, isotonic_lengths). A muscle contracts
+# by at most about 40 % and stretches little; a length beyond is in another unit (millimetres under
+# a column in metres) or of another muscle than [muscle] declares.
+MEASURED_LENGTH_SHARES = (0.5, 1.2)
+
+
+def _check_muscle_lengths(experiment: Experiment) -> None:
+    """Raises an ExperimentError when a table's muscle lengths leave MEASURED_LENGTH_SHARES of the
+    declared deflated length."""
+    lengths, deflated = experiment.columns["length_m"], experiment.build.length_m
+    low, high = (share * deflated for share in MEASURED_LENGTH_SHARES)
+    if float(np.min(lengths)) < low or float(np.max(lengths)) > high:
+        others = ", ".join(other_units_of(("length_m", "contraction_m")))
+        raise fail(
+            experiment.data_path,
+            f"the muscle's length spans {float(np.min(lengths)):.4g} to {float(np.max(lengths)):.4g} m, outside "
+            f"{low:.4g}-{high:.4g} m, {MEASURED_LENGTH_SHARES[0]:g}-{MEASURED_LENGTH_SHARES[1]:g} times the deflated "
+            f"length [muscle] length_m = {deflated:g} m declares: is the column in another unit (length_m and "
+            f"contraction_m are in metres; a file may give {others}), or the muscle another?",
+        )
+
+
 def _read_data(experiment: Experiment, test: dict) -> None:
     """The experiment's columns, read from its data file by kind; a time series zeroed by its
     zero run, if it names one."""
@@ -396,14 +419,20 @@ def _read_data(experiment: Experiment, test: dict) -> None:
     if kind == "isotonic":
         dynamic = experiment.load_mass_kg is not None
         experiment.columns = read_isotonic(data_path, experiment.build.length_m, dynamic=dynamic)
+        check_units(data_path, experiment.columns)
+        _check_muscle_lengths(experiment)
         return
     if kind in TABLE_COLUMNS:
         experiment.columns = read_table(data_path, TABLE_COLUMNS[kind])
+        check_units(data_path, experiment.columns)
+        if kind == "isometric_map":
+            _check_muscle_lengths(experiment)
         return
     specimen = test.get("specimen")
     if specimen is not None and (isinstance(specimen, bool) or not isinstance(specimen, (str, int))):
         raise fail(path, f"[test] specimen = {specimen!r} must be a specimen's label (its Specimen Number)")
     experiment.columns = read_series(data_path, None if specimen is None else str(specimen))
+    check_units(data_path, experiment.columns)
     if "zero" in test:
         _zero(experiment, path, test["zero"])
     if experiment.gas == GasMode.supplied and "gauge_pressure_Pa" not in experiment.columns:

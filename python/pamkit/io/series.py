@@ -20,7 +20,15 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.io.columns import FILE_OPTIONAL_COLUMNS, REQUIRED_COLUMNS, to_si
+from pamkit.io.columns import (
+    FILE_OPTIONAL_COLUMNS,
+    REQUIRED_COLUMNS,
+    file_name,
+    in_pamkit_units,
+    other_units_of,
+    to_si,
+    value_from_si,
+)
 from pamkit.io.guards import (
     MAX_LINE_BYTES,
     ExperimentError,
@@ -31,6 +39,37 @@ from pamkit.io.guards import (
     read_text,
 )
 from pamkit.io.machine import looks_like_export, read_machine_export
+from pamkit.io.schema import TEST_CONDITIONS
+
+# Values whose size says a file's unit is wrong: (SI column, lowest, highest plausible value in
+# the file's unit, what it looks like instead). No pneumatic muscle holds more than the highest
+# inflation pressure a file may declare (20 bar; a Festo fluidic muscle runs to 6-8 bar).
+PLAUSIBLE_VALUES = {
+    "elongation_m": (-0.5, 0.5, "millimetres"),
+    "force_N": (-1e4, 1e5, "the wrong unit"),
+    "gauge_pressure_Pa": (-101.0, TEST_CONDITIONS["inflation_pressure_kPa"][1], "pascals or psi"),
+    "temperature_K": (-50.0, 150.0, "kelvin"),
+}
+
+
+def check_units(data_path: Path, columns: dict[str, np.ndarray]) -> None:
+    """Raises an ExperimentError naming the file, row and column of the first value of the SI
+    `columns` whose size says its file's unit is wrong (an elongation in mm, a pressure in Pa, a
+    temperature in K), as the file gives it, and the units a file may give that column in."""
+    names = list(columns)
+    for name, (low, high, looks_like) in PLAUSIBLE_VALUES.items():
+        if name not in columns:
+            continue
+        values = value_from_si(name, columns[name])
+        bad = np.flatnonzero((values < low) | (values > high))
+        if bad.size:
+            row = int(bad[0])
+            others = other_units_of((file_name(name),))
+            raise ExperimentError(
+                f"{data_path}:{row + 2}: column {names.index(name) + 1} ({file_name(name)}) = {values[row]:g} is "
+                f"outside [{low:g}, {high:g}]: is it in {looks_like}?"
+                + (f" (a file may give {file_name(name)} as {', '.join(others)})" if others else "")
+            )
 
 
 def read_series(path: str | Path, specimen: str | None = None) -> dict[str, np.ndarray]:
@@ -61,15 +100,16 @@ def read_series(path: str | Path, specimen: str | None = None) -> dict[str, np.n
 
 def _is_machine_export(path: Path) -> bool:
     """Whether a data file is a tensile machine's export rather than pamkit's CSV: its first line
-    names none of pamkit's channels, and a machine's names row follows. ("time_s,elongation_m,
-    force_kN" is pamkit's CSV with a wrong name, not an export with units in its names.) A file
-    that cannot be opened is left to _read_csv, which says why."""
+    names none of pamkit's channels (in its units or another of OTHER_UNITS), and a machine's names
+    row follows. ("time_s,elongation_m,force_lbf" is pamkit's CSV with a wrong name, not an export
+    with units in its names.) A file that cannot be opened is left to _read_csv, which says why."""
     try:
         if not path.is_file():
             return False
         with path.open("rb") as handle:
             first_line = _first_line(handle.readline(MAX_LINE_BYTES).decode("utf-8-sig", errors="replace"))
-        names = [name.strip() for name in next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])]
+        cells = next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])
+        names = [in_pamkit_units(name.strip())[0] for name in cells]
         if any(name in REQUIRED_COLUMNS + FILE_OPTIONAL_COLUMNS for name in names):
             return False  # pamkit's CSV, right or wrong: its errors name what to fix, no column is dropped
         return looks_like_export(path)
@@ -87,8 +127,8 @@ def read_isotonic(path: str | Path, deflated_length_m: float, dynamic: bool = Fa
     measures = [name for name in ("length_m", "contraction_m") if name in header]
     if len(measures) != 1:
         raise ExperimentError(
-            f"{path}:1: an isotonic test gives its length as one of length_m or contraction_m; found "
-            f"{', '.join(measures) or 'neither'}"
+            f"{path}:1: an isotonic test gives its length as one of length_m or contraction_m (or "
+            f"{', '.join(other_units_of(('length_m', 'contraction_m')))}); found {', '.join(measures) or 'neither'}"
         )
     if dynamic and "time_s" not in header:
         raise ExperimentError(f"{path}:1: [test] load_mass_kg integrates the load's motion in time: time_s is missing")
@@ -104,8 +144,10 @@ def read_isotonic(path: str | Path, deflated_length_m: float, dynamic: bool = Fa
 
 
 def _header(path: Path) -> list[str]:
+    """The header's names as pamkit's files name them (length_m for a file's length_mm)."""
     first_line = _first_line(read_text(path, "data"))
-    return [name.strip() for name in next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])]
+    cells = next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])
+    return [in_pamkit_units(name.strip())[0] for name in cells]
 
 
 def _first_line(text: str) -> str:
@@ -149,9 +191,11 @@ def _read_csv(
     with io.StringIO(text, newline="") as handle:
         reader = csv.reader(handle, delimiter=delimiter)
         try:
-            header = _checked_header(path, next(reader), required, optional)
+            cells = next(reader)
         except StopIteration:
             raise ExperimentError(f"{path}: empty file, expected a header row") from None
+        header, factors = _checked_header(path, cells, required, optional)
+        named = [cell.strip() for cell in cells]  # as the file names them, for its errors
         order = header.index(increasing) if increasing else None
         rows = [(reader.line_num, row) for row in reader]
     cut_last_line = ends_unterminated(path)
@@ -162,7 +206,7 @@ def _read_csv(
         if not row or all(not cell.strip() for cell in row):
             continue
         try:
-            parsed = _parse_row(path, line, header, [c.replace(",", ".") for c in row] if decimal_comma else row)
+            parsed = _parse_row(path, line, named, [c.replace(",", ".") for c in row] if decimal_comma else row)
         except ExperimentError as error:
             if cut_last_line and position == len(rows) - 1:
                 # A recording cut mid-line (a killed logger, a pulled cable): keep what came whole.
@@ -179,7 +223,7 @@ def _read_csv(
             continue
         if order is not None and values and parsed[order] < values[-1][order]:
             raise ExperimentError(
-                f"{path}:{line}: column {order + 1} ({increasing}) = {parsed[order]} does not increase"
+                f"{path}:{line}: column {order + 1} ({named[order]}) = {parsed[order]} does not increase"
             )
         values.append(parsed)
         weight.append(1)
@@ -193,7 +237,7 @@ def _read_csv(
     if len(values) < 2:
         raise ExperimentError(f"{path}: needs at least 2 data rows, found {len(values)}")
     table = np.asarray(values)
-    return {name: table[:, index].copy() for index, name in enumerate(header)}
+    return _in_pamkit_units({name: table[:, index].copy() for index, name in enumerate(header)}, factors)
 
 
 def _shown(cell: str, limit: int = 40) -> str:
@@ -202,21 +246,41 @@ def _shown(cell: str, limit: int = 40) -> str:
     return repr(cell if len(cell) <= limit else cell[:limit] + "...")
 
 
-def _checked_header(path: Path, cells: list[str], required: tuple[str, ...], optional: tuple[str, ...]) -> list[str]:
-    """The header's channel names, each known and given once, the required ones all there."""
-    header = [name.strip() for name in cells]
+def _checked_header(
+    path: Path, cells: list[str], required: tuple[str, ...], optional: tuple[str, ...]
+) -> tuple[list[str], list[float]]:
+    """The header's channel names as pamkit's files name them, each known and given once, the
+    required ones all there; and the factor that takes each column to that name's unit (a
+    column in another unit, OTHER_UNITS: length_mm is length_m, 0.001)."""
     known = required + optional
-    for number, name in enumerate(header, start=1):
+    header, factors = [], []
+    for number, cell in enumerate(cells, start=1):
+        name, factor = in_pamkit_units(cell.strip())
         if name not in known:
+            others = other_units_of(known)
             raise ExperimentError(
-                f"{path}:1: column {number} {_shown(name)} is not a known channel ({', '.join(known)})"
+                f"{path}:1: column {number} {_shown(cell.strip())} is not a known channel ({', '.join(known)}"
+                + (f"; or in other units: {', '.join(others)})" if others else ")")
             )
-        if header.count(name) > 1:
-            raise ExperimentError(f"{path}:1: column {_shown(name)} appears twice")
+        if name in header:
+            first = cells[header.index(name)].strip()
+            again = (
+                f"column {_shown(name)} appears twice"
+                if first == cell.strip()
+                else (f"columns {_shown(first)} and {_shown(cell.strip())} both give {name}")
+            )
+            raise ExperimentError(f"{path}:1: {again}")
+        header.append(name)
+        factors.append(factor)
     for name in required:
         if name not in header:
             raise ExperimentError(f"{path}:1: required column '{name}' is missing")
-    return header
+    return header, factors
+
+
+def _in_pamkit_units(columns: dict[str, np.ndarray], factors: list[float]) -> dict[str, np.ndarray]:
+    """Each column times its factor from _checked_header, where it is not 1."""
+    return {name: values * f if f != 1.0 else values for (name, values), f in zip(columns.items(), factors)}
 
 
 #: Bytes of a data file numpy parses at a time (then to the end of the line): the file's text
@@ -287,12 +351,13 @@ def _read_plain_csv(
         return None
     if not rows_read:
         return None
-    header = _checked_header(path, cells, required, optional)
+    header, factors = _checked_header(path, cells, required, optional)
+    named = [cell.strip() for cell in cells]
     if last.strip(delimiter + " \t"):
         line = rows_read + 2
         row = next(csv.reader([last], delimiter=delimiter))
         try:
-            values = _parse_row(path, line, header, [c.replace(",", ".") for c in row] if delimiter != "," else row)
+            values = _parse_row(path, line, named, [c.replace(",", ".") for c in row] if delimiter != "," else row)
         except ExperimentError as error:
             warnings.warn(f"{path}:{line}: the last line is cut off ({error}); dropped", ExperimentWarning, 3)
         else:
@@ -301,8 +366,8 @@ def _read_plain_csv(
             rows_read += 1
     for column in columns:
         column.resize(rows_read, refcheck=False)  # in place: nothing else refers to it
-    columns = dict(zip(header, columns))
-    return _checked_columns(path, columns, 2, increasing)
+    checked = _checked_columns(path, dict(zip(header, columns)), 2, increasing, named)
+    return _in_pamkit_units(checked, factors)
 
 
 def _is_plain(text: str) -> bool:
@@ -328,11 +393,12 @@ def _parse_block(text: str, delimiter: str, width: int) -> np.ndarray | None:
 
 
 def _checked_columns(
-    path: Path, columns: dict[str, np.ndarray], first_line: int, increasing: str | None
+    path: Path, columns: dict[str, np.ndarray], first_line: int, increasing: str | None, named: list[str]
 ) -> dict[str, np.ndarray]:
     """The columns of rows read at once, with what the row-by-row reader checks and repairs:
     `increasing` must not decrease, and rows repeating its value before them are merged into
-    one sample (their mean) with a warning. Row i is on line first_line + i."""
+    one sample (their mean) with a warning. Row i is on line first_line + i; `named`: the
+    columns as the file names them."""
     if increasing is not None:
         stamps = columns[increasing]
         step = np.diff(stamps)
@@ -341,7 +407,8 @@ def _checked_columns(
             row = int(back[0]) + 1
             order = list(columns).index(increasing)
             raise ExperimentError(
-                f"{path}:{first_line + row}: column {order + 1} ({increasing}) = {float(stamps[row])} does not increase"
+                f"{path}:{first_line + row}: column {order + 1} ({named[order]}) = {float(stamps[row])} "
+                "does not increase"
             )
         repeats = np.flatnonzero(step == 0) + 1
         if repeats.size:

@@ -19,9 +19,10 @@ from pamkit.diagnosis import evidence
 from pamkit.diagnosis.cycles import Cycles, find_cycles, split_cycles
 from pamkit.diagnosis.filters import running_median
 from pamkit.diagnosis.series.model import Predictor
-from pamkit.io.columns import file_name, value_from_si
+from pamkit.io.columns import value_from_si
 from pamkit.io.experiment import Experiment
 from pamkit.io.guards import ExperimentError
+from pamkit.io.series import check_units
 from pamkit.units import MILLIMETRE_PER_METRE
 
 # A plateau of a stepped sweep starts where the pressure leaves the last one's level by more
@@ -33,15 +34,6 @@ PLATEAU_MERGE = 0.25
 # A length counts as held when its whole travel is within this many noise sigmas of the
 # encoder (Gaussian noise over 10^4 samples spans about 8 sigma peak to peak).
 HELD_TRAVEL_NOISE = 20.0
-
-# Units that cannot be right: (column, lowest, highest plausible value in the file's unit, what
-# it looks like instead).
-PLAUSIBLE_VALUES = {
-    "elongation_m": (-0.5, 0.5, "millimetres"),
-    "force_N": (-1e4, 1e5, "the wrong unit"),
-    "gauge_pressure_Pa": (-101.0, 2000.0, "pascals or psi"),
-    "temperature_K": (-50.0, 150.0, "kelvin"),
-}
 
 
 @dataclass
@@ -72,24 +64,6 @@ class Problem:
             c: float(np.sum((((predicted[c] - self.measured[c]) / self.sigma[c])[self.fit_mask]) ** 2))
             for c in self.channels
         }
-
-
-def check_units(experiment: Experiment) -> None:
-    """Raises ExperimentError naming the file, row and column of the first value whose size
-    says its file's unit is wrong (elongation in mm, pressure in Pa, temperature in K), as the
-    file gives it."""
-    names = list(experiment.columns)
-    for name, (low, high, looks_like) in PLAUSIBLE_VALUES.items():
-        if name not in experiment.columns:
-            continue
-        values = value_from_si(name, experiment.columns[name])
-        bad = np.flatnonzero((values < low) | (values > high))
-        if bad.size:
-            row = int(bad[0])
-            raise ExperimentError(
-                f"{experiment.data_path}:{row + 2}: column {names.index(name) + 1} ({file_name(name)}) = "
-                f"{values[row]:g} is outside [{low:g}, {high:g}]: is it in {looks_like}?"
-            )
 
 
 # The measured pressure at the start of a sealed test may differ from the declared inflation
@@ -205,7 +179,7 @@ def build_problem(experiment: Experiment) -> Problem:
         ExperimentError: for values in the wrong unit, no channel to compare, or too few units to
             hold any out (saying what would do).
     """
-    check_units(experiment)
+    check_units(experiment.data_path, experiment.columns)
     check_consistency(experiment)
     channels = experiment.measured()
     if experiment.gas == GasMode.supplied:
