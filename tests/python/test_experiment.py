@@ -259,6 +259,7 @@ def test_columns_in_other_units_are_read_in_pamkits(tmp_path):
     "header, message",
     [
         ("time_s,elongation_m,elongation_mm", r"run.csv:1: columns 'elongation_m' and 'elongation_mm' both give"),
+        ("time_s,elongation_mm,elongation_mm", r"run.csv:1: column 'elongation_mm' appears twice"),
         (
             "time_s,elongation_m,force_lbf",
             r"column 3 'force_lbf' is not a known channel .*or in other units: .*force_kN",

@@ -265,9 +265,9 @@ def _checked_header(
         if name in header:
             first = cells[header.index(name)].strip()
             again = (
-                f"column {_shown(name)} appears twice"
+                f"column {_shown(first)} appears twice"
                 if first == cell.strip()
-                else (f"columns {_shown(first)} and {_shown(cell.strip())} both give {name}")
+                else f"columns {_shown(first)} and {_shown(cell.strip())} both give {name}"
             )
             raise ExperimentError(f"{path}:1: {again}")
         header.append(name)
