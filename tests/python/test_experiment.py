@@ -223,6 +223,57 @@ def test_spreadsheet_exports_load_a_bom_semicolons_and_decimal_commas(tmp_path):
         read_series(path)
 
 
+def test_comment_lines_are_skipped_and_lines_keep_their_numbers(tmp_path):
+    # A logger's or a rig's notes: "#" lines before the header and between rows, in a file numpy
+    # reads in blocks (comments only above the header) and one read row by row.
+    path = tmp_path / "run.csv"
+    path.write_text("time_s,elongation_m,force_N\n0,0,1\n1,0.001,2\n2,0.002,3\n")
+    expected = read_series(path)
+    for text in (
+        "# rig B, 2026-11-27\n\n# operator JS\ntime_s,elongation_m,force_N\n0,0,1\n1,0.001,2\n2,0.002,3\n",
+        "\ufeff# rig B\ntime_s,elongation_m,force_N\n0,0,1\n# valve opened\n1,0.001,2\n  # a note\n2,0.002,3\n",
+        '# rig B\ntime_s;elongation_m;force_N\n0;0;1\n"1";0,001;2\n2;0,002;3\n',
+    ):
+        path.write_text(text)
+        columns = read_series(path)
+        for name in expected:
+            np.testing.assert_array_equal(columns[name], expected[name], err_msg=repr(text))
+    # Errors name the file's own lines: the header's, a row's, after comments.
+    path.write_text("# rig B\n# operator JS\ntime_s,elongation_m,force_lbf\n0,0,1\n1,0.001,2\n")
+    with pytest.raises(ExperimentError, match=r"run.csv:3: column 3 'force_lbf' is not a known channel"):
+        read_series(path)
+    path.write_text("# rig B\ntime_s,elongation_m\n0,0\n# valve opened\n1,abc\n")
+    with pytest.raises(ExperimentError, match=r"run.csv:5: column 2 \(elongation_m\) = 'abc' is not a number"):
+        read_series(path)
+    path.write_text("# rig B\ntime_s,elongation_m\n0,0\n2,0.001\n1,0.002\n")  # read in blocks
+    with pytest.raises(ExperimentError, match=r"run.csv:5: column 1 \(time_s\) = 1.0 does not increase"):
+        read_series(path)
+    path.write_text("# only a note\n")
+    with pytest.raises(ExperimentError, match="empty file, expected a header row"):
+        read_series(path)
+
+
+def test_a_table_reads_its_rows_in_order_and_drops_what_its_kind_does_not_use(tmp_path):
+    # A logger beside an isometric map adds time and temperature: the time orders the rows (the
+    # pressurise/vent branches follow them), the temperature is not the map's and is said so.
+    path = _commercial(tmp_path, "braid_angle_deg = 21.0")
+    plain = load_experiment(path).columns
+    (tmp_path / "map.csv").write_text(
+        "time_s,length_m,pressure_kPa,force_N,temperature_C\n0,0.25,100,50,21.5\n12,0.24,100,20,21.6\n"
+    )
+    with pytest.warns(ExperimentWarning, match=r"map.csv:1: temperature_C is not used by this isometric_map test"):
+        columns = load_experiment(path).columns
+    assert list(columns) == list(plain)
+    for name in plain:
+        np.testing.assert_array_equal(columns[name], plain[name])
+    (tmp_path / "map.csv").write_text("time_s,length_m,pressure_kPa,force_N\n12,0.25,100,50\n0,0.24,100,20\n")
+    with pytest.raises(ExperimentError, match=r"map.csv:3: column 1 \(time_s\) = 0.0 does not increase"):
+        load_experiment(path)
+    (tmp_path / "map.csv").write_text("length_m,pressure_kPa,force_N,valve\n0.25,100,50,1\n0.24,100,20,0\n")
+    with pytest.raises(ExperimentError, match=r"map.csv:1: column 4 'valve' is not a known channel"):
+        load_experiment(path)  # not pamkit's: a misspelt channel must not pass unread
+
+
 def test_columns_in_other_units_are_read_in_pamkits(tmp_path):
     # A lab's files in millimetres, bar, kN, psi and milliseconds: the same SI columns as the file
     # in pamkit's units (1 bar = 100 kPa, 1 psi = 6.894757 kPa: units.hpp).

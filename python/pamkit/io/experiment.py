@@ -423,7 +423,7 @@ def _read_data(experiment: Experiment, test: dict) -> None:
         _check_muscle_lengths(experiment)
         return
     if kind in TABLE_COLUMNS:
-        experiment.columns = read_table(data_path, TABLE_COLUMNS[kind])
+        experiment.columns = read_table(data_path, TABLE_COLUMNS[kind], kind)
         check_units(data_path, experiment.columns)
         if kind == "isometric_map":
             _check_muscle_lengths(experiment)

@@ -39,7 +39,7 @@ from pamkit.io.guards import (
     read_text,
 )
 from pamkit.io.machine import looks_like_export, read_machine_export
-from pamkit.io.schema import TEST_CONDITIONS
+from pamkit.io.schema import TABLE_COLUMNS, TEST_CONDITIONS
 
 # Values whose size says a file's unit is wrong: (SI column, lowest, highest plausible value in
 # the file's unit, what it looks like instead). No pneumatic muscle holds more than the highest
@@ -99,7 +99,7 @@ def read_series(path: str | Path, specimen: str | None = None) -> dict[str, np.n
 
 
 def _is_machine_export(path: Path) -> bool:
-    """Whether a data file is a tensile machine's export rather than pamkit's CSV: its first line
+    """Whether a data file is a tensile machine's export rather than pamkit's CSV: its header line
     names none of pamkit's channels (in its units or another of OTHER_UNITS), and a machine's names
     row follows. ("time_s,elongation_m,force_lbf" is pamkit's CSV with a wrong name, not an export
     with units in its names.) A file that cannot be opened is left to _read_csv, which says why."""
@@ -107,8 +107,8 @@ def _is_machine_export(path: Path) -> bool:
         if not path.is_file():
             return False
         with path.open("rb") as handle:
-            first_line = _first_line(handle.readline(MAX_LINE_BYTES).decode("utf-8-sig", errors="replace"))
-        cells = next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])
+            _, header_line = _header_line(handle.read(SNIFF_BYTES).decode("utf-8-sig", errors="replace"))
+        cells = next(csv.reader([header_line], delimiter=_delimiter(header_line)), [])
         names = [in_pamkit_units(name.strip())[0] for name in cells]
         if any(name in REQUIRED_COLUMNS + FILE_OPTIONAL_COLUMNS for name in names):
             return False  # pamkit's CSV, right or wrong: its errors name what to fix, no column is dropped
@@ -120,40 +120,93 @@ def _is_machine_export(path: Path) -> bool:
 def read_isotonic(path: str | Path, deflated_length_m: float, dynamic: bool = False) -> dict[str, np.ndarray]:
     """An isotonic test's rows, in SI: the file's pressure_kPa (as gauge_pressure_Pa) and the
     muscle's length_m, or its contraction_m from the deflated length (converted to length_m);
-    time_s when there is one, and always, increasing, for a `dynamic` test (a load whose motion
-    is integrated in time)."""
+    time_s when there is one (always, for a `dynamic` test: a load whose motion is integrated in
+    time), not decreasing. Other channels of pamkit's are dropped with a warning (read_table)."""
     path = Path(path)
-    header = _header(path)
+    line, header = _header(path)
     measures = [name for name in ("length_m", "contraction_m") if name in header]
     if len(measures) != 1:
         raise ExperimentError(
-            f"{path}:1: an isotonic test gives its length as one of length_m or contraction_m (or "
+            f"{path}:{line}: an isotonic test gives its length as one of length_m or contraction_m (or "
             f"{', '.join(other_units_of(('length_m', 'contraction_m')))}); found {', '.join(measures) or 'neither'}"
         )
     if dynamic and "time_s" not in header:
-        raise ExperimentError(f"{path}:1: [test] load_mass_kg integrates the load's motion in time: time_s is missing")
-    columns = _read_csv(
-        path,
-        ("pressure_kPa", measures[0]),
-        tuple(c for c in ("time_s",) if c in header),
-        increasing="time_s" if dynamic else None,
-    )
+        raise ExperimentError(
+            f"{path}:{line}: [test] load_mass_kg integrates the load's motion in time: time_s is missing"
+        )
+    columns = read_table(path, ("pressure_kPa", measures[0]), "isotonic", keep_time=True)
     if "contraction_m" in columns:
         columns["length_m"] = deflated_length_m - columns.pop("contraction_m")
-    return to_si(columns)
+    return columns
 
 
-def _header(path: Path) -> list[str]:
-    """The header's names as pamkit's files name them (length_m for a file's length_mm)."""
-    first_line = _first_line(read_text(path, "data"))
-    cells = next(csv.reader([first_line], delimiter=_delimiter(first_line)), [])
-    return [in_pamkit_units(name.strip())[0] for name in cells]
+#: The channels a data file of pamkit's may name: a time series' and the tables'. A table reads
+#: those its kind uses; the others are dropped with a warning (a logger's temperature beside an
+#: isometric map), all but time_s, which orders its rows.
+KNOWN_CHANNELS = tuple(
+    dict.fromkeys(REQUIRED_COLUMNS + FILE_OPTIONAL_COLUMNS + tuple(c for cs in TABLE_COLUMNS.values() for c in cs))
+)
 
 
-def _first_line(text: str) -> str:
-    """The text up to its first line end: LF, CR LF or a bare CR (an old Mac's or a logger's line
-    end, which the csv module refuses inside a line)."""
-    return re.split(r"[\r\n]", text, maxsplit=1)[0]
+def read_table(
+    path: str | Path, columns: tuple[str, ...], kind: str = "table", keep_time: bool = False
+) -> dict[str, np.ndarray]:
+    """Reads a static table (one settled row per line) of a test of `kind`: `columns` (as the
+    file names them), in any order; returns them in SI. A table's rows are in the order they were
+    measured (the pressurise/vent branches follow it): a time_s column, if there is one, must not
+    decrease, and is returned with `keep_time`. Any other of pamkit's channels (KNOWN_CHANNELS) is
+    dropped with an ExperimentWarning naming it.
+
+    Raises:
+        ExperimentError: naming the file, line and column of the first bad value.
+    """
+    path = Path(path)
+    line, header = _header(path)
+    extra = tuple(name for name in KNOWN_CHANNELS if name in header and name not in columns)
+    read = _read_csv(path, columns, extra, increasing="time_s" if "time_s" in extra else None)
+    unused = [name for name in extra if name != "time_s"]
+    if unused:
+        warnings.warn(
+            f"{path}:{line}: {', '.join(unused)} {'is' if len(unused) == 1 else 'are'} not used by this {kind} test "
+            f"(it reads {', '.join(columns)}); ignored",
+            ExperimentWarning,
+            2,
+        )
+    dropped = set(unused) | (set() if keep_time else {"time_s"})
+    return to_si({name: values for name, values in read.items() if name not in dropped})
+
+
+def _header(path: Path) -> tuple[int, list[str]]:
+    """The header's line number and names as pamkit's files name them (length_m for a file's
+    length_mm)."""
+    line, header_line = _header_line(read_text(path, "data"))
+    cells = next(csv.reader([header_line], delimiter=_delimiter(header_line)), [])
+    return line, [in_pamkit_units(name.strip())[0] for name in cells]
+
+
+#: Bytes read to find a file's header line past its comment lines.
+SNIFF_BYTES = 64 << 10
+
+# A comment line: "#" first (after spaces or a byte-order mark), as a logger or a rig's software
+# notes the date, the operator or a valve's switching. Its line end stays: lines keep their numbers.
+_COMMENT_LINE = re.compile(r"(?:^|(?<=[\r\n]))[ \t\ufeff]*#[^\r\n]*")
+
+
+def _is_skipped(line: str) -> bool:
+    """Whether a line before the header is skipped: blank, or a comment."""
+    stripped = line.strip(" \t\ufeff\r\n")
+    return not stripped or stripped.startswith("#")
+
+
+def _header_line(text: str) -> tuple[int, str]:
+    """The header's line number (from 1) and text: the first line neither blank nor a comment.
+    Lines end at LF, CR LF or a bare CR (an old Mac's or a logger's line end, which the csv module
+    refuses inside a line)."""
+    lines = re.split(r"\r\n|[\r\n]", text)
+    for number, line in enumerate(lines, start=1):
+        if not _is_skipped(line):
+            return number, line
+    return 1, lines[0]
 
 
 def _delimiter(first_line: str) -> str:
@@ -162,16 +215,6 @@ def _delimiter(first_line: str) -> str:
     if ";" in first_line and "," not in first_line:
         return ";"
     return "\t" if "\t" in first_line else ","
-
-
-def read_table(path: str | Path, columns: tuple[str, ...]) -> dict[str, np.ndarray]:
-    """Reads a static table (one settled row per line): exactly `columns` (as the file names
-    them), in any order; returns them in SI.
-
-    Raises:
-        ExperimentError: naming the file, line and column of the first bad value.
-    """
-    return to_si(_read_csv(Path(path), columns, (), increasing=None))
 
 
 def _read_csv(
@@ -184,17 +227,18 @@ def _read_csv(
     if columns is not None:
         return columns
     text = read_text(path, "data")
-    header_end = text.find("\n")
-    delimiter = _delimiter(text[:header_end] if header_end >= 0 else text)
+    delimiter = _delimiter(_header_line(text)[1])
     decimal_comma = delimiter != ","
     # Something numpy cannot read as it stands: row by row, to name the line and column.
-    with io.StringIO(text, newline="") as handle:
+    with io.StringIO(_COMMENT_LINE.sub("", text), newline="") as handle:
         reader = csv.reader(handle, delimiter=delimiter)
-        try:
-            cells = next(reader)
-        except StopIteration:
-            raise ExperimentError(f"{path}: empty file, expected a header row") from None
-        header, factors = _checked_header(path, cells, required, optional)
+        cells: list[str] = []
+        while not any(cell.strip() for cell in cells):
+            try:
+                cells = next(reader)
+            except StopIteration:
+                raise ExperimentError(f"{path}: empty file, expected a header row") from None
+        header, factors = _checked_header(path, reader.line_num, cells, required, optional)
         named = [cell.strip() for cell in cells]  # as the file names them, for its errors
         order = header.index(increasing) if increasing else None
         rows = [(reader.line_num, row) for row in reader]
@@ -247,11 +291,11 @@ def _shown(cell: str, limit: int = 40) -> str:
 
 
 def _checked_header(
-    path: Path, cells: list[str], required: tuple[str, ...], optional: tuple[str, ...]
+    path: Path, line: int, cells: list[str], required: tuple[str, ...], optional: tuple[str, ...]
 ) -> tuple[list[str], list[float]]:
-    """The header's channel names as pamkit's files name them, each known and given once, the
-    required ones all there; and the factor that takes each column to that name's unit (a
-    column in another unit, OTHER_UNITS: length_mm is length_m, 0.001)."""
+    """The header's channel names (on line `line`) as pamkit's files name them, each known and
+    given once, the required ones all there; and the factor that takes each column to that name's
+    unit (a column in another unit, OTHER_UNITS: length_mm is length_m, 0.001)."""
     known = required + optional
     header, factors = [], []
     for number, cell in enumerate(cells, start=1):
@@ -259,7 +303,7 @@ def _checked_header(
         if name not in known:
             others = other_units_of(known)
             raise ExperimentError(
-                f"{path}:1: column {number} {_shown(cell.strip())} is not a known channel ({', '.join(known)}"
+                f"{path}:{line}: column {number} {_shown(cell.strip())} is not a known channel ({', '.join(known)}"
                 + (f"; or in other units: {', '.join(others)})" if others else ")")
             )
         if name in header:
@@ -269,12 +313,12 @@ def _checked_header(
                 if first == cell.strip()
                 else f"columns {_shown(first)} and {_shown(cell.strip())} both give {name}"
             )
-            raise ExperimentError(f"{path}:1: {again}")
+            raise ExperimentError(f"{path}:{line}: {again}")
         header.append(name)
         factors.append(factor)
     for name in required:
         if name not in header:
-            raise ExperimentError(f"{path}:1: required column '{name}' is missing")
+            raise ExperimentError(f"{path}:{line}: required column '{name}' is missing")
     return header, factors
 
 
@@ -304,13 +348,18 @@ def _read_plain_csv(
     limit = checked_size(path, "data")
     try:
         with path.open("rb") as handle:
-            first = handle.readline(MAX_LINE_BYTES + 1)
-            try:
-                header_line = first.decode("utf-8-sig")
-            except UnicodeDecodeError:
-                return None
-            if not header_line.endswith("\n") or not _is_plain(header_line):
-                return None
+            before = header_number = 0  # bytes and lines up to the header's end
+            header_line = ""
+            while _is_skipped(header_line):
+                first = handle.readline(MAX_LINE_BYTES + 1)
+                try:
+                    header_line = first.decode("utf-8-sig" if not before else "utf-8")
+                except UnicodeDecodeError:
+                    return None
+                if not header_line.endswith("\n") or not _is_plain(header_line):
+                    return None
+                before += len(first)
+                header_number += 1
             delimiter = _delimiter(header_line)
             cells = next(csv.reader([header_line[:-1]], delimiter=delimiter))
             # A first pass counts the lines, so that numpy's rows go straight into columns of their
@@ -323,9 +372,9 @@ def _read_plain_csv(
                     return None
             if lines * 2 * len(cells) > counted:  # shorter than one character a cell: blank lines
                 return None
-            handle.seek(len(first))
+            handle.seek(before)
             columns = [np.empty(lines + 1) for _ in cells]  # and a last line without a line end
-            size, rows_read, last = len(first), 0, ""
+            size, rows_read, last = before, 0, ""
             while block := handle.read(READ_BLOCK_BYTES):
                 if not block.endswith(b"\n"):
                     block += handle.readline(MAX_LINE_BYTES + 1)
@@ -351,10 +400,10 @@ def _read_plain_csv(
         return None
     if not rows_read:
         return None
-    header, factors = _checked_header(path, cells, required, optional)
+    header, factors = _checked_header(path, header_number, cells, required, optional)
     named = [cell.strip() for cell in cells]
     if last.strip(delimiter + " \t"):
-        line = rows_read + 2
+        line = header_number + rows_read + 1
         row = next(csv.reader([last], delimiter=delimiter))
         try:
             values = _parse_row(path, line, named, [c.replace(",", ".") for c in row] if delimiter != "," else row)
@@ -366,7 +415,7 @@ def _read_plain_csv(
             rows_read += 1
     for column in columns:
         column.resize(rows_read, refcheck=False)  # in place: nothing else refers to it
-    checked = _checked_columns(path, dict(zip(header, columns)), 2, increasing, named)
+    checked = _checked_columns(path, dict(zip(header, columns)), header_number + 1, increasing, named)
     return _in_pamkit_units(checked, factors)
 
 
