@@ -24,7 +24,7 @@ from pamkit.diagnosis.series.decide import (
     uncredited,
     unfounded,
 )
-from pamkit.diagnosis.series.findings import unresolved, within_resolution
+from pamkit.diagnosis.series.findings import sub_sample_play, unresolved, within_resolution
 from pamkit.diagnosis.series.score import Score
 from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
 from pamkit.effects import catalog
@@ -247,6 +247,45 @@ def test_a_shift_below_one_sample_outdoes_no_cause():
     lesser = candidate("dead_volume", 0.30, 0.30 + SHARED + rng.normal(0, 0.02, SAMPLES))
     decision = decide(problem(), BASELINE, [better, lesser])
     assert decision.cause == "dead_volume" and decision.rejected is better
+
+
+def test_a_play_shorter_than_a_sample_is_named_only_where_no_sub_sample_shift_explains_as_much():
+    # A crosshead moving 1 mm between samples, a play fitted at 0.5 mm: the samples just after
+    # each turn carry it, as they carry a channel shifted by less than one sample. A shift that
+    # explains the held-out units as well (the same draws) leaves the play untold from the
+    # sampling's artefact; one it beats on the same draws, or a play longer than one sample's
+    # travel, does not.
+    p = problem()
+    p.experiment.elongation_m = 1e-3 * np.arange(ROWS)
+
+    def play(slack_m, gain):
+        j = candidate("fixture_slack", gain, gain + SHARED + rng.normal(0, 0.01, SAMPLES))
+        slack = effect("fixture_slack", ["force_N"], EffectStage.motion)
+        slack.parameters = lambda: [SimpleNamespace(name="slack_m", resolution=Resolution.travel_per_sample)]
+        j.fit.effects, j.fit.params = [slack], {"slack_m": slack_m}
+        return j
+
+    def shift(gain):
+        j = candidate("time_skew", gain, gain + SHARED + rng.normal(0, 0.01, SAMPLES))
+        skew = effect("time_skew", ["force_N"], EffectStage.measurement)
+        skew.parameters = lambda: [SimpleNamespace(name="offset_s", resolution=Resolution.sample_interval)]
+        j.fit.effects = [skew]
+        j.below_resolution = ["offset_s = 0.005 is below the sample interval (0.02)"]
+        return j
+
+    for slack_m, shift_gain, named in ((0.5e-3, 0.30, False), (0.5e-3, 0.10, True), (1.5e-3, 0.30, True)):
+        lead, rival = play(slack_m, 0.30), shift(shift_gain)
+        decision = decide(p, BASELINE, [rival, lead] if shift_gain >= 0.30 else [lead, rival])
+        assert (decision.cause == "fixture_slack") is named, (slack_m, shift_gain, decision.cause)
+        if not named:
+            assert "a shift below one sample, explains the held-out units as well" in lead.reasons()[0]
+    # In a pair the play's parameter carries its effect's name.
+    pair = play(0.5e-3, 0.30)
+    pair.fit.effects.append(effect("load_cell", ["force_N"], EffectStage.measurement))
+    pair.fit.params = {"fixture_slack.slack_m": 0.5e-3}
+    assert sub_sample_play(p, pair.fit)
+    pair.fit.params = {"fixture_slack.slack_m": 1.5e-3}
+    assert not sub_sample_play(p, pair.fit)
 
 
 def test_a_shift_at_one_sample_is_a_rival_not_an_artefact():

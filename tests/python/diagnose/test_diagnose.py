@@ -175,6 +175,26 @@ def test_programmed_motion_keeps_a_curve_as_measured():
     np.testing.assert_array_equal(motion.elongation_m, curve)
 
 
+def test_knots_after_turns_cut_the_first_travel_after_each_turn_and_keep_the_samples():
+    from pamkit.diagnosis.series.motion import measured_motion, with_knots_after_turns
+
+    # Rest, up 10 mm in 1 mm steps, a hold, on up 2 mm (no turn: the same direction), down to 0.
+    elongation = np.array([0, 0, *range(1, 11), 10, 10, 11, 12, *range(11, -1, -1)], dtype=float) * 1e-3
+    motion = measured_motion(np.arange(elongation.size, dtype=float), elongation)
+    refined, rows = with_knots_after_turns(motion, 2.5e-3, 4)
+    # Every sample is a knot of the refined motion, where the samples now sit...
+    np.testing.assert_array_equal(refined.time_s[rows], motion.time_s)
+    np.testing.assert_array_equal(refined.elongation_m[rows], motion.elongation_m)
+    np.testing.assert_array_equal(refined.sample_rows, rows)
+    # ...every new knot lies on the samples' straight lines...
+    np.testing.assert_allclose(refined.elongation_m, np.interp(refined.time_s, motion.time_s, elongation), atol=1e-15)
+    # ...and the intervals cut in four are the first three after each turn (2.5 mm of travel,
+    # 1 mm each): from rest, and at the top; not after the hold, where the motion goes on up.
+    cut = np.flatnonzero(np.diff(rows) > 1)
+    np.testing.assert_array_equal(cut, [1, 2, 3, 15, 16, 17])
+    assert np.all(np.diff(rows)[cut] == 4)
+
+
 @pytest.mark.parametrize(
     "change, message",
     [

@@ -40,7 +40,7 @@ from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis import evidence
 from pamkit.diagnosis.coordinates import Finding, findings
 from pamkit.diagnosis.series.calibrate import Fit
-from pamkit.diagnosis.series.findings import baseline_findings, unresolved, within_resolution
+from pamkit.diagnosis.series.findings import baseline_findings, mimicked_by_a_shift, unresolved, within_resolution
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.series.score import Score, credited_channels, significance_margin, significant
 from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
@@ -454,7 +454,7 @@ def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision
             margins["over_runner_up"] = best.score.combined_gain - runner.score.combined_gain
     present = [j for j in judged if j.significant and j.credible]
     for j in present:
-        j.objections += outdone(problem, j, judged)
+        j.objections += outdone(problem, j, judged) + mimicked_by_a_shift(problem, j, judged)
     present = [j for j in present if j.credible]
     lead = present[0] if present else None
     if lead is not None:

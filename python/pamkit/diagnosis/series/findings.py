@@ -11,6 +11,7 @@ from pamkit._core import Resolution
 from pamkit.diagnosis.coordinates import Finding, findings
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.kinds import Problem
+from pamkit.diagnosis.series.model import PLAY_SUBDIVISIONS
 
 
 def sample_interval(problem: Problem) -> float:
@@ -29,7 +30,13 @@ def _resolution_limit(problem: Problem, resolution: Resolution) -> tuple[float, 
     if resolution == Resolution.sample_interval:
         return sample_interval(problem), "the sample interval"
     if resolution == Resolution.travel_per_sample:
-        return travel_per_sample(problem), "the crosshead's travel between samples"
+        # A play's runs follow the crosshead on knots PLAY_SUBDIVISIONS times finer than the
+        # samples after each turn (model.py): a play shorter than one sample's travel is modelled
+        # as it acts, down to one knot's travel.
+        return (
+            travel_per_sample(problem) / PLAY_SUBDIVISIONS,
+            f"the travel between the knots its runs follow ({PLAY_SUBDIVISIONS} between samples)",
+        )
     return 0.0, ""
 
 
@@ -68,3 +75,38 @@ def within_resolution(problem: Problem, fit: Fit) -> bool:
     return bool(below) and all(
         name in fit.intervals and max(abs(end) for end in fit.intervals[name]) >= limit for name, _, limit, _ in below
     )
+
+
+def sub_sample_play(problem: Problem, fit: Fit) -> bool:
+    """Whether `fit` holds a play (a parameter the crosshead's travel resolves) shorter than the
+    crosshead's travel between two samples."""
+    plays = [
+        (f"{e.name()}." if len(fit.effects) > 1 else "") + p.name
+        for e in fit.effects
+        for p in e.parameters()
+        if p.resolution == Resolution.travel_per_sample
+    ]
+    return bool(plays) and any(abs(fit.params[name]) < travel_per_sample(problem) for name in plays)
+
+
+def mimicked_by_a_shift(problem: Problem, candidate, judged: list) -> list[str]:
+    """Why a play shorter than one sample's travel is not told from the sampling: it changes the
+    samples just after each turn, as a channel shifted by less than one sample does (a logger's
+    clock merged with the machine's). Where such a shift (a significant candidate whose time is
+    below the sample interval) explains the held-out units as well on the same draws, the play
+    is no cause. Judgements are decide.py's."""
+    if not sub_sample_play(problem, candidate.fit):
+        return []
+    for rival in judged:
+        shifts = any(p.resolution == Resolution.sample_interval for e in rival.fit.effects for p in e.parameters())
+        if rival is candidate or not (rival.significant and shifts and rival.below_resolution):
+            continue
+        low, high = np.percentile(candidate.score.combined_samples - rival.score.combined_samples, [2.5, 97.5])
+        if low <= 0.0:
+            return [
+                f"{rival.fit.name}, a shift below one sample, explains the held-out units as well (gain "
+                f"{rival.score.combined_gain:.3f} against {candidate.score.combined_gain:.3f}; the difference's 95 % "
+                f"interval [{low:.3f}, {high:.3f}] holds zero): a play shorter than one sample's travel "
+                f"({travel_per_sample(problem):.3g} m) is not told from it"
+            ]
+    return []

@@ -23,7 +23,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from pamkit._core import Effect, EffectStage, ElongationTrajectory, GasMode, Measurement
+from pamkit._core import Effect, ElongationTrajectory, GasMode, Measurement
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.series.model import muscle_signature
 
@@ -46,9 +46,10 @@ def applies(problem: Problem) -> bool:
 def muscle_motion(problem: Problem, effects: list[Effect]) -> ElongationTrajectory:
     """The muscle's elongation along the crosshead's motion, moved by every effect in order (the
     pipeline's apply_to_elongation; the crosshead's own where no effect acts on the motion)."""
-    trajectory = problem.predictor.trajectory
-    if all(e.stage() != EffectStage.motion for e in effects):
-        return trajectory
+    predictor = problem.predictor
+    if not predictor.moves_muscle(effects):
+        return predictor.trajectory
+    trajectory = predictor.played_trajectory
     time_s = np.asarray(trajectory.time_s)
     elongation = np.asarray(trajectory.elongation_m)
     for effect in effects:
@@ -117,11 +118,14 @@ def sensitivity_jacobian(problem: Problem, point: Point, u: np.ndarray) -> np.nd
         [m for m, moves in zip(moved_motions, moves_model) if moves] if any(moves_motion) else [],
     )
     crosshead = np.asarray(predictor.trajectory.elongation_m)
-    chi = _read(problem, _channels(result.run, crosshead), effects, mask)
-    derivatives = iter(result.derivatives)
+    run, derivatives = result.run, result.derivatives
+    if predictor.moves_muscle(effects):
+        run, derivatives = predictor.played_measurement(run), [predictor.played_measurement(d) for d in derivatives]
+    chi = _read(problem, _channels(run, crosshead), effects, mask)
+    derivatives = iter(derivatives)
     jacobian = np.empty((chi.size, len(u)))
     for j, ((_, moved_effects), h, moves) in enumerate(zip(moved_points, steps, moves_model)):
-        channels = _channels(result.run, crosshead, next(derivatives), h) if moves else _channels(result.run, crosshead)
+        channels = _channels(run, crosshead, next(derivatives), h) if moves else _channels(run, crosshead)
         jacobian[:, j] = (_read(problem, channels, moved_effects, mask) - chi) / h
     return jacobian
 

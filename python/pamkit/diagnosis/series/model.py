@@ -43,11 +43,17 @@ from pamkit.diagnosis.coordinates import (
     unknown_coordinate,
     with_unknowns,
 )
-from pamkit.diagnosis.series.motion import measured_motion, programmed_motion
+from pamkit.diagnosis.series.motion import measured_motion, programmed_motion, with_knots_after_turns
 from pamkit.io.columns import SERIES_COLUMNS
 from pamkit.io.experiment import Experiment
 from pamkit.simulation import initial_length, muscle_params, sealed_start
 
+# A fixture's play is taken up within the first PLAY_REFINED_M of travel after each turn (the
+# largest plausible play, fixture_slack's): runs with it follow the crosshead there on knots
+# PLAY_SUBDIVISIONS times finer than the samples, so that a play shorter than one sample's
+# travel moves the muscle as it does, still and then at the crosshead's rate.
+PLAY_REFINED_M = 5e-3
+PLAY_SUBDIVISIONS = 8
 PRESSURE_TOLERANCE = 0.05  # relative: a hand-calibrated transducer read at inflation
 
 
@@ -172,6 +178,10 @@ class Predictor:
             else measured_motion(experiment.time_s, experiment.elongation_m)
         )
         self.trajectory = ElongationTrajectory(self.motion.time_s, self.motion.elongation_m)
+        # Runs whose muscle moves off the crosshead (a fixture's play) follow it on finer knots
+        # after each turn, and are read back on the motion's own (played_measurement).
+        self.played_motion, self._motion_rows = with_knots_after_turns(self.motion, PLAY_REFINED_M, PLAY_SUBDIVISIONS)
+        self.played_trajectory = ElongationTrajectory(self.played_motion.time_s, self.played_motion.elongation_m)
         self.simulator = Simulator(
             config if config is not None else SimulatorConfig(relative_tolerance=1e-6, absolute_tolerance_K=1e-6)
         )
@@ -226,11 +236,24 @@ class Predictor:
         extended = params
         for effect in effects:
             extended = effect.apply_to_params(extended)
-        shapes = None
         # A motion effect moves the muscle off the programmed lengths: no table applies.
-        if all(e.stage() != EffectStage.motion for e in effects):
-            shapes = self.shape_table(extended, initial)
+        if self.moves_muscle(effects):
+            run = simulate_measurement(params, initial, self.played_trajectory, effects, self.simulator)
+            return self.played_measurement(run)
+        shapes = self.shape_table(extended, initial)
         return simulate_measurement(params, initial, self.trajectory, effects, self.simulator, shapes=shapes)
+
+    @staticmethod
+    def moves_muscle(effects: list[Effect]) -> bool:
+        """Whether an effect moves the muscle off the crosshead's motion (a fixture's play)."""
+        return any(e.stage() == EffectStage.motion for e in effects)
+
+    def played_measurement(self, m: Measurement) -> Measurement:
+        """A run along played_trajectory read at the motion's own knots."""
+        out = Measurement()
+        for name in SERIES_COLUMNS:
+            setattr(out, name, np.asarray(getattr(m, name))[self._motion_rows])
+        return out
 
     def sealed_model(self, x: np.ndarray, effects: list[Effect]) -> MuscleModel:
         """The sealed test's model at baseline coordinates x, extended by `effects`' parameters."""

@@ -102,3 +102,33 @@ def programmed_motion(time: np.ndarray, elongation: np.ndarray) -> Motion:
     keep = np.concatenate([[True], np.diff(all_t) > 1e-9 * max(1.0, abs(all_t[-1]))])
     rows = np.searchsorted(all_t[keep], time)
     return Motion(all_t[keep], all_e[keep], rows)
+
+
+def with_knots_after_turns(motion: Motion, travel_m: float, subdivisions: int) -> tuple[Motion, np.ndarray]:
+    """`motion` with each segment within `travel_m` of crosshead travel after a turn (a change of
+    direction, a hold's end) cut into `subdivisions` equal ones: where a play between crosshead and
+    muscle is taken up inside one sample interval, the muscle's own motion has a corner that the
+    samples' straight lines would smear over the interval (its rate, so the friction, wrong there).
+    Returns the refined motion (its sample_rows among the new knots) and the row of each of
+    `motion`'s knots in it."""
+    time, elongation = motion.time_s, motion.elongation_m
+    step = np.diff(elongation)
+    direction = np.sign(step)
+    refine = np.zeros(step.size, dtype=bool)
+    last, travelled = 0.0, np.inf
+    for k, (d, s) in enumerate(zip(direction, step)):
+        if d != 0 and d != last:
+            travelled = 0.0
+        if d != 0:
+            last = d
+        if travelled < travel_m:
+            refine[k] = d != 0
+            travelled += abs(s)
+    fractions = np.arange(1, subdivisions) / subdivisions
+    inserted_t = (time[:-1][refine, None] + np.diff(time)[refine, None] * fractions).ravel()
+    inserted_e = (elongation[:-1][refine, None] + step[refine, None] * fractions).ravel()
+    all_t = np.concatenate([time, inserted_t])
+    order = np.argsort(all_t, kind="stable")
+    rows = np.argsort(order)[: time.size]  # where each of motion's knots went
+    refined = Motion(all_t[order], np.concatenate([elongation, inserted_e])[order], rows[motion.sample_rows])
+    return refined, rows

@@ -175,9 +175,10 @@ def _run(problem: Problem, fit: Fit, variant: Variant) -> Measurement:
     ambient_K = params.gas.ambient_temperature_K
     if variant.zero_reading:
         return _steady_reading(fit, 0.0, ambient_K)
-    motion = predictor.motion
-    trajectory = ElongationTrajectory(np.asarray(motion.time_s) * variant.time_scale, motion.elongation_m)
     experiment = problem.experiment
+    played = experiment.gas == GasMode.sealed and predictor.moves_muscle(fit.effects)
+    motion = predictor.played_motion if played else predictor.motion
+    trajectory = ElongationTrajectory(np.asarray(motion.time_s) * variant.time_scale, motion.elongation_m)
     if experiment.gas == GasMode.supplied:
         supplied = np.asarray(experiment.columns["gauge_pressure_Pa"]) * (1.0 + variant.pressure_share)
         return simulate_supplied_measurement(
@@ -193,7 +194,8 @@ def _run(problem: Problem, fit: Fit, variant: Variant) -> Measurement:
         start = inflated_and_sealed(params, inflation_Pa + change * change / (read[1] - read[0]))
     else:
         start = predictor.initial_state(params, inflation_Pa)
-    return simulate_measurement(params, start, trajectory, fit.effects, predictor.simulator)
+    run = simulate_measurement(params, start, trajectory, fit.effects, predictor.simulator)
+    return predictor.played_measurement(run) if played else run
 
 
 def _differences(problem: Problem, a: Fit, b: Fit, variant: Variant):
