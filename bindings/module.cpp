@@ -41,6 +41,7 @@ PYBIND11_MODULE(_core, m) {
   units.attr("PASCAL_PER_KILOPASCAL") = pamkit::units::kPascalPerKilopascal;
   units.attr("KILOPASCAL_PER_PSI") = pamkit::units::kKilopascalPerPsi;
   units.attr("KILOPASCAL_PER_BAR") = pamkit::units::kKilopascalPerBar;
+  units.attr("NEWTON_PER_KILOGRAM_FORCE") = pamkit::units::kNewtonPerKilogramForce;
   units.attr("KELVIN_AT_ZERO_CELSIUS") = pamkit::units::kKelvinAtZeroCelsius;
   units.attr("MILLIMETRE_PER_METRE") = pamkit::units::kMillimetrePerMetre;
 }

@@ -14,6 +14,9 @@ inline constexpr double kPascalPerKilopascal = 1e3;
 inline constexpr double kKilopascalPerPsi = 6.894757293168361;
 /// Kilopascals in one bar (1 bar = 1e5 Pa exactly): a regulator's or a datasheet's pressure.
 inline constexpr double kKilopascalPerBar = 100.0;
+/// Newtons in one kilogram-force: standard gravity, 9.80665 m/s^2 exactly (CGPM 1901), the weight
+/// of a kilogram hung on a muscle and a load cell's kgf.
+inline constexpr double kNewtonPerKilogramForce = 9.80665;
 /// Kelvin at 0 degC.
 inline constexpr double kKelvinAtZeroCelsius = 273.15;
 /// Millimetres in one metre.

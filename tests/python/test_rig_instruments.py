@@ -172,3 +172,12 @@ def test_a_hanging_mass_needs_a_time_axis(tmp_path):
     path.write_text(path.read_text().replace("load_mass_kg = 10.0", "load_mass_kg = 0.0"))
     with pytest.raises(ExperimentError, match=r"load_mass_kg = 0.0 is outside \(0, 1e4\] kg"):
         load_experiment(path)
+
+
+def test_a_hanging_mass_without_its_weight_is_told_its_weight(tmp_path):
+    # A lab that gives the mass it hung and no load_N: the load is the mass times standard gravity
+    # (9.80665 m/s^2, units.hpp), which the error works out for it.
+    path = _write_isotonic_series(tmp_path, [0, 1], [100, 200])
+    path.write_text(path.read_text().replace("load_N = 98.1\n", ""))
+    with pytest.raises(ExperimentError, match=r"load_N is missing.*load_N = 98.0665 for load_mass_kg = 10"):
+        load_experiment(path)

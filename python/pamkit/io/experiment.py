@@ -38,6 +38,7 @@ from pamkit.io.schema import (
 from pamkit.io.sections import read_bladder, read_build, read_calibrate, read_friction, read_gas, read_uncertain
 from pamkit.io.series import check_units, read_isotonic, read_series, read_table
 from pamkit.io.writers import write_experiment
+from pamkit.units import NEWTON_PER_KILOGRAM_FORCE
 
 # [test] gas: how the muscle's gas is held, by the name a file gives it.
 GAS_MODES = dict(GasMode.__members__)
@@ -310,11 +311,17 @@ def _experiment_of(path: Path, document: dict) -> Experiment:
     load = _given(path, test, "load_N", kind)
     if load is not None and not 0 <= load <= 1e5:
         raise fail(path, f"[test] load_N = {load} is outside [0, 1e5] N")
-    if load is None and kind == "isotonic" and "load_N" not in calibrate:
-        raise fail(path, "[test] load_N is missing: an isotonic test needs its load, or load_N in [calibrate]")
     mass = _given(path, test, "load_mass_kg", kind)
     if mass is not None and not 0 < mass <= 1e4:
         raise fail(path, f"[test] load_mass_kg = {mass} is outside (0, 1e4] kg")
+    if load is None and kind == "isotonic" and "load_N" not in calibrate:
+        hung = (
+            f" (a mass hung on the muscle weighs its mass times g: load_N = {mass * NEWTON_PER_KILOGRAM_FORCE:.6g} for "
+            f"load_mass_kg = {mass:g}; load_mass_kg adds its inertia, for a record in time)"
+            if mass is not None
+            else ""
+        )
+        raise fail(path, f"[test] load_N is missing: an isotonic test needs its load, or load_N in [calibrate]{hung}")
     if "load_N" in calibrate and kind != "isotonic":
         raise fail(path, f'[calibrate] load_N belongs to kind = "isotonic", not {kind!r}')
     preload = _given(path, test, "preload_N")

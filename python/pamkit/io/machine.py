@@ -37,6 +37,7 @@ from pathlib import Path
 import numpy as np
 
 from pamkit.io.guards import ExperimentError, read_text
+from pamkit.units import NEWTON_PER_KILOGRAM_FORCE
 
 # Column names, lowercased, units removed. testXpert's "Standardweg" / "Standard travel" is the
 # crosshead travel since the test started; its absolute position ("Traversenweg absolut") is
@@ -61,7 +62,7 @@ TESTXPERT_NAMES = {"prüfzeit", "test time", "standardweg", "standard travel", "
 UNITS = {
     "time": {"s": 1.0, "sec": 1.0, "ms": 1e-3, "min": 60.0, "h": 3600.0},
     "extension": {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "µm": 1e-6, "um": 1e-6, "in": 0.0254},
-    "load": {"n": 1.0, "kn": 1e3, "mn": 1e-3, "dan": 10.0, "lbf": 4.4482216152605, "kgf": 9.80665},
+    "load": {"n": 1.0, "kn": 1e3, "mn": 1e-3, "dan": 10.0, "lbf": 4.4482216152605, "kgf": NEWTON_PER_KILOGRAM_FORCE},
 }
 # The columns returned, by quantity.
 OUTPUT_NAMES = {"time": "time_s", "extension": "extension_m", "load": "force_N"}
