@@ -20,6 +20,7 @@ from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.diagnosis.series.score import credited_channels
 from pamkit.diagnosis.series.separate import SEPARATES
 from pamkit.diagnosis.significance import MIN_BIC_DROP, MIN_GAIN, NONE_WITHIN_NOISE
+from pamkit.diagnosis.tables import figure as table_figure
 from pamkit.diagnosis.tables import report as table_report
 from pamkit.diagnosis.tables.engine import TableDiagnosis
 from pamkit.io.columns import COLUMN_UNITS, difference_from_si, file_name, file_unit
@@ -419,17 +420,17 @@ def _remainder_phrase(d: Diagnosis) -> str:
 def figure(d: Diagnosis | TableDiagnosis | SeriesCampaign):
     """The diagnosis's figure, as `plot` writes it: a matplotlib Figure, open in pyplot."""
     if isinstance(d, TableDiagnosis):
-        return table_report.figure(d)
+        return table_figure.figure(d)
     if isinstance(d, SeriesCampaign):
         return campaign.figure(d)
     return series_figure(d, verdict(d))
 
 
 def plot(d: Diagnosis | TableDiagnosis | SeriesCampaign, path: str | Path) -> Path:
-    """The diagnosis's figure: a table's (tables/report.py), a campaign's (series/campaign.py) or a
+    """The diagnosis's figure: a table's (tables/figure.py), a campaign's (series/campaign.py) or a
     time series' (figure.py), titled with its verdict."""
     if isinstance(d, TableDiagnosis):
-        return table_report.plot(d, path)
+        return table_figure.plot(d, path)
     if isinstance(d, SeriesCampaign):
         return campaign.plot(d, path)
     return plot_series(d, path, verdict(d))

@@ -244,11 +244,11 @@ def test_a_held_length_that_alone_tells_a_value_says_so_when_held_out(tmp_path, 
         assert "predicted with slip_distance_m, which the other held lengths do not determine" in verdict(d)
         assert all(within_intervals(d.extended, t).values()), (within_intervals(d.extended, t), verdict(d))
     # The figure says it beside that length's curve.
-    import pamkit.diagnosis.tables.report as table_report
+    import pamkit.diagnosis.tables.figure as table_figure
 
     drawn = []
-    monkeypatch.setattr(table_report, "save_figure", lambda figure, path: drawn.append(figure) or path)
-    table_report.plot(d, tmp_path / "map.png")
+    monkeypatch.setattr(table_figure, "save_figure", lambda figure, path: drawn.append(figure) or path)
+    table_figure.plot(d, tmp_path / "map.png")
     labels = [text.get_text() for axis in drawn[0].axes if axis.get_legend() for text in axis.get_legend().get_texts()]
     assert "L=0.245 (held out: rests on slip_distance_m)" in labels, labels
 

@@ -504,3 +504,26 @@ def test_an_isotonic_table_reads_contraction_and_needs_its_load(tmp_path):
     toml.write_text(toml.read_text().replace("load_N = [1.0, 500.0]\n", ""))
     with pytest.raises(ExperimentError, match="load_N is missing"):
         load_experiment(toml)
+
+
+def test_the_table_figure_shows_what_the_named_cause_leaves_held_out_against_the_noise():
+    # The Festo DMSP-10-250 map: below the force, each held length's residual of the model with
+    # the named friction, held out, and the band of two noise sigmas; the longest length, which
+    # the others predict by extrapolation, is where the remainder lies (README: 28 N at 650 kPa).
+    from pamkit.diagnosis.tables.figure import NOISE_BAND, figure
+
+    d = diagnose(FESTO / "DMSP-10-250.toml", threads=2)
+    drawn = figure(d)
+    below = drawn.axes[1]
+    assert "what the model with slip_hysteresis leaves, held out" in below.get_title()
+    c = d.campaign
+    residual = c.columns["force_N"] - d.extended.heldout["force_N"]
+    longest = np.flatnonzero(c.groups == c.group_labels.index("L=0.25"))
+    drawn_rows = [line for line in below.get_lines() if len(line.get_xdata()) == longest.size]
+    pressure_kPa = c.columns["gauge_pressure_Pa"][longest] / 1e3
+    (line,) = [line for line in drawn_rows if np.allclose(line.get_ydata(), residual[longest])]
+    np.testing.assert_allclose(line.get_xdata(), pressure_kPa)
+    assert np.min(residual[longest]) < -25.0  # the extrapolated length's error, beyond the band
+    (band,) = below.patches  # axhspan: from -2 to +2 noise sigmas
+    assert band.get_y() == pytest.approx(-NOISE_BAND * d.noise["force_N"])
+    assert band.get_height() == pytest.approx(2 * NOISE_BAND * d.noise["force_N"])

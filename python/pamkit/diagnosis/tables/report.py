@@ -1,10 +1,8 @@
 """The report of a static table's diagnosis: the JSON keys of docs/reference/report.md (with the calibrated
-unknowns' intervals and the held-out error per unit), the verdict a person reads first, and the
-figure (each channel against the supplied pressure, every unit as predicted held out)."""
+unknowns' intervals and the held-out error per unit) and the verdict a person reads first (its
+figure is figure.py)."""
 
 from __future__ import annotations
-
-from pathlib import Path
 
 import numpy as np
 
@@ -12,12 +10,8 @@ from pamkit.diagnosis.identify import interval_numbers, why_undetermined
 from pamkit.diagnosis.tables.decide import TableCandidate, findings_text
 from pamkit.diagnosis.tables.engine import TableDiagnosis
 from pamkit.diagnosis.tables.fit import HELD_IN_TABLES, TableFit, heldout_rmse
-from pamkit.diagnosis.tables.kinds import CYCLIC
 from pamkit.diagnosis.tables.remainder import describe
-from pamkit.io.columns import COLUMN_UNITS, value_from_si
-from pamkit.io.experiment import test_names
-from pamkit.plots import pyplot, save_figure
-from pamkit.units import MILLIMETRE_PER_METRE
+from pamkit.io.columns import COLUMN_UNITS
 
 
 def to_json(d: TableDiagnosis) -> dict:
@@ -281,89 +275,3 @@ def verdict(d: TableDiagnosis) -> str:
                 finding += f"; with it, {w['parameter']} = {d.extended.params[w['parameter']]:.4g}"
         lines.append(f"warning: {finding}")
     return "\n".join(lines)
-
-
-def plot(d: TableDiagnosis, path: str | Path) -> Path:
-    """Writes `figure(d)` to `path` (PNG or PDF by its suffix)."""
-    return save_figure(figure(d), path)
-
-
-def figure(d: TableDiagnosis):
-    """Each channel against the supplied pressure: measured points, and each group as the
-    calibrated baseline (dotted) and the named cause's model (solid) predicted it held out. A
-    map draws one curve per held length; a free-inflation table one per test. A matplotlib
-    Figure, open in pyplot."""
-    plt = pyplot()
-
-    c = d.campaign
-    pressure = value_from_si("gauge_pressure_Pa", c.columns["gauge_pressure_Pa"])  # drawn in kPa
-    by_group = all(kind in ("isometric_map", "isotonic", CYCLIC) for kind in c.kinds)
-    curves = c.groups if by_group else c.test
-    names = c.group_labels if by_group else test_names(c.experiments)
-    cyclic = np.isin(c.test, [i for i, kind in enumerate(c.kinds) if kind == CYCLIC])
-    panels = len(d.channels) + int(cyclic.any())
-    figure, axes = plt.subplots(1, panels, figsize=(6.5 * panels, 4.8), squeeze=False)
-    if cyclic.any():  # at a regulated pressure: the force against the crosshead's elongation
-        axis = axes[0][-1]
-        elongation = MILLIMETRE_PER_METRE * c.columns["elongation_m"]
-        for test in np.unique(c.test[cyclic]):
-            rows = np.flatnonzero(c.test == test)
-            axis.plot(
-                elongation[rows],
-                c.columns["force_N"][rows],
-                "o",
-                ms=2,
-                color="0.4",
-                label=test_names(c.experiments)[test],
-            )
-            axis.plot(elongation[rows], d.baseline.heldout["force_N"][rows], ":", color="C0", lw=1)
-            if d.extended is not d.baseline:
-                axis.plot(elongation[rows], d.extended.heldout["force_N"][rows], "-", color="C1", lw=1.2)
-        axis.set_xlabel("elongation [mm]")
-        axis.set_ylabel("force [N]")
-        axis.grid(alpha=0.3)
-        axis.legend(fontsize=7, loc="best")
-    for axis, channel in zip(axes[0], d.channels):
-        unit = COLUMN_UNITS[channel]
-        scale = MILLIMETRE_PER_METRE if unit == "m" else 1.0
-        shown_unit = "mm" if unit == "m" else unit
-        mine = c.predicts(channel) & ~cyclic
-        drawn = np.unique(curves[mine])
-        # The group the remainder lies in, beyond the others' lengths: its held-out curve extrapolates;
-        # a group predicted with a value only it determines: its held-out curve rests on that value.
-        where = d.remainder_where.get(channel, {})
-        beyond = where.get("group") if by_group and where.get("rows_beyond") else None
-        resting = {c.group_labels[g]: values for g, values in d.extended.rests_on.items()} if by_group else {}
-        colors = plt.cm.viridis(np.linspace(0, 0.9, len(drawn)))
-        for curve, color in zip(drawn, colors):
-            rows = np.flatnonzero((curves == curve) & mine)
-            if c.kinds[c.test[rows[0]]] != "isotonic":  # an isotonic sweep is drawn as measured: up, down
-                rows = rows[np.argsort(pressure[rows])]
-            label = names[curve] + (" (held out: extrapolated)" if names[curve] == beyond else "")
-            if names[curve] in resting:
-                label += f" (held out: rests on {', '.join(resting[names[curve]])})"
-            axis.plot(pressure[rows], scale * c.columns[channel][rows], "o", color=color, ms=4, label=label)
-            axis.plot(pressure[rows], scale * d.baseline.heldout[channel][rows], ":", color=color, lw=1)
-            if d.extended is not d.baseline:
-                axis.plot(pressure[rows], scale * d.extended.heldout[channel][rows], "-", color=color, lw=1.5)
-        if (c.censored & mine).any():
-            axis.plot(
-                pressure[c.censored & mine],
-                scale * c.columns[channel][c.censored & mine],
-                "x",
-                color="0.5",
-                label="censored: the transducer's range end",
-            )
-        axis.set_xlabel("supplied pressure [kPa]")
-        axis.set_ylabel(f"{channel.rsplit('_', 1)[0]} [{shown_unit}]")
-        axis.grid(alpha=0.3)
-        axis.legend(fontsize=7, loc="best")
-    extended = f"solid: with {d.cause}; " if d.extended is not d.baseline else ""
-    figure.suptitle(
-        f"{', '.join(test_names(c.experiments))}: cause {d.cause}\n"
-        f"points: measured; dotted: calibrated baseline; {extended}\n"
-        f"each {c.group_name} predicted by the model fitted without it",
-        fontsize=8,
-    )
-    figure.tight_layout()
-    return figure
