@@ -266,6 +266,9 @@ def test_a_table_reads_its_rows_in_order_and_drops_what_its_kind_does_not_use(tm
     assert list(columns) == list(plain)
     for name in plain:
         np.testing.assert_array_equal(columns[name], plain[name])
+    (tmp_path / "map.csv").write_text("Length [mm],Pressure (kPa),Force [N]\n250,100,50\n240,100,20\n")
+    for name, values in load_experiment(path).columns.items():  # headed as a spreadsheet heads them
+        np.testing.assert_allclose(values, plain[name], rtol=1e-15, err_msg=name)
     (tmp_path / "map.csv").write_text("time_s,length_m,pressure_kPa,force_N\n12,0.25,100,50\n0,0.24,100,20\n")
     with pytest.raises(ExperimentError, match=r"map.csv:3: column 1 \(time_s\) = 0.0 does not increase"):
         load_experiment(path)

@@ -5,9 +5,10 @@ import numpy as np
 import pytest
 
 from pamkit.io.experiment import load_experiment
-from pamkit.io.guards import ExperimentError
+from pamkit.io.guards import ExperimentError, ExperimentWarning
 from pamkit.io.logger import LoggerError, read_machine_csv
 from pamkit.io.machine import read_machine_export
+from pamkit.io.series import read_series
 
 
 @pytest.fixture
@@ -115,3 +116,25 @@ def test_align_reads_a_zwick_export(machines_dir):
     np.testing.assert_array_equal(machine["time_s"], experiment.time_s)
     np.testing.assert_array_equal(machine["extension_m"], experiment.elongation_m)
     np.testing.assert_array_equal(machine["force_N"], experiment.columns["force_N"])
+
+
+def test_pamkits_channels_headed_as_a_spreadsheet_heads_them_are_all_read(tmp_path):
+    # "Time (s)", "Pressure [kPa]", "Temperature (°C)": pamkit's CSV with its units in brackets is
+    # pamkit's CSV, every channel read (such a file was taken for a machine's export, which reads
+    # time, extension and load, and its pressure and temperature were lost without a word). A
+    # machine's own export with a logger's pressure beside it says what it leaves unread.
+    plain = tmp_path / "plain.csv"
+    plain.write_text("time_s,elongation_m,force_N,pressure_kPa,temperature_C\n0,0,1,150,20\n1,0.002,9,160,20.5\n")
+    spelled = tmp_path / "spelled.csv"
+    spelled.write_text(
+        "Time (s),Elongation [mm],FORCE_N,Pressure (bar),Temperature (°C)\n0,0,1,1.5,20\n1,2,9,1.6,20.5\n"
+    )
+    expected, columns = read_series(plain), read_series(spelled)
+    assert list(columns) == list(expected)
+    for name in expected:
+        np.testing.assert_allclose(columns[name], expected[name], rtol=1e-15, err_msg=name)
+    export = tmp_path / "export.csv"
+    export.write_text("Time (s),Extension (mm),Load (N),Pressure (kPa)\n0,0,1,150\n1,2,9,160\n")
+    with pytest.warns(ExperimentWarning, match=r"export.csv:1: read as a tensile machine's export.*'Pressure \(kPa\)'"):
+        columns = read_series(export)
+    assert list(columns) == ["time_s", "elongation_m", "force_N"]

@@ -6,12 +6,14 @@ they write. Nothing between a reader and a writer converts a unit."""
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
 
 from pamkit._core import measured_channels
+from pamkit.io.schema import TABLE_COLUMNS
 from pamkit.units import (
     KELVIN_AT_ZERO_CELSIUS,
     KILOPASCAL_PER_BAR,
@@ -106,6 +108,7 @@ def to_file(columns: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
 
 # The optional columns as a file names them.
 FILE_OPTIONAL_COLUMNS = tuple(file_name(name) for name in OPTIONAL_COLUMNS)
+LOGGER_FILE_COLUMNS = tuple(file_name(name) for name in LOGGER_CHANNELS)
 
 
 @dataclass(frozen=True)
@@ -138,6 +141,36 @@ def in_pamkit_units(name: str) -> tuple[str, float]:
     (("length_m", 0.001) for length_mm; (name, 1.0) for a name pamkit's files use)."""
     unit = _OTHER_BY_FILE_NAME.get(name)
     return (unit.column, unit.factor) if unit else (name, 1.0)
+
+
+# Every name a data file of pamkit's may give a column, by its lower case: a spelling that differs
+# only in case ("Pressure_kPa", "LENGTH_MM") is that name.
+_FILE_NAMES = {
+    name.lower(): name
+    for name in (
+        *REQUIRED_COLUMNS,
+        *FILE_OPTIONAL_COLUMNS,
+        *(column for columns in TABLE_COLUMNS.values() for column in columns),
+        *(unit.file_name for unit in OTHER_UNITS),
+    )
+}
+# A name with its unit in brackets, as spreadsheets and loggers head a column: "Pressure [kPa]",
+# "Force (N)", "Temperature (°C)".
+_BRACKETED = re.compile(r"^(?P<name>[A-Za-z][A-Za-z ]*?)\s*(?:\[(?P<a>[^\]]+)\]|\((?P<b>[^)]+)\))$")
+_UNIT_SPELLINGS = {"sec": "s", "°c": "c", "degc": "c", "deg c": "c", "° c": "c"}
+
+
+def pamkit_spelling(cell: str) -> str:
+    """A header cell as pamkit's files spell it: "Pressure [kPa]", "Force (N)", "Temperature (°C)"
+    and "LENGTH_MM" are pressure_kPa, force_N, temperature_C and length_mm (the name before the
+    brackets, its spaces as underscores, the unit after it). A cell that spells no name pamkit
+    reads comes back as it is, for the reader's error to quote."""
+    stripped = cell.strip()
+    match = _BRACKETED.match(stripped)
+    if match:
+        unit = (match["a"] or match["b"]).strip().lower()
+        stripped = f"{match['name'].strip().replace(' ', '_')}_{_UNIT_SPELLINGS.get(unit, unit)}"
+    return _FILE_NAMES.get(stripped.lower(), cell)
 
 
 def other_units_of(columns) -> list[str]:

@@ -31,12 +31,14 @@ from __future__ import annotations
 import csv
 import math
 import re
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from pamkit.io.guards import ExperimentError, read_text
+from pamkit.io.columns import LOGGER_FILE_COLUMNS, pamkit_spelling
+from pamkit.io.guards import ExperimentError, ExperimentWarning, read_text
 from pamkit.units import NEWTON_PER_KILOGRAM_FORCE
 
 # Column names, lowercased, units removed. testXpert's "Standardweg" / "Standard travel" is the
@@ -257,6 +259,22 @@ def _read_block(
     """One specimen's block: the names row at `header_index` of `lines`, its units row, its rows
     to the end of `lines`."""
     header = _cells(lines[header_index], delimiter)
+    # A channel of pamkit's beside the machine's (a logger's pressure merged in by hand) is not read
+    # here: said, not dropped unseen. The machine's own others (strain, cycle) are its derivatives.
+    unread = [
+        cell.strip()
+        for number, cell in enumerate(header)
+        if number not in columns.values() and pamkit_spelling(cell) in LOGGER_FILE_COLUMNS
+    ]
+    if unread:
+        warnings.warn(
+            f"{path}:{header_index + 1}: read as a tensile machine's export, whose time, extension and load "
+            f"pamkit reads; {', '.join(repr(cell) for cell in unread)} not read. Head every column as pamkit's "
+            "CSV does (time_s, elongation_m, force_N, pressure_kPa, temperature_C, or 'Pressure [kPa]') and each "
+            "is read",
+            ExperimentWarning,
+            3,
+        )
     units_row = None
     if header_index + 1 < len(lines):
         below = _cells(lines[header_index + 1], delimiter)

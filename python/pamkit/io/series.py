@@ -26,6 +26,7 @@ from pamkit.io.columns import (
     file_name,
     in_pamkit_units,
     other_units_of,
+    pamkit_spelling,
     to_si,
     value_from_si,
 )
@@ -112,6 +113,8 @@ def _is_machine_export(path: Path) -> bool:
         names = [in_pamkit_units(name.strip())[0] for name in cells]
         if any(name in REQUIRED_COLUMNS + FILE_OPTIONAL_COLUMNS for name in names):
             return False  # pamkit's CSV, right or wrong: its errors name what to fix, no column is dropped
+        if all(pamkit_spelling(cell) != cell for cell in cells):
+            return False  # pamkit's channels, spelled otherwise ("Pressure [kPa]"): every one is read
         return looks_like_export(path)
     except OSError:
         return False
@@ -181,7 +184,7 @@ def _header(path: Path) -> tuple[int, list[str]]:
     length_mm)."""
     line, header_line = _header_line(read_text(path, "data"))
     cells = next(csv.reader([header_line], delimiter=_delimiter(header_line)), [])
-    return line, [in_pamkit_units(name.strip())[0] for name in cells]
+    return line, [in_pamkit_units(pamkit_spelling(name))[0] for name in cells]
 
 
 #: Bytes read to find a file's header line past its comment lines.
@@ -299,7 +302,7 @@ def _checked_header(
     known = required + optional
     header, factors = [], []
     for number, cell in enumerate(cells, start=1):
-        name, factor = in_pamkit_units(cell.strip())
+        name, factor = in_pamkit_units(pamkit_spelling(cell))
         if name not in known:
             others = other_units_of(known)
             raise ExperimentError(
