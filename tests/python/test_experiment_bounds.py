@@ -132,11 +132,11 @@ def test_rows_read_at_once_equal_rows_read_one_by_one(tmp_path, delimiter, decim
 def test_plain_rows_never_go_row_by_row(tmp_path, monkeypatch):
     # The row-by-row parser is what made 10^6 rows take tens of seconds: a plain file, CRLF or
     # not, must not use it, but for the last line when that has no line end (it may be cut).
-    import pamkit.io.series as series
+    import pamkit.io.csv_reader as csv_reader
 
     parsed_alone = []
-    parse_row = series._parse_row
-    monkeypatch.setattr(series, "_parse_row", lambda *a: parsed_alone.append(a[1]) or parse_row(*a))
+    parse_row = csv_reader._parse_row
+    monkeypatch.setattr(csv_reader, "_parse_row", lambda *a: parsed_alone.append(a[1]) or parse_row(*a))
     path = tmp_path / "run.csv"
     rows = "".join(f"{i * 1e-3:.3f},{i * 1e-6:.6f}\n" for i in range(1000))
     for text, alone in ((rows, []), (rows.replace("\n", "\r\n"), []), (rows.rstrip("\n"), [1001])):

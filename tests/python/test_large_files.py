@@ -6,7 +6,7 @@ import tracemalloc
 import numpy as np
 import pytest
 
-import pamkit.io.series as series
+import pamkit.io.csv_reader as csv_reader
 from pamkit.io.columns import si_name
 from pamkit.io.guards import ExperimentWarning
 from pamkit.io.series import read_series
@@ -32,7 +32,7 @@ def test_a_plain_file_reads_in_less_memory_than_its_size(tmp_path, monkeypatch):
     # it, 16 is generous). A reader holding the file's bytes and text at once would take twice
     # its size before any number.
     block = 1 << 18
-    monkeypatch.setattr(series, "READ_BLOCK_BYTES", block)
+    monkeypatch.setattr(csv_reader, "READ_BLOCK_BYTES", block)
     rng = np.random.default_rng(12)
     count = 200_000
     table = np.column_stack([np.arange(count) * 1e-3, rng.uniform(0, 0.05, count), rng.normal(100, 30, (count, 3))])
@@ -71,7 +71,7 @@ def test_small_blocks_read_as_the_whole_file_does(tmp_path, monkeypatch, delimit
     quoted.write_text(bom + delimiter.join(f'"{n}"' for n in NAMES) + text[text.index(line_end) :], newline="")
     with pytest.warns(ExperimentWarning) as whole:
         reference = read_series(quoted)
-    monkeypatch.setattr(series, "READ_BLOCK_BYTES", 100)
+    monkeypatch.setattr(csv_reader, "READ_BLOCK_BYTES", 100)
     with pytest.warns(ExperimentWarning) as in_blocks:
         blocks = read_series(plain)
     assert [str(w.message).replace("plain", "quoted") for w in in_blocks] == [str(w.message) for w in whole]

@@ -1,0 +1,348 @@
+"""Reading a CSV of numbers under a header row, as every data file of pamkit's is: the header found
+past comment lines (``#`` first) and blank ones, its names as pamkit's files spell them (another
+unit's, or a spreadsheet's "Pressure [kPa]"), the delimiter and decimal mark from it. A plain file
+is read in blocks by numpy; anything else, or a file with an error to name, row by row with the
+csv module. Every problem is an :class:`~pamkit.io.guards.ExperimentError` naming the file, line
+and column; a repair (a cut last line, repeated time stamps) an
+:class:`~pamkit.io.guards.ExperimentWarning` saying what was done. What each kind of test reads is
+series.py's."""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import re
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from pamkit.io.columns import in_pamkit_units, other_units_of, pamkit_spelling
+from pamkit.io.guards import (
+    MAX_LINE_BYTES,
+    ExperimentError,
+    ExperimentWarning,
+    checked_size,
+    ends_unterminated,
+    has_long_line,
+    read_text,
+)
+
+
+def header_of(path: Path) -> tuple[int, list[str]]:
+    """The header's line number and names as pamkit's files name them (length_m for a file's
+    length_mm)."""
+    line, header = header_line(read_text(path, "data"))
+    cells = next(csv.reader([header], delimiter=delimiter_of(header)), [])
+    return line, [in_pamkit_units(pamkit_spelling(name))[0] for name in cells]
+
+
+#: Bytes read to find a file's header line past its comment lines.
+SNIFF_BYTES = 64 << 10
+
+# A comment line: "#" first (after spaces or a byte-order mark), as a logger or a rig's software
+# notes the date, the operator or a valve's switching. Its line end stays: lines keep their numbers.
+_COMMENT_LINE = re.compile(r"(?:^|(?<=[\r\n]))[ \t\ufeff]*#[^\r\n]*")
+
+
+def _is_skipped(line: str) -> bool:
+    """Whether a line before the header is skipped: blank, or a comment."""
+    stripped = line.strip(" \t\ufeff\r\n")
+    return not stripped or stripped.startswith("#")
+
+
+def header_line(text: str) -> tuple[int, str]:
+    """The header's line number (from 1) and text: the first line neither blank nor a comment.
+    Lines end at LF, CR LF or a bare CR (an old Mac's or a logger's line end, which the csv module
+    refuses inside a line)."""
+    lines = re.split(r"\r\n|[\r\n]", text)
+    for number, line in enumerate(lines, start=1):
+        if not _is_skipped(line):
+            return number, line
+    return 1, lines[0]
+
+
+def delimiter_of(first_line: str) -> str:
+    """The CSV's delimiter, from its header: European spreadsheets write "time_s;force_N" (and
+    decimal commas), some machines tabs."""
+    if ";" in first_line and "," not in first_line:
+        return ";"
+    return "\t" if "\t" in first_line else ","
+
+
+def read_columns(
+    path: Path, required: tuple[str, ...], optional: tuple[str, ...], increasing: str | None
+) -> dict[str, np.ndarray]:
+    """The columns of a CSV: `required` ones and any of `optional`, `increasing` (if given) not
+    decreasing, rows repeating it merged. A plain file is read in blocks by numpy; any other, or
+    one with an error to name, row by row with the csv module."""
+    columns = _read_plain_csv(path, required, optional, increasing)
+    if columns is not None:
+        return columns
+    text = read_text(path, "data")
+    delimiter = delimiter_of(header_line(text)[1])
+    decimal_comma = delimiter != ","
+    # Something numpy cannot read as it stands: row by row, to name the line and column.
+    with io.StringIO(_COMMENT_LINE.sub("", text), newline="") as handle:
+        reader = csv.reader(handle, delimiter=delimiter)
+        cells: list[str] = []
+        while not any(cell.strip() for cell in cells):
+            try:
+                cells = next(reader)
+            except StopIteration:
+                raise ExperimentError(f"{path}: empty file, expected a header row") from None
+        header, factors = _checked_header(path, reader.line_num, cells, required, optional)
+        named = [cell.strip() for cell in cells]  # as the file names them, for its errors
+        order = header.index(increasing) if increasing else None
+        rows = [(reader.line_num, row) for row in reader]
+    cut_last_line = ends_unterminated(path)
+    values: list[list[float]] = []
+    merged: list[int] = []  # lines whose time stamp repeated the one before
+    weight: list[int] = []  # rows averaged into each value row
+    for position, (line, row) in enumerate(rows):
+        if not row or all(not cell.strip() for cell in row):
+            continue
+        try:
+            parsed = _parse_row(path, line, named, [c.replace(",", ".") for c in row] if decimal_comma else row)
+        except ExperimentError as error:
+            if cut_last_line and position == len(rows) - 1:
+                # A recording cut mid-line (a killed logger, a pulled cable): keep what came whole.
+                warnings.warn(f"{path}:{line}: the last line is cut off ({error}); dropped", ExperimentWarning, 2)
+                continue
+            raise
+        if order is not None and values and parsed[order] == values[-1][order]:
+            # A repeated stamp (a logger's clock resolution): one sample, the mean of the rows.
+            n = weight[-1]
+            values[-1] = [(n * old + new) / (n + 1) for old, new in zip(values[-1], parsed)]
+            values[-1][order] = parsed[order]  # the mean of equal stamps, kept exact against the next one
+            weight[-1] += 1
+            merged.append(line)
+            continue
+        if order is not None and values and parsed[order] < values[-1][order]:
+            raise ExperimentError(
+                f"{path}:{line}: column {order + 1} ({named[order]}) = {parsed[order]} does not increase"
+            )
+        values.append(parsed)
+        weight.append(1)
+    if merged:
+        warnings.warn(
+            f"{path}:{merged[0]}: {len(merged)} row(s) repeat the time stamp before them (first at line {merged[0]}); "
+            "each is merged with it into one sample (their mean)",
+            ExperimentWarning,
+            2,
+        )
+    if len(values) < 2:
+        raise ExperimentError(f"{path}: needs at least 2 data rows, found {len(values)}")
+    table = np.asarray(values)
+    return _in_pamkit_units({name: table[:, index].copy() for index, name in enumerate(header)}, factors)
+
+
+def _shown(cell: str, limit: int = 40) -> str:
+    """A cell as a message quotes it: on one line (a quoted cell may hold line ends), escaped
+    where not printable (a stray byte-order mark), shortened past `limit` characters."""
+    return repr(cell if len(cell) <= limit else cell[:limit] + "...")
+
+
+def _checked_header(
+    path: Path, line: int, cells: list[str], required: tuple[str, ...], optional: tuple[str, ...]
+) -> tuple[list[str], list[float]]:
+    """The header's channel names (on line `line`) as pamkit's files name them, each known and
+    given once, the required ones all there; and the factor that takes each column to that name's
+    unit (a column in another unit, OTHER_UNITS: length_mm is length_m, 0.001)."""
+    known = required + optional
+    header, factors = [], []
+    for number, cell in enumerate(cells, start=1):
+        name, factor = in_pamkit_units(pamkit_spelling(cell))
+        if name not in known:
+            others = other_units_of(known)
+            raise ExperimentError(
+                f"{path}:{line}: column {number} {_shown(cell.strip())} is not a known channel ({', '.join(known)}"
+                + (f"; or in other units: {', '.join(others)})" if others else ")")
+            )
+        if name in header:
+            first = cells[header.index(name)].strip()
+            again = (
+                f"column {_shown(first)} appears twice"
+                if first == cell.strip()
+                else f"columns {_shown(first)} and {_shown(cell.strip())} both give {name}"
+            )
+            raise ExperimentError(f"{path}:{line}: {again}")
+        header.append(name)
+        factors.append(factor)
+    for name in required:
+        if name not in header:
+            raise ExperimentError(f"{path}:{line}: required column '{name}' is missing")
+    return header, factors
+
+
+def _in_pamkit_units(columns: dict[str, np.ndarray], factors: list[float]) -> dict[str, np.ndarray]:
+    """Each column times its factor from _checked_header, where it is not 1."""
+    return {name: values * f if f != 1.0 else values for (name, values), f in zip(columns.items(), factors)}
+
+
+#: Bytes of a data file numpy parses at a time (then to the end of the line): the file's text
+#: never stands in memory whole, only one block of it beside the numbers read so far.
+READ_BLOCK_BYTES = 4 << 20
+
+
+def _read_plain_csv(
+    path: Path, required: tuple[str, ...], optional: tuple[str, ...], increasing: str | None
+) -> dict[str, np.ndarray] | None:
+    """The columns of a plain CSV, read block by block (READ_BLOCK_BYTES) by numpy: a 2-million-row
+    file (108 MB) in 80 MB, its numbers, where its bytes, text and numbers at once took 4.5 times
+    the file. None when the file is not plain throughout: a quoted cell, a bare carriage return,
+    a blank line (numpy skips it, and rows would no longer be lines), a cell numpy does not read
+    as a finite number, a row of another width, text that is not UTF-8, a line over
+    MAX_LINE_BYTES, no data row, or a file that cannot be opened. The caller then reads its
+    whole text row by row, which names the first problem's line and column. A cut last line
+    (no line end: a killed logger) is parsed on its own and, as row by row, dropped with a
+    warning unless it is a whole row. The header is checked after the rows, as the whole-text
+    reader's order of errors has it (a file that cannot be decoded is named as such first)."""
+    limit = checked_size(path, "data")
+    try:
+        with path.open("rb") as handle:
+            before = header_number = 0  # bytes and lines up to the header's end
+            header_text = ""
+            while _is_skipped(header_text):
+                first = handle.readline(MAX_LINE_BYTES + 1)
+                try:
+                    header_text = first.decode("utf-8-sig" if not before else "utf-8")
+                except UnicodeDecodeError:
+                    return None
+                if not header_text.endswith("\n") or not _is_plain(header_text):
+                    return None
+                before += len(first)
+                header_number += 1
+            delimiter = delimiter_of(header_text)
+            cells = next(csv.reader([header_text[:-1]], delimiter=delimiter))
+            # A first pass counts the lines, so that numpy's rows go straight into columns of their
+            # final size: the numbers then stand in memory once, not in blocks and again in columns.
+            counted = lines = 0
+            while block := handle.read(READ_BLOCK_BYTES):
+                counted += len(block)
+                lines += block.count(b"\n")
+                if counted > limit:
+                    return None
+            if lines * 2 * len(cells) > counted:  # shorter than one character a cell: blank lines
+                return None
+            handle.seek(before)
+            columns = [np.empty(lines + 1) for _ in cells]  # and a last line without a line end
+            size, rows_read, last = before, 0, ""
+            while block := handle.read(READ_BLOCK_BYTES):
+                if not block.endswith(b"\n"):
+                    block += handle.readline(MAX_LINE_BYTES + 1)
+                size += len(block)
+                if size > limit or has_long_line(block):
+                    return None
+                try:
+                    text = block.decode("utf-8")
+                except UnicodeDecodeError:
+                    return None
+                if not _is_plain(text):
+                    return None
+                if not text.endswith("\n"):  # the file's end, without a line end: maybe cut
+                    text, _, last = text.rpartition("\n")
+                    text = text + "\n" if text else ""
+                rows = _parse_block(text, delimiter, len(cells)) if text else np.empty((0, len(cells)))
+                if rows is None or rows_read + len(rows) > lines:  # the file grew since it was counted
+                    return None
+                for index, column in enumerate(columns):
+                    column[rows_read : rows_read + len(rows)] = rows[:, index]
+                rows_read += len(rows)
+    except OSError:
+        return None
+    if not rows_read:
+        return None
+    header, factors = _checked_header(path, header_number, cells, required, optional)
+    named = [cell.strip() for cell in cells]
+    if last.strip(delimiter + " \t"):
+        line = header_number + rows_read + 1
+        row = next(csv.reader([last], delimiter=delimiter))
+        try:
+            values = _parse_row(path, line, named, [c.replace(",", ".") for c in row] if delimiter != "," else row)
+        except ExperimentError as error:
+            warnings.warn(f"{path}:{line}: the last line is cut off ({error}); dropped", ExperimentWarning, 3)
+        else:
+            for column, value in zip(columns, values):
+                column[rows_read] = value
+            rows_read += 1
+    for column in columns:
+        column.resize(rows_read, refcheck=False)  # in place: nothing else refers to it
+    checked = _checked_columns(path, dict(zip(header, columns)), header_number + 1, increasing, named)
+    return _in_pamkit_units(checked, factors)
+
+
+def _is_plain(text: str) -> bool:
+    """No quoted cell (numpy's reader does not unquote), no carriage return but before a line feed."""
+    return '"' not in text and text.count("\r") == text.count("\r\n")
+
+
+def _parse_block(text: str, delimiter: str, width: int) -> np.ndarray | None:
+    """Whole lines of numbers parsed by numpy (10^6 rows in about 1.5 s of CPU, where the csv
+    module and float() take ten times that): one row a line, `width` finite numbers each, or None."""
+    if delimiter != ",":  # decimal commas
+        text = text.replace(",", ".")
+    try:
+        # Bytes, not a StringIO: numpy reads them in chunks, a StringIO would hold 4 bytes a character.
+        rows = np.loadtxt(
+            io.BytesIO(text.encode()), delimiter=delimiter, dtype=float, ndmin=2, comments=None, encoding="utf-8"
+        )
+    except ValueError:
+        return None
+    if rows.shape != (text.count("\n"), width) or not np.isfinite(rows).all():
+        return None
+    return rows
+
+
+def _checked_columns(
+    path: Path, columns: dict[str, np.ndarray], first_line: int, increasing: str | None, named: list[str]
+) -> dict[str, np.ndarray]:
+    """The columns of rows read at once, with what the row-by-row reader checks and repairs:
+    `increasing` must not decrease, and rows repeating its value before them are merged into
+    one sample (their mean) with a warning. Row i is on line first_line + i; `named`: the
+    columns as the file names them."""
+    if increasing is not None:
+        stamps = columns[increasing]
+        step = np.diff(stamps)
+        back = np.flatnonzero(step < 0)
+        if back.size:
+            row = int(back[0]) + 1
+            order = list(columns).index(increasing)
+            raise ExperimentError(
+                f"{path}:{first_line + row}: column {order + 1} ({named[order]}) = {float(stamps[row])} "
+                "does not increase"
+            )
+        repeats = np.flatnonzero(step == 0) + 1
+        if repeats.size:
+            starts = np.flatnonzero(np.concatenate([[True], step != 0]))
+            counts = np.diff(np.append(starts, stamps.size))
+            columns = {name: np.add.reduceat(column, starts) / counts for name, column in columns.items()}
+            first = first_line + int(repeats[0])
+            warnings.warn(
+                f"{path}:{first}: {repeats.size} row(s) repeat the time stamp before them (first at line {first}); "
+                "each is merged with it into one sample (their mean)",
+                ExperimentWarning,
+                4,
+            )
+    rows = len(next(iter(columns.values())))
+    if rows < 2:
+        raise ExperimentError(f"{path}: needs at least 2 data rows, found {rows}")
+    return columns
+
+
+def _parse_row(path: Path, line: int, header: list[str], row: list[str]) -> list[float]:
+    if len(row) != len(header):
+        raise ExperimentError(f"{path}:{line}: {len(row)} values, the header has {len(header)}")
+    parsed = []
+    for column, (name, cell) in enumerate(zip(header, row), start=1):
+        try:
+            value = float(cell)
+        except ValueError:
+            raise ExperimentError(
+                f"{path}:{line}: column {column} ({name}) = {cell.strip()!r} is not a number"
+            ) from None
+        if not math.isfinite(value):
+            raise ExperimentError(f"{path}:{line}: column {column} ({name}) = {cell.strip()!r} is not finite")
+        parsed.append(value)
+    return parsed
