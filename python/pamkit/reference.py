@@ -174,6 +174,8 @@ TEST_KEY_MEANINGS = {
     "pressure_range_kPa": "[lowest, highest] gauge pressure the transducer reads: rows at an end are censored "
     "(predicted, never fitted or scored) (in Python, SI: Experiment.ranges['gauge_pressure_Pa'] [Pa])",
     "specimen": "in a tensile machine's export of several specimens: the one this test is (its Specimen Number)",
+    "ignore_columns": "data columns not to read, as the file names them (a logger's valve state, a note); any other "
+    "column pamkit does not know is an error, so that a misspelt channel is not left unread",
 }
 
 
@@ -194,6 +196,7 @@ def _test_keys() -> list[Key]:
         "description": '""',
         "force_range_N": "no clipping",
         "pressure_range_kPa": "no clipping",
+        "ignore_columns": "[] (every column read)",
     }
     allowed = {
         "kind": ", ".join(f'"{k}"' for k in ("series", *TABLE_KINDS)),
@@ -205,6 +208,7 @@ def _test_keys() -> list[Key]:
         "preload_N": "(0, 1e5]",
         "force_range_N": "[lowest, highest]",
         "pressure_range_kPa": "[lowest, highest]",
+        "ignore_columns": '["name", ...]',
     }
     keys = []
     for name, (series_required, _) in TEST_KEYS.items():

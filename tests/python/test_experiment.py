@@ -472,3 +472,36 @@ def test_a_series_written_in_blocks_is_every_row_once_in_csvs_format(tmp_path, m
     )
     assert path.read_bytes() == expected.encode()
     assert np.allclose(read_series(path)["force_N"], force, rtol=1e-9)
+
+
+def test_columns_named_in_ignore_columns_are_left_unread_and_errors_keep_the_files_column_numbers(
+    write_experiment, tmp_path
+):
+    # A logger's note and valve state between the channels: refused until named in
+    # [test] ignore_columns, then left out; a bad value still names its own column in the file.
+    path = write_experiment(csv_text="time_s,elongation_m,force_N\n0,0,1\n1,0.001,2\n2,0.002,3\n")
+    plain = load_experiment(path).columns
+    (tmp_path / "run.csv").write_text(
+        "time_s,note,elongation_m,valve,force_N\n0,start,0,1,1\n1,,0.001,1,2\n2,stop,0.002,0,3\n"
+    )
+    with pytest.raises(ExperimentError, match=r"column 2 'note' is not a known channel.*\[test\] ignore_columns"):
+        load_experiment(path)
+    path = write_experiment(
+        csv_text=(tmp_path / "run.csv").read_text(), toml_test_extra='ignore_columns = ["note", "valve"]'
+    )
+    columns = load_experiment(path).columns
+    assert list(columns) == list(plain)
+    for name in plain:
+        np.testing.assert_array_equal(columns[name], plain[name])
+    (tmp_path / "run.csv").write_text("time_s,note,elongation_m,valve,force_N\n0,a,0,1,1\n1,b,0.001,1,x\n")
+    with pytest.raises(ExperimentError, match=r"run.csv:3: column 5 \(force_N\) = 'x' is not a number"):
+        load_experiment(path)
+    path = write_experiment(toml_test_extra='ignore_columns = "note"')
+    with pytest.raises(ExperimentError, match=r"ignore_columns = 'note' must be a list of column names"):
+        load_experiment(path)
+    # A table the same way.
+    table = _commercial(tmp_path, "braid_angle_deg = 21.0", test_extra='ignore_columns = ["operator"]')
+    expected = load_experiment(table).columns
+    (tmp_path / "map.csv").write_text("length_m,operator,pressure_kPa,force_N\n0.25,JS,100,50\n0.24,JS,100,20\n")
+    for name, values in load_experiment(table).columns.items():
+        np.testing.assert_array_equal(values, expected[name])

@@ -55,6 +55,7 @@ VALUES = {
     "force_range_N": [-5.0, 1500.0],
     "pressure_range_kPa": [-10.0, 1000.0],
     "specimen": "1",
+    "ignore_columns": ["note"],
     "data": "run.csv",
 }
 

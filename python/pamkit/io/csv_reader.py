@@ -30,12 +30,12 @@ from pamkit.io.guards import (
 )
 
 
-def header_of(path: Path) -> tuple[int, list[str]]:
+def header_of(path: Path, ignore: tuple[str, ...] = ()) -> tuple[int, list[str]]:
     """The header's line number and names as pamkit's files name them (length_m for a file's
-    length_mm)."""
+    length_mm), but those in `ignore` (as the file names them)."""
     line, header = header_line(read_text(path, "data"))
     cells = next(csv.reader([header], delimiter=delimiter_of(header)), [])
-    return line, [in_pamkit_units(pamkit_spelling(name))[0] for name in cells]
+    return line, [in_pamkit_units(pamkit_spelling(name))[0] for name in cells if name.strip() not in ignore]
 
 
 #: Bytes read to find a file's header line past its comment lines.
@@ -72,12 +72,17 @@ def delimiter_of(first_line: str) -> str:
 
 
 def read_columns(
-    path: Path, required: tuple[str, ...], optional: tuple[str, ...], increasing: str | None
+    path: Path,
+    required: tuple[str, ...],
+    optional: tuple[str, ...],
+    increasing: str | None,
+    ignore: tuple[str, ...] = (),
 ) -> dict[str, np.ndarray]:
     """The columns of a CSV: `required` ones and any of `optional`, `increasing` (if given) not
     decreasing, rows repeating it merged. A plain file is read in blocks by numpy; any other, or
-    one with an error to name, row by row with the csv module."""
-    columns = _read_plain_csv(path, required, optional, increasing)
+    one with an error to name, row by row with the csv module. Columns named in `ignore` (as the
+    file names them) are not read."""
+    columns = _read_plain_csv(path, required, optional, increasing, ignore)
     if columns is not None:
         return columns
     text = read_text(path, "data")
@@ -92,7 +97,10 @@ def read_columns(
                 cells = next(reader)
             except StopIteration:
                 raise ExperimentError(f"{path}: empty file, expected a header row") from None
-        header, factors = _checked_header(path, reader.line_num, cells, required, optional)
+        width = len(cells)
+        kept = [number for number, cell in enumerate(cells) if cell.strip() not in ignore]
+        cells = [cells[number] for number in kept]
+        header, factors = _checked_header(path, reader.line_num, cells, required, optional, numbers=kept)
         named = [cell.strip() for cell in cells]  # as the file names them, for its errors
         order = header.index(increasing) if increasing else None
         rows = [(reader.line_num, row) for row in reader]
@@ -104,7 +112,12 @@ def read_columns(
         if not row or all(not cell.strip() for cell in row):
             continue
         try:
-            parsed = _parse_row(path, line, named, [c.replace(",", ".") for c in row] if decimal_comma else row)
+            if len(row) != width:
+                raise ExperimentError(f"{path}:{line}: {len(row)} values, the header has {width}")
+            row = [row[number] for number in kept]
+            parsed = _parse_row(
+                path, line, named, [c.replace(",", ".") for c in row] if decimal_comma else row, numbers=kept
+            )
         except ExperimentError as error:
             if cut_last_line and position == len(rows) - 1:
                 # A recording cut mid-line (a killed logger, a pulled cable): keep what came whole.
@@ -145,20 +158,28 @@ def _shown(cell: str, limit: int = 40) -> str:
 
 
 def _checked_header(
-    path: Path, line: int, cells: list[str], required: tuple[str, ...], optional: tuple[str, ...]
+    path: Path,
+    line: int,
+    cells: list[str],
+    required: tuple[str, ...],
+    optional: tuple[str, ...],
+    numbers: list[int] | None = None,
 ) -> tuple[list[str], list[float]]:
     """The header's channel names (on line `line`) as pamkit's files name them, each known and
     given once, the required ones all there; and the factor that takes each column to that name's
-    unit (a column in another unit, OTHER_UNITS: length_mm is length_m, 0.001)."""
+    unit (a column in another unit, OTHER_UNITS: length_mm is length_m, 0.001). `numbers`: each
+    cell's column in the file, from 0 (where ignored ones were taken out)."""
     known = required + optional
     header, factors = [], []
-    for number, cell in enumerate(cells, start=1):
+    for index, cell in enumerate(cells):
+        number = (numbers[index] if numbers is not None else index) + 1
         name, factor = in_pamkit_units(pamkit_spelling(cell))
         if name not in known:
             others = other_units_of(known)
             raise ExperimentError(
                 f"{path}:{line}: column {number} {_shown(cell.strip())} is not a known channel ({', '.join(known)}"
-                + (f"; or in other units: {', '.join(others)})" if others else ")")
+                + (f"; or in other units: {', '.join(others)}" if others else "")
+                + "; a column not to read is named in [test] ignore_columns)"
             )
         if name in header:
             first = cells[header.index(name)].strip()
@@ -187,7 +208,11 @@ READ_BLOCK_BYTES = 4 << 20
 
 
 def _read_plain_csv(
-    path: Path, required: tuple[str, ...], optional: tuple[str, ...], increasing: str | None
+    path: Path,
+    required: tuple[str, ...],
+    optional: tuple[str, ...],
+    increasing: str | None,
+    ignore: tuple[str, ...] = (),
 ) -> dict[str, np.ndarray] | None:
     """The columns of a plain CSV, read block by block (READ_BLOCK_BYTES) by numpy: a 2-million-row
     file (108 MB) in 80 MB, its numbers, where its bytes, text and numbers at once took 4.5 times
@@ -216,6 +241,8 @@ def _read_plain_csv(
                 header_number += 1
             delimiter = delimiter_of(header_text)
             cells = next(csv.reader([header_text[:-1]], delimiter=delimiter))
+            if any(cell.strip() in ignore for cell in cells):
+                return None  # a column not to read: row by row, which leaves it out
             # A first pass counts the lines, so that numpy's rows go straight into columns of their
             # final size: the numbers then stand in memory once, not in blocks and again in columns.
             counted = lines = 0
@@ -331,11 +358,16 @@ def _checked_columns(
     return columns
 
 
-def _parse_row(path: Path, line: int, header: list[str], row: list[str]) -> list[float]:
+def _parse_row(
+    path: Path, line: int, header: list[str], row: list[str], numbers: list[int] | None = None
+) -> list[float]:
+    """A row's cells as numbers; `numbers`: each cell's column in the file, from 0 (where ignored
+    ones were taken out)."""
     if len(row) != len(header):
         raise ExperimentError(f"{path}:{line}: {len(row)} values, the header has {len(header)}")
     parsed = []
-    for column, (name, cell) in enumerate(zip(header, row), start=1):
+    for index, (name, cell) in enumerate(zip(header, row)):
+        column = (numbers[index] if numbers is not None else index) + 1
         try:
             value = float(cell)
         except ValueError:

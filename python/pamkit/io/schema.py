@@ -28,6 +28,7 @@ TEST_KEYS = {
     "force_range_N": (False, "[lowest, highest] force the load cell reads; it clips beyond [N]"),
     "pressure_range_kPa": (False, "[lowest, highest] gauge pressure the transducer reads; it clips beyond [kPa]"),
     "specimen": (False, "a tensile machine's export of several specimens: the one this test is (its Specimen Number)"),
+    "ignore_columns": (False, "data columns not to read, as the file names them (a valve's state, a note)"),
 }
 # [test] ranges of the instruments, by the channel they read (its file column's unit).
 RANGE_KEYS = {"force_N": "force_range_N", "pressure_kPa": "pressure_range_kPa"}

@@ -59,10 +59,11 @@ def check_units(data_path: Path, columns: dict[str, np.ndarray]) -> None:
             )
 
 
-def read_series(path: str | Path, specimen: str | None = None) -> dict[str, np.ndarray]:
+def read_series(path: str | Path, specimen: str | None = None, ignore: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
     """Reads a measured-data CSV: a header row, then numbers. Requires time_s and elongation_m,
     accepts force_N, pressure_kPa, temperature_C; time must increase. Returns the columns in SI
-    (time_s, elongation_m, and as present force_N, gauge_pressure_Pa, temperature_K).
+    (time_s, elongation_m, and as present force_N, gauge_pressure_Pa, temperature_K). Columns
+    named in `ignore` (as the file names them: [test] ignore_columns) are not read.
 
     A tensile machine's export (Instron Bluehill, ZwickRoell testXpert: pamkit.io.machine) is
     recognised by its header and read as time_s, elongation_m (the crosshead's extension, which
@@ -82,7 +83,7 @@ def read_series(path: str | Path, specimen: str | None = None) -> dict[str, np.n
             f"{path}: [test] specimen = {specimen!r} chooses among a tensile machine's specimens; this is pamkit's CSV "
             "of one test: leave it out"
         )
-    return to_si(read_columns(path, REQUIRED_COLUMNS, FILE_OPTIONAL_COLUMNS, increasing="time_s"))
+    return to_si(read_columns(path, REQUIRED_COLUMNS, FILE_OPTIONAL_COLUMNS, increasing="time_s", ignore=ignore))
 
 
 def _is_machine_export(path: Path) -> bool:
@@ -106,13 +107,15 @@ def _is_machine_export(path: Path) -> bool:
         return False
 
 
-def read_isotonic(path: str | Path, deflated_length_m: float, dynamic: bool = False) -> dict[str, np.ndarray]:
+def read_isotonic(
+    path: str | Path, deflated_length_m: float, dynamic: bool = False, ignore: tuple[str, ...] = ()
+) -> dict[str, np.ndarray]:
     """An isotonic test's rows, in SI: the file's pressure_kPa (as gauge_pressure_Pa) and the
     muscle's length_m, or its contraction_m from the deflated length (converted to length_m);
     time_s when there is one (always, for a `dynamic` test: a load whose motion is integrated in
     time), not decreasing. Other channels of pamkit's are dropped with a warning (read_table)."""
     path = Path(path)
-    line, header = header_of(path)
+    line, header = header_of(path, ignore)
     measures = [name for name in ("length_m", "contraction_m") if name in header]
     if len(measures) != 1:
         raise ExperimentError(
@@ -123,7 +126,7 @@ def read_isotonic(path: str | Path, deflated_length_m: float, dynamic: bool = Fa
         raise ExperimentError(
             f"{path}:{line}: [test] load_mass_kg integrates the load's motion in time: time_s is missing"
         )
-    columns = read_table(path, ("pressure_kPa", measures[0]), "isotonic", keep_time=True)
+    columns = read_table(path, ("pressure_kPa", measures[0]), "isotonic", keep_time=True, ignore=ignore)
     if "contraction_m" in columns:
         columns["length_m"] = deflated_length_m - columns.pop("contraction_m")
     return columns
@@ -138,21 +141,25 @@ KNOWN_CHANNELS = tuple(
 
 
 def read_table(
-    path: str | Path, columns: tuple[str, ...], kind: str = "table", keep_time: bool = False
+    path: str | Path,
+    columns: tuple[str, ...],
+    kind: str = "table",
+    keep_time: bool = False,
+    ignore: tuple[str, ...] = (),
 ) -> dict[str, np.ndarray]:
     """Reads a static table (one settled row per line) of a test of `kind`: `columns` (as the
     file names them), in any order; returns them in SI. A table's rows are in the order they were
     measured (the pressurise/vent branches follow it): a time_s column, if there is one, must not
     decrease, and is returned with `keep_time`. Any other of pamkit's channels (KNOWN_CHANNELS) is
-    dropped with an ExperimentWarning naming it.
+    dropped with an ExperimentWarning naming it; columns named in `ignore` are not read.
 
     Raises:
         ExperimentError: naming the file, line and column of the first bad value.
     """
     path = Path(path)
-    line, header = header_of(path)
+    line, header = header_of(path, ignore)
     extra = tuple(name for name in KNOWN_CHANNELS if name in header and name not in columns)
-    read = read_columns(path, columns, extra, increasing="time_s" if "time_s" in extra else None)
+    read = read_columns(path, columns, extra, increasing="time_s" if "time_s" in extra else None, ignore=ignore)
     unused = [name for name in extra if name != "time_s"]
     if unused:
         warnings.warn(
