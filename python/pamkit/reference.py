@@ -396,6 +396,8 @@ COLUMN_MEANINGS = {
     "length_m": "the muscle's length between its end caps",
     "diameter_m": "the muscle's outer braid diameter at mid-length",
     "contraction_m": "the muscle's contraction from its deflated length (instead of length_m)",
+    "contraction_percent": "the muscle's contraction in per cent of its deflated length, as a datasheet plots "
+    "force against contraction (instead of length_m)",
 }
 
 
@@ -409,13 +411,19 @@ def data_columns(kind: str) -> list[Column]:
             meaning = COLUMN_MEANINGS[name] + ("; the supplied pressure, which drives the model" if needed else "")
             columns.append(_column(name, needed, meaning))
         return columns
+    lengths = [
+        _column("length_m", True, COLUMN_MEANINGS["length_m"] + " (or contraction_m, contraction_percent)"),
+        Column("contraction_m", "m", False, COLUMN_MEANINGS["contraction_m"], "length_m", "m"),
+        Column("contraction_percent", "%", False, COLUMN_MEANINGS["contraction_percent"], "length_m", "m"),
+    ]
     if kind == "isotonic":
         return [
             _column("pressure_kPa", True, COLUMN_MEANINGS["pressure_kPa"] + "; the supplied pressure"),
-            _column("length_m", True, COLUMN_MEANINGS["length_m"] + " (or contraction_m)"),
-            Column("contraction_m", "m", False, COLUMN_MEANINGS["contraction_m"], "length_m", "m"),
+            *lengths,
             _column("time_s", False, "time of the row; needed with [test] load_mass_kg"),
         ]
+    if kind == "isometric_map":
+        return [*lengths, *(_column(name, True, COLUMN_MEANINGS[name]) for name in TABLE_COLUMNS[kind][1:])]
     return [_column(name, True, COLUMN_MEANINGS[name]) for name in TABLE_COLUMNS[kind]]
 
 

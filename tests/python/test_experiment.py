@@ -505,3 +505,26 @@ def test_columns_named_in_ignore_columns_are_left_unread_and_errors_keep_the_fil
     (tmp_path / "map.csv").write_text("length_m,operator,pressure_kPa,force_N\n0.25,JS,100,50\n0.24,JS,100,20\n")
     for name, values in load_experiment(table).columns.items():
         np.testing.assert_array_equal(values, expected[name])
+
+
+def test_a_tables_length_may_come_as_a_contraction_in_per_cent_of_the_deflated_length(tmp_path):
+    # A datasheet's axis: force against contraction in per cent of the nominal length. A map and
+    # an isotonic test read it as the muscle's length, deflated length x (1 - contraction / 100).
+    path = _commercial(tmp_path, "braid_angle_deg = 21.0")  # [muscle] length_m = 0.25
+    (tmp_path / "map.csv").write_text("Contraction [%],pressure_kPa,force_N\n0,100,50\n4,100,20\n")
+    np.testing.assert_allclose(load_experiment(path).columns["length_m"], [0.25, 0.24], rtol=1e-15)
+    (tmp_path / "iso.csv").write_text("pressure_kPa,contraction_percent\n200,4\n400,12\n")
+    iso = tmp_path / "iso.toml"
+    iso.write_text(
+        path.read_text()
+        .replace('"isometric_map"', '"isotonic"')
+        .replace('data = "map.csv"', 'data = "iso.csv"\nload_N = 100')
+    )
+    np.testing.assert_allclose(load_experiment(iso).columns["length_m"], [0.24, 0.22], rtol=1e-15)
+    # A fraction where per cent belongs is said; two measures at once are refused.
+    (tmp_path / "iso.csv").write_text("pressure_kPa,contraction_percent\n200,0.04\n400,0.12\n")
+    with pytest.warns(ExperimentWarning, match="contraction_percent stays within 1 %"):
+        load_experiment(iso)
+    (tmp_path / "iso.csv").write_text("pressure_kPa,length_m,contraction_percent\n200,0.24,4\n400,0.22,12\n")
+    with pytest.raises(ExperimentError, match=r"iso.csv:1: this isotonic test gives the muscle's length as one of"):
+        load_experiment(iso)

@@ -152,12 +152,14 @@ _FILE_NAMES = {
         *FILE_OPTIONAL_COLUMNS,
         *(column for columns in TABLE_COLUMNS.values() for column in columns),
         *(unit.file_name for unit in OTHER_UNITS),
+        "contraction_m",
+        "contraction_percent",
     )
 }
 # A name with its unit in brackets, as spreadsheets and loggers head a column: "Pressure [kPa]",
 # "Force (N)", "Temperature (°C)".
 _BRACKETED = re.compile(r"^(?P<name>[A-Za-z][A-Za-z ]*?)\s*(?:\[(?P<a>[^\]]+)\]|\((?P<b>[^)]+)\))$")
-_UNIT_SPELLINGS = {"sec": "s", "°c": "c", "degc": "c", "deg c": "c", "° c": "c"}
+_UNIT_SPELLINGS = {"sec": "s", "°c": "c", "degc": "c", "deg c": "c", "° c": "c", "%": "percent"}
 
 
 def pamkit_spelling(cell: str) -> str:

@@ -436,7 +436,8 @@ def _read_data(experiment: Experiment, test: dict) -> None:
         _check_muscle_lengths(experiment)
         return
     if kind in TABLE_COLUMNS:
-        experiment.columns = read_table(data_path, TABLE_COLUMNS[kind], kind, ignore=ignore)
+        deflated = experiment.build.length_m if kind == "isometric_map" else None
+        experiment.columns = read_table(data_path, TABLE_COLUMNS[kind], kind, ignore=ignore, deflated_length_m=deflated)
         check_units(data_path, experiment.columns)
         if kind == "isometric_map":
             _check_muscle_lengths(experiment)

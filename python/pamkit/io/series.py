@@ -111,24 +111,50 @@ def read_isotonic(
     path: str | Path, deflated_length_m: float, dynamic: bool = False, ignore: tuple[str, ...] = ()
 ) -> dict[str, np.ndarray]:
     """An isotonic test's rows, in SI: the file's pressure_kPa (as gauge_pressure_Pa) and the
-    muscle's length_m, or its contraction_m from the deflated length (converted to length_m);
+    muscle's length (LENGTH_MEASURES: its length_m, or its contraction from the deflated length);
     time_s when there is one (always, for a `dynamic` test: a load whose motion is integrated in
     time), not decreasing. Other channels of pamkit's are dropped with a warning (read_table)."""
     path = Path(path)
     line, header = header_of(path, ignore)
-    measures = [name for name in ("length_m", "contraction_m") if name in header]
-    if len(measures) != 1:
-        raise ExperimentError(
-            f"{path}:{line}: an isotonic test gives its length as one of length_m or contraction_m (or "
-            f"{', '.join(other_units_of(('length_m', 'contraction_m')))}); found {', '.join(measures) or 'neither'}"
-        )
     if dynamic and "time_s" not in header:
         raise ExperimentError(
             f"{path}:{line}: [test] load_mass_kg integrates the load's motion in time: time_s is missing"
         )
-    columns = read_table(path, ("pressure_kPa", measures[0]), "isotonic", keep_time=True, ignore=ignore)
+    return read_table(path, ("pressure_kPa", "length_m"), "isotonic", True, ignore, deflated_length_m)
+
+
+#: How a table may give the muscle's length: the length itself, or its contraction from the
+#: deflated length, in metres or in per cent of that length (as a datasheet plots force against
+#: contraction). Each in another unit too (length_mm, contraction_mm).
+LENGTH_MEASURES = ("length_m", "contraction_m", "contraction_percent")
+
+
+def _length_measure(path: Path, line: int, header: list[str], kind: str) -> str:
+    """The one of LENGTH_MEASURES a table's header gives."""
+    measures = [name for name in LENGTH_MEASURES if name in header]
+    if len(measures) != 1:
+        others = ", ".join(other_units_of(LENGTH_MEASURES))
+        raise ExperimentError(
+            f"{path}:{line}: this {kind} test gives the muscle's length as one of {', '.join(LENGTH_MEASURES)} (or "
+            f"{others}); found {', '.join(measures) or 'none'}"
+        )
+    return measures[0]
+
+
+def _as_length(path: Path, columns: dict[str, np.ndarray], deflated_length_m: float) -> dict[str, np.ndarray]:
+    """`columns` with a contraction turned into the muscle's length_m."""
     if "contraction_m" in columns:
         columns["length_m"] = deflated_length_m - columns.pop("contraction_m")
+    if "contraction_percent" in columns:
+        percent = columns.pop("contraction_percent")
+        if np.ptp(percent) > 0 and np.max(np.abs(percent)) <= 1.0:
+            warnings.warn(
+                f"{path}: contraction_percent stays within 1 % (at most {np.max(np.abs(percent)):.3g}): if these are "
+                "fractions of the length (0.25 for 25 %), give them in per cent",
+                ExperimentWarning,
+                3,
+            )
+        columns["length_m"] = deflated_length_m * (1.0 - percent / 100.0)
     return columns
 
 
@@ -146,18 +172,23 @@ def read_table(
     kind: str = "table",
     keep_time: bool = False,
     ignore: tuple[str, ...] = (),
+    deflated_length_m: float | None = None,
 ) -> dict[str, np.ndarray]:
     """Reads a static table (one settled row per line) of a test of `kind`: `columns` (as the
     file names them), in any order; returns them in SI. A table's rows are in the order they were
     measured (the pressurise/vent branches follow it): a time_s column, if there is one, must not
     decrease, and is returned with `keep_time`. Any other of pamkit's channels (KNOWN_CHANNELS) is
-    dropped with an ExperimentWarning naming it; columns named in `ignore` are not read.
+    dropped with an ExperimentWarning naming it; columns named in `ignore` are not read. Given the
+    `deflated_length_m`, the muscle's length_m may come as any of LENGTH_MEASURES.
 
     Raises:
         ExperimentError: naming the file, line and column of the first bad value.
     """
     path = Path(path)
     line, header = header_of(path, ignore)
+    if deflated_length_m is not None and "length_m" in columns:
+        measure = _length_measure(path, line, header, kind)
+        columns = tuple(measure if name == "length_m" else name for name in columns)
     extra = tuple(name for name in KNOWN_CHANNELS if name in header and name not in columns)
     read = read_columns(path, columns, extra, increasing="time_s" if "time_s" in extra else None, ignore=ignore)
     unused = [name for name in extra if name != "time_s"]
@@ -169,4 +200,5 @@ def read_table(
             2,
         )
     dropped = set(unused) | (set() if keep_time else {"time_s"})
-    return to_si({name: values for name, values in read.items() if name not in dropped})
+    read = to_si({name: values for name, values in read.items() if name not in dropped})
+    return _as_length(path, read, deflated_length_m) if deflated_length_m is not None else read
