@@ -279,6 +279,17 @@ def test_a_play_shorter_than_a_sample_is_named_only_where_no_sub_sample_shift_ex
         assert (decision.cause == "fixture_slack") is named, (slack_m, shift_gain, decision.cause)
         if not named:
             assert "a shift below one sample, explains the held-out units as well" in lead.reasons()[0]
+    # The resolution: a sealed run follows eight knots an interval after each turn, so a play of
+    # half a sample's travel is resolved; a supplied test, evaluated at its samples, does not.
+    assert unresolved(p, play(0.5e-3, 0.30).fit) == []
+    assert unresolved(p, play(0.1e-3, 0.30).fit) == [
+        "slack_m = 0.0001 is below the travel between the knots its runs follow (8 between samples) (0.000125)"
+    ]
+    p.experiment.gas = GasMode.supplied
+    assert unresolved(p, play(0.5e-3, 0.30).fit) == [
+        "slack_m = 0.0005 is below the crosshead's travel between samples (0.001)"
+    ]
+    p.experiment.gas = GasMode.sealed
     # In a pair the play's parameter carries its effect's name.
     pair = play(0.5e-3, 0.30)
     pair.fit.effects.append(effect("load_cell", ["force_N"], EffectStage.measurement))

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from pamkit._core import Resolution
+from pamkit._core import GasMode, Resolution
 from pamkit.diagnosis.coordinates import Finding, findings
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.kinds import Problem
@@ -30,9 +30,12 @@ def _resolution_limit(problem: Problem, resolution: Resolution) -> tuple[float, 
     if resolution == Resolution.sample_interval:
         return sample_interval(problem), "the sample interval"
     if resolution == Resolution.travel_per_sample:
-        # A play's runs follow the crosshead on knots PLAY_SUBDIVISIONS times finer than the
-        # samples after each turn (model.py): a play shorter than one sample's travel is modelled
-        # as it acts, down to one knot's travel.
+        # A sealed test's runs with a play follow the crosshead on knots PLAY_SUBDIVISIONS times
+        # finer than the samples after each turn (model.py): a play shorter than one sample's travel
+        # is modelled as it acts, down to one knot's travel. A supplied test is evaluated at its
+        # samples alone.
+        if problem.experiment.gas != GasMode.sealed:
+            return travel_per_sample(problem), "the crosshead's travel between samples"
         return (
             travel_per_sample(problem) / PLAY_SUBDIVISIONS,
             f"the travel between the knots its runs follow ({PLAY_SUBDIVISIONS} between samples)",
