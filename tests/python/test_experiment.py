@@ -528,3 +528,14 @@ def test_a_tables_length_may_come_as_a_contraction_in_per_cent_of_the_deflated_l
     (tmp_path / "iso.csv").write_text("pressure_kPa,length_m,contraction_percent\n200,0.24,4\n400,0.22,12\n")
     with pytest.raises(ExperimentError, match=r"iso.csv:1: this isotonic test gives the muscle's length as one of"):
         load_experiment(iso)
+
+
+def test_a_load_cell_that_reads_tension_as_negative_is_said(tmp_path):
+    # A muscle pulls; a map whose force pushes to -50 N and never pulls is a load cell read the
+    # other way round (5 times harder push than pull, beyond 20 N: PUSH_OVER_PULL, PUSH_NOTICED_N).
+    path = _commercial(tmp_path, "braid_angle_deg = 21.0")
+    (tmp_path / "map.csv").write_text("length_m,pressure_kPa,force_N\n0.25,100,-50\n0.24,100,-20\n0.24,0,0.5\n")
+    with pytest.warns(ExperimentWarning, match=r"force_N pushes down to -50 N and pulls at most 0.5 N"):
+        load_experiment(path)
+    (tmp_path / "map.csv").write_text("length_m,pressure_kPa,force_N\n0.25,100,50\n0.24,100,20\n0.24,0,-0.5\n")
+    load_experiment(path)  # tension positive: nothing to say (a warning would fail the test)

@@ -36,7 +36,7 @@ from pamkit.io.schema import (
     TEST_KEYS,
 )
 from pamkit.io.sections import read_bladder, read_build, read_calibrate, read_friction, read_gas, read_uncertain
-from pamkit.io.series import check_units, read_isotonic, read_series, read_table
+from pamkit.io.series import check_force_sign, check_units, read_isotonic, read_series, read_table
 from pamkit.io.writers import write_experiment
 from pamkit.units import NEWTON_PER_KILOGRAM_FORCE
 
@@ -439,6 +439,7 @@ def _read_data(experiment: Experiment, test: dict) -> None:
         deflated = experiment.build.length_m if kind == "isometric_map" else None
         experiment.columns = read_table(data_path, TABLE_COLUMNS[kind], kind, ignore=ignore, deflated_length_m=deflated)
         check_units(data_path, experiment.columns)
+        check_force_sign(data_path, experiment.columns)
         if kind == "isometric_map":
             _check_muscle_lengths(experiment)
         return
@@ -449,6 +450,7 @@ def _read_data(experiment: Experiment, test: dict) -> None:
     check_units(data_path, experiment.columns)
     if "zero" in test:
         _zero(experiment, path, test["zero"], ignore)
+    check_force_sign(data_path, experiment.columns)
     if experiment.gas == GasMode.supplied and "gauge_pressure_Pa" not in experiment.columns:
         raise fail(data_path, 'a "supplied" test drives the model with pressure_kPa: the column is missing')
 

@@ -59,6 +59,31 @@ def check_units(data_path: Path, columns: dict[str, np.ndarray]) -> None:
             )
 
 
+# A muscle pulls: its force is tension, positive. A record that pushes this many times harder than
+# it ever pulls, and by more than PUSH_NOTICED_N, reads tension as negative (a load cell mounted
+# or set up the other way), or holds a braid that can push (a model's, not a real muscle's).
+PUSH_OVER_PULL = 5.0
+PUSH_NOTICED_N = 20.0
+
+
+def check_force_sign(data_path: Path, columns: dict[str, np.ndarray]) -> None:
+    """Warns (ExperimentWarning) where the force pushes far harder than it pulls (PUSH_OVER_PULL):
+    pamkit's force is tension positive, and a load cell that reads it negative turns every
+    prediction's sign."""
+    if "force_N" not in columns or columns["force_N"].size == 0:
+        return
+    force = columns["force_N"]
+    push, pull = -float(np.min(force)), float(np.max(force))
+    if push > PUSH_NOTICED_N and push > PUSH_OVER_PULL * max(pull, 1.0):
+        warnings.warn(
+            f"{data_path}: force_N pushes down to {-push:.4g} N and pulls at most {pull:.4g} N: pamkit's force is "
+            "tension positive (a muscle pulls). Does the load cell read tension as negative? Then give the force "
+            "with its sign turned",
+            ExperimentWarning,
+            3,
+        )
+
+
 def read_series(path: str | Path, specimen: str | None = None, ignore: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
     """Reads a measured-data CSV: a header row, then numbers. Requires time_s and elongation_m,
     accepts force_N, pressure_kPa, temperature_C; time must increase. Returns the columns in SI
