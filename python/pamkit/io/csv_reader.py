@@ -52,15 +52,23 @@ def _is_skipped(line: str) -> bool:
     return not stripped or stripped.startswith("#")
 
 
+_LINE_END = re.compile(r"\r\n|[\r\n]")
+
+
 def header_line(text: str) -> tuple[int, str]:
-    """The header's line number (from 1) and text: the first line neither blank nor a comment.
-    Lines end at LF, CR LF or a bare CR (an old Mac's or a logger's line end, which the csv module
-    refuses inside a line)."""
-    lines = re.split(r"\r\n|[\r\n]", text)
-    for number, line in enumerate(lines, start=1):
-        if not _is_skipped(line):
-            return number, line
-    return 1, lines[0]
+    """The header's line number (from 1) and text: the first line neither blank nor a comment (the
+    first line if every one is). Lines end at LF, CR LF or a bare CR (an old Mac's or a logger's
+    line end, which the csv module refuses inside a line). Only the lines up to the header are
+    looked at: the text may be a large file's."""
+    number, start = 1, 0
+    for end in _LINE_END.finditer(text):
+        if not _is_skipped(text[start : end.start()]):
+            return number, text[start : end.start()]
+        number, start = number + 1, end.end()
+    if not _is_skipped(text[start:]):
+        return number, text[start:]
+    first = _LINE_END.search(text)
+    return 1, text[: first.start()] if first else text
 
 
 def delimiter_of(first_line: str) -> str:
