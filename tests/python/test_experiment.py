@@ -539,3 +539,25 @@ def test_a_load_cell_that_reads_tension_as_negative_is_said(tmp_path):
         load_experiment(path)
     (tmp_path / "map.csv").write_text("length_m,pressure_kPa,force_N\n0.25,100,50\n0.24,100,20\n0.24,0,-0.5\n")
     load_experiment(path)  # tension positive: nothing to say (a warning would fail the test)
+
+
+def test_an_absolute_pressure_is_read_as_the_gauge_one_above_the_declared_atmosphere(write_experiment, tmp_path):
+    # An MPX5700AP on an Arduino reads absolute pressure: named so, it is the gauge pressure plus
+    # the atmosphere ([gas] atmospheric_pressure_Pa, 101 kPa by default: table C.4), in a series and a table.
+    path = write_experiment(csv_text="time_s,elongation_m,pressure_kPa\n0,0,150\n1,0.001,160\n")
+    gauge = load_experiment(path).columns["gauge_pressure_Pa"]
+    path = write_experiment(csv_text="time_s,elongation_m,absolute_pressure_kPa\n0,0,251\n1,0.001,261\n")
+    np.testing.assert_allclose(load_experiment(path).columns["gauge_pressure_Pa"], gauge, rtol=1e-12)
+    path = write_experiment(
+        csv_text="time_s,elongation_m,Absolute pressure [bar]\n0,0,2.4\n1,0.001,2.5\n",
+        sections="[gas]\natmospheric_pressure_Pa = 90000.0\n",
+    )
+    np.testing.assert_allclose(load_experiment(path).columns["gauge_pressure_Pa"], gauge, rtol=1e-12)
+    path = write_experiment(csv_text="time_s,elongation_m,pressure_kPa,absolute_pressure_kPa\n0,0,150,251\n1,0,1,2\n")
+    with pytest.raises(ExperimentError, match=r"run.csv:1: the pressure is given twice"):
+        load_experiment(path)
+    table = _commercial(tmp_path, "braid_angle_deg = 21.0")
+    expected = load_experiment(table).columns
+    (tmp_path / "map.csv").write_text("length_m,absolute_pressure_kPa,force_N\n0.25,201,50\n0.24,201,20\n")
+    for name, values in load_experiment(table).columns.items():
+        np.testing.assert_allclose(values, expected[name], rtol=1e-12, err_msg=name)

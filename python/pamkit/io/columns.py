@@ -111,6 +111,11 @@ FILE_OPTIONAL_COLUMNS = tuple(file_name(name) for name in OPTIONAL_COLUMNS)
 LOGGER_FILE_COLUMNS = tuple(file_name(name) for name in LOGGER_CHANNELS)
 
 
+# A transducer that reads absolute pressure (an MPX...AP on an Arduino): a file may say so by the
+# column's name; it is read as the gauge pressure, less [gas] atmospheric_pressure_Pa (to_gauge).
+ABSOLUTE_PRESSURE = "absolute_pressure_kPa"
+
+
 @dataclass(frozen=True)
 class OtherUnit:
     """A column a file may give in another unit than pamkit's file name says (a laser in
@@ -132,6 +137,9 @@ OTHER_UNITS = (
     OtherUnit("pressure_bar", "pressure_kPa", KILOPASCAL_PER_BAR),
     OtherUnit("pressure_MPa", "pressure_kPa", 1000.0),
     OtherUnit("pressure_psi", "pressure_kPa", KILOPASCAL_PER_PSI),
+    OtherUnit("absolute_pressure_bar", "absolute_pressure_kPa", KILOPASCAL_PER_BAR),
+    OtherUnit("absolute_pressure_MPa", "absolute_pressure_kPa", 1000.0),
+    OtherUnit("absolute_pressure_psi", "absolute_pressure_kPa", KILOPASCAL_PER_PSI),
 )
 _OTHER_BY_FILE_NAME = {unit.file_name: unit for unit in OTHER_UNITS}
 
@@ -154,6 +162,7 @@ _FILE_NAMES = {
         *(unit.file_name for unit in OTHER_UNITS),
         "contraction_m",
         "contraction_percent",
+        ABSOLUTE_PRESSURE,
     )
 }
 # A name with its unit in brackets, as spreadsheets and loggers head a column: "Pressure [kPa]",
@@ -173,6 +182,15 @@ def pamkit_spelling(cell: str) -> str:
         unit = (match["a"] or match["b"]).strip().lower()
         stripped = f"{match['name'].strip().replace(' ', '_')}_{_UNIT_SPELLINGS.get(unit, unit)}"
     return _FILE_NAMES.get(stripped.lower(), cell)
+
+
+def to_gauge(columns: dict[str, np.ndarray], atmospheric_pressure_Pa: float) -> dict[str, np.ndarray]:
+    """SI `columns` with an absolute pressure (ABSOLUTE_PRESSURE, still in kPa) turned into the
+    gauge pressure pamkit works in, less the atmosphere's."""
+    if ABSOLUTE_PRESSURE in columns:
+        absolute = columns.pop(ABSOLUTE_PRESSURE)
+        columns["gauge_pressure_Pa"] = absolute * PASCAL_PER_KILOPASCAL - atmospheric_pressure_Pa
+    return columns
 
 
 def other_units_of(columns) -> list[str]:

@@ -32,8 +32,17 @@ from pamkit.io.guards import (
 
 def header_of(path: Path, ignore: tuple[str, ...] = ()) -> tuple[int, list[str]]:
     """The header's line number and names as pamkit's files name them (length_m for a file's
-    length_mm), but those in `ignore` (as the file names them)."""
-    line, header = header_line(read_text(path, "data"))
+    length_mm), but those in `ignore` (as the file names them). Only the file's first SNIFF_BYTES
+    are read (a record may be large): a file that cannot be read gives no names, and its reader
+    says why."""
+    try:
+        if not path.is_file():  # a folder, a pipe that would block: the reader refuses it
+            return 1, []
+        with path.open("rb") as handle:
+            head = handle.read(SNIFF_BYTES).decode("utf-8-sig", errors="replace")
+    except OSError:
+        return 1, []
+    line, header = header_line(head)
     cells = next(csv.reader([header], delimiter=delimiter_of(header)), [])
     return line, [in_pamkit_units(pamkit_spelling(name))[0] for name in cells if name.strip() not in ignore]
 

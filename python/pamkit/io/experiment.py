@@ -427,17 +427,18 @@ def _read_data(experiment: Experiment, test: dict) -> None:
             path, f"[test] ignore_columns = {ignore!r} must be a list of column names, as the data file names them"
         )
     ignore = tuple(name.strip() for name in ignore)
+    atmosphere = experiment.gas_params.atmospheric_pressure_Pa  # an absolute pressure's column is read above it
     if kind != SERIES_KIND and "specimen" in test:
         raise fail(path, f"[test] specimen chooses among a tensile machine's specimens: a {kind} table has none")
     if kind == "isotonic":
         dynamic = experiment.load_mass_kg is not None
-        experiment.columns = read_isotonic(data_path, experiment.build.length_m, dynamic=dynamic, ignore=ignore)
+        experiment.columns = read_isotonic(data_path, experiment.build.length_m, dynamic, ignore, atmosphere)
         check_units(data_path, experiment.columns)
         _check_muscle_lengths(experiment)
         return
     if kind in TABLE_COLUMNS:
         deflated = experiment.build.length_m if kind == "isometric_map" else None
-        experiment.columns = read_table(data_path, TABLE_COLUMNS[kind], kind, ignore=ignore, deflated_length_m=deflated)
+        experiment.columns = read_table(data_path, TABLE_COLUMNS[kind], kind, False, ignore, deflated, atmosphere)
         check_units(data_path, experiment.columns)
         check_force_sign(data_path, experiment.columns)
         if kind == "isometric_map":
@@ -446,10 +447,10 @@ def _read_data(experiment: Experiment, test: dict) -> None:
     specimen = test.get("specimen")
     if specimen is not None and (isinstance(specimen, bool) or not isinstance(specimen, (str, int))):
         raise fail(path, f"[test] specimen = {specimen!r} must be a specimen's label (its Specimen Number)")
-    experiment.columns = read_series(data_path, None if specimen is None else str(specimen), ignore)
+    experiment.columns = read_series(data_path, None if specimen is None else str(specimen), ignore, atmosphere)
     check_units(data_path, experiment.columns)
     if "zero" in test:
-        _zero(experiment, path, test["zero"], ignore)
+        _zero(experiment, path, test["zero"], ignore, atmosphere)
     check_force_sign(data_path, experiment.columns)
     if experiment.gas == GasMode.supplied and "gauge_pressure_Pa" not in experiment.columns:
         raise fail(data_path, 'a "supplied" test drives the model with pressure_kPa: the column is missing')
@@ -458,12 +459,12 @@ def _read_data(experiment: Experiment, test: dict) -> None:
 ZEROED_CHANNELS = ("force_N", "gauge_pressure_Pa")  # not temperature: with no air, the TMP36 reads the room
 
 
-def _zero(experiment: Experiment, path: Path, name, ignore: tuple[str, ...] = ()) -> None:
+def _zero(experiment: Experiment, path: Path, name, ignore: tuple[str, ...], atmosphere_Pa: float) -> None:
     """Takes the means of a run with no air (the rig's offset run) off the load cell's and the
     transducer's channels, as a lab zeroes its sensors; records what it took. The offset run of
     a preloaded mount is recorded on the mounted muscle: its force holds the preload, which is
     the muscle's, not the cell's, and stays in the data."""
-    run = read_series(named_file(path, "[test] zero", name), ignore=ignore)
+    run = read_series(named_file(path, "[test] zero", name), ignore=ignore, atmospheric_pressure_Pa=atmosphere_Pa)
     shared = [c for c in ZEROED_CHANNELS if c in run and c in experiment.columns]
     if not shared:
         raise fail(

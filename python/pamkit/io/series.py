@@ -13,13 +13,16 @@ from pathlib import Path
 
 import numpy as np
 
+from pamkit._core import GasParams
 from pamkit.io.columns import (
+    ABSOLUTE_PRESSURE,
     FILE_OPTIONAL_COLUMNS,
     REQUIRED_COLUMNS,
     file_name,
     in_pamkit_units,
     other_units_of,
     pamkit_spelling,
+    to_gauge,
     to_si,
     value_from_si,
 )
@@ -27,6 +30,8 @@ from pamkit.io.csv_reader import SNIFF_BYTES, delimiter_of, header_line, header_
 from pamkit.io.guards import ExperimentError, ExperimentWarning
 from pamkit.io.machine import looks_like_export, read_machine_export
 from pamkit.io.schema import TABLE_COLUMNS, TEST_CONDITIONS
+
+STANDARD_ATMOSPHERE_PA = GasParams().atmospheric_pressure_Pa  # where a file's [gas] says none
 
 # Values whose size says a file's unit is wrong: (SI column, lowest, highest plausible value in
 # the file's unit, what it looks like instead). No pneumatic muscle holds more than the highest
@@ -84,11 +89,17 @@ def check_force_sign(data_path: Path, columns: dict[str, np.ndarray]) -> None:
         )
 
 
-def read_series(path: str | Path, specimen: str | None = None, ignore: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
+def read_series(
+    path: str | Path,
+    specimen: str | None = None,
+    ignore: tuple[str, ...] = (),
+    atmospheric_pressure_Pa: float = STANDARD_ATMOSPHERE_PA,
+) -> dict[str, np.ndarray]:
     """Reads a measured-data CSV: a header row, then numbers. Requires time_s and elongation_m,
     accepts force_N, pressure_kPa, temperature_C; time must increase. Returns the columns in SI
     (time_s, elongation_m, and as present force_N, gauge_pressure_Pa, temperature_K). Columns
-    named in `ignore` (as the file names them: [test] ignore_columns) are not read.
+    named in `ignore` (as the file names them: [test] ignore_columns) are not read; an absolute
+    pressure (absolute_pressure_kPa) is read as the gauge one above `atmospheric_pressure_Pa`.
 
     A tensile machine's export (Instron Bluehill, ZwickRoell testXpert: pamkit.io.machine) is
     recognised by its header and read as time_s, elongation_m (the crosshead's extension, which
@@ -108,7 +119,19 @@ def read_series(path: str | Path, specimen: str | None = None, ignore: tuple[str
             f"{path}: [test] specimen = {specimen!r} chooses among a tensile machine's specimens; this is pamkit's CSV "
             "of one test: leave it out"
         )
-    return to_si(read_columns(path, REQUIRED_COLUMNS, FILE_OPTIONAL_COLUMNS, increasing="time_s", ignore=ignore))
+    line, header = header_of(path, ignore)
+    optional = tuple(_pressure_measure(path, line, header) if c == "pressure_kPa" else c for c in FILE_OPTIONAL_COLUMNS)
+    columns = read_columns(path, REQUIRED_COLUMNS, optional, increasing="time_s", ignore=ignore)
+    return to_gauge(to_si(columns), atmospheric_pressure_Pa)
+
+
+def _pressure_measure(path: Path, line: int, header: list[str]) -> str:
+    """pressure_kPa (gauge) or ABSOLUTE_PRESSURE, whichever the header gives; both is an error."""
+    if "pressure_kPa" in header and ABSOLUTE_PRESSURE in header:
+        raise ExperimentError(
+            f"{path}:{line}: the pressure is given twice, as pressure_kPa (gauge) and {ABSOLUTE_PRESSURE}: give one"
+        )
+    return ABSOLUTE_PRESSURE if ABSOLUTE_PRESSURE in header else "pressure_kPa"
 
 
 def _is_machine_export(path: Path) -> bool:
@@ -133,7 +156,11 @@ def _is_machine_export(path: Path) -> bool:
 
 
 def read_isotonic(
-    path: str | Path, deflated_length_m: float, dynamic: bool = False, ignore: tuple[str, ...] = ()
+    path: str | Path,
+    deflated_length_m: float,
+    dynamic: bool = False,
+    ignore: tuple[str, ...] = (),
+    atmospheric_pressure_Pa: float = STANDARD_ATMOSPHERE_PA,
 ) -> dict[str, np.ndarray]:
     """An isotonic test's rows, in SI: the file's pressure_kPa (as gauge_pressure_Pa) and the
     muscle's length (LENGTH_MEASURES: its length_m, or its contraction from the deflated length);
@@ -145,7 +172,9 @@ def read_isotonic(
         raise ExperimentError(
             f"{path}:{line}: [test] load_mass_kg integrates the load's motion in time: time_s is missing"
         )
-    return read_table(path, ("pressure_kPa", "length_m"), "isotonic", True, ignore, deflated_length_m)
+    return read_table(
+        path, ("pressure_kPa", "length_m"), "isotonic", True, ignore, deflated_length_m, atmospheric_pressure_Pa
+    )
 
 
 #: How a table may give the muscle's length: the length itself, or its contraction from the
@@ -198,13 +227,15 @@ def read_table(
     keep_time: bool = False,
     ignore: tuple[str, ...] = (),
     deflated_length_m: float | None = None,
+    atmospheric_pressure_Pa: float = STANDARD_ATMOSPHERE_PA,
 ) -> dict[str, np.ndarray]:
     """Reads a static table (one settled row per line) of a test of `kind`: `columns` (as the
     file names them), in any order; returns them in SI. A table's rows are in the order they were
     measured (the pressurise/vent branches follow it): a time_s column, if there is one, must not
     decrease, and is returned with `keep_time`. Any other of pamkit's channels (KNOWN_CHANNELS) is
     dropped with an ExperimentWarning naming it; columns named in `ignore` are not read. Given the
-    `deflated_length_m`, the muscle's length_m may come as any of LENGTH_MEASURES.
+    `deflated_length_m`, the muscle's length_m may come as any of LENGTH_MEASURES; pressure_kPa may
+    come as an absolute pressure, read as the gauge one above `atmospheric_pressure_Pa`.
 
     Raises:
         ExperimentError: naming the file, line and column of the first bad value.
@@ -214,6 +245,9 @@ def read_table(
     if deflated_length_m is not None and "length_m" in columns:
         measure = _length_measure(path, line, header, kind)
         columns = tuple(measure if name == "length_m" else name for name in columns)
+    if "pressure_kPa" in columns:
+        pressure = _pressure_measure(path, line, header)
+        columns = tuple(pressure if name == "pressure_kPa" else name for name in columns)
     extra = tuple(name for name in KNOWN_CHANNELS if name in header and name not in columns)
     read = read_columns(path, columns, extra, increasing="time_s" if "time_s" in extra else None, ignore=ignore)
     unused = [name for name in extra if name != "time_s"]
@@ -225,5 +259,7 @@ def read_table(
             2,
         )
     dropped = set(unused) | (set() if keep_time else {"time_s"})
-    read = to_si({name: values for name, values in read.items() if name not in dropped})
+    read = to_gauge(
+        to_si({name: values for name, values in read.items() if name not in dropped}), atmospheric_pressure_Pa
+    )
     return _as_length(path, read, deflated_length_m) if deflated_length_m is not None else read
