@@ -1,6 +1,8 @@
 """Tensile machines' exports (Instron Bluehill, ZwickRoell testXpert) read as experiment data and
 by `pamkit align`: units converted, every bad header or unit named by file, line and column."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -134,7 +136,10 @@ def test_pamkits_channels_headed_as_a_spreadsheet_heads_them_are_all_read(tmp_pa
     for name in expected:
         np.testing.assert_allclose(columns[name], expected[name], rtol=1e-15, err_msg=name)
     export = tmp_path / "export.csv"
-    export.write_text("Time (s),Extension (mm),Load (N),Pressure (kPa)\n0,0,1,150\n1,2,9,160\n")
-    with pytest.warns(ExperimentWarning, match=r"export.csv:1: read as a tensile machine's export.*'Pressure \(kPa\)'"):
-        columns = read_series(export)
-    assert list(columns) == ["time_s", "elongation_m", "force_N"]
+    for pressure in ("Pressure (kPa)", "Pressure (bar)", "absolute_pressure_kPa"):
+        export.write_text(f"Time (s),Extension (mm),Load (N),{pressure}\n0,0,1,150\n1,2,9,160\n")
+        with pytest.warns(
+            ExperimentWarning, match=rf"export.csv:1: read as a tensile machine's export.*{re.escape(repr(pressure))}"
+        ):
+            columns = read_series(export)
+        assert list(columns) == ["time_s", "elongation_m", "force_N"]

@@ -37,7 +37,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.io.columns import LOGGER_FILE_COLUMNS, pamkit_spelling
+from pamkit.io.columns import ABSOLUTE_PRESSURE, LOGGER_FILE_COLUMNS, in_pamkit_units, pamkit_spelling
 from pamkit.io.guards import ExperimentError, ExperimentWarning, read_text
 from pamkit.units import NEWTON_PER_KILOGRAM_FORCE
 
@@ -264,7 +264,8 @@ def _read_block(
     unread = [
         cell.strip()
         for number, cell in enumerate(header)
-        if number not in columns.values() and pamkit_spelling(cell) in LOGGER_FILE_COLUMNS
+        if number not in columns.values()
+        and in_pamkit_units(pamkit_spelling(cell))[0] in (*LOGGER_FILE_COLUMNS, ABSOLUTE_PRESSURE)
     ]
     if unread:
         warnings.warn(

@@ -148,7 +148,8 @@ def _is_machine_export(path: Path) -> bool:
         names = [in_pamkit_units(name.strip())[0] for name in cells]
         if any(name in REQUIRED_COLUMNS + FILE_OPTIONAL_COLUMNS for name in names):
             return False  # pamkit's CSV, right or wrong: its errors name what to fix, no column is dropped
-        if all(pamkit_spelling(cell) != cell for cell in cells):
+        spelled = [in_pamkit_units(pamkit_spelling(cell))[0] for cell in cells]
+        if all(name in (*REQUIRED_COLUMNS, *FILE_OPTIONAL_COLUMNS, ABSOLUTE_PRESSURE) for name in spelled):
             return False  # pamkit's channels, spelled otherwise ("Pressure [kPa]"): every one is read
         return looks_like_export(path)
     except OSError:
