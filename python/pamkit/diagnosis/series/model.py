@@ -178,9 +178,14 @@ class Predictor:
             else measured_motion(experiment.time_s, experiment.elongation_m)
         )
         self.trajectory = ElongationTrajectory(self.motion.time_s, self.motion.elongation_m)
-        # Runs whose muscle moves off the crosshead (a fixture's play) follow it on finer knots
-        # after each turn, and are read back on the motion's own (played_measurement).
-        self.played_motion, self._motion_rows = with_knots_after_turns(self.motion, PLAY_REFINED_M, PLAY_SUBDIVISIONS)
+        # A sealed run whose muscle moves off the crosshead (a fixture's play) follows it on finer
+        # knots after each turn, read back on the motion's own (played_measurement); a supplied
+        # test is evaluated at its samples alone.
+        self.played_motion, self._motion_rows = (
+            with_knots_after_turns(self.motion, PLAY_REFINED_M, PLAY_SUBDIVISIONS)
+            if self.mode == GasMode.sealed
+            else (self.motion, np.arange(self.motion.time_s.size))
+        )
         self.played_trajectory = ElongationTrajectory(self.played_motion.time_s, self.played_motion.elongation_m)
         self.simulator = Simulator(
             config if config is not None else SimulatorConfig(relative_tolerance=1e-6, absolute_tolerance_K=1e-6)
