@@ -467,3 +467,43 @@ def test_a_supplied_tests_transducer_error_that_implies_a_vacuum_is_an_objection
     assert "read 0 kPa" in objection and "-12 kPa" in objection
     assert holds_vacuum(problem, SimpleNamespace(effects=[catalog().parse("sensor_offset:offset_Pa=-12000")])) == []
     assert holds_vacuum(problem, SimpleNamespace(effects=[catalog().parse("slip_hysteresis")])) == []
+
+
+def offset_at(name: str, value: float, plausible: tuple[float, float]):
+    """An effect's offset as a coordinate, found at `value`, `plausible` its range (search unbounded)."""
+    coordinate = SimpleNamespace(
+        value=lambda x: value,
+        at_bound=lambda x: None,
+        implausible=lambda v: not plausible[0] <= v <= plausible[1],
+        bound_value=lambda side: None,
+        plausible=plausible,
+        source="test",
+    )
+    return {name: (coordinate, 0.0)}
+
+
+def test_a_transducer_offset_beside_the_inflation_read_on_it_is_judged_by_its_interval():
+    # A sealed test's pressure transducer reading 10 kPa high (bench_near_model, sensor_offset
+    # strong, seed 3): the offset and the declared inflation pressure, read on that transducer,
+    # share one reading, and the fit ended at 15.5 kPa with the inflation pressure 5 % low, beyond
+    # the plausible 15 kPa but with 9.4-21.7 kPa its interval. Only an interval wholly outside says
+    # the offset is implausible. A load cell's offset shares no reading with a declared value: its
+    # own value outside the range is held against it whatever its interval.
+    p = problem(("force_N", "gauge_pressure_Pa"))
+    p.experiment.time_s = np.arange(ROWS, dtype=float)
+    zeros = {c: np.zeros(ROWS) for c in p.channels}
+    baseline = fit("none", zeros, [])
+    score = candidate("offset", 0.9, SHARED + 0.9, channels=p.channels).score
+    cases = (
+        ("gauge_pressure_Pa", "offset_Pa", 15.5e3, (-15e3, 15e3), (9.4e3, 21.7e3), True),
+        ("gauge_pressure_Pa", "offset_Pa", 15.5e3, (-15e3, 15e3), (15.2e3, 16.0e3), False),
+        ("force_N", "offset_N", -25.4, (-20.0, 20.0), (-33.1, -17.6), False),
+    )
+    for channel, name, value, plausible, interval, credible in cases:
+        instrument = effect("offset", [channel], EffectStage.measurement)
+        instrument.parameters = lambda name=name: [SimpleNamespace(name=name, resolution=Resolution.any)]
+        offset = fit("offset", zeros, [instrument])
+        offset.coordinates = offset_at(name, value, plausible)
+        offset.intervals = {name: interval}
+        held = [f.parameter for f in judge(p, offset, score, baseline).findings]
+        assert held == ([] if credible else [name])
