@@ -28,7 +28,7 @@ from pamkit.diagnosis.series.decide import (
 )
 from pamkit.diagnosis.series.findings import sub_sample_play, unresolved, within_resolution
 from pamkit.diagnosis.series.score import Score
-from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
+from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
 from pamkit.effects import catalog
 from pamkit.io.experiment import load_experiment
 
@@ -149,6 +149,32 @@ def test_a_part_of_what_a_better_fit_explains_is_not_named():
     decision = decide(problem(), BASELINE, [better, lesser])
     assert decision.cause == "unexplained" and decision.causes == []
     assert any("load_cell explains the held-out units significantly better" in r for r in lesser.reasons())
+
+
+def test_a_better_fit_that_explains_no_more_does_not_make_a_cause_a_part_of_it():
+    # In a supplied test a load cell lagging 1.5 s (implausible) and the transducer lagging 1.5 s
+    # draw the same force: 0.899 against 0.898, better on the same draws by less than a cause's
+    # worth of what the credible one leaves (gain_over below MIN_GAIN). It explains the same thing,
+    # not more of it: the transducer's lag is named. Better by a cause's worth, it is not.
+    for better_gain, named in ((0.899, True), (0.898 + 1.1 * MIN_GAIN * (1 - 0.898), False)):
+        better = candidate("sensor_lag", better_gain, better_gain + SHARED)
+        better.findings = [Finding("time_constant_s", 1.5, None, [0.0, 0.1], "test")]
+        lesser = candidate("sensor_lag", 0.898, 0.898 + SHARED)
+        assert np.all(better.score.combined_samples > lesser.score.combined_samples)
+        decision = decide(problem(), BASELINE, [better, lesser])
+        assert (decision.causes != [] and decision.causes[0].judgement is lesser) is named
+    # Refused for what it explains (an instrument not needed), the better one says the structure
+    # may be the base model's: the lesser is a piece of it. Its values only narrowly out, it is as
+    # good a reading: the two are untold apart.
+    for refusal, words in (("unneeded", "may be a part of what it fits"), ("near", "do not tell the two apart")):
+        better = candidate("sensor_offset", 0.899, 0.899 + SHARED)
+        if refusal == "unneeded":
+            better.unneeded = ["gauge_pressure_Pa was within the noise before it"]
+        else:
+            better.findings = [Finding("offset_Pa", 16e3, None, [-15e3, 15e3], "test")]
+        lesser = candidate("load_cell", 0.898, 0.898 + SHARED)
+        assert decide(problem(), BASELINE, [better, lesser]).causes == []
+        assert any(words in r for r in lesser.reasons()), refusal
 
 
 def test_a_cause_stands_beside_a_better_fit_that_explains_another_channel():

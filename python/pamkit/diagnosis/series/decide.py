@@ -385,7 +385,14 @@ def outdone(problem: Problem, candidate: Judgement, judged: list[Judgement]) -> 
     """Why `candidate` is only a part of what a better fit explains: a significant candidate that
     cannot be named explains the held-out units significantly better on the same draws, on a channel
     both explain. What `candidate` fits is then likely a piece of that (a load cell's nonlinearity
-    absorbing the shape a wrong braid wind leaves), so naming it would be a guess."""
+    absorbing the shape a wrong braid wind leaves), so naming it would be a guess. Except where the
+    better one is refused only for its own values and is better by less than a cause's worth
+    (`gain_over` below MIN_GAIN): it explains the same thing with a mechanism the values rule out,
+    not more of it (in a supplied test a load cell lagging an implausible 1.5 s draws the force a
+    transducer lagging 1.5 s draws: 0.899 against 0.898). Values only narrowly out (`marginal`)
+    leave it as good a reading as `candidate`: the two are untold apart. A better one refused for
+    what it explains (not standing out from the base model's misfit, an instrument not needed)
+    says that the structure may be the base model's, which `candidate` explains no better."""
     mine = explained(problem, candidate.score)
     for better in judged:
         if better is candidate:
@@ -395,11 +402,19 @@ def outdone(problem: Problem, candidate: Judgement, judged: list[Judgement]) -> 
         if not (better.findings or better.objections or better.unneeded or better.near_resolution):
             continue  # only below what a sample resolves: the sampling's artefact, of which no cause is a part
         low = float(np.percentile(better.score.combined_samples - candidate.score.combined_samples, 2.5))
-        if low > 0.0:
+        if low <= 0.0:
+            continue
+        gains = f"(gain {better.score.combined_gain:.3f} against {candidate.score.combined_gain:.3f})"
+        own_values_only = bool(better.findings) and not (better.objections or better.unneeded)
+        if gain_over(better, candidate) >= MIN_GAIN or not own_values_only:
             return [
-                f"{better.fit.name} explains the held-out units significantly better (gain "
-                f"{better.score.combined_gain:.3f} against {candidate.score.combined_gain:.3f}) but cannot be named "
+                f"{better.fit.name} explains the held-out units significantly better {gains} but cannot be named "
                 f"({'; '.join(better.reasons())}): this may be a part of what it fits"
+            ]
+        if marginal(better):
+            return [
+                f"{better.fit.name} explains the held-out units as well {gains} and misses being named only "
+                f"narrowly ({'; '.join(better.reasons())}): the data do not tell the two apart"
             ]
     return []
 
@@ -481,10 +496,13 @@ def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision
             lead.close_rival = nearest if gain_over(lead, nearest) < MIN_GAIN else None
             if low <= 0.0:  # rule 6: the data cannot tell the two apart
                 lead.tied_with = rival
+                # A rival better on the same draws by less than a cause's worth (not `outdone`)
+                # explains the same thing: a tie too.
+                how, where = ("better", "lies below zero") if high < 0.0 else ("as well", "holds zero")
                 lead.objections.append(
-                    f"{rival.fit.name} explains the held-out units as well (gain {rival.score.combined_gain:.3f} "
+                    f"{rival.fit.name} explains the held-out units {how} (gain {rival.score.combined_gain:.3f} "
                     f"against {lead.score.combined_gain:.3f}; the difference's 95 % interval [{low:.3f}, {high:.3f}] "
-                    "holds zero): the data do not tell the two apart"
+                    f"{where}): the data do not tell the two apart"
                 )
     if lead is not None and lead.credible:
         margins["lead_significance"] = significance_margin(lead.score)
