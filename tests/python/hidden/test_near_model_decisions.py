@@ -28,7 +28,7 @@ STRENGTHS = ("medium", "strong")
 NULLS = (("null", 1), ("null", 2), ("null", 3), ("supplied_null", 1), ("supplied_null", 2))
 
 
-MIN_RIGHT = 78
+MIN_RIGHT = 81
 MAX_WRONG = 6
 
 
@@ -83,8 +83,8 @@ def lines(rows) -> str:
 def test_the_hidden_causes_are_named(world):
     rows = [r for r in world if r["hidden"]]
     right = [r for r in rows if r["hidden"] <= r["named"] and not wrong(r)]
-    # The floor: the measured rate, 87 of 108 right (81 %; bench_near_model's medium and strong
-    # strengths, seeds 1-3), less two binomial standard deviations (2 sqrt(108 * 0.81 * 0.19) = 8.2).
+    # The floor: the measured rate, 89 of 108 right (82 %; bench_near_model's medium and strong
+    # strengths, seeds 1-3), less two binomial standard deviations (2 sqrt(108 * 0.82 * 0.18) = 7.9).
     # The aim, 90 %, is not reached: docs/validation.md lists the misses (a supplied transducer's
     # offset and gain at one held length are exactly a braid wound otherwise and a membrane's scale,
     # 1 of 6; a second cause the first's fit absorbs within the noise).
@@ -95,7 +95,7 @@ def test_the_hidden_causes_are_named(world):
 
 def test_wrong_names_stay_rare(world):
     bad = [r for r in world if wrong(r)]
-    # The target: at most 5 % of the world's datasets carry a wrong name (6 of 123; measured 4).
+    # The target: at most 5 % of the world's datasets carry a wrong name (6 of 123; measured 3).
     assert len(bad) <= MAX_WRONG, f"wrong names:\n{lines(bad)}"
 
 
