@@ -496,8 +496,8 @@ def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision
             lead.close_rival = nearest if gain_over(lead, nearest) < MIN_GAIN else None
             if low <= 0.0:  # rule 6: the data cannot tell the two apart
                 lead.tied_with = rival
-                # A rival better on the same draws by less than a cause's worth (not `outdone`)
-                # explains the same thing: a tie too.
+                # Its interval may lie wholly below zero (a rival ranked behind on its point gain,
+                # ahead on the draws): the message says which.
                 how, where = ("better", "lies below zero") if high < 0.0 else ("as well", "holds zero")
                 lead.objections.append(
                     f"{rival.fit.name} explains the held-out units {how} (gain {rival.score.combined_gain:.3f} "
