@@ -63,19 +63,15 @@ class Coordinate:
     def of(self, value: float) -> float:
         return self.from_value(value)
 
-    def at_bound(self, x: float) -> str | None:
-        """ "lower" or "upper" when x ended at an end of the search interval, else None."""
-        margin = AT_BOUND * (self.upper - self.lower)
+    def at_bound(self, x: float, share: float = AT_BOUND) -> str | None:
+        """ "lower" or "upper" when x ended within `share` of the search interval's width of an end
+        of it, else None."""
+        margin = share * (self.upper - self.lower)
         if x <= self.lower + margin:
             return "lower"
         if x >= self.upper - margin:
             return "upper"
         return None
-
-    def pressed(self, x: float) -> bool:
-        """Within PRESSED of an end of the search interval: where a bounded solver stops against it."""
-        margin = PRESSED * (self.upper - self.lower)
-        return x <= self.lower + margin or x >= self.upper - margin
 
     def bound_value(self, side: str) -> float:
         return float(self.value(self.lower if side == "lower" else self.upper))
@@ -255,7 +251,7 @@ def findings(fit: Fitted) -> list[Finding]:
         if (
             side is not None
             and _placed_off(intervals.get(key), coordinate.bound_value(side))
-            and not coordinate.pressed(x)
+            and coordinate.at_bound(x, PRESSED) is None
         ):
             side = None
         if side is None and not coordinate.implausible(value):

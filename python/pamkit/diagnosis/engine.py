@@ -21,8 +21,9 @@ from pamkit.diagnosis.series.calibrate import Fit, fit_baseline, one_blas_thread
 from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
 from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate
 from pamkit.diagnosis.series.causes import add_cause, reads_explained
-from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, judge, noise_ratios, structured
+from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, judge
 from pamkit.diagnosis.series.findings import baseline_findings
+from pamkit.diagnosis.series.instruments import noise_ratios, structured
 from pamkit.diagnosis.series.joint import check_one_muscle
 from pamkit.diagnosis.series.kinds import Problem, build_problem
 from pamkit.diagnosis.series.result import Diagnosis

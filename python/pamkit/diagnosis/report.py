@@ -14,7 +14,8 @@ from pamkit.diagnosis.identify import interval_numbers, why_undetermined
 from pamkit.diagnosis.series import campaign
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.campaign import SeriesCampaign
-from pamkit.diagnosis.series.decide import Judgement, gain_over, noise_ratios
+from pamkit.diagnosis.series.decide import Judgement, gain_over
+from pamkit.diagnosis.series.instruments import noise_ratios
 from pamkit.diagnosis.series.remainder import describe, where_left
 from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.diagnosis.series.score import credited_channels

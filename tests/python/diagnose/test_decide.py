@@ -12,21 +12,17 @@ from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis.coordinates import NO_COST_AT_BOUND, Finding
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.causes import resolves
-from pamkit.diagnosis.series.decide import (
-    PAIR_TRIGGER,
+from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, gain_over, judge
+from pamkit.diagnosis.series.findings import sub_sample_play, unresolved, within_resolution
+from pamkit.diagnosis.series.instruments import (
     STANDS_OUT,
     STRUCTURE_LEFT,
-    Judgement,
-    decide,
-    gain_over,
     holds_vacuum,
-    judge,
     noise_ratios,
     reads_left,
     uncredited,
     unfounded,
 )
-from pamkit.diagnosis.series.findings import sub_sample_play, unresolved, within_resolution
 from pamkit.diagnosis.series.score import Score
 from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
 from pamkit.effects import catalog

@@ -10,15 +10,9 @@ import numpy as np
 
 from pamkit.diagnosis.series.calibrate import Fit, thread_pool
 from pamkit.diagnosis.series.candidates import fit_pair
-from pamkit.diagnosis.series.decide import (
-    PAIR_PARTNERS,
-    PAIR_TRIGGER,
+from pamkit.diagnosis.series.decide import PAIR_PARTNERS, PAIR_TRIGGER, Cause, Decision, Judgement, judge, keeps_gain
+from pamkit.diagnosis.series.instruments import (
     STRUCTURE_LEFT,
-    Cause,
-    Decision,
-    Judgement,
-    judge,
-    keeps_gain,
     noise_ratios,
     reads_left,
     stands_out,
@@ -102,7 +96,7 @@ def add_cause(
             own = score(problem, single.fit, pair, np.random.default_rng(seed), credit=pair.effects[1:])
             candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
             # The second's own channels, beside the first, must stand out from what the base model
-            # leaves on the channels it cannot change, as a single cause's must (decide.stands_out).
+            # leaves on the channels it cannot change, as a single cause's must (instruments.stands_out).
             if (
                 keeps_gain(own)
                 and not stands_out(problem, single.fit, own, pair.effects[1:])
@@ -182,7 +176,7 @@ def _other_first(problem, baseline, single, best, alone, judged, factories, seed
 
 def reads_explained(problem: Problem, baseline: Fit, decision: Decision) -> Decision:
     """The causes less an instrument that reads off whose channel the causes named leave structured
-    (decide.reads_left). A second cause is dropped from the causes; a leading one carries the
+    (instruments.reads_left). A second cause is dropped from the causes; a leading one carries the
     objection, and none is left (the decision is to be taken again)."""
     final = decision.named.fit
     for k, cause in enumerate(decision.causes):

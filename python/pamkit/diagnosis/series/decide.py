@@ -12,7 +12,8 @@ The rules (docs/diagnosis.md gives them in full, with the measurements behind ea
    they change, and no other channel made worse (a measurement effect refitted with the
    baseline free moves the baseline to fit the channels it cannot touch; that part is not its);
    what they explain stands out from the base model's misfit on the channels coupled to theirs
-   (stands_out), and an instrument's error is needed where it acts (unfounded).
+   (instruments.stands_out), and an instrument's error is needed where it acts
+   (instruments.unfounded).
 3. The best significant, credible candidate is named, and every cause present beside it (the
    engine adds a second cause). A better candidate that cannot be named is reported beside it
    (`rejected`); when that one explains a channel both explain significantly
@@ -36,34 +37,23 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from pamkit._core import EffectStage, GasMode, Resolution
-from pamkit.diagnosis import evidence
 from pamkit.diagnosis.coordinates import Finding, findings
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.findings import baseline_findings, mimicked_by_a_shift, unresolved, within_resolution
+from pamkit.diagnosis.series.instruments import (
+    INFLATION,
+    corrects_output,
+    holds_vacuum,
+    noise_ratios,
+    rereading,
+    structured,
+    uncredited,
+    unfounded,
+)
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.series.score import Score, credited_channels, significance_margin, significant
 from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
-from pamkit.diagnosis.supply import implied_vacuum
-from pamkit.io.columns import value_from_si
 
-# An effect on one instrument's channels is a cause beside structure the base model leaves on the
-# channels it cannot change only if its own channel stood this many times further above the noise:
-# a base model that misfits one channel by r noise sigmas misfits the channels coupled to it by
-# the same order (another team's model: force 3.9-5.3x, pressure 4.7x; a pressure offset fitted
-# to the latter explained nothing of the muscle). The factor is NONE_WITHIN_NOISE's: as "none" needs
-# every channel within twice its noise, a cause needs its channel twice as far out as the rest.
-STANDS_OUT = 2.0
-# A channel left above this many times its noise holds structure, not an error of the noise's
-# estimate: the calibrated baseline reaches at most 1.52x on pamkit's own nulls.
-STRUCTURE_LEFT = 1.5
-# The channels one misfit of the base model moves together: the braid's kinematics set both the
-# gas's volume (so its pressure) and the force. The temperature, held near the wall's by the gas
-# law and the heat exchange, is not moved by a wrong wind or membrane: a thermometer's offset stands
-# on its own channel whatever the force shows.
-COUPLED = frozenset({"force_N", "gauge_pressure_Pa"})
-PRESSURE = "gauge_pressure_Pa"
-INFLATION = "inflation_gauge_pressure_Pa"  # the sealed gas's calibrated starting pressure
 # A named cause leaving a channel this many noise sigmas off tries pairs.
 PAIR_TRIGGER = 2.0
 PAIR_PARTNERS = 3
@@ -103,167 +93,8 @@ class Judgement:
         return [f.sentence() for f in self.findings] + self.unneeded + self.below_resolution + self.objections
 
 
-def stands_out(problem: Problem, before: Fit, s: Score, effects) -> list[str]:
-    """Why what an effect explains on its channels `credited` may be the base model's misfit: on the
-    coupled channels, its own stood less than STANDS_OUT times as far above the noise in `before`
-    (the model without it) as the other stays with it (`s`), beyond STRUCTURE_LEFT. `effects` are
-    the effects whose channels are credited (the fit's, or the ones it adds to `before`)."""
-    credited = credited_channels(problem, before, effects)
-    others = [c for c in problem.channels if c not in credited and c in COUPLED]
-    if not (others and set(credited) & COUPLED):
-        return []
-    ratios = noise_ratios(problem, before)
-    left = max(others, key=lambda c: s.rmse[c] / problem.sigma[c])
-    worst = s.rmse[left] / problem.sigma[left]
-    own = max(ratios[c] for c in credited if c in COUPLED)
-    # The transducer that read the sealed gas's declared inflation pressure trades its offset and
-    # gain against the calibrated inflation pressure: its error shows only as a pressure channel at
-    # odds with a force the model explains. With structure left on the force, however far out the
-    # pressure was, the two may be one misfit of the base model.
-    inflation_transducer = (
-        problem.experiment.gas == GasMode.sealed
-        and credited == [PRESSURE]
-        and all(_corrects_output(problem, e) and not _shifts_in_time(e) for e in effects)
-    )
-    if worst > STRUCTURE_LEFT and (inflation_transducer or own < STANDS_OUT * worst):
-        return [
-            f"what it explains on {', '.join(credited)} ({own:.1f}x the noise before it) does not stand out "
-            f"from what the base model leaves on {left} ({worst:.1f}x), which it cannot change: one misfit of "
-            "the base model may show on both"
-        ]
-    return []
-
-
-def unfounded(problem: Problem, before: Fit, effects) -> list[str]:
-    """Why an instrument's error is not established: an effect that edits what an instrument reads
-    (a load cell's tare, a transducer's offset in a sealed test) names an error only where its
-    channel is off by more than the noise allows under the model without it (`before`: the
-    calibrated baseline, or the first cause; NONE_WITHIN_NOISE, the factor of `none`). Within it
-    that model already explains the channel, and such an effect, free to bend what its instrument
-    reads, would fit what the base model leaves there (another implementation's muscle, a weak
-    leak: a pressure offset named wrongly five times in 182, bench_near_model).
-
-    One reading founds a pressure transducer's error within the noise: the sealed gas's inflation
-    pressure, calibrated, at the end of its search (the declared value within the transducer's
-    5 %). The pressure the data show at the start is then not the pressure the file declares, which
-    is what a transducer reading off says (bench_diagnose seed 1009: a 4.8 kPa offset at 56 kPa
-    leaves the pressure 1.7 times its noise)."""
-    out = []
-    ratios = noise_ratios(problem, before)
-    strained = {f.parameter for f in baseline_findings(before) if f.bound is not None}
-    for effect in effects:
-        if not _corrects_output(problem, effect):
-            continue
-        channels = [c for c in credited_channels(problem, before, [effect])]
-        if channels != [PRESSURE] or problem.experiment.gas != GasMode.sealed or INFLATION in strained:
-            continue
-        if channels and max(ratios[c] for c in channels) <= NONE_WITHIN_NOISE:
-            worst = max(channels, key=lambda c: ratios[c])
-            out.append(
-                f"{worst} was within the noise before it ({ratios[worst]:.1f}x, {NONE_WITHIN_NOISE:g}x allowed): "
-                "no error of its instrument is needed there"
-            )
-    return out
-
-
-def reads_off(problem: Problem, effect) -> bool:
-    """An instrument that reads its channel off by a function of what it reads (an offset, a gain, a
-    nonlinearity), as opposed to one that moves its channel in time."""
-    return _corrects_output(problem, effect) and not _shifts_in_time(effect)
-
-
-def reads_left(problem: Problem, fit: Fit, effects) -> list[str]:
-    """Why an instrument that reads off (reads_off) among `effects` is not established in `fit`, the
-    model with every cause named: its channel still holds structure there (above STRUCTURE_LEFT).
-    Such an error is a function of the value its instrument reads, and corrects that channel whole;
-    one that leaves it structured has taken the share of another misfit that projects on its form
-    (a membrane that softens after its first stretch, read as a load cell's nonlinearity on another
-    team's model: bench_families)."""
-    out = []
-    ratios = noise_ratios(problem, fit)
-    for effect in effects:
-        if not reads_off(problem, effect):
-            continue
-        # The temperature is not moved by the base model's misfit (COUPLED): what a thermometer's
-        # offset leaves there is a physical cause's (heat exchange), not a share of that misfit.
-        channels = [c for c in credited_channels(problem, fit, [effect]) if c in COUPLED]
-        left = [c for c in channels if ratios[c] > STRUCTURE_LEFT]
-        out += [
-            f"{c} stays at {ratios[c]:.1f}x its noise with the causes named: an error of what its instrument "
-            "reads would leave it within the noise, and this one explains only a share of it"
-            for c in left
-        ]
-    return out
-
-
-def holds_vacuum(problem: Problem, fit: Fit) -> list[str]:
-    """A supplied test's transducer error that would have the muscle hold a vacuum where a
-    sample was read (supply.implied_vacuum), as an objection."""
-    e = problem.experiment
-    if e.gas != GasMode.supplied:
-        return []
-    read = ~e.censored
-    time, reading = e.columns["time_s"][read], e.columns["gauge_pressure_Pa"][read]
-    found = implied_vacuum(fit.effects, time, reading)
-    if found is None:
-        return []
-    k, true_Pa = found
-    return [
-        f"where the transducer read {value_from_si('gauge_pressure_Pa', reading[k]):.3g} kPa (t = "
-        f"{time[k]:.4g} s) the muscle would have held "
-        f"{value_from_si('gauge_pressure_Pa', true_Pa):.3g} kPa: a regulator supplies air or vents it, never a vacuum"
-    ]
-
-
-def uncredited(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> list[str]:
-    """Why a fit's gain is not its effects' own: it does not gain significantly on the channels
-    its effects change (the gain comes from the baseline moving on channels they cannot touch),
-    it makes one of those other channels worse, or what it explains does not stand out from the
-    structure the base model leaves on the channels it cannot change (stands_out)."""
-    credited = credited_channels(problem, fit)
-    out = stands_out(problem, baseline, s, fit.effects)
-    if set(credited) != set(problem.channels) and (s.credited_gain < MIN_GAIN or s.credited_ci95[0] <= 0.0):
-        out.append(
-            f"its gain on the channels it changes ({', '.join(credited)}) is only {s.credited_gain:.3f}; "
-            "the rest comes from channels it cannot change"
-        )
-    out += [
-        f"it makes {c} worse (held-out gain {s.gain[c]:.2f})"
-        for c in problem.channels
-        if c not in credited and s.gain[c] < -MIN_GAIN
-    ]
-    return out
-
-
 def _same(a: Finding, b: Finding) -> bool:
     return a.parameter == b.parameter and a.bound == b.bound
-
-
-def _corrects_output(problem: Problem, effect) -> bool:
-    """An effect that edits what the instruments read of the model (a load cell's offset), not what
-    drives it: a supplied test's transducer error changes the pressure the muscle is driven with,
-    whose force then follows the physics."""
-    supplied_input = problem.experiment.gas == GasMode.supplied and effect.reads_supplied_pressure()
-    return effect.stage() == EffectStage.measurement and not supplied_input
-
-
-def _shifts_in_time(effect) -> bool:
-    """An effect that moves its channel in time (a skew, a lag): its first parameter must resolve
-    the sample interval."""
-    parameters = effect.parameters()
-    return bool(parameters) and parameters[0].resolution == Resolution.sample_interval
-
-
-def _rereading(problem: Problem, fit: Fit) -> list:
-    """A fit's corrections of a sealed test's pressure transducer. The declared inflation pressure,
-    whose search box is the hand-read transducer's 5 %, was read on that transducer, so the box
-    does not bind the fit (a 0.97 gain and a 4.8 kPa offset put the truth 6 % from the reading at
-    56 kPa); and a correction and the inflation pressure split one reading between them, so where
-    along it the fit ended is not what the data say (a 10 kPa offset fitted at 15.5 kPa, 9.4-21.7 kPa
-    its interval, with the inflation pressure 5 % low)."""
-    if problem.experiment.gas != GasMode.sealed:
-        return []
-    return [e for e in fit.effects if _corrects_output(problem, e) and list(e.channels_changed()) == [PRESSURE]]
 
 
 def _plausible_within(fit: Fit, finding: Finding) -> bool:
@@ -288,12 +119,12 @@ def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
     measurement's output that changes every channel measured: with no other channel to check it
     against, it would be a corrector of whatever the straining base model misses."""
     calibrated = baseline_findings(baseline)
-    corrector = all(_corrects_output(problem, e) for e in fit.effects) and set(credited_channels(problem, fit)) == set(
+    corrector = all(corrects_output(problem, e) for e in fit.effects) and set(credited_channels(problem, fit)) == set(
         problem.channels
     )
     own, strain = [], []
-    rereading = _rereading(problem, fit)
-    shares_reading = {p.name for e in rereading for p in e.parameters()}
+    transducer = rereading(problem, fit)
+    shares_reading = {p.name for e in transducer for p in e.parameters()}
     for finding in findings(fit):
         in_baseline = finding.parameter in baseline.coordinates
         if in_baseline and finding.parameter in fit.undetermined:
@@ -304,7 +135,7 @@ def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
             and _plausible_within(fit, finding)
         ):
             continue  # a nuisance, or a share of one reading, the data leave free to be plausible
-        if rereading and finding.parameter == INFLATION:
+        if transducer and finding.parameter == INFLATION:
             strain.append(finding)  # the declared value was read on the transducer it corrects
             continue
         inherited = in_baseline and any(_same(finding, f) for f in calibrated)
@@ -322,23 +153,6 @@ def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
         below_resolution=unresolved(problem, fit),
         near_resolution=within_resolution(problem, fit),
     )
-
-
-def structured(problem: Problem, fit: Fit, factor: float) -> list[str]:
-    """Channels whose held-out residual RMS is above `factor` times their noise."""
-    return [
-        c
-        for c in problem.channels
-        if evidence.rmse((fit.predicted[c] - problem.measured[c])[problem.held_mask]) > factor * problem.sigma[c]
-    ]
-
-
-def noise_ratios(problem: Problem, fit: Fit) -> dict[str, float]:
-    """Held-out RMSE over noise, per channel."""
-    return {
-        c: evidence.rmse((fit.predicted[c] - problem.measured[c])[problem.held_mask]) / problem.sigma[c]
-        for c in problem.channels
-    }
 
 
 @dataclass
