@@ -20,7 +20,7 @@ from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
 from pamkit.diagnosis.series.calibrate import Fit, fit_baseline, one_blas_thread, thread_pool
 from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
 from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate
-from pamkit.diagnosis.series.causes import add_cause, reads_explained
+from pamkit.diagnosis.series.causes import add_cause, reads_explained, rival_beside_a_second
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, judge
 from pamkit.diagnosis.series.findings import baseline_findings
 from pamkit.diagnosis.series.instruments import noise_ratios, structured
@@ -271,6 +271,8 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     while decision.causes:
         if structured(problem, decision.named.fit, PAIR_TRIGGER):
             decision = add_cause(problem, baseline, decision, judged, factories, seed, threads, report)
+        else:
+            decision = rival_beside_a_second(problem, baseline, decision, judged, factories, seed, report)
         checked = reads_explained(problem, baseline, decision)
         if checked.causes:
             decision = checked

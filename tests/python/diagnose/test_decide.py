@@ -11,7 +11,7 @@ from conftest import SOURCE_DIR
 from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis.coordinates import NO_COST_AT_BOUND, Finding
 from pamkit.diagnosis.series.calibrate import Fit
-from pamkit.diagnosis.series.causes import resolves
+from pamkit.diagnosis.series.causes import explains_more, resolves
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, gain_over, judge
 from pamkit.diagnosis.series.findings import sub_sample_play, unresolved, within_resolution
 from pamkit.diagnosis.series.instruments import (
@@ -552,3 +552,22 @@ def test_a_second_cause_must_resolve_the_structure_that_called_for_it():
             "sensor_lag+dead_volume", {"force_N": np.full(ROWS, force), "gauge_pressure_Pa": np.full(ROWS, pressure)}
         )
         assert resolves(p, single, pair) is resolved
+
+
+def test_a_pair_displaces_a_lone_cause_only_by_a_cause_worth_more():
+    # bench_near_model, dead_volume+load_cell medium seed 2: compliant fibres alone gain 0.546; a
+    # dead volume beside the load cell 0.648 on the same draws (0.22 of what the fibres leave),
+    # and 0.629 the fibres beside the load cell (0.05 of what that leaves): the pair leads. A pair
+    # ahead on every draw by less than MIN_GAIN of what the lone cause leaves (dead_volume medium
+    # seed 1: a pressure offset beside the fibres, 0.689 against the dead volume's 0.686) adds no
+    # cause's worth; one ahead by a cause's worth on its point but not on the draws adds no
+    # evidence.
+    lone = candidate("fiber_compliance", 0.546, 0.546 + SHARED)
+    beside = candidate("fiber_compliance+load_cell", 0.629, 0.629 + SHARED + rng.normal(0, 0.005, SAMPLES))
+    pair = candidate("dead_volume+load_cell", 0.648, 0.648 + SHARED + rng.normal(0, 0.005, SAMPLES))
+    assert explains_more(pair, lone) and explains_more(pair, beside)
+    assert gain_over(pair, beside) == pytest.approx(0.019 / 0.371)
+    near = candidate("sensor_offset+fiber_compliance", 0.555, 0.555 + SHARED)
+    assert 0.0 < gain_over(near, lone) < MIN_GAIN and not explains_more(near, lone)
+    spread = candidate("dead_volume+load_cell", 0.648, 0.648 + SHARED + rng.normal(0, 0.08, SAMPLES))
+    assert gain_over(spread, lone) >= MIN_GAIN and not explains_more(spread, lone)

@@ -28,7 +28,7 @@ STRENGTHS = ("medium", "strong")
 NULLS = (("null", 1), ("null", 2), ("null", 3), ("supplied_null", 1), ("supplied_null", 2))
 
 
-MIN_RIGHT = 81
+MIN_RIGHT = 82
 MAX_WRONG = 6
 
 
@@ -83,8 +83,8 @@ def lines(rows) -> str:
 def test_the_hidden_causes_are_named(world):
     rows = [r for r in world if r["hidden"]]
     right = [r for r in rows if r["hidden"] <= r["named"] and not wrong(r)]
-    # The floor: the measured rate, 89 of 108 right (82 %; bench_near_model's medium and strong
-    # strengths, seeds 1-3), less two binomial standard deviations (2 sqrt(108 * 0.82 * 0.18) = 7.9).
+    # The floor: the measured rate, 90 of 108 right (83 %; bench_near_model's medium and strong
+    # strengths, seeds 1-3), less two binomial standard deviations (2 sqrt(108 * 0.83 * 0.17) = 7.8).
     # The aim, 90 %, is not reached: docs/validation.md lists the misses (a supplied transducer's
     # offset and gain at one held length are exactly a braid wound otherwise and a membrane's scale,
     # 1 of 6; a second cause the first's fit absorbs within the noise).
@@ -112,11 +112,14 @@ def test_a_first_cause_gives_way_where_its_rival_explains_more_beside_the_second
     # A dead volume beside a load cell's error: alone, compliant fibres may win by taking a part of
     # the load cell's curvature. With the load cell named second, the dead volume fitted beside it
     # explains more (0.87 against 0.85 on strong seed 2) and leads in the fibres' place
-    # (series/causes.py, _other_first): the fibres are never named beside the load cell, and the dead volume
-    # is, with it, at least once (measured: once; never before).
+    # (series/causes.py, _other_first). Where the fibres alone leave nothing that calls for a second
+    # cause, the dead volume beside the load cell may still explain a cause's worth more than they
+    # do, alone or beside it (medium seed 2: 0.648 against 0.546 and 0.629), and lead in their place
+    # (rival_beside_a_second). The fibres are never named beside the load cell, and the dead volume
+    # is, with it, at least twice (measured: twice; once before the second rule, never before both).
     rows = [r for r in world if r["name"] == "dead_volume+load_cell"]
     assert not any({"fiber_compliance", "load_cell"} <= r["named"] for r in rows), lines(rows)
-    assert any({"dead_volume", "load_cell"} <= r["named"] for r in rows), lines(rows)
+    assert sum({"dead_volume", "load_cell"} <= r["named"] for r in rows) >= 2, lines(rows)
 
 
 def test_the_test_a_close_call_names_decides_it_beside_the_first(world, tmp_path, monkeypatch):

@@ -1,6 +1,7 @@
 """More than one cause: what the causes named leave tried beside them (a second cause), the first
-cause's nearest rival fitted beside that second, and the instrument whose channel the causes leave
-structured dropped (rule 6 of docs/diagnosis.md). A real rig has more than one thing wrong."""
+cause's nearest rival fitted beside that second, a lone cause that stands in for its rival with a
+second, and the instrument whose channel the causes leave structured dropped (rule 6 of
+docs/diagnosis.md). A real rig has more than one thing wrong."""
 
 from __future__ import annotations
 
@@ -10,7 +11,16 @@ import numpy as np
 
 from pamkit.diagnosis.series.calibrate import Fit, thread_pool
 from pamkit.diagnosis.series.candidates import fit_pair
-from pamkit.diagnosis.series.decide import PAIR_PARTNERS, PAIR_TRIGGER, Cause, Decision, Judgement, judge, keeps_gain
+from pamkit.diagnosis.series.decide import (
+    PAIR_PARTNERS,
+    PAIR_TRIGGER,
+    Cause,
+    Decision,
+    Judgement,
+    gain_over,
+    judge,
+    keeps_gain,
+)
 from pamkit.diagnosis.series.instruments import (
     STRUCTURE_LEFT,
     noise_ratios,
@@ -21,7 +31,7 @@ from pamkit.diagnosis.series.instruments import (
 )
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.series.score import score
-from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
+from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
 
 
 def _partners(problem: Problem, baseline: Fit, single: Judgement, others: list[Judgement]) -> list[Judgement]:
@@ -172,6 +182,72 @@ def _other_first(problem, baseline, single, best, alone, judged, factories, seed
         return None
     report(f"{label} explains the held-out units better than {best.judgement.fit.name}: {rival.fit.name} leads")
     return rival, Cause(best.label, candidate, own)
+
+
+def explains_more(pair: Judgement, alone: Judgement) -> bool:
+    """Whether `pair` explains the held-out units better than `alone` on the same draws (the paired
+    difference's 95 % interval above zero) and by a cause's worth of what `alone` leaves
+    (gain_over at least MIN_GAIN): what a cause must add to be named (rule 1)."""
+    low = float(np.percentile(pair.score.combined_samples - alone.score.combined_samples, 2.5))
+    return low > 0.0 and gain_over(pair, alone) >= MIN_GAIN
+
+
+def rival_beside_a_second(
+    problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, report
+) -> Decision:
+    """A lone cause that leaves nothing calling for a second may still stand in for its rival with
+    a second: compliant fibres soften the force and damp the pressure swing, what a dead volume and
+    a load cell's nonlinearity do together. The rival (the best significant, credible candidate
+    behind it) is fitted beside the candidate that most explains what the rival leaves; the pair
+    leads in the cause's place if it is credible, each of its causes gains on its own beside the
+    other, and it explains more (`explains_more`) than the cause alone and than the cause beside
+    the same second. Otherwise the second is as much the cause's partner as the rival's, and the
+    cause stands."""
+    if len(decision.causes) != 1:
+        return decision
+    lead = decision.causes[0].judgement
+    rival = next(
+        (j for j in judged if j is not lead and j.significant and j.credible and len(j.fit.effects) == 1), None
+    )
+    if rival is None:
+        return decision
+    taken = {lead.fit.effects[0].name(), rival.fit.effects[0].name()}
+    partners = _partners(problem, baseline, rival, [j for j in judged if j.fit.effects[0].name() not in taken])
+    if not partners:
+        return decision
+    second = partners[0]
+    label = f"{rival.fit.name}+{second.fit.name}"
+    fit = fit_pair(problem, rival.fit, factories[rival.fit.name], factories[second.fit.name], label)
+    if fit.error is not None:
+        return decision
+    pair = judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), baseline)
+    own = score(problem, rival.fit, fit, np.random.default_rng(seed), credit=fit.effects[1:])
+    first = score(problem, second.fit, fit, np.random.default_rng(seed), credit=rival.fit.effects)
+    if not (
+        pair.credible
+        and keeps_gain(own)
+        and keeps_gain(first)
+        and not stands_out(problem, rival.fit, own, fit.effects[1:])
+        and not unfounded(problem, rival.fit, fit.effects[1:])
+        and explains_more(pair, lead)
+    ):
+        return decision
+    beside = fit_pair(
+        problem, lead.fit, factories[lead.fit.name], factories[second.fit.name], f"{lead.fit.name}+{second.fit.name}"
+    )
+    if beside.error is None:
+        lead_pair = judge(problem, beside, score(problem, baseline, beside, np.random.default_rng(seed)), baseline)
+        if not explains_more(pair, lead_pair):
+            return decision
+    report(
+        f"{label} explains the held-out units better than {lead.fit.name} alone or beside it: {rival.fit.name} leads"
+    )
+    return replace(
+        decision,
+        cause=rival.fit.effects[0].name(),
+        causes=[Cause(rival.fit.name, rival, rival.score), Cause(second.fit.name, pair, own)],
+        left_structure=structured(problem, fit, NONE_WITHIN_NOISE),
+    )
 
 
 def reads_explained(problem: Problem, baseline: Fit, decision: Decision) -> Decision:
