@@ -9,6 +9,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from pamkit.diagnosis.coordinates import configure, effect_space
 from pamkit.diagnosis.series.calibrate import Fit, thread_pool
 from pamkit.diagnosis.series.candidates import fit_pair
 from pamkit.diagnosis.series.decide import (
@@ -34,26 +35,70 @@ from pamkit.diagnosis.series.score import score
 from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
 
 
-def _partners(problem: Problem, baseline: Fit, single: Judgement, others: list[Judgement]) -> list[Judgement]:
-    """The PAIR_PARTNERS candidates most likely to explain what `single` leaves: each candidate's
-    change of the prediction (its fit against the calibrated baseline) projected on that remainder,
-    on the fitted units, every channel in units of its noise — the share of the remainder a step of
-    it would take. Credible alone or not, significant alone or not: beside a first cause one may
-    be what it could not be alone (a slow leak under a logger's time skew that dwarfs it; a pressure
-    offset whose channel did not stand out from a heat exchange's misfit). The pair is judged."""
-    mask = problem.fit_mask
+def _in_noise_units(problem: Problem, values: dict[str, np.ndarray]) -> np.ndarray:
+    """`values` on the fitted units, every channel in units of its noise, stacked."""
+    return np.concatenate([values[c][problem.fit_mask] / problem.sigma[c] for c in problem.channels])
 
-    def stacked(values):
-        return np.concatenate([values[c][mask] / problem.sigma[c] for c in problem.channels])
 
-    left = stacked({c: problem.measured[c] - single.fit.predicted[c] for c in problem.channels})
-    shares = []
-    for j in others:
-        change = stacked({c: j.fit.predicted[c] - baseline.predicted[c] for c in problem.channels})
-        size = float(change @ change)
-        shares.append((float(change @ left) ** 2 / size / float(left @ left)) if size > 0 else 0.0)
+def _share(change: np.ndarray, left: np.ndarray) -> float:
+    """The share of the remainder `left` that a step along `change` takes at its best size."""
+    size = float(change @ change)
+    return (float(change @ left) ** 2 / size / float(left @ left)) if size > 0 else 0.0
+
+
+def _ranked(problem: Problem, baseline: Fit, single: Judgement, others: list[Judgement]) -> list[Judgement]:
+    """`others` by the share of what `single` leaves that each one's change of the prediction (its
+    fit against the calibrated baseline) takes, on the fitted units, every channel in units of its
+    noise; those that take none left out. Credible alone or not, significant alone or not: beside a
+    first cause one may be what it could not be alone (a pressure offset whose channel did not stand
+    out from a heat exchange's misfit)."""
+    left = _in_noise_units(problem, {c: problem.measured[c] - single.fit.predicted[c] for c in problem.channels})
+    shares = [
+        _share(
+            _in_noise_units(problem, {c: j.fit.predicted[c] - baseline.predicted[c] for c in problem.channels}), left
+        )
+        for j in others
+    ]
     order = np.argsort(shares)[::-1]
-    return [others[i] for i in order[:PAIR_PARTNERS] if shares[i] > 0.0]
+    return [others[i] for i in order if shares[i] > 0.0]
+
+
+def _partners(
+    problem: Problem, baseline: Fit, single: Judgement, others: list[Judgement], factories
+) -> list[Judgement]:
+    """The candidates to fit beside `single`: the PAIR_PARTNERS first of `_ranked`, and the one more
+    whose step beside `single` takes most of what it leaves (`_step_beside`): a fit alone may see
+    nothing of what a candidate explains beside the first cause. The pairs are judged."""
+    partners = _ranked(problem, baseline, single, others)[:PAIR_PARTNERS]
+    left = _in_noise_units(problem, {c: problem.measured[c] - single.fit.predicted[c] for c in problem.channels})
+    beside = _step_beside(problem, single.fit, left, [j for j in others if j not in partners], factories)
+    return partners + ([beside] if beside is not None else [])
+
+
+def _step_beside(problem: Problem, single: Fit, left: np.ndarray, others: list[Judgement], factories):
+    """The candidate whose step from its search's start, added to `single`'s fit, takes the largest
+    share of what `single` leaves (`left`, in noise units), or None: one run each. A slow leak
+    under a half-second skew of the pressure gains nothing fitted alone (the skew's misfit dwarfs
+    its drift) and so does not change the prediction the first way, while the skew leaves the
+    pressure growing away over the test, its drift (near-model leak+time_skew, medium seed 5)."""
+    best, best_share = None, 0.0
+    for j in others:
+        first, second = factories[single.name](), factories[j.fit.name]()
+        first_space, second_space = effect_space(first), effect_space(second)
+        if not second_space:
+            continue
+        configure(first, first_space, np.array([c.of(single.params[c.name]) for c in first_space]))
+        configure(second, second_space, np.array([c.start for c in second_space]))
+        try:
+            predicted = problem.predictor.predict(single.baseline_x, [first, second])
+        except (ValueError, RuntimeError):
+            continue  # a step the model cannot run is no direction
+        share = _share(
+            _in_noise_units(problem, {c: predicted[c] - single.predicted[c] for c in problem.channels}), left
+        )
+        if share > best_share:
+            best, best_share = j, share
+    return best
 
 
 def resolves(problem: Problem, single: Fit, pair: Fit) -> bool:
@@ -75,7 +120,9 @@ def add_cause(
     wrong; what no partner explains stays the remainder."""
     single = decision.causes[-1].judgement
     taken = {e.name() for e in single.fit.effects}
-    partners = _partners(problem, baseline, single, [j for j in judged if j.fit.effects[0].name() not in taken])
+    partners = _partners(
+        problem, baseline, single, [j for j in judged if j.fit.effects[0].name() not in taken], factories
+    )
     if not partners:
         return decision
     report(
@@ -212,10 +259,10 @@ def rival_beside_a_second(
     if rival is None:
         return decision
     taken = {lead.fit.effects[0].name(), rival.fit.effects[0].name()}
-    partners = _partners(problem, baseline, rival, [j for j in judged if j.fit.effects[0].name() not in taken])
-    if not partners:
+    ranked = _ranked(problem, baseline, rival, [j for j in judged if j.fit.effects[0].name() not in taken])
+    if not ranked:
         return decision
-    second = partners[0]
+    second = ranked[0]
     label = f"{rival.fit.name}+{second.fit.name}"
     fit = fit_pair(problem, rival.fit, factories[rival.fit.name], factories[second.fit.name], label)
     if fit.error is not None:
