@@ -46,13 +46,16 @@ def _share(change: np.ndarray, left: np.ndarray) -> float:
     return (float(change @ left) ** 2 / size / float(left @ left)) if size > 0 else 0.0
 
 
-def _ranked(problem: Problem, baseline: Fit, single: Judgement, others: list[Judgement]) -> list[Judgement]:
-    """`others` by the share of what `single` leaves that each one's change of the prediction (its
-    fit against the calibrated baseline) takes, on the fitted units, every channel in units of its
-    noise; those that take none left out. Credible alone or not, significant alone or not: beside a
-    first cause one may be what it could not be alone (a pressure offset whose channel did not stand
-    out from a heat exchange's misfit)."""
-    left = _in_noise_units(problem, {c: problem.measured[c] - single.fit.predicted[c] for c in problem.channels})
+def _remainder(problem: Problem, fit: Fit) -> np.ndarray:
+    """What `fit` leaves of the measured channels, in noise units (`_in_noise_units`)."""
+    return _in_noise_units(problem, {c: problem.measured[c] - fit.predicted[c] for c in problem.channels})
+
+
+def _ranked(problem: Problem, baseline: Fit, left: np.ndarray, others: list[Judgement]) -> list[Judgement]:
+    """`others` by the share of a first cause's remainder `left` that each one's change of the
+    prediction (its fit against the calibrated baseline) takes; those that take none left out.
+    Credible alone or not, significant alone or not: beside a first cause one may be what it could
+    not be alone (a pressure offset whose channel did not stand out from a heat exchange's misfit)."""
     shares = [
         _share(
             _in_noise_units(problem, {c: j.fit.predicted[c] - baseline.predicted[c] for c in problem.channels}), left
@@ -69,8 +72,8 @@ def _partners(
     """The candidates to fit beside `single`: the PAIR_PARTNERS first of `_ranked`, and the one more
     whose step beside `single` takes most of what it leaves (`_step_beside`): a fit alone may see
     nothing of what a candidate explains beside the first cause. The pairs are judged."""
-    partners = _ranked(problem, baseline, single, others)[:PAIR_PARTNERS]
-    left = _in_noise_units(problem, {c: problem.measured[c] - single.fit.predicted[c] for c in problem.channels})
+    left = _remainder(problem, single.fit)
+    partners = _ranked(problem, baseline, left, others)[:PAIR_PARTNERS]
     beside = _step_beside(problem, single.fit, left, [j for j in others if j not in partners], factories)
     return partners + ([beside] if beside is not None else [])
 
@@ -259,7 +262,8 @@ def rival_beside_a_second(
     if rival is None:
         return decision
     taken = {lead.fit.effects[0].name(), rival.fit.effects[0].name()}
-    ranked = _ranked(problem, baseline, rival, [j for j in judged if j.fit.effects[0].name() not in taken])
+    others = [j for j in judged if j.fit.effects[0].name() not in taken]
+    ranked = _ranked(problem, baseline, _remainder(problem, rival.fit), others)
     if not ranked:
         return decision
     second = ranked[0]
