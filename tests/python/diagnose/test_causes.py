@@ -46,5 +46,5 @@ def test_the_partner_whose_step_beside_the_first_takes_its_remainder():
     assert _step_beside(problem, skew, left, others, factories) is others[2]
     # Without the leak the offset takes a share of the drift (its mean), and is the one.
     assert _step_beside(problem, skew, left, others[:2], factories) is others[0]
-    # Nothing to step: no partner.
+    # A run the model cannot make is no direction: with nothing else to step, no partner.
     assert _step_beside(problem, skew, left, others[1:2], factories) is None

@@ -31,7 +31,7 @@ from pamkit.diagnosis.series.instruments import (
     unfounded,
 )
 from pamkit.diagnosis.series.kinds import Problem
-from pamkit.diagnosis.series.score import score
+from pamkit.diagnosis.series.score import Score, score
 from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
 
 
@@ -104,6 +104,21 @@ def _step_beside(problem: Problem, single: Fit, left: np.ndarray, others: list[J
     return best
 
 
+def second_holds(problem: Problem, first: Fit, pair: Judgement, own: Score) -> bool:
+    """Whether the second effect of `pair`, fitted beside `first`, may be named with it: every
+    parameter of the pair credible, the second's own gain (`own`, the pair scored against `first`)
+    significant on its channels, and what it explains there standing out from what the base model
+    leaves on the channels it cannot change, and needed where it reads, as a single cause's must
+    (instruments.stands_out, instruments.unfounded)."""
+    second = pair.fit.effects[1:]
+    return (
+        pair.credible
+        and keeps_gain(own)
+        and not stands_out(problem, first, own, second)
+        and not unfounded(problem, first, second)
+    )
+
+
 def resolves(problem: Problem, single: Fit, pair: Fit) -> bool:
     """Whether `pair` takes every channel `single` left above PAIR_TRIGGER (the structure that
     called for a second cause) within STRUCTURE_LEFT. A second cause that leaves it there explains
@@ -155,13 +170,8 @@ def add_cause(
                 continue
             own = score(problem, single.fit, pair, np.random.default_rng(seed), credit=pair.effects[1:])
             candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
-            # The second's own channels, beside the first, must stand out from what the base model
-            # leaves on the channels it cannot change, as a single cause's must (instruments.stands_out).
             if (
-                keeps_gain(own)
-                and not stands_out(problem, single.fit, own, pair.effects[1:])
-                and not unfounded(problem, single.fit, pair.effects[1:])
-                and candidate.credible
+                second_holds(problem, single.fit, candidate, own)
                 and resolves(problem, single.fit, pair)
                 and (best is None or candidate.score.combined_gain > best.judgement.score.combined_gain)
             ):
@@ -274,14 +284,7 @@ def rival_beside_a_second(
     pair = judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), baseline)
     own = score(problem, rival.fit, fit, np.random.default_rng(seed), credit=fit.effects[1:])
     first = score(problem, second.fit, fit, np.random.default_rng(seed), credit=rival.fit.effects)
-    if not (
-        pair.credible
-        and keeps_gain(own)
-        and keeps_gain(first)
-        and not stands_out(problem, rival.fit, own, fit.effects[1:])
-        and not unfounded(problem, rival.fit, fit.effects[1:])
-        and explains_more(pair, lead)
-    ):
+    if not (second_holds(problem, rival.fit, pair, own) and keeps_gain(first) and explains_more(pair, lead)):
         return decision
     beside = fit_pair(
         problem, lead.fit, factories[lead.fit.name], factories[second.fit.name], f"{lead.fit.name}+{second.fit.name}"
