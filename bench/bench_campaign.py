@@ -66,15 +66,21 @@ def protocol(csv: Path) -> tuple[np.ndarray, Motion]:
     return time_s, Motion(time_s[corners], elongation_m[corners])
 
 
+NOT_IN_THE_THESIS = ("end_zone_m", "series_compliance_m_per_N")  # build fields the thesis's muscles lack
+
+
 def write_measured(toml: Path, folder: Path, physics: Physics, seed: int) -> Path:
     """The thesis test `toml` with the independent model's measured channels; its TOML's path."""
     declared = tomllib.loads(toml.read_text())
     muscle, test = declared["muscle"], declared["test"]
     time_s, motion = protocol(toml.with_name(test["data"]))
-    if muscle.get("end_zone_m", 0.0):  # the thesis's muscles end in cones: the independent model has no end zones
-        raise SystemExit(f"{toml}: end_zone_m = {muscle['end_zone_m']}; the independent thesis muscle has none")
+    # The thesis's muscles end in cones and are held at the crosshead: the independent model has
+    # neither flat flanges' end zones nor anything in series.
+    for key in NOT_IN_THE_THESIS:
+        if muscle.get(key, 0.0):
+            raise SystemExit(f"{toml}: {key} = {muscle[key]}; the independent thesis muscle has none")
     sealed = SealedMuscle(
-        Build(**{key: value for key, value in muscle.items() if key != "end_zone_m"}),
+        Build(**{key: value for key, value in muscle.items() if key not in NOT_IN_THE_THESIS}),
         physics,
         test["inflation_pressure_kPa"],
         test["ambient_temperature_C"],

@@ -56,6 +56,7 @@ DEFAULT_BUILD = {
     "end_diameter_m": 0.013,
     "cone_generator_m": 0.0095,
     "end_zone_m": 0.0,
+    "series_compliance_m_per_N": 0.0,
 }
 
 #: Table C.4 friction; sharpness Kf of eq. 3.1.21 (keys of pamkit.FrictionParams).
@@ -135,6 +136,10 @@ class ReferenceMuscle:
         b = _merge(DEFAULT_BUILD, build, "build")
         if b["end_zone_m"] != 0.0:
             raise ValueError("the reference is the thesis's muscle, its ends cones: it has no flat flanges' end zones")
+        if b["series_compliance_m_per_N"] != 0.0:
+            raise ValueError(
+                "the reference is a sealed test's ODE, its muscle held at the crosshead: nothing in series"
+            )
         f = _merge(DEFAULT_FRICTION, friction, "friction")
         g = _merge(DEFAULT_GAS, gas, "gas")
         if g["process"] not in ("polytropic", "heat_transfer"):

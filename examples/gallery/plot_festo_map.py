@@ -6,7 +6,8 @@ A Festo DMSP-10-250 held at five lengths while the supplied pressure is stepped 
 force map Martens and Boblan (2017) published. Its fibres are embedded in the membrane
 (``construction = "embedded"``: the braid cannot push). Festo publishes no braid angle, so the
 experiment file declares it unknown in ``[calibrate]``, beside the rest length within 1 % of the
-nominal; the diagnosis calibrates them and predicts each held length from the other four.
+nominal and what stretches in series with the braid (``series_compliance_m_per_N``: the fittings,
+the load cell); the diagnosis calibrates them and predicts each held length from the other four.
 """
 
 # %%

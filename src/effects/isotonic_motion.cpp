@@ -177,6 +177,12 @@ IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<dou
                                const IsotonicMotionConfig& config) {
   config.validate();
   check_inputs(time_s, gauge_pressures_Pa, load_N, mass_kg);
+  if (params.build.series_compliance_m_per_N > 0.0) {
+    // The load would hang on a spring: the braid's length an algebraic unknown of every state.
+    throw InvalidParameter(detail::message(
+        "isotonic_motion: MuscleBuild.series_compliance_m_per_N = ", params.build.series_compliance_m_per_N,
+        " m/N: a load's motion is integrated with a rigid series (give 0; settled rows follow isotonic_lengths)"));
+  }
   MuscleParams extended = params;
   std::vector<double> driving = gauge_pressures_Pa;
   detail::apply_static_effects(effects, extended, driving);

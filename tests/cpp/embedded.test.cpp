@@ -9,6 +9,7 @@
 
 #include "approx.hpp"
 #include "pamkit/effects/catalog.hpp"
+#include "pamkit/effects/isotonic_motion.hpp"
 #include "pamkit/effects/pipeline.hpp"
 #include "pamkit/muscle/realtime.hpp"
 #include "pamkit/sim/simulator.hpp"
@@ -319,4 +320,81 @@ TEST_CASE("Vented, a held muscle carries its membrane's stretch and what its sli
   bare.bladder = BladderLaw::none();
   bare.extensions.slip_force_N = 0.0;
   CHECK(static_forces(bare, lengths, pressures).back() == braid_tension(0.0, detail::kEmbeddedSlackBand_N));
+}
+
+TEST_CASE("A series compliance: the braid lies short of the held length by what its pull stretches",
+          "[embedded][series]") {
+  // With c m/N in series, a muscle held at L pulls F with its braid at L - c F: F equals the rigid
+  // muscle's force at L - c F, row by row (the invariant that defines it), less than the rigid
+  // force at L where it pulls; and as c goes to zero it is the rigid muscle's.
+  const double c = 4e-6;
+  MuscleParams rigid = dmsp_params();
+  MuscleParams compliant = rigid;
+  compliant.build.series_compliance_m_per_N = c;
+  const std::vector<double> pressures{200e3, 350e3, 500e3, 650e3};  // [Pa]
+  for (double L : {0.250, 0.244, 0.238}) {
+    INFO("held at " << L << " m");
+    const std::vector<double> held(pressures.size(), L);
+    const std::vector<double> force = static_forces(compliant, held, pressures);
+    const std::vector<double> stiff = static_forces(rigid, held, pressures);
+    for (std::size_t k = 0; k < pressures.size(); ++k) {
+      INFO("p = " << pressures[k]);
+      REQUIRE(stiff[k] > 2.0 * detail::kEmbeddedSlackBand_N);
+      const double at_braid = static_forces(rigid, {L - c * force[k]}, {pressures[k]}).front();
+      CHECK_REL(force[k], at_braid, 1e-9);
+      CHECK(force[k] < stiff[k]);
+    }
+    compliant.build.series_compliance_m_per_N = 1e-13;
+    const std::vector<double> nearly = static_forces(compliant, held, pressures);
+    for (std::size_t k = 0; k < pressures.size(); ++k) CHECK_REL(nearly[k], stiff[k], 1e-6);
+    compliant.build.series_compliance_m_per_N = c;
+  }
+}
+
+TEST_CASE("A series compliance lets a muscle held at rest move: its slip holds a pull once vented",
+          "[embedded][series][slip]") {
+  // Held at its rest length and pressurised, the braid contracts by c F and the elements take it
+  // up; vented, what is in series springs it back until the elements, reversed, hold the pull it
+  // leaves: a force at zero gauge pressure, within (0, f), where the rigid muscle reads nothing.
+  // A controller's workspace carries the same braid bit for bit.
+  const double f = 150.0;
+  MuscleParams p = dmsp_params(f, 0.01);
+  p.bladder = BladderLaw::none();
+  p.build.series_compliance_m_per_N = 2e-5;
+  const std::vector<double> pressures{0.0, 200e3, 400e3, 600e3, 400e3, 200e3, 0.0};  // [Pa]
+  const std::vector<double> held(pressures.size(), p.build.length_m);
+  const std::vector<double> force = static_forces(p, held, pressures);
+  CHECK(force.back() > 2.0 * detail::kEmbeddedSlackBand_N);
+  CHECK(force.back() < f);
+  CHECK(force[4] > force[2]);  // the loop at a held length: more on venting than on the way up
+  MuscleParams rigid = p;
+  rigid.build.series_compliance_m_per_N = 0.0;
+  CHECK(static_forces(rigid, held, pressures).back() == braid_tension(0.0, detail::kEmbeddedSlackBand_N));
+  // The rigid muscle held where the compliant one's braid lay, L - c F, row by row, pulls the same:
+  // its elements walked the same path.
+  std::vector<double> braid;
+  for (double force_N : force) braid.push_back(p.build.length_m - p.build.series_compliance_m_per_N * force_N);
+  const std::vector<double> along = static_forces(rigid, braid, pressures);
+  for (std::size_t k = 1; k + 1 < pressures.size(); ++k) CHECK_REL(along[k], force[k], 1e-9);
+  const RealtimeMuscle muscle(p);
+  RealtimeWorkspace workspace = muscle.rest();
+  for (std::size_t k = 0; k < pressures.size(); ++k) {
+    CHECK(muscle.force(workspace, held[k], pressures[k], 0.0).force_N == force[k]);
+  }
+}
+
+TEST_CASE("A series compliance under a load adds c W to the length; a sealed test refuses it", "[embedded][series]") {
+  MuscleParams p = dmsp_params(40.0, 0.005);
+  const std::vector<double> sweep{150e3, 350e3, 550e3, 350e3, 150e3};  // [Pa]
+  const double load = 120.0;
+  const IsotonicLengths rigid = isotonic_lengths(p, sweep, load, 0.250);
+  p.build.series_compliance_m_per_N = 5e-6;
+  const IsotonicLengths compliant = isotonic_lengths(p, sweep, load, 0.250 + 5e-6 * load);
+  for (std::size_t k = 0; k < sweep.size(); ++k)
+    CHECK_REL(compliant.length_m[k], rigid.length_m[k] + 5e-6 * load, 1e-9);
+  // The ODE's states would need the braid's length as an algebraic unknown: refused by name.
+  CHECK_THROWS_WITH(MuscleModel(p, InitialState{}), Catch::Contains("series_compliance_m_per_N"));
+  const std::vector<double> time{0.0, 1.0};
+  CHECK_THROWS_WITH(isotonic_motion(p, time, {150e3, 200e3}, load, 10.0, std::nullopt, {}),
+                    Catch::Contains("series_compliance_m_per_N"));
 }

@@ -18,7 +18,9 @@ The rig: an isometric test holds the muscle's ends at a length; below its rest l
 at low pressure, and its free braid contracts as the pressure rises (zero force: elastic force and
 friction balance) until it pulls taut, and lengthens again once it goes slack on venting. An
 isotonic test hangs a load on it; each settled step moves the length to where the force carries
-the load, from the last one. The load cell reads 1 N of noise in 0.1 N steps; the laser, 0.1 mm
+the load, from the last one. What stretches in series with the braid (fittings, load cell, frame:
+c per newton) puts a held muscle's braid where its force F(x) equals (held - x) / c, found by
+brentq, and a loaded one c W longer. The load cell reads 1 N of noise in 0.1 N steps; the laser, 0.1 mm
 in 0.01 mm steps.
 """
 
@@ -42,6 +44,7 @@ class DmspTruth:
     end_zone_m: float = 0.008
     slip_force_N: float = 150.0
     slip_distance_m: float = 0.02
+    series_compliance_m_per_N: float = 0.0  # fittings, load cell and frame in series with the braid
 
 
 class Muscle:
@@ -95,6 +98,11 @@ def _first_root(function, start: float, end: float, steps: int = 400) -> float |
     return None
 
 
+def _series_place(carried, held: float, taut: float, compliance: float) -> float:
+    """The braid's length x at which its force equals the series parts' (held - x) / c."""
+    return brentq(lambda x: carried(x) - (held - x) / compliance, held - compliance * taut, held, xtol=1e-13)
+
+
 def isometric_forces(truth: DmspTruth, lengths_m, gauge_pressures_Pa) -> np.ndarray:
     """The force [N] at each (held length [m], gauge pressure [Pa]) row in the order measured, from rest."""
     muscle, slip = Muscle(truth), Slip(truth.slip_force_N, truth.slip_distance_m)
@@ -107,9 +115,12 @@ def isometric_forces(truth: DmspTruth, lengths_m, gauge_pressures_Pa) -> np.ndar
 
         taut = carried(held)
         if taut >= 0:
-            slip.move(held - braid)
-            braid = held
-            out.append(taut)
+            # Pulling, it stretches what is in series with it by c F: the braid lies that much short.
+            c = truth.series_compliance_m_per_N
+            place = held if c == 0 or taut == 0 else _series_place(carried, held, taut, c)
+            out.append(carried(place))
+            slip.move(place - braid)
+            braid = place
             continue
         top = muscle.longest * (1 - 1e-9)
         free = _first_root(carried, held, top)
@@ -138,7 +149,8 @@ def isotonic_lengths(truth: DmspTruth, gauge_pressures_Pa, load_N: float) -> np.
         slip.move(new - length)
         length = new
         out.append(length)
-    return np.array(out)
+    # The parts in series with the braid stretch under the load: the muscle is that much longer.
+    return np.array(out) + truth.series_compliance_m_per_N * load_N
 
 
 def _muscle_section(truth: DmspTruth, calibrate: str) -> str:
@@ -175,11 +187,12 @@ def write_dmsp_isometric(
     noise_N: float = 1.0,
     sweeps: int = 2,
     pressure_offset_kPa: float = 0.0,
+    calibrate: str = "",
 ) -> Path:
     """An isometric test (TOML + CSV, kind isometric_map): at each held length, the muscle from
     rest, the pressure stepped up to `top_kPa` and down to 0 `sweeps` times, in 25 kPa steps. The
     transducer reads the pressure plus `pressure_offset_kPa`. The TOML declares the build as a
-    datasheet does, the braid angle and end zones unknown."""
+    datasheet does, the braid angle and end zones unknown, and the lines `calibrate` unknown too."""
     rng = np.random.default_rng(seed)
     folder.mkdir(parents=True, exist_ok=True)
     up = list(np.arange(0.0, top_kPa + 1e-9, 25.0))
@@ -195,7 +208,7 @@ def write_dmsp_isometric(
         handle.write("length_m,pressure_kPa,force_N\n")
         handle.writelines(f"{length:.4f},{pressure:.1f},{force:.1f}\n" for length, pressure, force in rows)
     (folder / "isometric.toml").write_text(
-        _muscle_section(truth, "") + '\n[test]\nkind = "isometric_map"\ndata = "isometric.csv"\n'
+        _muscle_section(truth, calibrate) + '\n[test]\nkind = "isometric_map"\ndata = "isometric.csv"\n'
     )
     return folder / "isometric.toml"
 

@@ -181,3 +181,22 @@ def test_a_hanging_mass_without_its_weight_is_told_its_weight(tmp_path):
     path.write_text(path.read_text().replace("load_N = 98.1\n", ""))
     with pytest.raises(ExperimentError, match=r"load_N is missing.*load_N = 98.0665 for load_mass_kg = 10"):
         load_experiment(path)
+
+
+def test_a_series_compliance_is_refused_where_the_model_is_integrated_in_time(tmp_path):
+    # The rig's and fittings' stretch c F acts where each sample settles (this supplied test reads
+    # less force with it); a sealed test's ODE, or a load's motion, would carry the braid's length
+    # as an algebraic unknown, so the file is refused there, naming the key.
+    path = write_rig(tmp_path)
+    rigid = simulate_experiment(load_experiment(path))["force_N"]
+    path.write_text(
+        path.read_text().replace("cone_generator_m = 0.0", "cone_generator_m = 0.0\nseries_compliance_m_per_N = 5e-6")
+    )
+    compliant = simulate_experiment(load_experiment(path))["force_N"]
+    pulled = rigid > 50.0
+    assert pulled.any() and np.all(compliant[pulled] < rigid[pulled])
+    path.write_text(path.read_text().replace('gas = "supplied"', 'gas = "sealed"'))
+    with pytest.raises(
+        ExperimentError, match=r"\[muscle\] series_compliance_m_per_N .* not in a sealed test's simulation"
+    ):
+        load_experiment(path)

@@ -70,8 +70,9 @@ struct IsotonicMotion {
 ///                            it finds none there)
 /// \throws InvalidInput for mismatched sizes, times not increasing, a start outside the braid's
 ///         range, or a length that reaches the braid's range (naming the time and the samples
-///         around it); InvalidParameter for a mass not > 0, a bad config or an effect that
-///         cannot act here; SolverError with the CVODES flag's name if integration fails.
+///         around it); InvalidParameter for a mass not > 0, a series compliance (the build's
+///         series_compliance_m_per_N not 0), a bad config or an effect that cannot act here;
+///         SolverError with the CVODES flag's name if integration fails.
 IsotonicMotion isotonic_motion(const MuscleParams& params, const std::vector<double>& time_s,
                                const std::vector<double>& gauge_pressures_Pa, double load_N, double mass_kg,
                                std::optional<double> start_length_m = std::nullopt,

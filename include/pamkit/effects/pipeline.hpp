@@ -276,7 +276,8 @@ struct IsotonicLengths {
 /// the muscle pulls more than the load. Where a light load has several equilibria, the muscle
 /// stays on the branch it is on, as a real one does. The Maxwell-slip elements (muscle/slip.hpp)
 /// start empty and follow the path. The search spans half the deflated length to 1.2 times it,
-/// within the braid's range.
+/// within the braid's range. A series compliance c (MuscleBuild::series_compliance_m_per_N)
+/// carries the load too: the muscle's length is its braid's plus c times the load.
 /// \param gauge_pressures_Pa  supplied gauge pressure of each row [Pa]
 /// \param load_N              the load the muscle carries [N]
 /// \param start_length_m      where the first row's search starts [m]
@@ -295,7 +296,8 @@ inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::v
   const std::vector<double> branch = pressure_branches(driving);
   const ModelExtensions& x = extended.extensions;
   IsotonicLengths out;
-  double length = std::clamp(start_length_m, shortest, longest);
+  const double series_stretch = extended.build.series_compliance_m_per_N * load_N;
+  double length = std::clamp(start_length_m - series_stretch, shortest, longest);
   for (std::size_t k = 0; k < driving.size(); ++k) {
     const double gauge = driving[k];
     const double start = length;
@@ -322,7 +324,7 @@ inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::v
     }
     if (!found) length = from;
     slip_move(out.slip, x.slip_force_N, x.slip_distance_m, length - start);
-    out.length_m.push_back(length);
+    out.length_m.push_back(length + series_stretch);
     out.at_limit.push_back(!found);
   }
   return out;

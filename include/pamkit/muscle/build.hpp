@@ -38,6 +38,9 @@ struct MuscleBuild {
   double cone_generator_m = 0.0095;       ///< slant length Lz of each end cone [m] (table C.4); 0 = flat ends
   double end_zone_m = 0.0;  ///< flat ends: length of braid at each flange that keeps its deflated shape [m]; 0 = none
   Construction construction = Construction::sleeve;  ///< fibres in a sleeve (thesis) or in the membrane
+  /// what stretches in series with the braid between the points whose distance a rig holds or
+  /// measures (fittings, load cell, frame) per newton of the muscle's pull [m/N]; 0 = rigid
+  double series_compliance_m_per_N = 0.0;
 
   // Note on end_zone_m: pressed onto a flat flange, the braid cannot reach its cylinder's diameter
   // near the flange. Tondu and Lopez (2000) correct Gaylord's force for it by contracting the
@@ -48,6 +51,14 @@ struct MuscleBuild {
   //
   // The construction is not in the field list below (a field list of numbers): the experiment
   // reader and the muscle-parameters file read it by name, `construction = "embedded"`.
+
+  // Note on series_compliance_m_per_N: a held muscle's braid lies short of the held length by what
+  // its pull stretches the parts in series with it, L_braid = L - c F, and its slip elements follow
+  // that motion. Where the force is steep in the length (near rest, at high pressure) this lowers
+  // the force most: the published DMSP-10-250 map calibrates c = 4.5 um/N (220 N/mm, a bench's
+  // fittings and load cell), the DMSP-20-300's none within its interval. Modelled where the muscle
+  // settles at each row or sample (static tables, supplied tests, the real-time force); a sealed
+  // test's ODE refuses it.
 
   // Note on bladder_thickness_m: section 3.1.2 measured the butyl tube at 0.9 mm, table C.4
   // ran the model with 0.254 mm. With the stress laws of eqs. 3.1.12-13 a 0.9 mm bladder
@@ -71,6 +82,8 @@ struct MuscleBuild {
           FieldInfo{"m", 0.0, 0.5, "slant length of each end cone Lz (0: flat ends)"});
     visit("end_zone_m", &MuscleBuild::end_zone_m,
           FieldInfo{"m", 0.0, 0.5, "flat ends: braid at each flange that keeps its deflated shape (0: none)"});
+    visit("series_compliance_m_per_N", &MuscleBuild::series_compliance_m_per_N,
+          FieldInfo{"m/N", 0.0, 1e-3, "stretch in series with the braid per newton of pull (0: rigid)"});
   }
 
   /// Checks each field's range, then the relations between fields (the bladder fits inside

@@ -9,7 +9,7 @@
 /// BraidGeometry::shape returns after its range check) and detail::supplied_force (muscle_forces'
 /// total through the braid's slack, what static_forces reports), so inside the range it equals
 /// `braid_tension(muscle_forces(geometry, geometry.shape(L), ...).total, detail::slack_band_N(params))`
-/// bit for bit.
+/// bit for bit (with a series compliance, at the braid's length instead of L).
 
 #include <cmath>
 
@@ -55,8 +55,10 @@ class RealtimeMuscle {
   /// `extensions.slack_band_N` > 0 or the fibres are embedded in the membrane. The
   /// pressurise/vent hysteresis (`extensions.pressure_hysteresis`) needs the pressure's history
   /// and is left out: the force lies between its two branches. So are the Maxwell-slip elements,
-  /// which need the motion's: the overload with a RealtimeWorkspace carries it. Outside (min_length_m(),
-  /// max_length_m()), or for input that is not finite, the force is 0 N and the status says why. No exception, no
+  /// which need the motion's: the overload with a RealtimeWorkspace carries it. A series
+  /// compliance (`build.series_compliance_m_per_N`) puts the braid short of `length_m` by what its
+  /// pull stretches it (yielded_braid_length). Outside (min_length_m(), max_length_m()), or for
+  /// input that is not finite, the force is 0 N and the status says why. No exception, no
   /// allocation.
   RealtimeForce force(double length_m, double gauge_pressure_Pa, double velocity_m_per_s) const noexcept {
     if (std::isnan(length_m) || !std::isfinite(gauge_pressure_Pa) || !std::isfinite(velocity_m_per_s)) {
@@ -64,7 +66,20 @@ class RealtimeMuscle {
     }
     if (!(length_m > geometry_.min_length())) return {0.0, ForceStatus::too_short};
     if (!(length_m < geometry_.max_length())) return {0.0, ForceStatus::too_long};
-    const MuscleShape shape = geometry_.shape_unchecked(length_m);
+    double braid = length_m;
+    const double compliance = params_.build.series_compliance_m_per_N;
+    if (compliance > 0.0) {
+      const auto carried = [&](double b) {
+        return detail::unslackened_supplied_force(geometry_, params_, geometry_.shape_unchecked(b), gauge_pressure_Pa,
+                                                  velocity_m_per_s, 0.0, 0.0);
+      };
+      const double held = carried(length_m);
+      // An embedded braid that would push is slack: nothing stretches the parts in series.
+      if (held > 0.0 || detail::slack_band_N(params_) <= 0.0) {
+        braid = yielded_braid_length(geometry_, carried, length_m, held, compliance);
+      }
+    }
+    const MuscleShape shape = geometry_.shape_unchecked(braid);
     return {detail::supplied_force(geometry_, params_, shape, gauge_pressure_Pa, velocity_m_per_s, 0.0),
             ForceStatus::ok};
   }
@@ -74,8 +89,8 @@ class RealtimeMuscle {
 
   /// `force`, with the friction that remembers the motion: the braid settled from `workspace`
   /// (settle_held_braid at branch 0), which it updates. Without slip elements it equals `force`
-  /// bit for bit. Out of range or not finite, the status says so and the workspace is left as
-  /// it was. No exception, no allocation.
+  /// bit for bit, a series compliance included. Out of range or not finite, the status says so
+  /// and the workspace is left as it was. No exception, no allocation.
   RealtimeForce force(RealtimeWorkspace& workspace, double length_m, double gauge_pressure_Pa,
                       double velocity_m_per_s) const noexcept {
     if (std::isnan(length_m) || !std::isfinite(gauge_pressure_Pa) || !std::isfinite(velocity_m_per_s)) {

@@ -25,6 +25,27 @@ struct HeldBraidState {
   SlipState slip;               ///< what the Maxwell-slip elements hold
 };
 
+/// Where a braid pulled (or pushed) by the parts in series with it lies: the length b between
+/// `held_length_m` and `held_length_m - c F(held)` at which the force `carried(b)` (rising in b)
+/// stretches them by `held_length_m - b` (MuscleBuild::series_compliance_m_per_N = c), within
+/// the braid's range.
+template <class Carried>
+double yielded_braid_length(const BraidGeometry& geometry, Carried&& carried, double held_length_m, double force_held_N,
+                            double compliance_m_per_N) noexcept {
+  const auto imbalance = [&](double braid) { return carried(braid) - (held_length_m - braid) / compliance_m_per_N; };
+  const double yielded = held_length_m - compliance_m_per_N * force_held_N;
+  const double lower = std::max(std::min(held_length_m, yielded), geometry.min_length() * (1.0 + 1e-9));
+  const double upper = std::min(std::max(held_length_m, yielded), geometry.max_length() * (1.0 - 1e-9));
+  const double at_lower = imbalance(lower);
+  const double at_upper = imbalance(upper);
+  if (!(at_lower < 0.0)) return lower;  // the range ends first
+  if (!(at_upper > 0.0)) return upper;
+  std::uintmax_t iterations = 100;
+  const auto root = boost::math::tools::toms748_solve(imbalance, lower, upper, at_lower, at_upper,
+                                                      boost::math::tools::eps_tolerance<double>(40), iterations);
+  return 0.5 * (root.first + root.second);
+}
+
 /// The held braid at rest: at the deflated length, nothing in the slip elements.
 inline HeldBraidState braid_at_rest(const MuscleBuild& build) noexcept { return {build.length_m, {}}; }
 
@@ -33,12 +54,14 @@ inline HeldBraidState braid_at_rest(const MuscleBuild& build) noexcept { return 
 /// rate `velocity_m_per_s` (the tanh friction's) and pressure `branch` (+1 pressurising, -1
 /// venting, 0 neither: detail::supplied_force), the braid settled from `state`, which it updates.
 ///
-/// Without slip elements the braid's place carries no memory, and this is
-/// `detail::supplied_force` at the held length, operation for operation. With them: taut (the
-/// force at the held length, the elements moved there, is not below zero, or the braid can push)
-/// the braid lies at the held length; slack, it moves from where it was to where its force,
-/// elements included, is zero, between the held length and the braid's longest length, and the
-/// load cell reads the slack force (through `braid_tension`, at most a quarter of its band).
+/// Without slip elements or a series compliance the braid's place carries no memory, and this is
+/// `detail::supplied_force` at the held length, operation for operation. Taut (the force at the
+/// held length, the elements moved there, is not below zero, or the braid can push) the braid
+/// lies at the held length, or with a series compliance short of it by what its pull stretches
+/// the parts in series (`yielded_braid_length`); slack, it moves from where it was to where its
+/// force, elements included, is zero, between the held length and the braid's longest length,
+/// and the load cell reads the slack force (through `braid_tension`, at most a quarter of its
+/// band).
 inline double settle_held_braid(const BraidGeometry& geometry, const MuscleParams& extended, HeldBraidState& state,
                                 double length_m, double gauge_Pa, double velocity_m_per_s, double branch) noexcept {
   const ModelExtensions& x = extended.extensions;
@@ -51,9 +74,14 @@ inline double settle_held_braid(const BraidGeometry& geometry, const MuscleParam
   };
   const double taut = carried(length_m);
   if (x.slip_force_N <= 0.0 || band <= 0.0 || taut >= 0.0) {
-    slip_move(state.slip, x.slip_force_N, x.slip_distance_m, length_m - from);
-    state.braid_length_m = length_m;
-    return braid_tension(taut, band);
+    const double compliance = extended.build.series_compliance_m_per_N;
+    // An embedded braid that would push is slack: nothing stretches the parts in series.
+    const bool yields = compliance > 0.0 && (taut > 0.0 || band <= 0.0);
+    const double braid = yields ? yielded_braid_length(geometry, carried, length_m, taut, compliance) : length_m;
+    const double force = yields ? carried(braid) : taut;  // before the elements move there
+    slip_move(state.slip, x.slip_force_N, x.slip_distance_m, braid - from);
+    state.braid_length_m = braid;
+    return braid_tension(force, band);
   }
   // Slack: the free braid carries nothing. Its force rises with its length (the gas's and the
   // membrane's, and the elements'), and is below zero at the held length.

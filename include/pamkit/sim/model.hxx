@@ -10,6 +10,13 @@ namespace pamkit {
 inline MuscleModel::MuscleModel(const MuscleParams& params, const InitialState& initial)
     : params_(params), initial_(initial), geometry_((params.validate(), params.build)) {
   initial_.validate();
+  if (params_.build.series_compliance_m_per_N > 0.0) {
+    // The braid's length would be an algebraic unknown of the ODE's every state (L - c F).
+    PAMKIT_THROW(InvalidParameter(detail::message(
+        "MuscleBuild.series_compliance_m_per_N = ", params_.build.series_compliance_m_per_N,
+        " m/N: a series compliance is modelled where the muscle is settled (static tables, supplied tests, the "
+        "real-time force), not in a sealed test's simulation; give 0 there")));
+  }
   const GasParams& g = params_.gas;
   MuscleShape s = geometry_.shape(initial_.length_m);
   if (params_.extensions.fiber_compliance_per_N > 0.0) {

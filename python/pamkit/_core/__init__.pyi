@@ -174,6 +174,14 @@ class MuscleBuild:
     @length_m.setter
     def length_m(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    @property
+    def series_compliance_m_per_N(self) -> float:
+        """
+        stretch in series with the braid per newton of pull (0: rigid) [m/N], allowed [0.000000, 0.001000]
+        """
+    @series_compliance_m_per_N.setter
+    def series_compliance_m_per_N(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class BiaxialStress:
     """
     Stresses or tangent moduli of the bladder in its two directions [Pa].

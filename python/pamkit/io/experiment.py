@@ -42,6 +42,7 @@ from pamkit.units import NEWTON_PER_KILOGRAM_FORCE
 
 # [test] gas: how the muscle's gas is held, by the name a file gives it.
 GAS_MODES = dict(GasMode.__members__)
+SERIES_COMPLIANCE = "series_compliance_m_per_N"  # the build field only settled rows and samples model
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -324,6 +325,16 @@ def _experiment_of(path: Path, document: dict) -> Experiment:
         raise fail(path, f"[test] load_N is missing: an isotonic test needs its load, or load_N in [calibrate]{hung}")
     if "load_N" in calibrate and kind != "isotonic":
         raise fail(path, f'[calibrate] load_N belongs to kind = "isotonic", not {kind!r}')
+    # A sealed test's ODE, and a load's motion, would carry the braid's length L - c F as an
+    # algebraic unknown of every state: the compliance is modelled where rows and samples settle.
+    integrated = "a sealed test's simulation" if kind == SERIES_KIND and gas != GasMode.supplied else None
+    integrated = "a load's motion (load_mass_kg)" if mass is not None else integrated
+    if integrated and (build.series_compliance_m_per_N > 0 or SERIES_COMPLIANCE in calibrate):
+        raise fail(
+            path,
+            f"[muscle] {SERIES_COMPLIANCE} is modelled where the muscle settles at each row or sample (a static "
+            f"table, a supplied test), not in {integrated}: give 0 and leave it out of [calibrate]",
+        )
     preload = _given(path, test, "preload_N")
     if preload is not None:
         if gas != GasMode.supplied or kind != SERIES_KIND:

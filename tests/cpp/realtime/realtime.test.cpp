@@ -259,3 +259,34 @@ TEST_CASE("With friction that remembers, the workspace's force allocates nothing
   for (double L : {0.2, 0.23, 0.245})
     CHECK(plain.force(unused, L, 300e3, 0.01).force_N == plain.force(L, 300e3, 0.01).force_N);
 }
+
+TEST_CASE("A series compliance: the one call and the workspace agree bit for bit and allocate nothing",
+          "[realtime][series]") {
+  // Without slip elements the braid's place has no memory: the one call solves it afresh and the
+  // workspace carries it, the same number; with them, the workspace's force allocates nothing.
+  MuscleParams params = slipping_dmsp();
+  params.build.series_compliance_m_per_N = 4e-6;
+  params.extensions.slip_force_N = 0.0;
+  const RealtimeMuscle plain(params);
+  RealtimeWorkspace unused = plain.rest();
+  const long before = allocations.load();
+  int pulling = 0;
+  for (int k = 0; k < 200; ++k) {
+    const double L = 0.24 - 0.02 * std::sin(0.031 * k);
+    const double p = 300e3 + 280e3 * std::sin(0.047 * k);
+    const RealtimeForce f = plain.force(L, p, 0.0);
+    REQUIRE(f.status == ForceStatus::ok);
+    CHECK(plain.force(unused, L, p, 0.0).force_N == f.force_N);
+    pulling += f.force_N > 1.0;
+  }
+  CHECK(pulling > 20);
+  params.extensions.slip_force_N = 180.0;
+  const RealtimeMuscle slipping(params);
+  RealtimeWorkspace workspace = slipping.rest();
+  for (int k = 0; k < 200; ++k) {
+    REQUIRE(
+        slipping.force(workspace, 0.24 - 0.02 * std::sin(0.031 * k), 300e3 + 280e3 * std::sin(0.047 * k), 0.0).status ==
+        ForceStatus::ok);
+  }
+  CHECK(allocations.load() == before);
+}

@@ -37,15 +37,21 @@ TRUTH = dict(
 
 # The held-out RMSE the maps reach declared as the thesis's sleeve with a pre-stretched membrane,
 # braid_slack named (docs/validation.md, the Festo maps): 15.1 N for the DMSP-10-250, and for the
-# DMSP-20-300 20 N, below the sleeve's 21.2 N. The embedded build must do better on both.
-@pytest.mark.parametrize("muscle, limit_N", [("DMSP-10-250", 15.1), ("DMSP-20-300", 20.0)])
+# DMSP-20-300 20 N, below the sleeve's 21.2 N. The embedded build must do better on both. Its
+# largest held-out error must stay within the largest error Martens and Boblan's own model makes
+# in-sample, 4.4 % and 2.35 % of each map's peak force.
+@pytest.mark.parametrize(
+    "muscle, limit_N, largest_share", [("DMSP-10-250", 15.1, 0.044), ("DMSP-20-300", 20.0, 0.0235)]
+)
 def test_a_festo_map_names_the_friction_the_contracted_muscle_keeps_and_carries_to_lengths_left_out(
-    muscle, limit_N, tmp_path
+    muscle, limit_N, largest_share, tmp_path
 ):
     d = diagnose(FESTO / f"{muscle}.toml", threads=2)
     report = to_json(d)
     assert d.cause == "slip_hysteresis", verdict(d)
     assert report["extended"]["heldout_rmse"]["force_N"] < limit_N, verdict(d)
+    peak = np.nanmax(d.campaign.columns["force_N"])
+    assert report["extended"]["heldout_max_error"]["force_N"] < largest_share * peak, verdict(d)
     # Without the friction the contracted lengths' constant offset is left: far worse.
     assert report["baseline"]["heldout_rmse"]["force_N"] > 5 * report["extended"]["heldout_rmse"]["force_N"]
     # The braid cannot push: no prediction below zero, held out or not.
@@ -57,10 +63,11 @@ def test_a_festo_map_names_the_friction_the_contracted_muscle_keeps_and_carries_
     assert set(report["extended"]["heldout_rmse_by_group"]) == {f"L={length:g}" for length in set(lengths)}
     largest = np.nanmax(np.abs(d.extended.heldout["force_N"] - d.campaign.columns["force_N"]))
     assert report["extended"]["heldout_max_error"]["force_N"] == pytest.approx(largest)
-    # What is left lies mostly at the longest held length, which only the model fitted on the
-    # shorter ones predicts: an extrapolation, said so beside the remainder.
+    # What is left lies most at the longest held length, which only the model fitted on the shorter
+    # ones predicts: an extrapolation, said so beside the remainder; there it stands further above
+    # the noise than over the other lengths by half as much again.
     where = report["remainder"]["where"]["force_N"]
-    assert where["group"] == f"L={lengths.max():g}" and where["share"] > 0.5
+    assert where["group"] == f"L={lengths.max():g}" and where["ratio"] > 1.5 * where["others_ratio"]
     assert where["rows_beyond"] == where["rows"]
     assert where["beyond_m"] == pytest.approx(lengths.max() - np.unique(lengths)[-2])
     assert "predicted by extrapolation" in verdict(d)
@@ -509,7 +516,8 @@ def test_an_isotonic_table_reads_contraction_and_needs_its_load(tmp_path):
 def test_the_table_figure_shows_what_the_named_cause_leaves_held_out_against_the_noise():
     # The Festo DMSP-10-250 map: below the force, each held length's residual of the model with
     # the named friction, held out, and the band of two noise sigmas; the longest length, which
-    # the others predict by extrapolation, is where the remainder lies (README: 28 N at 650 kPa).
+    # the others predict by extrapolation, is where the remainder lies (docs/validation.md: 15.1 N
+    # at 650 kPa, 20 noise sigmas).
     from pamkit.diagnosis.tables.figure import NOISE_BAND, figure
 
     d = diagnose(FESTO / "DMSP-10-250.toml", threads=2)
@@ -523,7 +531,8 @@ def test_the_table_figure_shows_what_the_named_cause_leaves_held_out_against_the
     pressure_kPa = c.columns["gauge_pressure_Pa"][longest] / 1e3
     (line,) = [line for line in drawn_rows if np.allclose(line.get_ydata(), residual[longest])]
     np.testing.assert_allclose(line.get_xdata(), pressure_kPa)
-    assert np.min(residual[longest]) < -25.0  # the extrapolated length's error, beyond the band
     (band,) = below.patches  # axhspan: from -2 to +2 noise sigmas
+    # the extrapolated length's error, five times as far out as the band (ten noise sigmas)
+    assert np.max(np.abs(residual[longest])) > 5 * band.get_height() / 2
     assert band.get_y() == pytest.approx(-NOISE_BAND * d.noise["force_N"])
     assert band.get_height() == pytest.approx(2 * NOISE_BAND * d.noise["force_N"])
