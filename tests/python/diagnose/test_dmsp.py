@@ -103,13 +103,15 @@ def test_a_series_compliance_declared_unknown_is_recovered_and_left_rigid_bends_
     # rest, at high pressure), and a held muscle's friction follows what the pull moves it. With the
     # compliance unknown in [calibrate] the map recovers it within its jackknife interval, the braid
     # angle within 0.1 degree (within_intervals' bar) and every held length within the noise held
-    # out, on each seed; declared rigid, the braid angle and the friction absorb it and the braid
-    # angle ends more than 0.1 degree off (measured 0.45-1.07) on each.
+    # out, on each seed (measured 0.78-0.97x); declared rigid, the braid angle and the friction
+    # absorb what they can and the braid angle ends more than 0.1 degree off (measured 0.45-1.08,
+    # held out 2.0-3.6x the noise) on each.
     for seed in SEEDS:
         t = dataclasses.replace(truth(seed), series_compliance_m_per_N=SERIES_COMPLIANCE)
         held = isometric(tmp_path / f"rigid{seed}", t, seed)
         d = diagnose(held, threads=2)
         assert abs(d.extended.params["braid_angle_deg"] - t.braid_angle_deg) > 0.1, verdict(d)
+        assert to_json(d)["extended"]["heldout_rmse"]["force_N"] > WITHIN_NOISE * d.noise["force_N"], verdict(d)
         free = write_dmsp_isometric(
             tmp_path / f"free{seed}", t, lengths_m=HELD_M, top_kPa=600, seed=seed, calibrate=SERIES_UNKNOWN
         )
@@ -120,6 +122,30 @@ def test_a_series_compliance_declared_unknown_is_recovered_and_left_rigid_bends_
         assert low <= SERIES_COMPLIANCE <= high, verdict(d)
         assert abs(d.extended.params["braid_angle_deg"] - t.braid_angle_deg) <= 0.1, verdict(d)
         assert report["extended"]["heldout_rmse"]["force_N"] <= WITHIN_NOISE * d.noise["force_N"], verdict(d)
+
+
+def test_a_loop_at_one_held_length_is_the_muscle_s_not_the_load_cell_s_noise(tmp_path):
+    # Held at one length (at rest, or 5 mm short) with 15 um/N in series (the search reaches 20),
+    # the braid moves with the pull and its friction opens a loop between pressurising and venting.
+    # The table's noise is what the load cell adds (1 N read in 0.1 N steps: within 25 %, measured
+    # 0.90-1.18 N), not the loop (pooled across the branches it read 4.7 N on the first of these);
+    # so a model that has no loop there is not `none` (held out 6.4-19.9 N off), and with the
+    # compliance unknown the slip is named.
+    for seed in SEEDS:
+        t = dataclasses.replace(truth(seed), series_compliance_m_per_N=1.5e-5)
+        for held, sweeps in ((t.rest_length_m, 2), (t.rest_length_m - 0.005, 3)):
+            d = diagnose(
+                write_dmsp_isometric(
+                    tmp_path / f"{seed}-{sweeps}", t, lengths_m=[held], top_kPa=600, seed=seed, sweeps=sweeps
+                )
+            )
+            assert 0.8 <= d.noise["force_N"] <= 1.25, verdict(d)
+            assert d.cause != "none", verdict(d)
+        free = write_dmsp_isometric(
+            tmp_path / f"free{seed}", t, lengths_m=[t.rest_length_m], top_kPa=600, seed=seed, calibrate=SERIES_UNKNOWN
+        )
+        d = diagnose(free)
+        assert d.cause == "slip_hysteresis", verdict(d)
 
 
 # A lab's first isometric test of a cut muscle (a DMSP-10 cut to 10 or 40 cm): held at one length,
@@ -209,7 +235,7 @@ def test_a_straight_and_a_short_mounted_test_of_one_muscle_calibrate_it_together
     # The lab's pair: the cut muscle held straight at its rest length and mounted short, diagnosed
     # as one campaign. The bar is the near-model world's 90 % of the slip named (measured 6 of 6);
     # where named, each test is predicted by the muscle calibrated on the other alone within 1.5x
-    # the noise (measured 0.78-0.98x) and the braid angle, which the straight test's slope fixes,
+    # the noise (measured 0.83-1.07x) and the braid angle, which the straight test's slope fixes,
     # within 0.1 degree of its truth (measured 0.006).
     named = 0
     for seed in SEEDS:

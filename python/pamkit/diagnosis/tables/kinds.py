@@ -298,14 +298,16 @@ def beyond_reach(campaign: Campaign) -> list[dict]:
 
 def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
     """The table's noise per channel, model-free. Where rows repeat (the same pressure on the same
-    branch of several isotonic sweeps, the same length and pressure in several maps), the pooled
-    spread of the repeats; otherwise the residual of a cubic in pressure fitted to each held
-    length's loaded rows (force > 0) of a map or to each free-inflation table. Either leaves
-    what the instruments add, not what the model misses. A slack muscle's force reads exactly
-    zero, with no noise in it: such rows are left out. An isotonic test's first sweep starts from
-    rest, and friction with memory makes it no repeat of the sweeps after it: the repeats are
-    looked for among those. A cyclic time series's noise is its samples' scatter about their
-    neighbours (cyclic_noise). Where several kinds predict a channel, their noises pooled by rows."""
+    branch of several isotonic sweeps or of several sweeps at one held length of a map), the
+    pooled spread of the repeats; otherwise the residual of a cubic in pressure fitted to each
+    pressurising or venting run of a held length (its loaded rows, force > 0) or to each
+    free-inflation table. Either leaves what the instruments add, not what the model misses. A
+    slack muscle's force reads exactly zero, with no noise in it: such rows are left out. A first
+    sweep starts from rest, and friction with memory makes it no repeat of the sweeps after it:
+    the repeats are looked for among those. A loop between the branches is the muscle's: pooled
+    across them, a held DMSP whose braid moved read 4-8 N of noise for the load cell's 1 N. A
+    cyclic time series's noise is its samples' scatter about their neighbours (cyclic_noise).
+    Where several kinds predict a channel, their noises pooled by rows."""
     kinds = list(dict.fromkeys(campaign.kinds))
     if len(kinds) > 1:  # each channel from the tests that predict it
         out = {}
@@ -317,16 +319,28 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
     if kinds == [CYCLIC]:
         return {c: cyclic_noise(campaign, c) for c in channels}
     pressure = campaign.columns["gauge_pressure_Pa"]
-    branch = campaign.branch if campaign.kind == "isotonic" else np.ones(len(pressure))
+    # A record is a map's held length or another kind's whole test; along it the pressure rises
+    # and falls in runs. A loop between a record's pressurising and venting runs, and its first
+    # sweep from rest, are the muscle's, not the instruments': a repeat is a row of the same run
+    # direction at the same pressure in a later sweep, and a cubic follows one run.
+    records = campaign.test.astype(float)
+    if campaign.kind == "isometric_map":
+        records = np.unique(
+            np.column_stack([campaign.test, np.round(campaign.columns["length_m"], 9)]), axis=0, return_inverse=True
+        )[1].ravel()
+    branch = campaign.branch if campaign.kind in ("isotonic", "isometric_map") else np.ones(len(pressure))
     used = ~campaign.censored
     key = np.column_stack([campaign.test, branch, np.round(pressure, 3)])  # to a mPa: a file's 1e-6 kPa
     if campaign.kind == "isometric_map":
         key = np.column_stack([key, np.round(campaign.columns["length_m"], 9)])
-    if campaign.kind == "isotonic":
+    runs = np.zeros(len(pressure), dtype=int)
+    if campaign.kind in ("isotonic", "isometric_map"):
         first = np.zeros(len(pressure), dtype=bool)
-        for test in np.unique(campaign.test):
-            rows = np.flatnonzero(campaign.test == test)
+        for record in np.unique(records):
+            rows = np.flatnonzero(records == record)
             first[rows] = isotonic_sweeps(pressure[rows]) == 0
+            for number, (run, _, _) in enumerate(pressure_runs(pressure[rows])):
+                runs[rows[run]] = number
         # Each row of a first sweep a key of its own: no repeat of anything.
         key = np.column_stack([key, np.where(first, np.arange(len(pressure)), -1)])
     out = {}
@@ -343,9 +357,9 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
         if campaign.kind == "isotonic":
             out[channel] = sweep_noise(campaign, channel)
             continue
-        # A map's held lengths; a free-inflation table.
+        # A map's held lengths, run by run; a free-inflation table.
         if campaign.kind == "isometric_map":
-            units = campaign.groups[rows]
+            units = np.unique(np.column_stack([records, runs])[rows], axis=0, return_inverse=True)[1].ravel()
         else:
             units = campaign.test[rows]
         at = pressure[rows]
