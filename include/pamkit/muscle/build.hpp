@@ -83,7 +83,8 @@ struct MuscleBuild {
     visit("end_zone_m", &MuscleBuild::end_zone_m,
           FieldInfo{"m", 0.0, 0.5, "flat ends: braid at each flange that keeps its deflated shape (0: none)"});
     visit("series_compliance_m_per_N", &MuscleBuild::series_compliance_m_per_N,
-          FieldInfo{"m/N", 0.0, 1e-3, "stretch in series with the braid per newton of pull (0: rigid)"});
+          FieldInfo{"m/N", 0.0, 1e-3,
+                    "stretch in series with the braid per newton of pull, in tables and supplied tests (0: rigid)"});
   }
 
   /// Checks each field's range, then the relations between fields (the bladder fits inside

@@ -177,7 +177,7 @@ class MuscleBuild:
     @property
     def series_compliance_m_per_N(self) -> float:
         """
-        stretch in series with the braid per newton of pull (0: rigid) [m/N], allowed [0.000000, 0.001000]
+        stretch in series with the braid per newton of pull, in tables and supplied tests (0: rigid) [m/N], allowed [0.000000, 0.001000]
         """
     @series_compliance_m_per_N.setter
     def series_compliance_m_per_N(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
