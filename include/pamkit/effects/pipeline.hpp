@@ -280,7 +280,8 @@ struct IsotonicLengths {
 /// carries the load too: the muscle's length is its braid's plus c times the load.
 /// \param gauge_pressures_Pa  supplied gauge pressure of each row [Pa]
 /// \param load_N              the load the muscle carries [N]
-/// \param start_length_m      where the first row's search starts [m]
+/// \param start_length_m      where the braid's first row's search starts [m] (its deflated
+///                            length: the muscle at rest, the load then hung on)
 /// \throws InvalidParameter for an effect that cannot act on a static table.
 inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::vector<double>& gauge_pressures_Pa,
                                         double load_N, double start_length_m,
@@ -297,7 +298,7 @@ inline IsotonicLengths isotonic_lengths(const MuscleParams& params, const std::v
   const ModelExtensions& x = extended.extensions;
   IsotonicLengths out;
   const double series_stretch = extended.build.series_compliance_m_per_N * load_N;
-  double length = std::clamp(start_length_m - series_stretch, shortest, longest);
+  double length = std::clamp(start_length_m, shortest, longest);
   for (std::size_t k = 0; k < driving.size(); ++k) {
     const double gauge = driving[k];
     const double start = length;
