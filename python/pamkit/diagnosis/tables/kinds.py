@@ -339,8 +339,9 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
         for record in np.unique(records):
             rows = np.flatnonzero(records == record)
             first[rows] = isotonic_sweeps(pressure[rows]) == 0
-            for number, (run, _, _) in enumerate(pressure_runs(pressure[rows])):
-                runs[rows[run]] = number
+            if campaign.kind == "isometric_map":
+                for number, (run, _, _) in enumerate(pressure_runs(pressure[rows])):
+                    runs[rows[run]] = number
         # Each row of a first sweep a key of its own: no repeat of anything.
         key = np.column_stack([key, np.where(first, np.arange(len(pressure)), -1)])
     out = {}
