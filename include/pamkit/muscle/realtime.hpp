@@ -67,17 +67,12 @@ class RealtimeMuscle {
     if (!(length_m > geometry_.min_length())) return {0.0, ForceStatus::too_short};
     if (!(length_m < geometry_.max_length())) return {0.0, ForceStatus::too_long};
     double braid = length_m;
-    const double compliance = params_.build.series_compliance_m_per_N;
-    if (compliance > 0.0) {
+    if (params_.build.series_compliance_m_per_N > 0.0) {
       const auto carried = [&](double b) {
         return detail::unslackened_supplied_force(geometry_, params_, geometry_.shape_unchecked(b), gauge_pressure_Pa,
                                                   velocity_m_per_s, 0.0, 0.0);
       };
-      const double held = carried(length_m);
-      // An embedded braid that would push is slack: nothing stretches the parts in series.
-      if (held > 0.0 || detail::slack_band_N(params_) <= 0.0) {
-        braid = yielded_braid_length(geometry_, carried, length_m, held, compliance);
-      }
+      braid = pulled_braid_length(geometry_, params_, carried, length_m, carried(length_m));
     }
     const MuscleShape shape = geometry_.shape_unchecked(braid);
     return {detail::supplied_force(geometry_, params_, shape, gauge_pressure_Pa, velocity_m_per_s, 0.0),

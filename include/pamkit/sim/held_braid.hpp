@@ -46,6 +46,17 @@ double yielded_braid_length(const BraidGeometry& geometry, Carried&& carried, do
   return 0.5 * (root.first + root.second);
 }
 
+/// Where a held braid lies when its force at the held length, `force_held_N`, is `carried(held)`:
+/// at the held length, or with a series compliance short of it (yielded_braid_length), unless it
+/// is an embedded braid that would push there (slack: nothing stretches the parts in series).
+template <class Carried>
+double pulled_braid_length(const BraidGeometry& geometry, const MuscleParams& extended, Carried&& carried,
+                           double held_length_m, double force_held_N) noexcept {
+  const double compliance = extended.build.series_compliance_m_per_N;
+  const bool yields = compliance > 0.0 && (force_held_N > 0.0 || detail::slack_band_N(extended) <= 0.0);
+  return yields ? yielded_braid_length(geometry, carried, held_length_m, force_held_N, compliance) : held_length_m;
+}
+
 /// The held braid at rest: at the deflated length, nothing in the slip elements.
 inline HeldBraidState braid_at_rest(const MuscleBuild& build) noexcept { return {build.length_m, {}}; }
 
@@ -74,11 +85,8 @@ inline double settle_held_braid(const BraidGeometry& geometry, const MuscleParam
   };
   const double taut = carried(length_m);
   if (x.slip_force_N <= 0.0 || band <= 0.0 || taut >= 0.0) {
-    const double compliance = extended.build.series_compliance_m_per_N;
-    // An embedded braid that would push is slack: nothing stretches the parts in series.
-    const bool yields = compliance > 0.0 && (taut > 0.0 || band <= 0.0);
-    const double braid = yields ? yielded_braid_length(geometry, carried, length_m, taut, compliance) : length_m;
-    const double force = yields ? carried(braid) : taut;  // before the elements move there
+    const double braid = pulled_braid_length(geometry, extended, carried, length_m, taut);
+    const double force = braid == length_m ? taut : carried(braid);  // before the elements move there
     slip_move(state.slip, x.slip_force_N, x.slip_distance_m, braid - from);
     state.braid_length_m = braid;
     return braid_tension(force, band);

@@ -87,7 +87,8 @@ def _campaign(lengths, groups, kind="isometric_map"):
     labels = [f"group {g}" for g in range(max(groups) + 1)]
     columns = {"length_m": np.asarray(lengths, float), "gauge_pressure_Pa": np.full(n, 3e5)}
     test, censored, branch = np.zeros(n, int), np.zeros(n, bool), np.ones(n)
-    return Campaign([], kind, columns, test, np.asarray(groups), labels, "group", censored, branch)
+    record = np.unique(np.round(columns["length_m"], 9), return_inverse=True)[1] if kind == "isometric_map" else test
+    return Campaign([], kind, columns, test, np.asarray(groups), labels, "group", censored, record, branch)
 
 
 def test_where_left_names_the_group_holding_the_error_and_how_far_it_reaches_beyond_the_others():

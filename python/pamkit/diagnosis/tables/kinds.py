@@ -78,7 +78,8 @@ class Campaign:
     group_labels: list[str]
     group_name: str
     censored: np.ndarray  # rows whose supplied pressure reads at the transducer's range: never scored
-    branch: np.ndarray  # +1 pressurising, -1 venting: per held length of a map, per test otherwise
+    record: np.ndarray  # the record of each row, along which the pressure runs: a map's held length, another test
+    branch: np.ndarray  # +1 pressurising, -1 venting, along each record
 
     @property
     def name(self) -> str:
@@ -251,7 +252,7 @@ def campaign_of(experiments: list[Experiment]) -> Campaign:
     for record in np.unique(records):
         rows = np.flatnonzero(records == record)
         branch[rows] = pressure_branches(columns["gauge_pressure_Pa"][rows])
-    return Campaign(experiments, kind, columns, test, groups, labels, name, censored, branch)
+    return Campaign(experiments, kind, columns, test, groups, labels, name, censored, records, branch)
 
 
 def beyond_reach(campaign: Campaign) -> list[dict]:
@@ -319,15 +320,10 @@ def noise_of(campaign: Campaign, channels: tuple[str, ...]) -> dict[str, float]:
     if kinds == [CYCLIC]:
         return {c: cyclic_noise(campaign, c) for c in channels}
     pressure = campaign.columns["gauge_pressure_Pa"]
-    # A record is a map's held length or another kind's whole test; along it the pressure rises
-    # and falls in runs. A loop between a record's pressurising and venting runs, and its first
-    # sweep from rest, are the muscle's, not the instruments': a repeat is a row of the same run
-    # direction at the same pressure in a later sweep, and a cubic follows one run.
-    records = campaign.test.astype(float)
-    if campaign.kind == "isometric_map":
-        records = np.unique(
-            np.column_stack([campaign.test, np.round(campaign.columns["length_m"], 9)]), axis=0, return_inverse=True
-        )[1].ravel()
+    # A loop between a record's pressurising and venting runs, and its first sweep from rest, are
+    # the muscle's, not the instruments': a repeat is a row of the same run direction at the same
+    # pressure in a later sweep, and a cubic follows one run.
+    records = campaign.record
     branch = campaign.branch if campaign.kind in ("isotonic", "isometric_map") else np.ones(len(pressure))
     used = ~campaign.censored
     key = np.column_stack([campaign.test, branch, np.round(pressure, 3)])  # to a mPa: a file's 1e-6 kPa
