@@ -150,6 +150,71 @@ def _judged(problem, baseline: Fit, fit: Fit, factory, seed: int) -> Judgement:
     return judged
 
 
+def _fit_and_judge(problem, baseline: Fit, factory, label: str, seed: int) -> Judgement | str:
+    """A candidate fitted and judged (on a pool's thread), or why its fit failed."""
+    fit = fit_candidate(problem, baseline, factory, label, screen=True)
+    return _judged(problem, baseline, fit, factory, seed) if fit.error is None else f"fit failed: {fit.error}"
+
+
+def _refit(problem, baseline: Fit, factory, judged: Judgement, seed: int) -> Judgement:
+    """A measurement candidate refitted with the baseline free from its fit on the calibrated
+    baseline: the refit where it is better (_better), else the fit as it was."""
+    fit = fit_candidate(problem, baseline, factory, judged.fit.name, judged.fit)
+    if fit.error is not None:
+        return judged
+    refit = judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), baseline)
+    return refit if _better(refit, judged) else judged
+
+
+def _ranked(judged: list[Judgement]) -> list[Judgement]:
+    return sorted(judged, key=lambda j: (-j.score.combined_gain, j.score.delta_bic, j.fit.name))
+
+
+def _fit_candidates(problem, baseline: Fit, todo, seed: int, threads, report) -> tuple[list[Judgement], dict]:
+    """Every candidate fitted and judged on the calibrated baseline, best first, with the leading
+    measurement candidates refitted with the baseline free; and the candidates whose fit failed,
+    with why. The baseline's calibration absorbed part of a measurement effect (an offset pulls the
+    inflation pressure to its bound), hence the refits. They lead among the measurement effects, not
+    among all: an instrument error on one channel (a pressure offset) must not lose its refit
+    because another channel's (the load cell's) scored higher on the calibrated baseline. So the
+    refits wait only for the measurement candidates, and run while the physics candidates' longer
+    fits do: what each fit returns is the same in whatever order the pool runs them."""
+    is_measurement = {label: factory().stage() == EffectStage.measurement for label, factory in todo}
+    # The physics fits queued first: they take the longest, the measurement fits fill beside them.
+    order = sorted(todo, key=lambda item: is_measurement[item[0]])
+    results: dict[str, Judgement | str] = {}
+    with thread_pool(threads) as pool:
+        futures = {
+            label: pool.submit(_fit_and_judge, problem, baseline, factory, label, seed) for label, factory in order
+        }
+        factories = dict(todo)
+
+        def collect(label: str) -> None:
+            results[label] = outcome = futures[label].result()
+            note = (
+                outcome
+                if isinstance(outcome, str)
+                else f"held-out gain {outcome.score.combined_gain:+.3f}"
+                + (" (one step: not fitted further)" if outcome.fit.screened is not None else "")
+            )
+            report(f"[{len(results)}/{len(todo)}] {label}: {note}")
+
+        for label in (label for label, _ in todo if is_measurement[label]):
+            collect(label)
+        measured = _ranked([j for label, j in results.items() if not isinstance(j, str)])
+        leaders = measured[:REFIT_LEADERS]
+        if leaders:
+            report(f"refitting {', '.join(j.fit.name for j in leaders)} with the baseline")
+        refits = {j.fit.name: pool.submit(_refit, problem, baseline, factories[j.fit.name], j, seed) for j in leaders}
+        for label in (label for label, _ in todo if not is_measurement[label]):
+            collect(label)
+        for label, future in refits.items():
+            results[label] = future.result()
+    judged = [results[label] for label, _ in todo if not isinstance(results[label], str)]
+    failed = {label: results[label] for label, _ in todo if isinstance(results[label], str)}
+    return _ranked(judged), failed
+
+
 def diagnose(
     experiment: Experiment | str | Path | list,
     effect_catalog: EffectCatalog | None = None,
@@ -216,54 +281,11 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
         if not acts:
             skipped[name] = why_not
     todo = candidates(effect_catalog, problem)
-    judged: list[Judgement] = []
     phase = clock.perf_counter()
     report(f"fitting {len(todo)} candidate effects, {threads or os.cpu_count() or 1} at a time")
+    judged, failed = _fit_candidates(problem, baseline, todo, seed, threads, report)
+    skipped.update(failed)
     factories = dict(todo)
-    with thread_pool(threads) as pool:
-        futures = [
-            (label, pool.submit(fit_candidate, problem, baseline, factory, label, screen=True))
-            for label, factory in todo
-        ]
-        for done, (label, future) in enumerate(futures, start=1):
-            fit = future.result()
-            if fit.error is None:
-                judged.append(_judged(problem, baseline, fit, factories[label], seed))
-            else:
-                skipped[label] = f"fit failed: {fit.error}"
-            report(
-                f"[{done}/{len(futures)}] {label}: "
-                + (
-                    f"held-out gain {judged[-1].score.combined_gain:+.3f}"
-                    + (" (one step: not fitted further)" if judged[-1].fit.screened is not None else "")
-                    if fit.error is None
-                    else "failed"
-                )
-            )
-    judged.sort(key=lambda j: (-j.score.combined_gain, j.score.delta_bic, j.fit.name))
-    # The baseline's calibration absorbed part of a measurement effect (an offset pulls the
-    # inflation pressure to its bound): the leading ones are refitted with the baseline free. They
-    # lead among the measurement effects, not among all: an instrument error on one channel (a
-    # pressure offset) must not lose its refit because another channel's (the load cell's) scored
-    # higher on the calibrated baseline.
-    measurement = [i for i, j in enumerate(judged) if j.fit.effects[0].stage() == EffectStage.measurement]
-    leaders = measurement[:REFIT_LEADERS]
-    if leaders:
-        report(f"refitting {', '.join(judged[i].fit.name for i in leaders)} with the baseline")
-        with thread_pool(threads) as pool:
-            refits = {
-                i: pool.submit(
-                    fit_candidate, problem, baseline, factories[judged[i].fit.name], judged[i].fit.name, judged[i].fit
-                )
-                for i in leaders
-            }
-            for i, future in refits.items():
-                fit = future.result()
-                if fit.error is None:
-                    refit = judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), baseline)
-                    if _better(refit, judged[i]):
-                        judged[i] = refit
-        judged.sort(key=lambda j: (-j.score.combined_gain, j.score.delta_bic, j.fit.name))
     seconds["candidates"] = clock.perf_counter() - phase
 
     report("deciding on held-out units")
