@@ -20,7 +20,7 @@ from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
 from pamkit.diagnosis.series.calibrate import Fit, fit_baseline, one_blas_thread, thread_pool
 from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
 from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate
-from pamkit.diagnosis.series.causes import add_cause, reads_explained, rival_beside_a_second
+from pamkit.diagnosis.series.causes import add_cause, reads_explained, rival_beside_a_second, tie_beside_a_second
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, judge
 from pamkit.diagnosis.series.findings import baseline_findings
 from pamkit.diagnosis.series.instruments import noise_ratios, structured
@@ -290,7 +290,9 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
 
     report("deciding on held-out units")
     decision = decide(problem, baseline, judged)
-    while decision.causes:
+    untied = tie_beside_a_second(problem, baseline, decision, judged, factories, seed, threads, report)
+    decision = untied if untied is not None else decision
+    while decision.causes and untied is None:
         if structured(problem, decision.named.fit, PAIR_TRIGGER):
             decision = add_cause(problem, baseline, decision, judged, factories, seed, threads, report)
         else:

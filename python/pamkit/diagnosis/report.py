@@ -131,6 +131,11 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
                 if d.decision.rejected
                 else None
             ),
+            "untied_from": (
+                {"effect": d.decision.untied_from.fit.name, "score": d.decision.untied_from.score.combined_gain}
+                if d.decision.untied_from
+                else None
+            ),
         },
         "causes": causes_json(d),
         "remainder": remainder_json(d),
@@ -344,11 +349,25 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
             f"; and {more['effect']}{_numbers(more['params'])} (its own held-out gain on {', '.join(more['channels'])} "
             f"{_gain_with_interval(more['gain_own_channels'], more['gain_own_channels_ci95'])})"
         )
-    return text + _remainder_phrase(d) + _separation_phrase(d) + bounds
+    return text + _untied_phrase(d) + _remainder_phrase(d) + _separation_phrase(d) + bounds
 
 
 def _over_noise(ratios: dict[str, float], channels: list[str]) -> str:
     return ", ".join(f"{ratios[c]:.1f}x the {file_name(c)} noise" for c in channels)
+
+
+def _untied_phrase(d: Diagnosis) -> str:
+    """A lead tied alone with another candidate, told apart beside its second (causes.tie_beside_a_second)."""
+    other = d.decision.untied_from
+    if other is None:
+        return ""
+    lead, second = d.decision.causes[0].label, d.decision.causes[1].label
+    rival = other.fit.name.split("+")[0]  # a pair's label is its causes' labels joined by "+"
+    return (
+        f"; alone, {rival} explains the held-out units as well as {lead}, but beside {second} {lead} explains "
+        f"more (gain {d.decision.named.score.combined_gain:.2f} against {other.score.combined_gain:.2f} for "
+        f"{other.fit.name})"
+    )
 
 
 def _separation_phrase(d: Diagnosis) -> str:

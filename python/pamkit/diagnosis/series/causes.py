@@ -1,7 +1,8 @@
 """More than one cause: what the causes named leave tried beside them (a second cause), the first
 cause's nearest rival fitted beside that second, a lone cause that stands in for its rival with a
-second, and the instrument whose channel the causes leave structured dropped (rule 6 of
-docs/diagnosis.md). A real rig has more than one thing wrong."""
+second, two candidates tied alone told apart beside a second, and the instrument whose channel the
+causes leave structured dropped (rule 6 of docs/diagnosis.md). A real rig has more than one thing
+wrong."""
 
 from __future__ import annotations
 
@@ -302,6 +303,63 @@ def rival_beside_a_second(
         causes=[Cause(rival.fit.name, rival, rival.score), Cause(second.fit.name, pair, own)],
         left_structure=structured(problem, fit, NONE_WITHIN_NOISE),
     )
+
+
+def _untied(j: Judgement) -> Judgement:
+    """`j` as judged without its rival: its objections less the tie's, which decide() adds last, to
+    a lead that was credible before it."""
+    objections = j.objections[:-1] if j.tied_with is not None else j.objections
+    return replace(j, objections=list(objections), tied_with=None, close_rival=None)
+
+
+def tie_beside_a_second(
+    problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, threads, report
+) -> Decision | None:
+    """Two candidates the data do not tell apart alone (rule 6) may be told apart beside a second
+    cause. A time skew and a lag of the pressure transducer open the same loop; beside a slow
+    leak's drift the skew leaves the pressure within its noise and the lag does not (near-model
+    leak+time_skew: the skew and the leak gain 0.92-0.95, the lag with its best second 0.39-0.60).
+    Each of the two that leaves structure calling for a second (PAIR_TRIGGER) is given the second
+    `add_cause` would add beside it as the lone cause. Where one's pair explains the held-out units
+    better than the other's best model (`explains_more`: the paired difference's 95 % interval above
+    zero, and a cause's worth of what that model leaves), the one credible but for the tie, its
+    second not the other, and both kept when their instruments are checked (`reads_explained`),
+    the tie is broken: the one leads with its second beside it. None where the tie stands."""
+    tied = decision.rejected
+    if decision.causes or tied is None or tied.tied_with is None:
+        return None
+    best = {}
+    for side in (tied, tied.tied_with):
+        alone = _untied(side)
+        lone = replace(
+            decision,
+            cause=alone.fit.effects[0].name(),
+            causes=[Cause(alone.fit.name, alone, alone.score)],
+            rejected=None,
+            left_structure=structured(problem, alone.fit, NONE_WITHIN_NOISE),
+        )
+        if structured(problem, alone.fit, PAIR_TRIGGER):
+            lone = add_cause(problem, baseline, lone, judged, factories, seed, threads, report)
+        best[side.fit.name] = (alone, lone)
+    (a, with_a), (b, with_b) = best.values()
+    for (one, beside), (other, against) in (((a, with_a), (b, with_b)), ((b, with_b), (a, with_a))):
+        paired = len(beside.causes) == 2 and beside.causes[0].judgement is one
+        if not (paired and one.credible) or beside.causes[1].label == other.fit.name:
+            continue
+        if not explains_more(beside.named, against.named):
+            continue
+        checked = reads_explained(problem, baseline, beside)
+        if len(checked.causes) != 2:
+            continue
+        report(
+            f"{one.fit.name} and {other.fit.name} tie alone; beside {beside.causes[1].label}, {one.fit.name} explains "
+            f"the held-out units better than {other.fit.name} does with its best second: {one.fit.name} leads"
+        )
+        low = float(np.percentile(beside.named.score.combined_samples - against.named.score.combined_samples, 2.5))
+        return replace(
+            checked, margins={**decision.margins, "over_tied_beside_a_second": low}, untied_from=against.named
+        )
+    return None
 
 
 def reads_explained(problem: Problem, baseline: Fit, decision: Decision) -> Decision:

@@ -174,6 +174,9 @@ class Decision:
     rejected: Judgement | None  # the best significant candidate, when it is not among the causes
     margins: dict[str, float]  # each decision's distance from its threshold
     left_structure: list[str]  # channels above NONE_WITHIN_NOISE after the causes: the remainder
+    # the candidate the leading cause tied with alone (rule 6), as its best model beside a second:
+    # the model the causes named explain more than (causes.tie_beside_a_second)
+    untied_from: Judgement | None = None
 
     @property
     def named(self) -> Judgement | None:
