@@ -21,7 +21,7 @@ from pamkit.diagnosis.series.calibrate import Fit, fit_baseline, one_blas_thread
 from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
 from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate
 from pamkit.diagnosis.series.causes import add_cause, reads_explained, rival_beside_a_second, tie_beside_a_second
-from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, judge
+from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Decision, Judgement, decide, judge
 from pamkit.diagnosis.series.findings import baseline_findings
 from pamkit.diagnosis.series.instruments import noise_ratios, structured
 from pamkit.diagnosis.series.joint import check_one_muscle
@@ -215,6 +215,28 @@ def _fit_candidates(problem, baseline: Fit, todo, seed: int, threads, report) ->
     return _ranked(judged), failed
 
 
+def _decided(problem, baseline: Fit, judged: list[Judgement], factories, seed: int, threads, report) -> Decision:
+    """The decision on the judged candidates (decide): a tie told apart beside a second cause
+    (tie_beside_a_second), or the lead with a second cause where it leaves structure, or its rival
+    with one in its place; the instruments among the causes checked (reads_explained)."""
+    decision = decide(problem, baseline, judged)
+    untied = tie_beside_a_second(problem, baseline, decision, judged, factories, seed, threads, report)
+    if untied is not None:
+        return untied
+    while decision.causes:
+        if structured(problem, decision.named.fit, PAIR_TRIGGER):
+            decision = add_cause(problem, baseline, decision, judged, factories, seed, threads, report)
+        else:
+            decision = rival_beside_a_second(problem, baseline, decision, judged, factories, seed, report)
+        checked = reads_explained(problem, baseline, decision)
+        if checked.causes:
+            return checked
+        # The lead refused carries its objection now, and another candidate may still be a cause.
+        # Each pass refuses one more lead, so the loop ends.
+        decision = decide(problem, baseline, judged)
+    return decision
+
+
 def diagnose(
     experiment: Experiment | str | Path | list,
     effect_catalog: EffectCatalog | None = None,
@@ -289,21 +311,7 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     seconds["candidates"] = clock.perf_counter() - phase
 
     report("deciding on held-out units")
-    decision = decide(problem, baseline, judged)
-    untied = tie_beside_a_second(problem, baseline, decision, judged, factories, seed, threads, report)
-    decision = untied if untied is not None else decision
-    while decision.causes and untied is None:
-        if structured(problem, decision.named.fit, PAIR_TRIGGER):
-            decision = add_cause(problem, baseline, decision, judged, factories, seed, threads, report)
-        else:
-            decision = rival_beside_a_second(problem, baseline, decision, judged, factories, seed, report)
-        checked = reads_explained(problem, baseline, decision)
-        if checked.causes:
-            decision = checked
-            break
-        # The lead refused carries its objection now, and another candidate may still be a cause.
-        # Each pass refuses one more lead, so the loop ends.
-        decision = decide(problem, baseline, judged)
+    decision = _decided(problem, baseline, judged, factories, seed, threads, report)
     named = decision.named
     extended = named.fit if named is not None else baseline
     # The base model's strain and the rejected best candidate's findings (why it is not a cause).
