@@ -328,7 +328,7 @@ def tie_beside_a_second(
     tied = decision.rejected
     if decision.causes or tied is None or tied.tied_with is None:
         return None
-    best = {}
+    sides = []  # each side untied, and its decision as the lone cause with a second where one holds
     for side in (tied, tied.tied_with):
         alone = _untied(side)
         lone = replace(
@@ -340,9 +340,8 @@ def tie_beside_a_second(
         )
         if structured(problem, alone.fit, PAIR_TRIGGER):
             lone = add_cause(problem, baseline, lone, judged, factories, seed, threads, report)
-        best[side.fit.name] = (alone, lone)
-    (a, with_a), (b, with_b) = best.values()
-    for (one, beside), (other, against) in (((a, with_a), (b, with_b)), ((b, with_b), (a, with_a))):
+        sides.append((alone, lone))
+    for (one, beside), (other, against) in (sides, sides[::-1]):
         paired = len(beside.causes) == 2 and beside.causes[0].judgement is one
         if not (paired and one.credible) or beside.causes[1].label == other.fit.name:
             continue
