@@ -193,6 +193,24 @@ def explained(problem: Problem, s: Score) -> set[str]:
     return {c for c in problem.channels if s.gain[c] >= MIN_GAIN and s.gain_ci95[c][0] > 0.0}
 
 
+def read_elsewhere(a: Fit, b: Fit) -> bool:
+    """Whether two fits are one instrument's effect read on two channels with the same values:
+    one effect, each fitted parameter inside the other's 95 % interval. In a supplied test the
+    transducer's reading drives the model, so a hose lagging the pressure by 0.4 s and a load cell
+    lagging the force by 0.4 s draw the same force (bench_near_model, supplied_sensor_lag: 0.750
+    against 0.768): one delay, and which instrument it belongs to is for the values to say, not
+    for the data."""
+    if len(a.effects) != 1 or len(b.effects) != 1 or a.effects[0].name() != b.effects[0].name() or a.name == b.name:
+        return False
+    numbers = [k for k, v in a.params.items() if isinstance(v, float)]
+    if not numbers or any(k not in a.intervals or k not in b.intervals for k in numbers):
+        return False
+    return all(
+        b.intervals[k][0] <= a.params[k] <= b.intervals[k][1] and a.intervals[k][0] <= b.params[k] <= a.intervals[k][1]
+        for k in numbers
+    )
+
+
 def keeps_gain(own: Score) -> bool:
     """A cause's own gain (against the model without it) is significant, on its own channels too."""
     return significant(own) and own.credited_gain >= MIN_GAIN and own.credited_ci95[0] > 0.0
@@ -223,6 +241,8 @@ def outdone(problem: Problem, candidate: Judgement, judged: list[Judgement]) -> 
             continue
         gains = f"(gain {better.score.combined_gain:.3f} against {candidate.score.combined_gain:.3f})"
         own_values_only = bool(better.findings) and not (better.objections or better.unneeded)
+        if own_values_only and read_elsewhere(candidate.fit, better.fit):
+            continue  # one effect on another instrument, the same values: not a part of it
         if gain_over(better, candidate) >= MIN_GAIN or not own_values_only:
             return [
                 f"{better.fit.name} explains the held-out units significantly better {gains} but cannot be named "
