@@ -287,6 +287,19 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     bounds = f"; the base model strains to fit: {'; '.join(straining)}" if straining else ""
     if resting:
         bounds += f"; at a bound that costs the fit nothing: {'; '.join(resting)}"
+    # A baseline value the causes left at such a bound (decide.judge), where the baseline alone was
+    # not: said, not held against them.
+    at_bounds = {f.parameter for f in in_baseline}
+    flat = sorted(
+        {
+            f.sentence()
+            for c in decision.causes
+            for f in c.judgement.strain
+            if f.costs_nothing and f.parameter not in at_bounds
+        }
+    )
+    if flat:
+        bounds += f"; with {decision.causes[0].label}, at a bound that costs the fit nothing: {'; '.join(flat)}"
     unknowns = [name for name in [*p.experiment.uncertain, *p.experiment.calibrate] if name in d.baseline.intervals]
     if unknowns:
         bounds += "; calibrated " + ", ".join(interval_phrase(d.baseline, name) for name in unknowns)

@@ -490,6 +490,42 @@ def test_a_value_the_data_leave_free_to_be_plausible_is_not_held_against_a_cause
                 assert held == ["friction_scale"] and not j.credible
 
 
+def test_a_bound_the_candidate_left_at_no_cost_is_not_held_against_it():
+    # A supplied test's hose lag draws the loop the braid's friction drew, and the joint fit takes
+    # the friction scale to its search bound 0 (bench_near_model, supplied_sensor_lag at strength
+    # strong, seed 6): lifting the bound would lower the fitted RMSE by 8.5e-6 of itself, below
+    # NO_COST_AT_BOUND, and its interval [0, 1.19] reaches its plausible [0.1, 10], so the bound
+    # holds nothing back and the lag is credible, the bound reported beside it. Where lifting it
+    # would lower the RMSE by 2 %, the candidate strains the base model; where the interval stays
+    # below the plausible range (a membrane a load cell's offset replaced on a null: [0, 0.036]),
+    # the data say the value is implausible. Neither is named.
+    p = problem()
+    p.experiment.time_s = np.arange(ROWS, dtype=float)
+    baseline = fit("none", {"force_N": np.full(ROWS, 5.0)}, [])
+    baseline.coordinates = friction_scale_at(1.0)
+    score = candidate("sensor_lag", 0.84, SHARED + 0.84).score
+    at_zero = SimpleNamespace(
+        value=lambda x: 1e-4,
+        at_bound=lambda x, *tolerance: "lower",
+        implausible=lambda v: not 0.1 <= v <= 10.0,
+        bound_value=lambda side: 0.0,
+        plausible=(0.1, 10.0),
+        source="test",
+    )
+    for rmse_drop, interval, credible in (
+        (8.5e-6, (0.0, 1.19), True),
+        (0.02, (0.0, 1.19), False),
+        (8.5e-6, (0.0, 0.036), False),
+    ):
+        lag = fit("sensor_lag", {"force_N": np.ones(ROWS)})
+        lag.coordinates = {"friction_scale": (at_zero, 0.0)}
+        lag.strain = {"friction_scale": (-0.136, rmse_drop)}
+        lag.intervals = {"friction_scale": interval}
+        j = judge(p, lag, score, baseline)
+        assert j.credible is credible
+        assert [f.parameter for f in (j.strain if credible else j.findings)] == ["friction_scale"]
+
+
 def test_a_shift_is_placed_below_one_sample_only_by_its_interval():
     # within_resolution: a lag fitted below the 0.05 s sample interval whose 95 % interval reaches
     # 0.05 s is not placed below it by the data; one whose interval ends short of it is.

@@ -149,12 +149,13 @@ def test_the_test_a_close_call_names_decides_it_beside_the_first(world, tmp_path
 
 
 def test_a_tie_alone_is_told_apart_beside_a_second(tmp_path):
-    # A pressure transducer's time skew beside a slow leak: alone, a lag of the transducer opens the
-    # same loop and the two tie (neither named); beside the leak's drift the skew leaves the pressure
-    # within its noise and the lag, with its own best second, does not (series/causes.py,
-    # tie_beside_a_second). Seeds 10-12, which the rates above do not hold: measured 5 of 6 named
-    # right with the rule, 2 of 6 without (the sixth's skew alone is not significant, so nothing
-    # ties); the floor leaves one to spare. Where the tie was broken the report says from what.
+    # A pressure transducer's time skew beside a slow leak: alone, a lag of the transducer (or a
+    # fixture's play) opens the same loop and the two tie (neither named); beside the leak's drift
+    # the skew leaves the pressure within its noise and the other, with its own best second, does not
+    # (series/causes.py, tie_beside_a_second). Seeds 10-12, which the rates above do not hold:
+    # measured 5 of 6 named right with the rule, 2 of 6 without (the sixth's skew alone is not
+    # significant, so nothing ties); the floor leaves one to spare. Where the tie was broken the
+    # report says from what.
     def one(case):
         seed, strength = case
         dataset = FAMILIES["leak+time_skew"].make(seed, tmp_path / f"{seed}-{strength}", strength)
@@ -165,5 +166,30 @@ def test_a_tie_alone_is_told_apart_beside_a_second(tmp_path):
     right = [r for r in reports if named(r) == {"time_skew", "leak"}]
     assert len(right) >= 4, [r["verdict"] for r in reports]
     untied = [r for r in reports if r["decision"]["untied_from"]]
-    assert untied and all(r["decision"]["untied_from"]["effect"].startswith("sensor_lag") for r in untied)
-    assert all("alone, sensor_lag" in r["verdict"] for r in untied)
+    loops = ("sensor_lag", "fixture_slack")
+    assert untied and all(r["decision"]["untied_from"]["effect"].startswith(loops) for r in untied)
+    assert all(any(f"alone, {other}" in r["verdict"] for other in loops) for r in untied)
+
+
+def test_a_bound_that_costs_the_fit_nothing_leaves_a_cause_credible(tmp_path):
+    # A supplied test's hose lag, or a braid gone slack, draws part of what the braid's friction drew,
+    # and the joint fit rests the friction scale on its bound 0, where lifting the bound would lower
+    # the fitted RMSE by less than 0.1 % (decide.judge). Seeds 4-6, which the rates above do not hold:
+    # measured 6 of 6 named right with the rule, 4 of 6 without (refused for the friction at its
+    # bound); the floor leaves one to spare. The verdict says where the friction rests.
+    cases = [("supplied_sensor_lag", seed, "strong") for seed in (4, 5, 6)]
+    cases += [("braid_slack", seed, "medium") for seed in (4, 5, 6)]
+
+    def one(case):
+        name, seed, strength = case
+        dataset = FAMILIES[name].make(seed, tmp_path / f"{name}-{seed}-{strength}", strength)
+        return name, to_json(diagnose(load_experiment(dataset.experiment), threads=1))
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        reports = list(pool.map(one, cases))
+    right = [r for name, r in reports if named(r) == set(FAMILIES[name].hidden)]
+    assert len(right) >= 5, [r["verdict"] for _, r in reports]
+    assert any(
+        ", at a bound that costs the fit nothing: friction_scale" in r["verdict"] and "; with " in r["verdict"]
+        for r in right
+    )

@@ -34,6 +34,7 @@ from pamkit.diagnosis.series.calibrate import (
     least_squares_in_box,
     penalty,
     start_unit,
+    strain_at_bounds,
     unit_to_x,
     x_to_unit,
 )
@@ -262,11 +263,20 @@ def fit_candidate(
         fit.parameter_count, fit.evaluations = total, evaluations
         fit.intervals = {c.name: band for c, band in zip(fitted_space, bands)}
         fit.undetermined = undetermined
+        if result is not None and not measurement_only:
+            fit.strain = _baseline_strain(base_space, fitted_space, u, result)
         return fit
     except (ValueError, RuntimeError) as error:  # the effect drove the model out of its range
         return Fit(
             label, [effect], baseline.baseline_x, {}, baseline.predicted, {}, len(space), evaluations, error=str(error)
         )
+
+
+def _baseline_strain(base_space, fitted_space, u: np.ndarray, result) -> dict[str, tuple[float, float]]:
+    """What the baseline's bounds cost a joint fit (calibrate.strain_at_bounds): judge does not
+    hold a bound that costs nothing against the candidate."""
+    moved = {c.name for c in base_space}
+    return {k: v for k, v in strain_at_bounds(fitted_space, u, result.jac, result.fun).items() if k in moved}
 
 
 def one_step(
@@ -409,4 +419,5 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
         coordinates=coordinates,
         intervals=intervals,
         undetermined={rename[k]: [rename[o] for o in v] for k, v in undetermined.items()},
+        strain=_baseline_strain(base_space, base_space + spaces[0] + spaces[1], u, result),
     )

@@ -114,8 +114,12 @@ def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
     say otherwise (rule 3). A baseline parameter that the calibrated baseline leaves there too is
     the base model's strain, reported beside the candidate and not held against it: the cause
     neither made nor cured it (a hysteresis, seen between the branches of an isotonic sweep, is
-    not refused for a membrane straining to fit the branches' mean); one the data do not determine
-    in this fit says nothing wherever it ends (identify.py). Except for an effect on the
+    not refused for a membrane straining to fit the branches' mean); so is one at a bound that
+    costs the fit nothing (Finding.costs_nothing) where its interval reaches back into its
+    plausible range (a supplied test's friction at zero beside a hose's lag, which draws the loop
+    the friction drew: [0, 1.19]; not a membrane replaced by a load cell's offset: [0, 0.036] for a
+    plausible [0.33, 3]); one the data do not determine in this fit says nothing wherever it ends
+    (identify.py). Except for an effect on the
     measurement's output that changes every channel measured: with no other channel to check it
     against, it would be a corrector of whatever the straining base model misses."""
     calibrated = baseline_findings(baseline)
@@ -137,6 +141,9 @@ def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
             continue  # a nuisance, or a share of one reading, the data leave free to be plausible
         if transducer and finding.parameter == INFLATION:
             strain.append(finding)  # the declared value was read on the transducer it corrects
+            continue
+        if in_baseline and finding.costs_nothing and _plausible_within(fit, finding) and not corrector:
+            strain.append(finding)  # a flat floor the data leave free to be plausible: reported, not held
             continue
         inherited = in_baseline and any(_same(finding, f) for f in calibrated)
         (strain if inherited and not corrector else own).append(finding)
