@@ -119,9 +119,9 @@ def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
     plausible range (a supplied test's friction at zero beside a hose's lag, which draws the loop
     the friction drew: [0, 1.19]; not a membrane replaced by a load cell's offset: [0, 0.036] for a
     plausible [0.33, 3]); one the data do not determine in this fit says nothing wherever it ends
-    (identify.py). Except for an effect on the
-    measurement's output that changes every channel measured: with no other channel to check it
-    against, it would be a corrector of whatever the straining base model misses."""
+    (identify.py). Except for an effect on the measurement's output that changes every channel
+    measured: with no other channel to check it against, it would be a corrector of whatever the
+    straining base model misses."""
     calibrated = baseline_findings(baseline)
     corrector = all(corrects_output(problem, e) for e in fit.effects) and set(credited_channels(problem, fit)) == set(
         problem.channels
@@ -201,12 +201,11 @@ def explained(problem: Problem, s: Score) -> set[str]:
 
 
 def read_elsewhere(a: Fit, b: Fit) -> bool:
-    """Whether two fits are one instrument's effect read on two channels with the same values:
-    one effect, each fitted parameter inside the other's 95 % interval. In a supplied test the
-    transducer's reading drives the model, so a hose lagging the pressure by 0.4 s and a load cell
-    lagging the force by 0.4 s draw the same force (bench_near_model, supplied_sensor_lag: 0.750
-    against 0.768): one delay, and which instrument it belongs to is for the values to say, not
-    for the data."""
+    """Whether two fits are one effect fitted on two instruments with the same values: each fitted
+    parameter inside the other's 95 % interval. In a supplied test the transducer's reading drives
+    the model, so a hose lagging the pressure by 0.4 s and a load cell lagging the force by 0.4 s
+    draw the same force (bench_near_model, supplied_sensor_lag: 0.750 against 0.768): one delay,
+    and which instrument it belongs to is for the values to say, not for the data."""
     if len(a.effects) != 1 or len(b.effects) != 1 or a.effects[0].name() != b.effects[0].name() or a.name == b.name:
         return False
     numbers = [k for k, v in a.params.items() if isinstance(v, float)]
