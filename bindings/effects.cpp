@@ -166,6 +166,8 @@ range and the search is linear over the realistic range widened by its width on 
       .def_readonly("fit_max", &EffectParameter::fit_max, "the search's upper end")
       .def_readonly("fit_start", &EffectParameter::fit_start, "where the search starts")
       .def_readonly("resolution", &EffectParameter::resolution, "what one sample must resolve")
+      .def_readonly("neutral", &EffectParameter::neutral,
+                    "the value at which the parameter adds nothing (a zero offset, a unit gain); NaN where none does")
       .def("__repr__", [](const EffectParameter& p) { return p.name + "=" + std::to_string(p.value) + " " + p.unit; });
 
   py::class_<Effect, PyEffect, EffectPtr>(m, "Effect", R"doc(A model extension with physical parameters.

@@ -1715,6 +1715,11 @@ class EffectParameter:
     def name(self) -> str:
         ...
     @property
+    def neutral(self) -> float:
+        """
+        the value at which the parameter adds nothing (a zero offset, a unit gain); NaN where none does
+        """
+    @property
     def plausible_max(self) -> float:
         """
         largest physically plausible value
