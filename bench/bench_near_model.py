@@ -55,12 +55,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from bench_families import margin_of  # the decision's margin, read as bench_families reads it
 from independent.near_families import FAMILIES, QUICK, STRENGTHS
 
+from pamkit.diagnosis.significance import MIN_GAIN
 from pamkit.io.columns import si_name  # the truth names a file's column, the report pamkit's
 
 HONEST_CAUSES = ("none", "unexplained")
-# A report's min_gain (evidence.min_gain, 0.03): a hidden cause whose own fit gains less is not
-# shown by the data to pamkit's model, whatever the rules.
-VISIBLE_GAIN = 0.03
+# What a cause must gain: a hidden cause whose own fit gains less is not shown by the data to
+# pamkit's model, whatever the rules.
+VISIBLE_GAIN = MIN_GAIN
 
 
 def diagnose(toml: Path, timeout_s: float, threads: int) -> dict:
