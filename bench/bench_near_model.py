@@ -178,6 +178,7 @@ def classify(dataset, outcome: dict) -> dict:
         "hidden_gain": hidden_gain(report, channels),
         "baseline_rmse_over_noise": {c: rmse[c] / noise[c] for c in rmse if noise.get(c, 0) > 0},
         "verdict": report.get("verdict", ""),
+        "causes": report.get("causes", []),
     }
     if row["outcome"] != "right" and (dataset.hidden or row["outcome"] == "wrong"):
         row["why"] = why_missed(report)
