@@ -159,8 +159,8 @@ def _fit_and_judge(problem, baseline: Fit, factory, label: str, seed: int) -> Ju
 def _refit(problem, baseline: Fit, factory, judged: Judgement, seed: int) -> Judgement:
     """A measurement candidate refitted with the baseline free from its fit on the calibrated
     baseline: the refit where it is better (_better), else the fit as it was."""
-    fit = fit_candidate(problem, baseline, factory, judged.fit.name, judged.fit)
-    if fit.error is not None:
+    fit = fit_candidate(problem, baseline, factory, judged.fit.name, judged.fit, screen=True)
+    if fit is judged.fit or fit.error is not None:
         return judged
     refit = judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), baseline)
     return refit if _better(refit, judged) else judged

@@ -129,7 +129,9 @@ def fit_candidate(
     effect on the physics or the motion takes one Gauss-Newton step from its scan first, every
     parameter of the effect in the step (the scan explores only the first: a
     step in it alone sees nothing of a viscoelastic branch's strength), and where that lowers the
-    fitted chi-square by less than SCREEN_DROP, is left there (`Fit.screened`)."""
+    fitted chi-square by less than SCREEN_DROP, is left there (`Fit.screened`). A refit screened
+    the same way, its step from `start` with the baseline free on the refit's own first Jacobian,
+    returns `start` itself: the effect stays where its fit on the calibrated baseline put it."""
     effect = make_effect()
     space = effect_space(effect)
     base_space = problem.predictor.baseline.space
@@ -232,13 +234,17 @@ def fit_candidate(
                     configure(make_effect(), space, unit_to_x(space, u[n_base:]))
                 ]
 
+            calibrated = np.concatenate([np.clip(x_to_unit(base_space, baseline.baseline_x), 0.0, 1.0), best_u])
+            chi2_baseline = sum(baseline.training_chi2.values())
             if screen and start is None and space and baseline.jacobian is not None:
-                calibrated = np.concatenate([np.clip(x_to_unit(base_space, baseline.baseline_x), 0.0, 1.0), best_u])
-                chi2_baseline = sum(baseline.training_chi2.values())
                 drop, landed = one_step(residual, best_chi, baseline.jacobian, calibrated, chi2_baseline, len(space))
                 if drop < SCREEN_DROP:
                     return _stepped(problem, label, effect, space, base_space, landed, predict, evaluations, drop)
             jac = jacobian_for(problem, point, residual, counted)
+            if screen and start is not None:
+                drop, _ = stepped_drop(jac(calibrated), residual(calibrated), calibrated, chi2_baseline)
+                if drop < SCREEN_DROP:
+                    return start
             results = [
                 least_squares_in_box(
                     residual, np.concatenate([base_u, u0]), 12 * (n_base + len(space) + 1), jac=jac, ftol=JOINT_FTOL
@@ -293,7 +299,13 @@ def one_step(
     for index in range(len(u) - count, len(u)):
         h = DIFF_STEP if u[index] + DIFF_STEP <= 1.0 else -DIFF_STEP
         columns.append((residual(u + h * np.eye(len(u))[index]) - r) / h)
-    jacobian = np.column_stack([baseline_jacobian, *columns])
+    return stepped_drop(np.column_stack([baseline_jacobian, *columns]), r, u, chi2_baseline)
+
+
+def stepped_drop(jacobian: np.ndarray, r: np.ndarray, u: np.ndarray, chi2_baseline: float) -> tuple[float, np.ndarray]:
+    """The drop of the fitted chi-square, as a share of the calibrated baseline's, that the
+    Gauss-Newton step from `u` with this `jacobian` (residual `r` there), bounded to the unit box,
+    predicts; and where the step lands."""
     step = lsq_linear(jacobian, -r, bounds=(-u, 1.0 - u)).x
     predicted = float(np.sum((r + jacobian @ step) ** 2))
     return (1.0 - predicted / chi2_baseline if chi2_baseline > 0 else 0.0), np.clip(u + step, 0.0, 1.0)
