@@ -193,3 +193,24 @@ def test_a_bound_that_costs_the_fit_nothing_leaves_a_cause_credible(tmp_path):
         ", at a bound that costs the fit nothing: friction_scale" in r["verdict"] and "; with " in r["verdict"]
         for r in right
     )
+
+
+def test_a_shift_of_one_whole_sample_is_named(tmp_path):
+    # The weakest skews and lags the near-model world hides are one sample interval (0.05 s at
+    # 20 Hz), a logger's record one sample off: fitted at 0.96-1.00 of a sample where the base model
+    # is not exact, they are resolved from 0.9 of one (findings.RESOLVED_SHARE_OF_SAMPLE), and the
+    # sampling's artefacts below that are not (bench_families' 0.2-0.8 of an interval). Seeds 1-3:
+    # measured 6 of 9 named right with the share, 1 of 9 at a whole sample (those fitted a hair
+    # above it), and no wrong name either way; the floor leaves one to spare.
+    cases = [(name, seed) for name in ("time_skew", "sensor_lag", "supplied_sensor_lag") for seed in SEEDS]
+
+    def one(case):
+        name, seed = case
+        dataset = FAMILIES[name].make(seed, tmp_path / f"{name}-{seed}", "weak")
+        return name, to_json(diagnose(load_experiment(dataset.experiment), threads=1))
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        reports = list(pool.map(one, cases))
+    right = [r for name, r in reports if named(r) == set(FAMILIES[name].hidden)]
+    assert len(right) >= 5, [r["verdict"] for _, r in reports]
+    assert all(named(r) <= set(FAMILIES[name].hidden) for name, r in reports), [r["verdict"] for _, r in reports]
