@@ -25,34 +25,39 @@ HIDDEN = {"dead_volume": 1002, "leak": 1006, "fixture_slack": 1004, "bladder_vis
 REFITTED = {"none": 1000, "load_cell": 1007, "sensor_offset": 1009}
 
 
+def calibrated(hidden: str, seed: int, folder):
+    """bench_diagnose's synthetic test with `hidden` at `seed`: its problem and calibrated baseline."""
+    problem = build_problem(load_experiment(synthesize(hidden, seed, folder).experiment))
+    return problem, fit_baseline(problem)
+
+
+def assert_could_not_gain(problem, baseline, full, label: str) -> None:
+    """The fit a screen spared would have been neither significant nor near the threshold's gain."""
+    full_score = score(problem, baseline, full, np.random.default_rng(1))
+    assert not significant(full_score), label
+    assert full_score.combined_gain < MIN_GAIN, label
+
+
 @pytest.mark.parametrize("hidden", sorted(HIDDEN))
 def test_a_screened_candidate_could_not_have_gained_significantly(hidden, tmp_path):
-    experiment = load_experiment(synthesize(hidden, HIDDEN[hidden], tmp_path).experiment)
     with one_blas_thread():
-        problem = build_problem(experiment)
-        baseline = fit_baseline(problem)
+        problem, baseline = calibrated(hidden, HIDDEN[hidden], tmp_path)
         screened = []
         for label, factory in candidates(catalog(), problem):
             stepped = fit_candidate(problem, baseline, factory, label, screen=True)
             if stepped.error is not None or stepped.screened is None:
                 continue
             assert stepped.screened < SCREEN_DROP
-            full = fit_candidate(problem, baseline, factory, label)
-            full_score = score(problem, baseline, full, np.random.default_rng(1))
+            assert_could_not_gain(problem, baseline, fit_candidate(problem, baseline, factory, label), label)
             screened.append(label)
-            # The full fit would have been neither significant nor near the threshold's gain.
-            assert not significant(full_score), label
-            assert full_score.combined_gain < MIN_GAIN, label
     assert hidden not in screened
     assert screened  # the screen spares a fit in each (a leak makes three of the others gain: one is left)
 
 
 @pytest.mark.parametrize("hidden", sorted(REFITTED))
 def test_a_screened_refit_could_not_have_gained_significantly(hidden, tmp_path):
-    experiment = load_experiment(synthesize(hidden, REFITTED[hidden], tmp_path).experiment)
     with one_blas_thread():
-        problem = build_problem(experiment)
-        baseline = fit_baseline(problem)
+        problem, baseline = calibrated(hidden, REFITTED[hidden], tmp_path)
         screened, refitted = [], []
         for label, factory in candidates(catalog(), problem):
             if factory().stage() != EffectStage.measurement:
@@ -63,11 +68,8 @@ def test_a_screened_refit_could_not_have_gained_significantly(hidden, tmp_path):
             if fit_candidate(problem, baseline, factory, label, fit, screen=True) is not fit:
                 refitted.append(label)
                 continue
-            full = fit_candidate(problem, baseline, factory, label, fit)
-            full_score = score(problem, baseline, full, np.random.default_rng(1))
+            assert_could_not_gain(problem, baseline, fit_candidate(problem, baseline, factory, label, fit), label)
             screened.append(label)
-            assert not significant(full_score), label
-            assert full_score.combined_gain < MIN_GAIN, label
     assert screened, refitted  # the screen spares refits in each
     if hidden != "none":
         assert hidden in refitted, screened
