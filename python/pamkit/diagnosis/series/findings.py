@@ -36,9 +36,8 @@ RESOLVED_SHARE_OF_SAMPLE = 0.9
 
 def _resolution_limit(problem: Problem, resolution: Resolution) -> tuple[float, str]:
     if resolution == Resolution.sample_interval:
-        return RESOLVED_SHARE_OF_SAMPLE * sample_interval(
-            problem
-        ), f"{RESOLVED_SHARE_OF_SAMPLE:g} of the sample interval"
+        limit = RESOLVED_SHARE_OF_SAMPLE * sample_interval(problem)
+        return limit, f"{RESOLVED_SHARE_OF_SAMPLE:g} of the sample interval"
     if resolution == Resolution.travel_per_sample:
         # A sealed test's runs with a play follow the crosshead on knots PLAY_SUBDIVISIONS times
         # finer than the samples after each turn (model.py): a play shorter than one sample's travel
