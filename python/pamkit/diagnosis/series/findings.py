@@ -105,8 +105,8 @@ def mimicked_by_a_shift(problem: Problem, candidate, judged: list) -> list[str]:
     """Why a play shorter than one sample's travel is not told from the sampling: it changes the
     samples just after each turn, as a channel shifted by less than one sample does (a logger's
     clock merged with the machine's). Where such a shift (a significant candidate whose time is
-    below the sample interval) explains the held-out units as well on the same draws, the play
-    is no cause. Judgements are decide.py's."""
+    below what the sampling resolves) explains the held-out units as well on the same draws, the
+    play is no cause. Judgements are decide.py's."""
     if not sub_sample_play(problem, candidate.fit):
         return []
     for rival in judged:
