@@ -242,9 +242,11 @@ def fit_candidate(
                     return _stepped(problem, label, effect, space, base_space, landed, predict, evaluations, drop)
             jac = jacobian_for(problem, point, residual, counted)
             if screen and start is not None:
-                drop, _ = stepped_drop(jac(calibrated), residual(calibrated), calibrated, chi2_baseline)
+                first = jac(calibrated)
+                drop, _ = stepped_drop(first, residual(calibrated), calibrated, chi2_baseline)
                 if drop < SCREEN_DROP:
                     return start
+                jac = _knowing(jac, calibrated, first)
             results = [
                 least_squares_in_box(
                     residual, np.concatenate([base_u, u0]), 12 * (n_base + len(space) + 1), jac=jac, ftol=JOINT_FTOL
@@ -276,6 +278,12 @@ def fit_candidate(
         return Fit(
             label, [effect], baseline.baseline_x, {}, baseline.predicted, {}, len(space), evaluations, error=str(error)
         )
+
+
+def _knowing(jac, at: np.ndarray, known: np.ndarray):
+    """`jac` with its value at `at` already computed: a refit starts where its screen stepped from,
+    and that run with sensitivities is not made twice."""
+    return lambda u: known.copy() if np.array_equal(u, at) else jac(u)
 
 
 def _baseline_strain(base_space, fitted_space, u: np.ndarray, result) -> dict[str, tuple[float, float]]:
