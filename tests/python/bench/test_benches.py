@@ -4,8 +4,10 @@ thesis's files listing end_zone_m once broke bench_campaign.py. Each run must ex
 the line its README section reads its result from. Timings are not checked (benchmarks, not timed
 tests). Left out: bench_logger.py, whose firmware variants are a target of their own
 (bench_logger_firmware, built on demand), and `bench_sweep.py --jax`, which needs JAX installed
-apart from the project (bench/requirements-jax.txt)."""
+apart from the project (bench/requirements-jax.txt). `decision_diff.py`, which compares two
+benches' files, is run on files made here."""
 
+import json
 import os
 import subprocess
 import sys
@@ -52,8 +54,45 @@ def test_a_bench_runs_to_its_end_at_its_smallest_size(script, arguments, expecte
     assert expected in result.stdout, result.stdout[-3000:]
 
 
+def test_the_decision_diff_lists_each_changed_decision_of_either_bench_format(tmp_path):
+    # bench_near_model's and bench_families' files hold {"rows": [...]} keyed by family, strength
+    # and seed; bench_diagnose's a list keyed by the hidden effect and seed. One decision changed,
+    # one dataset only in the second run: two changes of three datasets; the same file: none.
+    near = [
+        {
+            "family": "dead_volume+load_cell",
+            "strength": "medium",
+            "seed": 5,
+            "outcome": "wrong",
+            "named": ["fiber_compliance"],
+        },
+        {"family": "null", "strength": None, "seed": 1, "outcome": "honest", "named": []},
+    ]
+    after = [dict(near[0], outcome="right", named=["load_cell", "dead_volume"]), near[1]]
+    after.append({"family": "leak", "strength": "strong", "seed": 1, "outcome": "right", "named": ["leak"]})
+    (tmp_path / "before.json").write_text(json.dumps({"rows": near}))
+    (tmp_path / "after.json").write_text(json.dumps({"rows": after}))
+    own = [{"truth": "leak", "seed": 1000, "cause": "leak", "named": ["leak"]}]
+    (tmp_path / "own.json").write_text(json.dumps(own))
+
+    def diff(*arguments):
+        return subprocess.run(
+            [sys.executable, str(BENCH / "decision_diff.py"), *arguments], capture_output=True, text=True, cwd=tmp_path
+        )
+
+    changed = diff("before.json", "after.json", "--fail-on-change")
+    assert changed.returncode == 1, changed.stderr
+    assert "dead_volume+load_cell medium seed 5: wrong [fiber_compliance] -> right [dead_volume, load_cell]" in (
+        changed.stdout
+    )
+    assert "leak strong seed 1: (not in this run) -> right [leak]" in changed.stdout
+    assert "2 of 3 decisions changed" in changed.stdout
+    same = diff("own.json", "own.json", "--fail-on-change")
+    assert same.returncode == 0 and "0 of 1 decisions changed" in same.stdout, same.stdout + same.stderr
+
+
 def test_every_python_bench_is_run_here_or_said_why_not():
-    run_here = {script for script, _, _ in SMALLEST} | {"bench_simulate.py"}
+    run_here = {script for script, _, _ in SMALLEST} | {"bench_simulate.py", "decision_diff.py"}
     left_out = {"bench_logger.py"}  # the module docstring says why
     references = {"jax_reference.py", "scipy_reference.py"}  # imported by the benches, not run
     assert {p.name for p in BENCH.glob("*.py")} == run_here | left_out | references
