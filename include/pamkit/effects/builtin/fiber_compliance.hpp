@@ -30,7 +30,7 @@ struct FiberComplianceParams {
                            "a braid strand of 0.1-0.5 mm^2 polyester or nylon (E = 2-5 GPa) has EA = 200-2500 N; "
                            "the hoop stress of 200-400 kPa pulls each of PAM 2's fibers with 1-3 N, so below 50 N "
                            "the fibers would stretch by several per cent"},
-                          {FitScale::reciprocal, 10.0, detail::kInfinity, 300.0},
+                          {FitScale::reciprocal, 25.0, detail::kInfinity, 300.0},
                           Resolution::any,
                           detail::kInfinity});  // inextensible
   }
