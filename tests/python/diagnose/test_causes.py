@@ -85,7 +85,9 @@ def test_a_rival_beside_a_second_leads_where_that_second_is_no_partner_of_the_ca
     monkeypatch.setattr(causes, "_ranked", lambda problem, baseline, left, others: [cell])
     monkeypatch.setattr(causes, "_remainder", lambda problem, fit: np.zeros(ROWS))
     monkeypatch.setattr(
-        causes, "fit_pair", lambda problem, first, f, g, label: SimpleNamespace(name=label, effects=[f, g], error=None)
+        causes,
+        "fit_pair",
+        lambda problem, first, f, g, label, beat=None: SimpleNamespace(name=label, effects=[f, g], error=None),
     )
     monkeypatch.setattr(causes, "judge", lambda problem, fit, s, baseline: pairs[fit.name])
     monkeypatch.setattr(causes, "score", lambda problem, before, fit, rng, credit=None: None)

@@ -1,14 +1,17 @@
 """Candidates screened by one Gauss-Newton step (candidates.SCREEN_DROP): checked against the full
 fit they were spared, one algorithm against the other, over hidden effects of several kinds. A
 screened candidate must be one whose full fit could not have been significant, and the hidden cause
-is never among them. The same for the instruments' refits with the baseline free (engine._refit)."""
+is never among them. The same for the instruments' refits with the baseline free (engine._refit), and
+for a lone cause's rival fitted beside a second (causes.rival_beside_a_second)."""
 
 import numpy as np
 import pytest
 
 from pamkit._core import EffectStage
 from pamkit.diagnosis.series.calibrate import fit_baseline, one_blas_thread
-from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate, one_step
+from pamkit.diagnosis.series.candidates import SCREEN_DROP, SCREENED_OUT, candidates, fit_candidate, fit_pair, one_step
+from pamkit.diagnosis.series.causes import explains_more
+from pamkit.diagnosis.series.decide import judge
 from pamkit.diagnosis.series.kinds import build_problem
 from pamkit.diagnosis.series.score import score, significant
 from pamkit.diagnosis.significance import MIN_GAIN
@@ -113,3 +116,61 @@ def test_one_step_of_several_coordinates_is_exact_on_a_linear_residual():
     drop, landed = one_step(residual, residual(start), a[:, :2], start, float(b @ b), count=2)
     assert landed == pytest.approx(optimum, abs=1e-9)
     assert drop == pytest.approx(1.0 - float(np.sum((a @ optimum - b) ** 2)) / float(b @ b), rel=1e-9)
+
+
+# A lone cause's rival fitted beside a second (causes.rival_beside_a_second) leads only if the pair
+# explains more than the cause: a pair whose one step from its scan cannot take its fitted
+# chi-square SCREEN_DROP below the cause's is not fitted further. Rivals and seconds of the kinds
+# that rule meets (bench_diagnose: compliant fibres beside a viscoelastic bladder or an instrument).
+PAIRS = [
+    (rival, second) for rival in ("fiber_compliance", "heat_transfer") for second in ("load_cell", "sensor_offset")
+]
+
+
+@pytest.mark.parametrize("hidden", ["dead_volume", "leak"])
+def test_a_screened_out_pair_could_not_have_explained_more_than_the_cause(hidden, tmp_path):
+    with one_blas_thread():
+        problem, baseline = calibrated(hidden, HIDDEN[hidden], tmp_path)
+        factories = dict(candidates(catalog(), problem))
+
+        def judged(fit):
+            return judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(1)), baseline)
+
+        lead = judged(fit_candidate(problem, baseline, factories[hidden], hidden))
+        beat = sum(lead.fit.training_chi2.values())
+        screened = []
+        for rival_label, second in PAIRS:
+            rival = fit_candidate(problem, baseline, factories[rival_label], rival_label)
+            make = (problem, rival, factories[rival_label], factories[second], f"{rival_label}+{second}")
+            stepped = fit_pair(*make, beat=beat)
+            if stepped.error is None:
+                continue
+            assert stepped.error.startswith(SCREENED_OUT), stepped.error
+            full = fit_pair(*make)
+            assert full.error is None or not explains_more(judged(full), lead), make[-1]
+            screened.append(make[-1])
+    assert screened  # the screen spares a pair fit in each
+
+
+def test_a_pair_that_explains_more_than_the_cause_is_not_screened_out(tmp_path):
+    # A dead volume hidden, compliant fibres as the lone cause (near-model: they stand in for it):
+    # the dead volume beside a load cell explains more than the fibres, and its step says so.
+    with one_blas_thread():
+        problem, baseline = calibrated("dead_volume", HIDDEN["dead_volume"], tmp_path)
+        factories = dict(candidates(catalog(), problem))
+
+        def judged(fit):
+            return judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(1)), baseline)
+
+        lead = judged(fit_candidate(problem, baseline, factories["fiber_compliance"], "fiber_compliance"))
+        rival = fit_candidate(problem, baseline, factories["dead_volume"], "dead_volume")
+        pair = fit_pair(
+            problem,
+            rival,
+            factories["dead_volume"],
+            factories["load_cell"],
+            "dead_volume+load_cell",
+            beat=sum(lead.fit.training_chi2.values()),
+        )
+    assert pair.error is None, pair.error
+    assert explains_more(judged(pair), lead)

