@@ -122,6 +122,11 @@ def test_one_step_of_several_coordinates_is_exact_on_a_linear_residual():
 # explains more than the cause: a pair whose one step from its scan cannot take its fitted
 # chi-square SCREEN_DROP below the cause's is not fitted further. Rivals and seconds of the kinds
 # that rule meets (bench_diagnose: compliant fibres beside a viscoelastic bladder or an instrument).
+def judged(problem, baseline, fit):
+    """`fit` scored and judged against the calibrated `baseline`, as the decision does."""
+    return judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(1)), baseline)
+
+
 PAIRS = [
     (rival, second) for rival in ("fiber_compliance", "heat_transfer") for second in ("load_cell", "sensor_offset")
 ]
@@ -132,11 +137,7 @@ def test_a_screened_out_pair_could_not_have_explained_more_than_the_cause(hidden
     with one_blas_thread():
         problem, baseline = calibrated(hidden, HIDDEN[hidden], tmp_path)
         factories = dict(candidates(catalog(), problem))
-
-        def judged(fit):
-            return judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(1)), baseline)
-
-        lead = judged(fit_candidate(problem, baseline, factories[hidden], hidden))
+        lead = judged(problem, baseline, fit_candidate(problem, baseline, factories[hidden], hidden))
         beat = sum(lead.fit.training_chi2.values())
         screened = []
         for rival_label, second in PAIRS:
@@ -147,7 +148,7 @@ def test_a_screened_out_pair_could_not_have_explained_more_than_the_cause(hidden
                 continue
             assert stepped.error.startswith(SCREENED_OUT), stepped.error
             full = fit_pair(*make)
-            assert full.error is None or not explains_more(judged(full), lead), make[-1]
+            assert full.error is None or not explains_more(judged(problem, baseline, full), lead), make[-1]
             screened.append(make[-1])
     assert screened  # the screen spares a pair fit in each
 
@@ -158,11 +159,9 @@ def test_a_pair_that_explains_more_than_the_cause_is_not_screened_out(tmp_path):
     with one_blas_thread():
         problem, baseline = calibrated("dead_volume", HIDDEN["dead_volume"], tmp_path)
         factories = dict(candidates(catalog(), problem))
-
-        def judged(fit):
-            return judge(problem, fit, score(problem, baseline, fit, np.random.default_rng(1)), baseline)
-
-        lead = judged(fit_candidate(problem, baseline, factories["fiber_compliance"], "fiber_compliance"))
+        lead = judged(
+            problem, baseline, fit_candidate(problem, baseline, factories["fiber_compliance"], "fiber_compliance")
+        )
         rival = fit_candidate(problem, baseline, factories["dead_volume"], "dead_volume")
         pair = fit_pair(
             problem,
@@ -173,4 +172,4 @@ def test_a_pair_that_explains_more_than_the_cause_is_not_screened_out(tmp_path):
             beat=sum(lead.fit.training_chi2.values()),
         )
     assert pair.error is None, pair.error
-    assert explains_more(judged(pair), lead)
+    assert explains_more(judged(problem, baseline, pair), lead)
