@@ -20,7 +20,13 @@ from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
 from pamkit.diagnosis.series.calibrate import Fit, fit_baseline, one_blas_thread, thread_pool
 from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
 from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate
-from pamkit.diagnosis.series.causes import add_cause, reads_explained, rival_beside_a_second, tie_beside_a_second
+from pamkit.diagnosis.series.causes import (
+    add_cause,
+    outdone_beside_a_second,
+    reads_explained,
+    rival_beside_a_second,
+    tie_beside_a_second,
+)
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Decision, Judgement, decide, judge
 from pamkit.diagnosis.series.findings import baseline_findings
 from pamkit.diagnosis.series.instruments import noise_ratios, structured
@@ -218,7 +224,8 @@ def _fit_candidates(problem, baseline: Fit, todo, seed: int, threads, report) ->
 def _decided(problem, baseline: Fit, judged: list[Judgement], factories, seed: int, threads, report) -> Decision:
     """The decision on the judged candidates (decide): a tie told apart beside a second cause
     (tie_beside_a_second), or the lead with a second cause where it leaves structure, or its rival
-    with one in its place; the instruments among the causes checked (reads_explained)."""
+    with one in its place; the instruments among the causes checked (reads_explained); with no
+    cause, the lead but for what outdoes it, beside a second (outdone_beside_a_second)."""
     decision = decide(problem, baseline, judged)
     untied = tie_beside_a_second(problem, baseline, decision, judged, factories, seed, threads, report)
     if untied is not None:
@@ -234,7 +241,8 @@ def _decided(problem, baseline: Fit, judged: list[Judgement], factories, seed: i
         # The lead refused carries its objection now, and another candidate may still be a cause.
         # Each pass refuses one more lead, so the loop ends.
         decision = decide(problem, baseline, judged)
-    return decision
+    lifted = outdone_beside_a_second(problem, baseline, decision, judged, factories, seed, threads, report)
+    return lifted if lifted is not None else decision
 
 
 def diagnose(

@@ -84,6 +84,9 @@ class Judgement:
     tied_with: Judgement | None = None
     # the rival a named cause beats on the same draws, but by less than a cause explains (close_rival)
     close_rival: Judgement | None = None
+    # the candidate that explains the held-out units significantly better but cannot be named
+    # (outdone): what this one fits may be a part of what that one fits
+    outdone_by: Judgement | None = None
 
     @property
     def credible(self) -> bool:
@@ -233,7 +236,8 @@ def outdone(problem: Problem, candidate: Judgement, judged: list[Judgement]) -> 
     transducer lagging 1.5 s draws: 0.899 against 0.898). Values only narrowly out (`marginal`)
     leave it as good a reading as `candidate`: the two are untold apart. A better one refused for
     what it explains (not standing out from the base model's misfit, an instrument not needed)
-    says that the structure may be the base model's, which `candidate` explains no better."""
+    says that the structure may be the base model's, which `candidate` explains no better. The one
+    that outdoes it is kept as `candidate.outdone_by` (causes.outdone_beside_a_second)."""
     mine = explained(problem, candidate.score)
     for better in judged:
         if better is candidate:
@@ -250,6 +254,7 @@ def outdone(problem: Problem, candidate: Judgement, judged: list[Judgement]) -> 
         if own_values_only and read_elsewhere(candidate.fit, better.fit):
             continue  # one effect on another instrument, the same values: not a part of it
         if gain_over(better, candidate) >= MIN_GAIN or not own_values_only:
+            candidate.outdone_by = better
             return [
                 f"{better.fit.name} explains the held-out units significantly better {gains} but cannot be named "
                 f"({'; '.join(better.reasons())}): this may be a part of what it fits"
