@@ -20,18 +20,13 @@ from pamkit.diagnosis.discover import DiscoveryError, discover, feature_library
 from pamkit.diagnosis.series.calibrate import Fit, fit_baseline, one_blas_thread, thread_pool
 from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
 from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate
-from pamkit.diagnosis.series.causes import (
-    add_cause,
-    outdone_beside_a_second,
-    reads_explained,
-    rival_beside_a_second,
-    tie_beside_a_second,
-)
+from pamkit.diagnosis.series.causes import add_cause, reads_explained, rival_beside_a_second
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Decision, Judgement, decide, judge
 from pamkit.diagnosis.series.findings import baseline_findings
 from pamkit.diagnosis.series.instruments import noise_ratios, structured
 from pamkit.diagnosis.series.joint import check_one_muscle
 from pamkit.diagnosis.series.kinds import Problem, build_problem
+from pamkit.diagnosis.series.refused import outdone_beside_a_second, tie_beside_a_second
 from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.diagnosis.series.score import score
 from pamkit.diagnosis.series.separate import separating_test

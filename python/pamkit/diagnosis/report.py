@@ -370,7 +370,7 @@ def _over_noise(ratios: dict[str, float], channels: list[str]) -> str:
 
 
 def _untied_phrase(d: Diagnosis) -> str:
-    """A lead tied alone with another candidate, told apart beside its second (causes.tie_beside_a_second)."""
+    """A lead tied alone with another candidate, told apart beside its second (refused.tie_beside_a_second)."""
     other = d.decision.untied_from
     if other is None:
         return ""

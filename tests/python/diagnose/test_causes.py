@@ -1,6 +1,6 @@
-"""How python/pamkit/diagnosis/series/causes.py picks what to fit beside a first cause, when a
+"""How python/pamkit/diagnosis/series/causes.py picks what to fit beside a first cause and when a
 rival beside a second takes the first's place, and when a second makes up what a candidate that
-cannot be named explains more of, on models and judgements made by hand."""
+cannot be named explains more of (series/refused.py), on models and judgements made by hand."""
 
 from dataclasses import replace
 from types import SimpleNamespace
@@ -8,6 +8,7 @@ from types import SimpleNamespace
 import numpy as np
 
 import pamkit.diagnosis.series.causes as causes
+import pamkit.diagnosis.series.refused as refused
 from pamkit.diagnosis.coordinates import Finding
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.causes import _step_beside
@@ -122,7 +123,9 @@ def test_a_candidate_outdone_by_one_that_cannot_be_named_is_named_where_a_second
     # (near-model dead_volume+load_cell, medium seed 4): what the transducer fits is all there with
     # credible values, and the pair is named (outdone_beside_a_second). At 0.800 the transducer
     # still explains significantly more, and nothing is named; nor where the dead volume is refused
-    # for anything besides, or lies below a candidate refused for something else.
+    # for anything besides, or lies below a candidate refused for something else. A pair refused
+    # for its own values that explains more than the transducer is what the data look like, where
+    # structure is left.
     problem = SimpleNamespace(channels=[PRESSURE])
     everywhere = {PRESSURE: 0.8}
 
@@ -141,19 +144,31 @@ def test_a_candidate_outdone_by_one_that_cannot_be_named_is_named_where_a_second
     cell = judged("load_cell", 0.064, ("load_cell",))
     volume.objections += outdone(problem, volume, [transducer, volume, cell])
     assert volume.outdone_by is transducer and not volume.credible
-    monkeypatch.setattr(causes, "structured", lambda problem, fit, factor: [])
-    monkeypatch.setattr(causes, "reads_explained", lambda problem, baseline, decision: decision)
+    monkeypatch.setattr(refused, "structured", lambda problem, fit, factor: [])
+    monkeypatch.setattr(refused, "reads_explained", lambda problem, baseline, decision: decision)
+    monkeypatch.setattr(refused, "keeps_gain", lambda own: True)  # each gains beside the other
+    monkeypatch.setattr(refused, "score", lambda problem, before, fit, rng, credit=None: None)
+    monkeypatch.setattr(refused, "resolves", lambda problem, single, pair: True)
+    monkeypatch.setattr(refused, "_placed", lambda fit, effect: True)  # the dead volume fitted at 0.099
     nothing = Decision("unexplained", [], transducer, {}, [PRESSURE])
 
-    def decided(pair_gain: float, refused: Judgement, above: tuple[Judgement, ...] = ()):
-        def add_cause(problem, baseline, decision, judged, factories, seed, threads, report):
-            pair = judged_with("dead_volume+load_cell", pair_gain, ("dead_volume", "load_cell"))
-            pair.score.gain, pair.score.gain_ci95 = everywhere, {PRESSURE: [0.7, 0.9]}
-            return replace(decision, causes=[decision.causes[0], Cause("load_cell", pair, pair.score)])
+    def decided(
+        pair_gain: float, lead: Judgement, above: tuple[Judgement, ...] = (), refuse_pair=False, verdict="unexplained"
+    ):
+        # the load cell's offset fitted at an implausible -23 N where the pair is refused
+        offset = Finding("load_cell.offset_N", -23.45, None, [-20.0, 20.0], "a tared cell's zero")
+        pair = judged(
+            "dead_volume+load_cell", pair_gain, ("dead_volume", "load_cell"), findings=[offset] if refuse_pair else []
+        )
 
-        monkeypatch.setattr(causes, "add_cause", add_cause)
-        return causes.outdone_beside_a_second(
-            problem, None, nothing, [transducer, *above, refused, cell], {}, 0, 1, lambda message: None
+        def add_cause(problem, baseline, decision, judged, factories, seed, threads, report, pairs):
+            ((_, fitted, own),) = pairs
+            return replace(decision, causes=[decision.causes[0], Cause("load_cell", fitted, own)])
+
+        monkeypatch.setattr(refused, "pairs_beside", lambda *arguments: [(cell, pair, pair.score)])
+        monkeypatch.setattr(refused, "add_cause", add_cause if not refuse_pair else lambda *a, **k: a[2])
+        return refused.outdone_beside_a_second(
+            problem, None, replace(nothing, cause=verdict), [transducer, *above, lead, cell], {}, 0, 1, lambda m: None
         )
 
     lifted = decided(0.846, volume)
@@ -164,3 +179,9 @@ def test_a_candidate_outdone_by_one_that_cannot_be_named_is_named_where_a_second
     # Below a candidate refused for a tie it would not lead if it could be named: no lead to lift.
     tied = judged("leak", 0.800, ("leak",), objections=["the data do not tell it from a transducer's offset"])
     assert not decided(0.846, volume, above=(tied,))
+    # A pair that cannot be named either, but explains more than the transducer: not named, and
+    # what the data look like (the verdict's "it looks like ...").
+    looks = decided(0.846, volume, refuse_pair=True)
+    assert not looks.causes and looks.rejected.fit.name == "dead_volume+load_cell"
+    assert not decided(0.800, volume, refuse_pair=True)
+    assert not decided(0.846, volume, refuse_pair=True, verdict="none")  # within the noise: nothing to picture

@@ -152,7 +152,7 @@ def test_a_tie_alone_is_told_apart_beside_a_second(tmp_path):
     # A pressure transducer's time skew beside a slow leak: alone, a lag of the transducer (or a
     # fixture's play) opens the same loop and the two tie (neither named); beside the leak's drift
     # the skew leaves the pressure within its noise and the other, with its own best second, does not
-    # (series/causes.py, tie_beside_a_second). Seeds 10-12, which the rates above do not hold:
+    # (series/refused.py, tie_beside_a_second). Seeds 10-12, which the rates above do not hold:
     # measured 5 of 6 named right with the rule, 2 of 6 without (the sixth's skew alone is not
     # significant, so nothing ties); the floor leaves one to spare. Where the tie was broken the
     # report says from what.

@@ -1,8 +1,8 @@
 """More than one cause: what the causes named leave tried beside them (a second cause), the first
 cause's nearest rival fitted beside that second, a lone cause that stands in for its rival with a
-second, two candidates tied alone told apart beside a second, and the instrument whose channel the
-causes leave structured dropped (rule 6 of docs/diagnosis.md). A real rig has more than one thing
-wrong."""
+second, and the instrument whose channel the causes leave structured dropped (rule 6 of
+docs/diagnosis.md; candidates refused alone that a second clears: series/refused.py). A real rig
+has more than one thing wrong."""
 
 from __future__ import annotations
 
@@ -22,7 +22,6 @@ from pamkit.diagnosis.series.decide import (
     gain_over,
     judge,
     keeps_gain,
-    outdone,
 )
 from pamkit.diagnosis.series.instruments import (
     STRUCTURE_LEFT,
@@ -131,27 +130,24 @@ def resolves(problem: Problem, single: Fit, pair: Fit) -> bool:
     return all(after[c] <= STRUCTURE_LEFT for c in problem.channels if before[c] > PAIR_TRIGGER)
 
 
-def add_cause(
-    problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, threads, report
-) -> Decision:
-    """The causes named leave structure: try the next candidates beside them, and add the one that
-    gains most, if it gains significantly on its own channels over the causes alone (rule 6 of
-    docs/diagnosis.md) with every parameter of the pair credible. A real rig has more than one thing
-    wrong; what no partner explains stays the remainder."""
-    single = decision.causes[-1].judgement
+def pairs_beside(
+    problem: Problem, baseline: Fit, single: Judgement, judged: list[Judgement], factories, seed: int, threads, report
+) -> list[tuple[Judgement, Judgement, Score]]:
+    """The candidates `_partners` picks, each fitted beside `single`: (the partner alone, the pair
+    judged against the calibrated baseline, the partner's own gain beside `single`), for the pairs
+    whose fit ran."""
     taken = {e.name() for e in single.fit.effects}
     partners = _partners(
         problem, baseline, single, [j for j in judged if j.fit.effects[0].name() not in taken], factories
     )
     if not partners:
-        return decision
+        return []
     left = structured(problem, single.fit, PAIR_TRIGGER)
     report(
         (f"{single.fit.name} leaves {', '.join(left)} above noise: " if left else "")
         + f"trying {single.fit.name} with {', '.join(p.fit.name for p in partners)}"
     )
-    best: Cause | None = None
-    alone: Judgement | None = None  # the partner of `best` fitted alone
+    out = []
     with thread_pool(threads) as pool:
         futures = [
             (
@@ -173,12 +169,38 @@ def add_cause(
                 continue
             own = score(problem, single.fit, pair, np.random.default_rng(seed), credit=pair.effects[1:])
             candidate = judge(problem, pair, score(problem, baseline, pair, np.random.default_rng(seed)), baseline)
-            if (
-                second_holds(problem, single.fit, candidate, own)
-                and resolves(problem, single.fit, pair)
-                and (best is None or candidate.score.combined_gain > best.judgement.score.combined_gain)
-            ):
-                best, alone = Cause(partner.fit.name, candidate, own), partner
+            out.append((partner, candidate, own))
+    return out
+
+
+def add_cause(
+    problem: Problem,
+    baseline: Fit,
+    decision: Decision,
+    judged: list[Judgement],
+    factories,
+    seed: int,
+    threads,
+    report,
+    pairs: list[tuple[Judgement, Judgement, Score]] | None = None,
+) -> Decision:
+    """The causes named leave structure: try the next candidates beside them (`pairs`, fitted by
+    pairs_beside where not given), and add the one that gains most, if it gains significantly on
+    its own channels over the causes alone (rule 6 of docs/diagnosis.md) with every parameter of the
+    pair credible. A real rig has more than one thing wrong; what no partner explains stays the
+    remainder."""
+    single = decision.causes[-1].judgement
+    if pairs is None:
+        pairs = pairs_beside(problem, baseline, single, judged, factories, seed, threads, report)
+    best: Cause | None = None
+    alone: Judgement | None = None  # the partner of `best` fitted alone
+    for partner, candidate, own in pairs:
+        if (
+            second_holds(problem, single.fit, candidate, own)
+            and resolves(problem, single.fit, candidate.fit)
+            and (best is None or candidate.score.combined_gain > best.judgement.score.combined_gain)
+        ):
+            best, alone = Cause(partner.fit.name, candidate, own), partner
     if best is None:
         return decision
     # Each cause must gain on its own beside the other: the first may have been standing in for the
@@ -316,62 +338,6 @@ def rival_beside_a_second(
     )
 
 
-def _untied(j: Judgement) -> Judgement:
-    """`j` as judged without its rival: its objections less the tie's, which decide() adds last, to
-    a lead that was credible before it."""
-    objections = j.objections[:-1] if j.tied_with is not None else j.objections
-    return replace(j, objections=list(objections), tied_with=None, close_rival=None)
-
-
-def tie_beside_a_second(
-    problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, threads, report
-) -> Decision | None:
-    """Two candidates the data do not tell apart alone (rule 6) may be told apart beside a second
-    cause. A time skew and a lag of the pressure transducer open the same loop; beside a slow
-    leak's drift the skew leaves the pressure within its noise and the lag does not (near-model
-    leak+time_skew: the skew and the leak gain 0.92-0.95, the lag with its best second 0.39-0.60).
-    Each of the two that leaves structure calling for a second (PAIR_TRIGGER) is given the second
-    `add_cause` would add beside it as the lone cause. Where one's pair explains the held-out units
-    better than the other's best model (`explains_more`: the paired difference's 95 % interval above
-    zero, and a cause's worth of what that model leaves), the one credible but for the tie, its
-    second not the other, and both kept when their instruments are checked (`reads_explained`),
-    the tie is broken: the one leads with its second beside it. None where the tie stands."""
-    tied = decision.rejected
-    if decision.causes or tied is None or tied.tied_with is None:
-        return None
-    sides = []  # each side untied, and its decision as the lone cause with a second where one holds
-    for side in (tied, tied.tied_with):
-        alone = _untied(side)
-        lone = replace(
-            decision,
-            cause=alone.fit.effects[0].name(),
-            causes=[Cause(alone.fit.name, alone, alone.score)],
-            rejected=None,
-            left_structure=structured(problem, alone.fit, NONE_WITHIN_NOISE),
-        )
-        if structured(problem, alone.fit, PAIR_TRIGGER):
-            lone = add_cause(problem, baseline, lone, judged, factories, seed, threads, report)
-        sides.append((alone, lone))
-    for (one, beside), (other, against) in (sides, sides[::-1]):
-        paired = len(beside.causes) == 2 and beside.causes[0].judgement is one
-        if not (paired and one.credible) or beside.causes[1].label == other.fit.name:
-            continue
-        if not explains_more(beside.named, against.named):
-            continue
-        checked = reads_explained(problem, baseline, beside)
-        if len(checked.causes) != 2:
-            continue
-        report(
-            f"{one.fit.name} and {other.fit.name} tie alone; beside {beside.causes[1].label}, {one.fit.name} explains "
-            f"the held-out units better than {other.fit.name} does with its best second: {one.fit.name} leads"
-        )
-        low = float(np.percentile(beside.named.score.combined_samples - against.named.score.combined_samples, 2.5))
-        return replace(
-            checked, margins={**decision.margins, "over_tied_beside_a_second": low}, untied_from=against.named
-        )
-    return None
-
-
 def reads_explained(problem: Problem, baseline: Fit, decision: Decision) -> Decision:
     """The causes less an instrument that reads off whose channel the causes named leave structured
     (instruments.reads_left). A second cause is dropped from the causes; a leading one carries the
@@ -390,57 +356,3 @@ def reads_explained(problem: Problem, baseline: Fit, decision: Decision) -> Deci
         cause.judgement.objections += why
         return replace(decision, causes=[])
     return decision
-
-
-def outdone_beside_a_second(
-    problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, threads, report
-) -> Decision | None:
-    """A candidate refused only because one that cannot be named explains the held-out units
-    significantly better (decide.outdone: it may be a part of what that one fits) may be the whole
-    of it beside a second cause. A dead volume damps the pressure swing as a transducer reading
-    11 % low does; beside a load cell's nonlinearity it explains the force too, and then more than
-    the transducer's implausible gain (near-model dead_volume+load_cell, medium seed 4: 0.846
-    against 0.820, each at its truth's values). The best such candidate is given the second
-    add_cause would add; where the pair is outdone by nothing (no candidate that cannot be named
-    explains the held-out units significantly better on the same draws) and both are kept when
-    their instruments are checked, the pair is named, the outdoing one reported beside it. None
-    otherwise."""
-    if decision.causes:
-        return None
-    # The lead but for what outdoes it: the best significant candidate that outdoes none, refused
-    # for nothing but being outdone (its values credible, that its one objection). Below one
-    # refused otherwise it would not lead if it could be named: a viscoelastic bladder outdone by an
-    # implausible load cell, below a leak tied with a transducer's offset, is no lead (near-model
-    # leak, weak seed 3, where the bladder beside the leak was named before this check).
-    outdoing = [j.outdone_by for j in judged if j.outdone_by is not None]
-    blocked = next((j for j in judged if j.significant and not any(j is o for o in outdoing)), None)
-    if (
-        blocked is None
-        or blocked.outdone_by is None
-        or blocked.findings
-        or blocked.unneeded
-        or blocked.below_resolution
-        or len(blocked.objections) != 1
-    ):
-        return None
-    better = blocked.outdone_by
-    alone = replace(blocked, objections=[], outdone_by=None)
-    lone = replace(
-        decision,
-        cause=alone.fit.effects[0].name(),
-        causes=[Cause(alone.fit.name, alone, alone.score)],
-        rejected=None,
-        left_structure=structured(problem, alone.fit, NONE_WITHIN_NOISE),
-    )
-    report(
-        f"{better.fit.name} explains more than {alone.fit.name} but cannot be named: {alone.fit.name} beside a second"
-    )
-    paired = add_cause(problem, baseline, lone, judged, factories, seed, threads, report)
-    if len(paired.causes) != 2 or outdone(problem, paired.named, judged):
-        return None
-    checked = reads_explained(problem, baseline, paired)
-    if len(checked.causes) != 2:
-        return None
-    report(f"{paired.named.fit.name} explains the held-out units as well as {better.fit.name} or better: both named")
-    low = float(np.percentile(paired.named.score.combined_samples - better.score.combined_samples, 97.5))
-    return replace(checked, rejected=better, margins={**decision.margins, "beside_a_second_against_outdoing": low})

@@ -185,7 +185,7 @@ class Decision:
     margins: dict[str, float]  # each decision's distance from its threshold
     left_structure: list[str]  # channels above NONE_WITHIN_NOISE after the causes: the remainder
     # the candidate the leading cause tied with alone (rule 6), as its best model beside a second:
-    # the model the causes named explain more than (causes.tie_beside_a_second)
+    # the model the causes named explain more than (refused.tie_beside_a_second)
     untied_from: Judgement | None = None
 
     @property
@@ -237,7 +237,7 @@ def outdone(problem: Problem, candidate: Judgement, judged: list[Judgement]) -> 
     leave it as good a reading as `candidate`: the two are untold apart. A better one refused for
     what it explains (not standing out from the base model's misfit, an instrument not needed)
     says that the structure may be the base model's, which `candidate` explains no better. The one
-    that outdoes it is kept as `candidate.outdone_by` (causes.outdone_beside_a_second)."""
+    that outdoes it is kept as `candidate.outdone_by` (refused.outdone_beside_a_second)."""
     mine = explained(problem, candidate.score)
     for better in judged:
         if better is candidate:
