@@ -40,6 +40,9 @@ def series_figure(d: Diagnosis, title: str):
     # lacks shows as two branches, an offset as one band off zero.
     out = held & (p.half_cycle >= 0) & (p.half_cycle % 2 == 0)
     back = held & (p.half_cycle >= 0) & (p.half_cycle % 2 == 1)
+    # Unexplained, what the data look like (the verdict's "it looks like ..."), though it cannot
+    # be named: drawn dashed, so that what it would explain is seen beside what is left.
+    looks = d.decision.rejected.fit if d.cause == "unexplained" and d.decision.rejected is not None else None
     for i, c in enumerate(p.channels):
         # Drawn in the units a person reads (kPa, °C), as the data's file gives them.
         measured = value_from_si(c, p.measured[c])
@@ -53,6 +56,15 @@ def series_figure(d: Diagnosis, title: str):
         residual.plot(time, measured - baseline, color="C3", lw=0.8, label="baseline")
         if d.extended is not d.baseline:
             residual.plot(time, measured - extended, color="C0", lw=0.8, label="extended")
+        if looks is not None:
+            residual.plot(
+                time,
+                measured - value_from_si(c, looks.predicted[c]),
+                color="C4",
+                lw=0.8,
+                ls="--",
+                label=f"looks like ({looks.name}), not named",
+            )
         for axis in (signal, residual):
             _shade(axis, time, held)
             axis.grid(alpha=0.3)

@@ -4,6 +4,7 @@ API, and bad input named by file, row and column."""
 import json
 import os
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -12,6 +13,8 @@ import pytest
 from pamkit.diagnosis import diagnose, to_json, verdict
 from pamkit.diagnosis.cycles import find_cycles, split_cycles
 from pamkit.diagnosis.evidence import ljung_box_p, noise_scale
+from pamkit.diagnosis.figure import series_figure
+from pamkit.io.columns import value_from_si
 from pamkit.io.guards import ExperimentError
 from pamkit.synth.dataset import synthesize
 
@@ -249,3 +252,18 @@ def test_a_gain_its_held_out_units_do_not_all_bear_out_is_shown(tmp_path):
     text = verdict(d)
     assert text.startswith("unexplained") and "it looks like" in text and f"{best.fit.name} gains" in text
     assert "holds zero" in text and "no catalog effect gains" not in text
+
+
+def test_an_unexplained_figure_draws_what_the_data_look_like(leak_dataset):
+    # Where nothing is named, the verdict says what the best refused fit looks like; the figure
+    # draws what that fit leaves, dashed, beside what the baseline leaves. (The decision is made
+    # here by hand: this checks the drawing, not what is refused.)
+    d = diagnose(leak_dataset.experiment, threads=2)
+    refused = d.candidates[0]
+    d = replace(d, decision=replace(d.decision, cause="unexplained", causes=[], rejected=refused), extended=d.baseline)
+    residuals = next(axis for axis in series_figure(d, "unexplained").axes if axis.get_title() == "residuals")
+    (looks,) = [line for line in residuals.get_lines() if line.get_label().startswith("looks like")]
+    assert looks.get_label() == f"looks like ({refused.fit.name}), not named" and looks.get_linestyle() == "--"
+    channel = d.problem.channels[0]
+    left = value_from_si(channel, d.problem.measured[channel]) - value_from_si(channel, refused.fit.predicted[channel])
+    assert np.allclose(looks.get_ydata(), left)
