@@ -25,6 +25,17 @@ def _untied(j: Judgement) -> Judgement:
     return replace(j, objections=list(objections), tied_with=None, close_rival=None)
 
 
+def _lone(problem: Problem, decision: Decision, alone: Judgement) -> Decision:
+    """`decision` with `alone` named as the lone cause, nothing rejected: what add_cause extends."""
+    return replace(
+        decision,
+        cause=alone.fit.effects[0].name(),
+        causes=[Cause(alone.fit.name, alone, alone.score)],
+        rejected=None,
+        left_structure=structured(problem, alone.fit, NONE_WITHIN_NOISE),
+    )
+
+
 def tie_beside_a_second(
     problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, threads, report
 ) -> Decision | None:
@@ -44,13 +55,7 @@ def tie_beside_a_second(
     sides = []  # each side untied, and its decision as the lone cause with a second where one holds
     for side in (tied, tied.tied_with):
         alone = _untied(side)
-        lone = replace(
-            decision,
-            cause=alone.fit.effects[0].name(),
-            causes=[Cause(alone.fit.name, alone, alone.score)],
-            rejected=None,
-            left_structure=structured(problem, alone.fit, NONE_WITHIN_NOISE),
-        )
+        lone = _lone(problem, decision, alone)
         if structured(problem, alone.fit, PAIR_TRIGGER):
             lone = add_cause(problem, baseline, lone, judged, factories, seed, threads, report)
         sides.append((alone, lone))
@@ -119,13 +124,7 @@ def outdone_beside_a_second(
         return None
     better = blocked.outdone_by
     alone = replace(blocked, objections=[], outdone_by=None)
-    lone = replace(
-        decision,
-        cause=alone.fit.effects[0].name(),
-        causes=[Cause(alone.fit.name, alone, alone.score)],
-        rejected=None,
-        left_structure=structured(problem, alone.fit, NONE_WITHIN_NOISE),
-    )
+    lone = _lone(problem, decision, alone)
     report(
         f"{better.fit.name} explains more than {alone.fit.name} but cannot be named: {alone.fit.name} beside a second"
     )
