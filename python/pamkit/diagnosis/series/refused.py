@@ -148,18 +148,20 @@ def outdone_beside_a_second(
     # intervals holding its neutral values) is the other alone: on the near-model bench a dead
     # volume of 4e-12 beside a load cell was such a pair, and a leak of time constant 4e19 s, their
     # gain the baseline's refit. Within the noise (`none`) nothing is left to picture.
+    if decision.cause != "unexplained":
+        return None
     looks = [
         pair
         for partner, pair, own in pairs
         if pair.significant
         and not pair.unneeded
+        and pair.score.combined_gain > better.score.combined_gain
+        and all(_placed(pair.fit, effect) for effect in pair.fit.effects)
+        and resolves(problem, alone.fit, pair.fit)
         and keeps_gain(own)
         and keeps_gain(score(problem, partner.fit, pair.fit, np.random.default_rng(seed), credit=alone.fit.effects))
-        and resolves(problem, alone.fit, pair.fit)
-        and all(_placed(pair.fit, effect) for effect in pair.fit.effects)
-        and pair.score.combined_gain > better.score.combined_gain
     ]
-    if decision.cause != "unexplained" or not looks:
+    if not looks:
         return None
     best = max(looks, key=lambda j: j.score.combined_gain)
     report(f"{best.fit.name} explains more than {better.fit.name} but cannot be named either")
