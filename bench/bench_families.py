@@ -85,6 +85,17 @@ def margin_of(report: dict):
     return min(values) if values else None
 
 
+def candidate_gains(report: dict) -> list[dict]:
+    """Every candidate a report fitted, with its combined held-out gain (`score`) and its gain on
+    each channel: what a cause that was not named reached, so that a bench can say how far the
+    causes that are not in the data get (the gains a rule must stay above)."""
+    return [
+        {"effect": c.get("effect"), "score": c.get("score"), "gain": c.get("gain"), "credible": c.get("credible")}
+        for c in report.get("candidates", []) or []
+        if isinstance(c, dict)
+    ]
+
+
 def noise_of(report: dict) -> dict:
     """Each channel's noise as the report states it: a time series' under `evidence`, a table's at
     the top."""
@@ -138,6 +149,7 @@ def classify(expected: str, outcome: dict, present: tuple[str, ...] = ()) -> dic
         "baseline_rmse_over_noise": {c: rmse[c] / noise[c] for c in rmse if noise.get(c, 0) > 0},
         "extended_rmse_over_noise": {c: extended[c] / noise[c] for c in extended if noise.get(c, 0) > 0},
         "causes": report.get("causes", []),
+        "candidates": candidate_gains(report),
     }
     wrong = [n for n in named if n != expected and n not in present]
     if wrong:

@@ -52,7 +52,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from bench_families import margin_of  # the decision's margin, read as bench_families reads it
+from bench_families import candidate_gains, margin_of  # read as bench_families reads them
 from independent.near_families import FAMILIES, QUICK, STRENGTHS
 
 from pamkit.diagnosis.significance import MIN_GAIN
@@ -179,6 +179,7 @@ def classify(dataset, outcome: dict) -> dict:
         "baseline_rmse_over_noise": {c: rmse[c] / noise[c] for c in rmse if noise.get(c, 0) > 0},
         "verdict": report.get("verdict", ""),
         "causes": report.get("causes", []),
+        "candidates": candidate_gains(report),
     }
     if row["outcome"] != "right" and (dataset.hidden or row["outcome"] == "wrong"):
         row["why"] = why_missed(report)

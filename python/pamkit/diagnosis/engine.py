@@ -326,8 +326,9 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     separation = None
     tied = decision.rejected
     lead = decision.causes[0].judgement if decision.causes else None
-    # An instrument's error refused only because its channel was within the noise without it: the
-    # data neither need it nor rule it out, and a test may.
+    # An instrument's error refused only as not needed (its channel within the noise without it, or
+    # a load cell gaining too little to be told from another misfit): the data neither need it nor
+    # rule it out, and a test may.
     unneeded_only = (
         tied is not None and tied.unneeded and not (tied.findings or tied.objections or tied.below_resolution)
     )

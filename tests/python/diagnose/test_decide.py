@@ -11,13 +11,15 @@ from conftest import SOURCE_DIR
 from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis.coordinates import NO_COST_AT_BOUND, Finding
 from pamkit.diagnosis.series.calibrate import Fit
-from pamkit.diagnosis.series.causes import explains_more, resolves
-from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, gain_over, judge
+from pamkit.diagnosis.series.causes import explains_more, resolves, second_holds
+from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, gain_over, judge, marginal
 from pamkit.diagnosis.series.findings import sub_sample_play, unresolved, within_resolution
 from pamkit.diagnosis.series.instruments import (
+    MISREAD_GAIN,
     STANDS_OUT,
     STRUCTURE_LEFT,
     holds_vacuum,
+    misread,
     noise_ratios,
     reads_left,
     uncredited,
@@ -363,7 +365,7 @@ def test_a_shift_at_one_sample_is_a_rival_not_an_artefact():
 def test_an_instruments_error_beside_a_first_cause_needs_its_channel_off():
     # The sealed gas's pressure transducer, first cause or second, is founded only where the model
     # without it leaves its channel beyond NONE_WITHIN_NOISE; one that edits the model (a dead
-    # volume) is not held to it, nor a load cell, whose error no baseline parameter trades against.
+    # volume) is not held to it, nor a load cell (held to its gain on the force instead: misread).
     channels = ("force_N", "gauge_pressure_Pa")
     p = problem(channels)
     sensor = effect("sensor_offset", ["gauge_pressure_Pa"], EffectStage.measurement)
@@ -388,7 +390,7 @@ def test_a_strained_inflation_pressure_founds_a_transducers_error():
         baseline = fit("none", within, [])
         baseline.coordinates = inflation_at_bound(side)
         assert (unfounded(p, baseline, [sensor]) == []) is founded
-        assert unfounded(p, baseline, [load_cell]) == []  # the force's instrument is never held to it
+        assert unfounded(p, baseline, [load_cell]) == []  # the force's instrument is held to misread
 
 
 def inflation_at_bound(side):
@@ -645,3 +647,32 @@ def test_a_pair_displaces_a_lone_cause_only_by_a_cause_worth_more():
     assert 0.0 < gain_over(near, lone) < MIN_GAIN and not explains_more(near, lone)
     spread = candidate("dead_volume+load_cell", 0.648, 0.648 + SHARED + rng.normal(0, 0.08, SAMPLES))
     assert gain_over(spread, lone) >= MIN_GAIN and not explains_more(spread, lone)
+
+
+def test_a_load_cell_needs_more_gain_on_the_force_than_it_takes_of_a_misfit_not_its_own():
+    # Where a load cell was named but was not in the data (bench_near_model seeds 1-24,
+    # bench_families seeds 1-12), it gained 0.045-0.085 on the force in 10 of 15 namings. Judged
+    # alone below MISREAD_GAIN it is not needed: not named, but a rival a cause may tie with
+    # (marginal); beside a first cause, its own gain there is held to the same. No other effect
+    # is, nor a pair judged against the baseline, whose gain is not the load cell's own.
+    p = problem(("force_N", "gauge_pressure_Pa"))
+    zeros = {c: np.zeros(ROWS) for c in p.channels}
+    baseline = fit("none", zeros, [])
+    load_cell = effect("load_cell", ["force_N"], EffectStage.measurement)
+    others = [
+        effect("sensor_offset", ["gauge_pressure_Pa"], EffectStage.measurement),
+        effect("fiber_compliance", ["force_N"]),
+        effect("sensor_lag", ["force_N"], EffectStage.measurement),
+    ]
+    others[-1].parameters = lambda: [SimpleNamespace(name="time_constant_s", resolution=Resolution.sample_interval)]
+    for gain, founded in ((0.95 * MISREAD_GAIN, False), (1.05 * MISREAD_GAIN, True)):
+        s = candidate("load_cell", gain, gain + SHARED, channels=p.channels).score
+        assert (misread(p, s, [load_cell]) == []) is founded
+        assert all(misread(p, s, [e]) == [] for e in others)
+        alone = judge(p, fit("load_cell", zeros, [load_cell]), s, baseline)
+        assert (alone.unneeded == []) is founded and alone.credible is founded
+        assert marginal(alone) is not founded
+        pair = judge(p, fit("leak+load_cell", zeros, [effect("leak"), load_cell]), s, baseline)
+        assert pair.unneeded == []
+        first = fit("leak", zeros, [effect("leak")])
+        assert second_holds(p, first, pair, s) is founded

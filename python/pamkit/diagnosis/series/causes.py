@@ -25,6 +25,7 @@ from pamkit.diagnosis.series.decide import (
 )
 from pamkit.diagnosis.series.instruments import (
     STRUCTURE_LEFT,
+    misread,
     noise_ratios,
     reads_left,
     stands_out,
@@ -110,13 +111,14 @@ def second_holds(problem: Problem, first: Fit, pair: Judgement, own: Score) -> b
     parameter of the pair credible, the second's own gain (`own`, the pair scored against `first`)
     significant on its channels, and what it explains there standing out from what the base model
     leaves on the channels it cannot change, and needed where it reads, as a single cause's must
-    (instruments.stands_out, instruments.unfounded)."""
+    (instruments.stands_out, instruments.unfounded, instruments.misread)."""
     second = pair.fit.effects[1:]
     return (
         pair.credible
         and keeps_gain(own)
         and not stands_out(problem, first, own, second)
         and not unfounded(problem, first, second)
+        and not misread(problem, own, second)
     )
 
 

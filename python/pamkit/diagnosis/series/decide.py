@@ -13,7 +13,8 @@ The rules (docs/diagnosis.md gives them in full, with the measurements behind ea
    baseline free moves the baseline to fit the channels it cannot touch; that part is not its);
    what they explain stands out from the base model's misfit on the channels coupled to theirs
    (instruments.stands_out), and an instrument's error is needed where it acts
-   (instruments.unfounded).
+   (instruments.unfounded) and gains on the force more than such an error takes of a misfit it
+   did not make (instruments.misread).
 3. The best significant, credible candidate is named, and every cause present beside it (the
    engine adds a second cause). A better candidate that cannot be named is reported beside it
    (`rejected`); when that one explains a channel both explain significantly
@@ -44,6 +45,7 @@ from pamkit.diagnosis.series.instruments import (
     INFLATION,
     corrects_output,
     holds_vacuum,
+    misread,
     noise_ratios,
     rereading,
     structured,
@@ -159,7 +161,9 @@ def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
         own,
         uncredited(problem, fit, s, baseline) + holds_vacuum(problem, fit),
         strain,
-        unneeded=unfounded(problem, baseline, fit.effects),
+        # a lone effect's score is its own; a pair's second is held to it beside the first (causes.py)
+        unneeded=unfounded(problem, baseline, fit.effects)
+        + (misread(problem, s, fit.effects) if len(fit.effects) == 1 else []),
         below_resolution=unresolved(problem, fit),
         near_resolution=within_resolution(problem, fit),
     )
