@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import pamkit
+from pamkit.effects import parse_effects
 
 
 def test_invalid_parameter_is_a_value_error_naming_the_field():
@@ -72,3 +73,19 @@ def test_integration_method_is_a_field_and_the_statistics_name_the_method_that_r
     assert estimate.ratio == pytest.approx(0.2 * 20.92 * 1e-8 ** (1 / 6), rel=1e-12) and not estimate.stiff
     assert pamkit.Simulator(config).run(model, trajectory).statistics.method == pamkit.IntegrationMethod.dopri5
     assert pamkit.Simulator().run(model, trajectory).statistics.method == pamkit.IntegrationMethod.bdf
+
+
+def test_an_instrument_reads_a_measurement_into_a_new_one_and_leaves_it_as_it_was():
+    # The diagnosis hands one simulated run to every instrument it tries (a load cell's offset, a
+    # transducer's lag) without copying it first: each must return its reading and leave the run.
+    run = pamkit.Measurement()
+    run.time_s = np.linspace(0.0, 1.0, 11)
+    run.elongation_m = np.linspace(0.0, 0.01, 11)
+    run.force_N = np.linspace(0.0, 100.0, 11)
+    run.gauge_pressure_Pa = np.linspace(1e5, 2e5, 11)
+    run.temperature_K = np.full(11, 293.15)
+    before = {name: np.array(getattr(run, name)) for name in ("force_N", "gauge_pressure_Pa", "temperature_K")}
+    for spec in ("load_cell:offset_N=5", "sensor_offset:offset_Pa=2000", "sensor_lag:channel=force_N,time_constant_s=0.2"):
+        read = parse_effects([spec])[0].apply_to_measurement(run)
+        assert any(not np.array_equal(getattr(read, c), before[c]) for c in before), spec
+        assert all(np.array_equal(getattr(run, c), before[c]) for c in before), spec

@@ -24,7 +24,7 @@ import math
 import numpy as np
 from scipy.optimize import lsq_linear
 
-from pamkit._core import EffectCatalog, EffectStage, GasMode, Measurement, Resolution
+from pamkit._core import EffectCatalog, EffectStage, GasMode, Resolution
 from pamkit.diagnosis import evidence
 from pamkit.diagnosis.coordinates import configure, effect_space
 from pamkit.diagnosis.series.calibrate import (
@@ -40,7 +40,6 @@ from pamkit.diagnosis.series.calibrate import (
 )
 from pamkit.diagnosis.series.jacobian import DIFF_STEP, SENSITIVITY_STEP, forward_differences, jacobian_for
 from pamkit.diagnosis.series.kinds import Problem
-from pamkit.io.columns import SERIES_COLUMNS
 
 SCAN_POINTS = 5  # simulations per physical effect's first parameter
 SCAN_POINTS_MEASUREMENT = 41  # no simulation needed: scan finely (a skew has one minimum per cycle)
@@ -155,10 +154,8 @@ def fit_candidate(
         evaluations += 1
         configure(effect, space, effect_x)
         if measurement_only and not drives_model:
-            m = Measurement()
-            for name in SERIES_COLUMNS:
-                setattr(m, name, getattr(base_measurement, name))
-            return problem.predictor.select(effect.apply_to_measurement(m))
+            # The instrument reads the base run into a new measurement; the run stays as it was.
+            return problem.predictor.select(effect.apply_to_measurement(base_measurement))
         return problem.predictor.predict(base_x, [effect])
 
     bad_fit = penalty(problem, float(np.sqrt(sum(baseline.training_chi2.values()) / max(problem.fit_mask.sum(), 1))))

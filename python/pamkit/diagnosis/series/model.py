@@ -201,7 +201,7 @@ class Predictor:
         """The simulated measurement at baseline coordinates x with `effects`. With instrument
         effects only, the model's run at x is the last one this thread made whenever x is the
         same (a finite-difference column of an instrument's parameter), and the instruments read
-        a copy of it: the same numbers as a run with them, one simulation fewer."""
+        it into a new measurement: the same numbers as a run with them, one simulation fewer."""
         if not effects or not all(self.reads_the_model(e) for e in effects):
             return self.simulate(x, effects)
         key = np.asarray(x, dtype=float).tobytes()
@@ -209,11 +209,9 @@ class Predictor:
         if last is None or last[0] != key:
             last = (key, self.simulate(x, []))
             self._last_run.value = last
-        m = Measurement()
-        for name in SERIES_COLUMNS:
-            setattr(m, name, getattr(last[1], name))
+        m = last[1]
         for effect in effects:
-            m = effect.apply_to_measurement(m)
+            m = effect.apply_to_measurement(m)  # a new measurement: the run kept stays as it was
         return m
 
     def reads_the_model(self, effect: Effect) -> bool:
