@@ -85,7 +85,11 @@ def test_an_instrument_reads_a_measurement_into_a_new_one_and_leaves_it_as_it_wa
     run.gauge_pressure_Pa = np.linspace(1e5, 2e5, 11)
     run.temperature_K = np.full(11, 293.15)
     before = {name: np.array(getattr(run, name)) for name in ("force_N", "gauge_pressure_Pa", "temperature_K")}
-    for spec in ("load_cell:offset_N=5", "sensor_offset:offset_Pa=2000", "sensor_lag:channel=force_N,time_constant_s=0.2"):
+    for spec in (
+        "load_cell:offset_N=5",
+        "sensor_offset:offset_Pa=2000",
+        "sensor_lag:channel=force_N,time_constant_s=0.2",
+    ):
         read = parse_effects([spec])[0].apply_to_measurement(run)
         assert any(not np.array_equal(getattr(read, c), before[c]) for c in before), spec
         assert all(np.array_equal(getattr(run, c), before[c]) for c in before), spec
