@@ -38,8 +38,8 @@ FORCE = "force_N"
 # force) takes of a force misfit it did not make: where a load cell was named but was not in the
 # data, it gained 0.045-0.085 on the force in 10 of 15 namings (bench_near_model seeds 1-24,
 # bench_families seeds 1-12: a sealed transducer's offset, a weak dead volume, another team's
-# muscle, its offset fitted at -12 to -19 N where the truth had none); a load cell in the data was
-# named below this in 3 of 39.
+# muscle, read there as an offset of -12 to -19 N); a load cell in the data was named below this in
+# 3 of 39.
 MISREAD_GAIN = 0.09
 INFLATION = "inflation_gauge_pressure_Pa"  # the sealed gas's calibrated starting pressure
 
