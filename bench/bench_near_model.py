@@ -262,6 +262,29 @@ def print_confusion(rows: list[dict]) -> dict:
     return {label: dict(matrix[label]) for label in labels}
 
 
+def named_gains(rows: list[dict]) -> dict[str, dict[str, list[float]]]:
+    """Each cause named, right (in the data) and wrong, with the gain each naming had on the
+    channels the cause acts on (`gain_own_channels`: alone against the calibrated baseline, or as
+    a second cause beside the first): how far a rule's threshold sits from both."""
+    out: dict[str, dict[str, list[float]]] = {}
+    for r in rows:
+        truth = set(r.get("hidden", [])) | set(r.get("present", []))
+        for cause in r.get("causes") or []:
+            name, gain = str(cause.get("effect", "")).split(":")[0], cause.get("gain_own_channels")
+            if isinstance(gain, (int, float)):
+                out.setdefault(name, {"right": [], "wrong": []})["right" if name in truth else "wrong"].append(gain)
+    return out
+
+
+def print_named_gains(gains: dict[str, dict[str, list[float]]]) -> None:
+    def span(values):
+        return f"{len(values):3d} {min(values):6.3f}-{max(values):5.3f}" if values else f"{0:3d} {'':12s}"
+
+    print("\neach cause named, in the data (right) and not (wrong): count, gain on its own channels")
+    for name, sides in sorted(gains.items()):
+        print(f"  {name:26s} right {span(sorted(sides['right']))}   wrong {span(sorted(sides['wrong']))}")
+
+
 def fmt(value, spec):
     return "-" if value is None else format(value, spec)
 
@@ -399,6 +422,8 @@ def main() -> int:
         print("\nwhy the hidden cause was not named, or what was named instead (count; numbers as #):")
         for why, count in misses.most_common(15):
             print(f"  {count:3d}  {why}")
+    gains = named_gains(rows)
+    print_named_gains(gains)
     seconds = quantiles([r["seconds"] for r in rows])
     cpu = quantiles([r["cpu_seconds"] for r in rows])
     print(f"\nseconds per diagnosis ({len(rows)}), wall: " + ", ".join(f"{k} {v:.1f}" for k, v in seconds.items()))
@@ -428,6 +453,7 @@ def main() -> int:
                         "pressure_over_noise": pressure,
                     },
                     "misses": dict(misses),
+                    "named_gains": gains,
                     "seconds": seconds,
                     "cpu_seconds": cpu,
                     "rows": rows,
