@@ -150,6 +150,10 @@ def pairs_beside(
         + f"trying {single.fit.name} with {', '.join(p.fit.name for p in partners)}"
     )
     out = []
+    # A second holds only with a cause's worth of its own beside the first (second_holds): where a
+    # step from the pair's scan cannot take the first's fitted chi-square SCREEN_DROP lower, the
+    # pair is not fitted further.
+    beat = sum(single.fit.training_chi2.values())
     with thread_pool(threads) as pool:
         futures = [
             (
@@ -161,6 +165,7 @@ def pairs_beside(
                     factories[single.fit.name],
                     factories[p.fit.name],
                     f"{single.fit.name}+{p.fit.name}",
+                    beat,
                 ),
             )
             for p in partners
