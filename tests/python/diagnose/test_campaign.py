@@ -13,7 +13,12 @@ import pytest
 SOURCE_DIR = Path(os.environ.get("PAMKIT_SOURCE_DIR", Path(__file__).resolve().parents[3]))
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
 
-from independent.families import independent_leak, isometric_sweep, sealed_test  # noqa: E402 (needs the path above)
+from independent.families import (  # noqa: E402 (needs the path above)
+    independent_dead_volume_two_inflations,
+    independent_leak,
+    isometric_sweep,
+    sealed_test,
+)
 from independent.physics import Physics  # noqa: E402
 
 from pamkit import deflated_braid_angle_deg, read_muscle_params_file  # noqa: E402
@@ -63,6 +68,37 @@ def test_tests_that_disagree_leave_the_campaign_unexplained(diagnosed):
     c = campaign_of_series([single[heat[0]], single[leak]], catalog())
     assert c.cause == "unexplained", verdict(c)
     assert "no cause holds across the campaign" in c.reason
+
+
+def _two_inflations(seed, folder):
+    dataset = independent_dead_volume_two_inflations(seed, folder)
+    tests = [dataset.experiment.parent / name / "test.toml" for name in ("first", "second")]
+    single = [diagnose(path, threads=2) for path in tests]
+    return single, campaign_of_series(single, catalog())
+
+
+def test_what_a_test_refused_only_as_outdone_is_carried_to_the_others(tmp_path):
+    # Two inflations of one muscle with a dead volume (the independent model's seed 7): each test
+    # alone refuses the dead volume only because a viscoelastic bladder at its slowest time
+    # constant, which cannot be named, explains a little more; compliant fibres are named in one.
+    # What a test could not tell firmly another may: the dead volume is carried too.
+    single, c = _two_inflations(7, tmp_path)
+    outdone = {j.fit.name for d in single for j in d.candidates if j.significant and j.only_outdone}
+    assert "dead_volume" in outdone, [d.cause for d in single]
+    assert "dead_volume" in c.transfers, verdict(c)
+    assert len(c.transfers["dead_volume"]) == len(single)
+
+
+def test_a_test_within_its_noise_carries_nothing_it_refused_as_outdone(tmp_path):
+    # A weaker dead volume (seed 5): each test alone says `none`; what lost there to a candidate
+    # that cannot be named is a reading of the noise, not a part of any structure, and is not
+    # carried (only a tie's two are, for the test that would part them).
+    single, c = _two_inflations(5, tmp_path)
+    assert all(d.cause == "none" for d in single), [d.cause for d in single]
+    ties = {label for d in single if d.separation is not None for label in d.separation.between}
+    outdone = {j.fit.name for d in single for j in d.candidates if j.significant and j.only_outdone}
+    assert outdone - ties, "no candidate refused as outdone: the test checks nothing"
+    assert not (outdone - ties) & set(c.transfers), verdict(c)
 
 
 def test_a_campaign_toml_shares_its_sections_with_its_tests(tmp_path):

@@ -8,9 +8,11 @@ fit, on its fitted cycles) carries them, and the gain is scored on its held-out 
 a candidate's is (score.score, credited channels). The baseline calibrated without the effect
 would not do: it has absorbed what it could of the effect (a dead volume, in a braid wound
 tighter), and the effect added to it counts twice. What is carried: every cause a test named, both
-candidates of a tie a test could not break, and a named cause's close rival (the test its
-diagnosis named to break the tie or confirm the cause, run and diagnosed beside it, is such a
-campaign). The campaign names the cause whose
+candidates of a tie a test could not break, a named cause's close rival (the test its diagnosis
+named to break the tie or confirm the cause, run and diagnosed beside it, is such a campaign), and
+a candidate refused only because one that cannot be named explains more (decide.outdone: a dead
+volume outdone in both of two inflations by a viscoelastic bladder at its slowest time constant,
+where compliant fibres, named in one, were carried alone). The campaign names the cause whose
 leave-one-test-out gain is significant in every test (at least MIN_GAIN, its 95 % interval above
 zero) and above every other such cause's in every test (their intervals apart); `none` when every
 test says `none`; otherwise `unexplained`, saying where the cause fails to carry, which causes it
@@ -117,14 +119,21 @@ def _campaign_of_series(diagnoses: list[Diagnosis], catalog, progress, threads: 
     progress(f"calibrating one muscle on all {len(diagnoses)} tests")
     joint = calibrate_jointly([d.problem for d in diagnoses], [d.baseline for d in diagnoses], names, threads)
     fits = [_single_effect_fits(d) for d in diagnoses]
-    # Beside the causes named, the two of a tie and a cause's close rival: what a test could not
-    # tell apart firmly, another test may.
-    named = {cause.label for d in diagnoses for cause in d.decision.causes} | {
-        label
-        for d in diagnoses
-        if d.separation is not None and d.separation.purpose != "check"
-        for label in d.separation.between
-    }
+    # Beside the causes named, the two of a tie, a cause's close rival and, where a test leaves
+    # structure, a candidate refused only because one that cannot be named explains more: what a
+    # test could not tell apart firmly, another test may. A test within its noise has no structure
+    # for such a candidate to be a part of (two inflations of a weak dead volume, each `none`:
+    # compliant fibres outdone there carried to both by 0.07 and 0.18 and were named).
+    named = (
+        {cause.label for d in diagnoses for cause in d.decision.causes}
+        | {
+            label
+            for d in diagnoses
+            if d.separation is not None and d.separation.purpose != "check"
+            for label in d.separation.between
+        }
+        | {j.fit.name for d in diagnoses if d.cause != "none" for j in d.candidates if j.significant and j.only_outdone}
+    )
     transfers: dict[str, list[Transfer]] = {}
     for label in sorted(named):
         if not all(label in f for f in fits):

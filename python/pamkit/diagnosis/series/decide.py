@@ -94,6 +94,16 @@ class Judgement:
     def credible(self) -> bool:
         return not self.findings and not self.objections and not self.unneeded and not self.below_resolution
 
+    @property
+    def only_outdone(self) -> bool:
+        """Refused for nothing but being outdone (its values credible, that its one objection): it
+        would be named but for a candidate that cannot be named explaining more."""
+        return (
+            self.outdone_by is not None
+            and not (self.findings or self.unneeded or self.below_resolution)
+            and len(self.objections) == 1
+        )
+
     def reasons(self) -> list[str]:
         return [f.sentence() for f in self.findings] + self.unneeded + self.below_resolution + self.objections
 

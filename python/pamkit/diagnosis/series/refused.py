@@ -113,14 +113,7 @@ def outdone_beside_a_second(
     # leak, weak seed 3, where the bladder beside the leak was named before this check).
     outdoing = [j.outdone_by for j in judged if j.outdone_by is not None]
     blocked = next((j for j in judged if j.significant and not any(j is o for o in outdoing)), None)
-    if (
-        blocked is None
-        or blocked.outdone_by is None
-        or blocked.findings
-        or blocked.unneeded
-        or blocked.below_resolution
-        or len(blocked.objections) != 1
-    ):
+    if blocked is None or not blocked.only_outdone:
         return None
     better = blocked.outdone_by
     alone = replace(blocked, objections=[], outdone_by=None)
