@@ -10,7 +10,7 @@ length is held — never from noise: a held length's encoder noise has no cycles
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -50,9 +50,25 @@ class Problem:
     cycle: np.ndarray  # cycle number of every sample, -1 outside any
     unit_name: str  # what a unit is here: "stretch cycle", "pressurise/vent sweep", "pressure plateau"
     predictor: Predictor
+    # the rows of the fitted and held-out units and the data there, taken once: a diagnosis
+    # evaluates chi some 10^3 times on the same two masks
+    _masked: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def _rows_and_measured(self, mask: np.ndarray) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        kept = self._masked.get(id(mask))
+        if kept is not None and kept[0] is mask:
+            return kept[1], kept[2]
+        rows = np.flatnonzero(mask)
+        measured = {c: self.measured[c].take(rows) for c in self.channels}
+        if mask is self.fit_mask or mask is self.held_mask:
+            self._masked[id(mask)] = (mask, rows, measured)
+        return rows, measured
 
     def chi(self, predicted: dict[str, np.ndarray], mask: np.ndarray) -> np.ndarray:
-        return np.concatenate([((predicted[c] - self.measured[c]) / self.sigma[c])[mask] for c in self.channels])
+        rows, measured = self._rows_and_measured(mask)
+        return np.concatenate(
+            [(np.asarray(predicted[c]).take(rows) - measured[c]) / self.sigma[c] for c in self.channels]
+        )
 
     def residual_units(self) -> np.ndarray:
         """The half cycle of each entry of `chi(..., fit_mask)`: the clusters of its intervals."""
@@ -60,8 +76,9 @@ class Problem:
 
     def chi2_by_channel(self, predicted: dict[str, np.ndarray]) -> dict[str, float]:
         """Sum of squared noise-weighted residuals per channel on the fitted units."""
+        rows, measured = self._rows_and_measured(self.fit_mask)
         return {
-            c: float(np.sum((((predicted[c] - self.measured[c]) / self.sigma[c])[self.fit_mask]) ** 2))
+            c: float(np.sum(((np.asarray(predicted[c]).take(rows) - measured[c]) / self.sigma[c]) ** 2))
             for c in self.channels
         }
 
