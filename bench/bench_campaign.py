@@ -190,6 +190,9 @@ def run_campaign(paths: list[Path], threads: int, repeats: int) -> dict:
         {
             "test": name,
             "cause_alone": d.cause,
+            # every cause the test names alone: beside the hidden one, a wrong name the campaign may
+            # not carry but a user of that test alone would read
+            "causes_alone": [cause.label for cause in d.decision.causes],
             "seconds_alone": d.seconds["total"],
             "one_simulation_s": one_simulation_s(d, repeats),
         }
@@ -327,7 +330,15 @@ def main() -> int:
             f"{name}: {r['cause']}: {r['reason']}"
             + (f"; shared time constant {shared:.3g} s (hidden {arguments.time_constant:g} s)" if shared else "")
         )
-        print("  each test alone: " + ", ".join(f"{t['test']} {t['cause_alone']}" for t in r["per_test"]))
+        print(
+            "  each test alone: "
+            + ", ".join(f"{t['test']} {'+'.join(t['causes_alone']) or t['cause_alone']}" for t in r["per_test"])
+        )
+        wrong = [t["test"] for t in r["per_test"] if set(t["causes_alone"]) - {HIDDEN}]
+        print(
+            f"  tests alone naming a cause not hidden: {len(wrong)} of {len(r['per_test'])}"
+            + (f" ({', '.join(wrong)})" if wrong else "")
+        )
     if arguments.json:
         Path(arguments.json).write_text(
             json.dumps(
