@@ -98,7 +98,8 @@ class NearDataset:
 
 @dataclass(frozen=True)
 class Family:
-    """A family of datasets: `make(seed, folder, strength)` writes one into `folder`;
+    """A family of datasets: `make(seed, folder, strength)` writes one into `folder` (with
+    `variant`, another test of the same muscle: sealed_test);
     `without_cause(seed, folder)` the same test (build, departures, protocol, noise) with nothing
     hidden, the yardstick of a cause's signature."""
 
@@ -106,7 +107,7 @@ class Family:
     hidden: tuple[str, ...]
     kind: str  # SEALED or SUPPLIED
     levels: dict  # strength -> cause -> its parameters there (LEVELS)
-    make: Callable[[int, Path, str | None], NearDataset]
+    make: Callable[..., NearDataset]  # (seed, folder, strength, variant=None): sealed_test's variant
     without_cause: Callable[[int, Path], NearDataset]
 
 
@@ -302,10 +303,14 @@ def sealed_test(
     causes: dict | None = None,
     hidden: tuple[str, ...] = (),
     strength: str | None = None,
+    variant: dict | None = None,
 ) -> NearDataset:
     """One sealed cyclic test of the family's muscle for `seed` with `causes` (catalog name -> its
     parameters, :func:`resolve` for those set relative to the test) in its physics, its fixture or
-    its instruments."""
+    its instruments. `variant` runs another test on the same muscle and rig: ``gauge_kPa`` inflates
+    it freely to that pressure instead (and seals it at the length it takes there), ``time_scale``
+    multiplies the crosshead's times (10: the same stretches ten times slower); the muscle, its
+    departures and the causes are the test's as drawn."""
     rng = draws(seed, family)
     build = draw_build(rng.protocol)
     plan = draw_sealed_plan(rng.protocol)
@@ -333,12 +338,15 @@ def sealed_test(
     resolved = resolve(causes or {}, duration_s=motion.corner_t[-1], ramp_s=motion.corner_t[2] - motion.corner_t[1])
     arguments = physics_of(resolved)
     effects, slack_m, instruments = arguments["effects"], arguments["slack_m"], arguments["instruments"]
+    gauge_kPa = (variant or {}).get("gauge_kPa", plan.gauge_kPa)
+    if (variant or {}).get("time_scale", 1.0) != 1.0:
+        motion = Motion(motion.corner_t * variant["time_scale"], motion.corner_x)
     muscle = ThesisMuscle(build, departures, effects)
-    initial = round(muscle.free_length(plan.gauge_kPa * 1e3), 4)  # measured with a ruler, and sealed there
+    initial = round(muscle.free_length(gauge_kPa * 1e3), 4)  # measured with a ruler, and sealed there
     muscle_motion = fixture_play(motion, slack_m)
     n = int(round(motion.corner_t[-1] * rate)) + 1
     times = np.arange(n) / rate
-    test = SealedTest(muscle, plan.gauge_kPa, plan.ambient_C, initial)
+    test = SealedTest(muscle, gauge_kPa, plan.ambient_C, initial)
     run = test.run(muscle_motion, times)
     pressure, temperature = run.gauge_kPa, run.temperature_C
     if instruments.pressure_skew_s:
@@ -364,7 +372,7 @@ def sealed_test(
         asdict(build),
         {
             "description": "near-model world, sealed cyclic test",
-            "inflation_pressure_kPa": plan.gauge_kPa,
+            "inflation_pressure_kPa": gauge_kPa,
             "ambient_temperature_C": plan.ambient_C,
             "initial_length_m": initial,
         },
@@ -374,7 +382,7 @@ def sealed_test(
     info = {
         "seed": seed,
         "kind": SEALED,
-        "gauge_kPa": plan.gauge_kPa,
+        "gauge_kPa": gauge_kPa,
         "speed_mm_per_s": round(top / (motion.corner_t[2] - motion.corner_t[1]) * 1e3, 3),
         "cycles": plan.cycles,
         "hold_s": plan.hold_s,
@@ -386,6 +394,8 @@ def sealed_test(
         "departures_force_rms_N": change,
         "cause": resolved,
     }
+    if variant:
+        info["variant"] = dict(variant)
     return NearDataset(path, hidden, strength, info)
 
 
@@ -535,14 +545,16 @@ def _family(name: str, causes: tuple[str, ...], kind: str, level_name: dict[str,
     levels = {s: {c: LEVELS[level_name.get(c, c)][s] for c in causes} for s in STRENGTHS} if causes else {}
     test = sealed_test if kind == SEALED else supplied_sweep
 
-    def make(seed, folder, strength=None):
+    def make(seed, folder, strength=None, variant=None):
+        # another test of the same muscle (sealed_test's `variant`); a supplied sweep has none
+        varied = {"variant": variant} if variant else {}
         if not causes:
-            return test(seed, folder, name)
+            return test(seed, folder, name, **varied)
         if strength not in STRENGTHS:
             raise ValueError(f"family {name}: strength {strength!r}, one of {', '.join(STRENGTHS)}")
         rng = np.random.default_rng([seed, 7, STRENGTHS.index(strength)])
         drawn = {c: {k: _signed_level(v, rng) for k, v in levels[strength][c].items()} for c in causes}
-        return test(seed, folder, name, causes=drawn, hidden=causes, strength=strength)
+        return test(seed, folder, name, causes=drawn, hidden=causes, strength=strength, **varied)
 
     return Family(name, causes, kind, levels, make, lambda seed, folder: test(seed, folder, name))
 

@@ -25,6 +25,23 @@ SMALLEST = [
     ("bench_families.py", ["--per-family", "1", "--families", "independent_leak"], "independent_leak"),
     ("bench_near_model.py", ["--seeds", "1", "--nulls", "1", "--families", "leak", "--strengths", "strong"], "wrong"),
     ("bench_campaign.py", ["--campaigns", "PAM 1", "--repeats", "1"], "PAM 1: heat_transfer"),
+    # a tie between compliant fibres and a dead volume whose report asks for another inflation
+    (
+        "bench_follow_up.py",
+        [
+            "--seeds",
+            "1",
+            "--first-seed",
+            "2",
+            "--nulls",
+            "0",
+            "--families",
+            "fiber_compliance",
+            "--strengths",
+            "strong",
+        ],
+        "1 of those run",
+    ),
     ("bench_import.py", ["--rounds", "1"], "import pamkit.diagnosis / import scipy.optimize"),
     ("bench_isotonic.py", ["--rounds", "1", "--points", "5"], "largest difference between the two"),
     ("bench_jacobians.py", ["--datasets", "1"], "the same verdict"),
