@@ -31,7 +31,12 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
-from bench_near_model import classify, diagnose, work_list  # the same datasets, diagnosed and scored alike
+from bench_near_model import (  # the same datasets, diagnosed and scored alike
+    add_world_arguments,
+    classify,
+    diagnose,
+    work_list,
+)
 from independent.near_families import FAMILIES
 
 from pamkit.io.columns import value_from_si
@@ -88,17 +93,10 @@ def _scored(dataset, outcome: dict) -> dict:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seeds", type=int, default=3, help="seeds per family and strength")
-    parser.add_argument("--first-seed", type=int, default=1)
-    parser.add_argument("--nulls", type=int, default=5, help="seeds per null family")
-    parser.add_argument("--families", help=f"comma-separated, of: {', '.join(FAMILIES)}")
-    parser.add_argument("--strengths", help="comma-separated, of: weak, medium, strong")
-    parser.add_argument("--jobs", type=int, default=1, help="diagnoses at once (default 1: CPU is scarce)")
-    parser.add_argument("--threads", type=int, default=1, help="--threads of each diagnosis")
-    parser.add_argument("--timeout", type=float, default=900.0, help="seconds per diagnosis")
+    add_world_arguments(parser)
     parser.add_argument("--json", help="write every dataset's row")
     arguments = parser.parse_args()
-    arguments.quick = False
+    arguments.quick = False  # work_list's fast subset holds supplied sweeps too: not offered here
     items = [item for item in work_list(arguments) if FAMILIES[item[0]].kind == "sealed"]
     started = time.perf_counter()
     with tempfile.TemporaryDirectory() as scratch:

@@ -327,17 +327,22 @@ def print_grid(rows: list[dict]) -> dict:
     return grid
 
 
-def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def add_world_arguments(parser: argparse.ArgumentParser) -> None:
+    """Which of the near-model world's datasets (work_list reads them) and how they are diagnosed."""
     parser.add_argument("--seeds", type=int, default=3, help="seeds per family and strength")
     parser.add_argument("--first-seed", type=int, default=1)
     parser.add_argument("--nulls", type=int, default=5, help="seeds per null family (two: sealed, supplied)")
     parser.add_argument("--families", help=f"comma-separated, of: {', '.join(FAMILIES)}")
     parser.add_argument("--strengths", help=f"comma-separated, of: {', '.join(STRENGTHS)}")
-    parser.add_argument("--quick", action="store_true", help="the fixed fast subset (near_families.QUICK)")
     parser.add_argument("--jobs", type=int, default=1, help="diagnoses at once (default 1: CPU is scarce)")
     parser.add_argument("--threads", type=int, default=1, help="--threads of each diagnosis")
     parser.add_argument("--timeout", type=float, default=900.0, help="seconds per diagnosis")
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_world_arguments(parser)
+    parser.add_argument("--quick", action="store_true", help="the fixed fast subset (near_families.QUICK)")
     parser.add_argument("--json", help="write every dataset's row and the tables")
     arguments = parser.parse_args()
     items = work_list(arguments)
