@@ -37,9 +37,7 @@ from bench_near_model import (  # the same datasets, diagnosed and scored alike
     diagnose,
     work_list,
 )
-from independent.near_families import FAMILIES
-
-from pamkit.io.columns import value_from_si
+from independent.near_families import FAMILIES, variant_asked
 
 OUTCOMES = ("right", "partial", "honest", "wrong", "error")
 
@@ -47,14 +45,9 @@ OUTCOMES = ("right", "partial", "honest", "wrong", "error")
 def variant_of(separation: dict | None) -> dict | None:
     """The generator's `variant` for the test a report's separation names, or None where it names
     none, it does not separate, or it is a zero run."""
-    if not separation or not separation.get("separates") or not separation.get("test"):
+    if not separation or not separation.get("separates"):
         return None
-    test = separation["test"]
-    if "inflation_gauge_pressure_Pa" in test:
-        return {"gauge_kPa": round(value_from_si("gauge_pressure_Pa", test["inflation_gauge_pressure_Pa"]), 2)}
-    if "time_scale" in test:
-        return {"time_scale": float(test["time_scale"])}
-    return None
+    return variant_asked(separation.get("test"))
 
 
 def follow_up(item, scratch: Path, arguments) -> dict:

@@ -399,6 +399,19 @@ def sealed_test(
     return NearDataset(path, hidden, strength, info)
 
 
+def variant_asked(test: dict | None) -> dict | None:
+    """sealed_test's `variant` for the test a diagnosis report asks for (its `separation.test`, a
+    plain dict: another inflation in Pa, or the motion's times scaled); None for a zero run, which
+    is another kind of test, or for none."""
+    if not test:
+        return None
+    if "inflation_gauge_pressure_Pa" in test:
+        return {"gauge_kPa": round(test["inflation_gauge_pressure_Pa"] / 1e3, 2)}
+    if "time_scale" in test:
+        return {"time_scale": float(test["time_scale"])}
+    return None
+
+
 # ----------------------------------------------------------------------------------------------
 # supplied isometric sweeps
 

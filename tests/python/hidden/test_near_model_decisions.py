@@ -11,7 +11,6 @@ whatever absorbs the base model's misfit) both fail here."""
 
 import sys
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import replace
 
 import pytest
 from conftest import SOURCE_DIR
@@ -122,30 +121,35 @@ def test_a_first_cause_gives_way_where_its_rival_explains_more_beside_the_second
     assert sum({"dead_volume", "load_cell"} <= r["named"] for r in rows) >= 2, lines(rows)
 
 
-def test_the_test_a_close_call_names_decides_it_beside_the_first(world, tmp_path, monkeypatch):
-    # A dead volume beside a load cell's error: compliant fibres explain it nearly as well, and are
-    # named on some seeds (wrong), the dead volume on others, each with the other close behind and
-    # a higher inflation to confirm it (`separation`). That test, written by the same generator
-    # (the same muscle, seed and instruments, inflated as the report says), diagnosed beside the
-    # first as a campaign names the dead volume, never the fibres. Measured: 3 of 3.
-    rows = [r for r in world if r["name"] == "dead_volume+load_cell" and r["separation"]]
-    found = []
+def test_the_test_a_report_asks_for_decides_beside_the_first(world, tmp_path):
+    # Where one test cannot settle a cause (a tie, a cause narrowly ahead of a rival, an instrument's
+    # error the data did not need), the report names the test that would (`separation`). That test,
+    # written by the same generator on the same muscle, departures and causes (another inflation,
+    # or the same stretches faster or slower; a zero run is another kind of test), diagnosed beside
+    # the first as a campaign, names no wrong cause and at least as many right as the first alone.
+    # A dead volume beside a load cell's error, which compliant fibres explain nearly as well, is
+    # named a dead volume with that test. Measured (bench/bench_follow_up.py, these strengths at
+    # seeds 1-3): 8 such tests; alone 2 right and 2 wrong, with the test 4 right and none wrong.
+    rows = [
+        r
+        for r in world
+        if r["separation"] and r["separation"]["separates"] and near_families.variant_asked(r["separation"]["test"])
+    ]
+    alone, with_test = [], []
     for r in rows:
-        test = r["separation"]["test"]
-        assert "inflation_gauge_pressure_Pa" in test, r["verdict"]
-        pressure_kPa = round(test["inflation_gauge_pressure_Pa"] / 1e3, 2)
-        drawn = near_families.draw_sealed_plan
-        monkeypatch.setattr(
-            near_families,
-            "draw_sealed_plan",
-            lambda rng, drawn=drawn, kPa=pressure_kPa: replace(drawn(rng), gauge_kPa=kPa),
+        variant = near_families.variant_asked(r["separation"]["test"])
+        second = FAMILIES[r["name"]].make(
+            r["seed"], tmp_path / f"{r['name']}-{r['seed']}-{r['strength']}", r["strength"], variant
         )
-        second = FAMILIES[r["name"]].make(r["seed"], tmp_path / f"{r['seed']}-{r['strength']}", r["strength"])
-        monkeypatch.setattr(near_families, "draw_sealed_plan", drawn)
         campaign = to_json(diagnose([str(r["experiment"]), str(second.experiment)], threads=2))
-        found.append(named(campaign))
-        assert found[-1] <= r["hidden"], campaign["verdict"]
-    assert len(rows) >= 2 and sum("dead_volume" in n for n in found) >= len(rows) - 1, found
+        alone.append(r["named"])
+        with_test.append((r, named(campaign)))
+        assert not wrong({**r, "named": with_test[-1][1]}), f"{r['case']} with {variant}: {campaign['verdict']}"
+    right = lambda r, names: bool(r["hidden"]) and r["hidden"] <= names <= r["hidden"] | r["present"]  # noqa: E731
+    assert len(rows) >= 4, lines(rows)
+    assert sum(right(r, n) for r, n in with_test) >= sum(right(r, r["named"]) for r in rows), with_test
+    pairs = [(r, n) for r, n in with_test if r["name"] == "dead_volume+load_cell"]
+    assert pairs and all("dead_volume" in n for _, n in pairs), pairs
 
 
 def test_a_tie_alone_is_told_apart_beside_a_second(tmp_path):
