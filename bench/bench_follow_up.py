@@ -15,7 +15,7 @@ muscle, departures and causes (near_families.sealed_test's `variant`); a campaig
 two, and `python -m pamkit diagnose` reads it. A zero run is another kind of test, and is counted
 as not run. Each dataset is scored as bench_near_model.py scores it (right / wrong / partial /
 honest), alone and in the campaign; printed: the outcomes before and after, by what the test was
-for and by family, and the datasets a campaign changed.
+for, how many changed from what to what, and the upper strengths' right and all wrong names.
 """
 
 from __future__ import annotations
