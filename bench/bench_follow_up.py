@@ -65,11 +65,11 @@ def follow_up(item, scratch: Path, arguments) -> dict:
     row["variant"] = variant
     if variant is None:
         return row
-    second = FAMILIES[name].make(seed, folder / "second", strength, variant)
+    FAMILIES[name].make(seed, folder / "second", strength, variant)  # the test asked for, beside the first
     campaign = folder / "campaign.toml"
     campaign.write_text('[campaign]\ntests = ["first/test.toml", "second/test.toml"]\n')
     both = diagnose(campaign, arguments.timeout, arguments.threads)
-    row["campaign"] = classify(second, both) if "error" in both else _scored(dataset, both)
+    row["campaign"] = _scored(dataset, both)
     row["seconds"] += both["seconds"]
     return row
 
@@ -77,6 +77,8 @@ def follow_up(item, scratch: Path, arguments) -> dict:
 def _scored(dataset, outcome: dict) -> dict:
     """A campaign's report scored as one test's: its named causes against the truth (classify reads
     a test's own evidence, which a campaign's report keeps per test)."""
+    if "error" in outcome:
+        return classify(dataset, outcome)
     report = outcome["report"]
     first = report["per_test"][0]
     scored = classify(dataset, {"report": {**first, "cause": report["cause"], "causes": report["causes"]}})

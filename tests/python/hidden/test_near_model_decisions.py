@@ -129,7 +129,7 @@ def test_the_test_a_report_asks_for_decides_beside_the_first(world, tmp_path):
     # the first as a campaign, names no wrong cause and at least as many right as the first alone.
     # A dead volume beside a load cell's error, which compliant fibres explain nearly as well, is
     # named a dead volume with that test. Measured (bench/bench_follow_up.py, these strengths at
-    # seeds 1-3): 8 such tests; alone 2 right and 2 wrong, with the test 4 right and none wrong.
+    # seeds 1-3): 8 such tests; alone 2 right and 2 wrong, with the test 3 right and none wrong.
     rows = [
         r
         for r in world

@@ -4,8 +4,7 @@ When two candidates explain the held-out units alike (rule 6 of decide.py), nami
 a guess, and the user's next question is what to measure; so too when a cause is named only
 narrowly ahead of a rival (decide.close_rival: to confirm it), and when an instrument's error was
 refused as not needed (instruments.unfounded, .misread: to check for it, against the model without
-it). Each
-fitted model is run on a few variants of the test the lab can run on the same muscle and rig —
+it). Each fitted model is run on a few variants of the test the lab can run on the same muscle and rig —
 inflated higher or lower (a supplied test: the supplied pressure raised or lowered), the same
 motion slower or faster, the instruments read with the muscle vented and unloaded (a zero run) —
 and the variant on which their predictions differ most, in units of each channel's noise, is the
