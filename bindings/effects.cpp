@@ -47,6 +47,14 @@ class PyEffect : public Effect {
     if (py::get_override(self, "apply_to_measurement")) return EffectStage::measurement;
     return EffectStage::physics;
   }
+  /// A Python effect that overrides apply_to_measurement reads each sample alone only if it
+  /// says so (reads_samples_alone).
+  bool reads_samples_alone() const override {
+    py::gil_scoped_acquire gil;
+    const auto* self = static_cast<const Effect*>(this);
+    if (py::function override = py::get_override(self, "reads_samples_alone")) return override().cast<bool>();
+    return !py::get_override(self, "apply_to_measurement");
+  }
   bool acts_in(GasMode mode, std::string* why_not) const override {
     py::gil_scoped_acquire gil;
     py::function override = py::get_override(static_cast<const Effect*>(this), "why_not");
@@ -196,6 +204,9 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
           py::arg("mode"), "(True, None) or (False, reason)")
       .def("shows_between_branches", &Effect::shows_between_branches,
            "whether it shows only between the pressurising and venting branches of a supplied pressure")
+      .def("reads_samples_alone", &Effect::reads_samples_alone,
+           "whether what the instruments read at a sample depends on that sample alone (an offset, a gain), not on "
+           "its neighbours (a lag, a skew)")
       .def("reads_supplied_pressure", &Effect::reads_supplied_pressure,
            "whether it is an error of the transducer whose reading drives a supplied test")
       .def(

@@ -384,7 +384,8 @@ void bind_sim(py::module_& m) {
            "with the same result bit for bit; None or a table that does not apply: the shapes are solved.")
       .def("run_sensitivities", &Simulator::run_sensitivities, py::arg("model"), py::arg("moved"), py::arg("steps"),
            py::arg("trajectory"), py::arg("shapes") = nullptr,
-           py::arg("moved_motions") = std::vector<ElongationTrajectory>{}, py::call_guard<py::gil_scoped_release>(),
+           py::arg("moved_motions") = std::vector<ElongationTrajectory>{}, py::arg("rows") = std::vector<std::size_t>{},
+           py::call_guard<py::gil_scoped_release>(),
            "run, with the forward sensitivities of every output column to parameters integrated by CVODES beside the "
            "state (BDF, staggered corrector, on the state's own steps: outside the error test, so the run is the plain "
            "run's to rounding). Parameter i is given as moved[i], the model with it "
@@ -393,9 +394,10 @@ void bind_sim(py::module_& m) {
            "of order one (the sensitivities share the state's absolute tolerances); steps near 1e-6 give derivatives "
            "to ~1e-6 relative. moved_motions: where a parameter moves the muscle's motion (a fixture's slack), "
            "moved model i's elongation on the trajectory's times (its derivative's elongation_m is the motion's); "
-           "empty: every moved model follows the trajectory. Returns a SensitivityResult; releases the GIL. "
-           "ValueError for mismatched sizes, a zero step, a moved motion on other times or a moved model whose "
-           "motion leaves its braid's range.")
+           "empty: every moved model follows the trajectory. rows: the samples (increasing indices) whose "
+           "derivatives are read, NaN at the others, which cost nothing (empty: every sample). Returns a "
+           "SensitivityResult; releases the GIL. ValueError for mismatched sizes, a zero step, a moved motion on other "
+           "times, a moved model whose motion leaves its braid's range, or rows that do not increase or pass the end.")
       .def(
           "run_batch",
           [](const Simulator& simulator, const std::vector<MuscleModel>& models, const ElongationTrajectory& trajectory,

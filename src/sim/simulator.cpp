@@ -41,7 +41,11 @@ struct MovedModels {
   std::vector<MuscleWorkspace> rhs;
   std::vector<MuscleWorkspace> output;
   std::vector<const ShapeTable*> shapes;  // per moved model: the table where it applies, else null
+  std::vector<char> wanted;               // per sample: whether its derivatives are read (empty: every one)
   long rhs_evaluations = 0;
+
+  /// Whether the derivatives at sample k are read (run_sensitivities' `rows`).
+  bool wants(std::size_t k) const { return wanted.empty() || wanted[k]; }
 };
 
 /// Per-run mutable workspace handed to CVODES as user data.
@@ -240,13 +244,21 @@ class DerivativeRecorder {
       for (std::size_t k = 0; k < trajectory.size(); ++k) {
         d.elongation_m[k] = (motion[k] - trajectory.elongation()[k]) / moved.steps[i];
       }
-      for (std::vector<double>* column : outputs(d)) column->resize(trajectory.size());
+      // NaN where a sample is not read: a caller that reads it anyway sees it.
+      for (std::vector<double>* column : outputs(d)) {
+        column->assign(trajectory.size(), std::numeric_limits<double>::quiet_NaN());
+      }
     }
   }
 
-  /// Sample k, whose friction reads the elongation rate of segment `segment` (k - 1, or 0 at the start).
+  /// Whether sample k's derivatives are recorded (run_sensitivities' `rows`).
+  bool wants(std::size_t k) const { return moved_.wants(k); }
+
+  /// Sample k, whose friction reads the elongation rate of segment `segment` (k - 1, or 0 at the
+  /// start); nothing where the sample is not wanted, whose sensitivities `yS` were not read.
   void record(std::size_t k, std::size_t segment, const State& y, N_Vector* yS, const MuscleOutputs& nominal,
               SolverStatistics& statistics) {
+    if (!wants(k)) return;
     for (std::size_t i = 0; i < derivatives_.size(); ++i) {
       const double h = moved_.steps[i];
       const MuscleModel& model = moved_.models[i];
@@ -808,12 +820,15 @@ SolverStatistics integrate(const SimulatorConfig& config, const MuscleModel& mod
       const bool horner = passed - sample > static_cast<std::size_t>(order) + 1;
       if (horner) polynomial.read(cv, t, order, sample_state.get(), sample_sensitivities.vectors);
       for (; sample < passed; ++sample) {
+        const bool sensitivities_read = count > 0 && differentiator->wants(sample);
         if (horner) {
           polynomial.evaluate(time[sample], 0, sample_state.get());
-          for (int i = 0; i < count; ++i) polynomial.evaluate(time[sample], i + 1, sample_sensitivities.vectors[i]);
+          for (int i = 0; sensitivities_read && i < count; ++i) {
+            polynomial.evaluate(time[sample], i + 1, sample_sensitivities.vectors[i]);
+          }
         } else {
           check_flag(CVodeGetDky(cv, time[sample], 0, sample_state.get()), "CVodeGetDky", time[sample]);
-          if (count > 0) {
+          if (sensitivities_read) {
             check_flag(CVodeGetSensDky(cv, time[sample], 0, sample_sensitivities.vectors), "CVodeGetSensDky",
                        time[sample]);
           }
@@ -827,6 +842,24 @@ SolverStatistics integrate(const SimulatorConfig& config, const MuscleModel& mod
   add_statistics(solver, statistics);
   if (moved) statistics.sensitivity_rhs_evaluations = moved->rhs_evaluations;
   return statistics;
+}
+
+/// Per sample of a trajectory of `size`, whether `rows` holds it (empty: none is marked, and
+/// MovedModels reads that as every one).
+std::vector<char> wanted_samples(const std::vector<std::size_t>& rows, std::size_t size) {
+  std::vector<char> wanted(rows.empty() ? 0 : size, 0);
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    if (rows[j] >= size) {
+      throw InvalidInput(detail::message("Simulator.run_sensitivities: rows[", j, "] = ", rows[j],
+                                         " is past the trajectory's last sample, ", size - 1));
+    }
+    if (j > 0 && rows[j] <= rows[j - 1]) {
+      throw InvalidInput(detail::message("Simulator.run_sensitivities: rows[", j, "] = ", rows[j],
+                                         " does not increase (rows[", j - 1, "] = ", rows[j - 1], ")"));
+    }
+    wanted[rows[j]] = 1;
+  }
+  return wanted;
 }
 
 }  // namespace
@@ -847,7 +880,8 @@ SolverStatistics Simulator::run_blocks(const MuscleModel& model, const Elongatio
 SensitivityResult Simulator::run_sensitivities(const MuscleModel& model, const std::vector<MuscleModel>& moved,
                                                const std::vector<double>& steps, const ElongationTrajectory& trajectory,
                                                const ShapeTable* shapes,
-                                               const std::vector<ElongationTrajectory>& moved_motions) const {
+                                               const std::vector<ElongationTrajectory>& moved_motions,
+                                               const std::vector<std::size_t>& rows) const {
   if (moved.size() != steps.size()) {
     throw InvalidInput(
         detail::message("Simulator.run_sensitivities: ", moved.size(), " moved models for ", steps.size(), " steps"));
@@ -856,8 +890,14 @@ SensitivityResult Simulator::run_sensitivities(const MuscleModel& model, const s
     throw InvalidInput(detail::message("Simulator.run_sensitivities: ", moved_motions.size(), " moved motions for ",
                                        moved.size(), " moved models (give none, or one each)"));
   }
-  MovedModels moved_models{
-      moved, steps, {}, std::vector<MuscleWorkspace>(moved.size()), std::vector<MuscleWorkspace>(moved.size()), {}, 0};
+  MovedModels moved_models{moved,
+                           steps,
+                           {},
+                           std::vector<MuscleWorkspace>(moved.size()),
+                           std::vector<MuscleWorkspace>(moved.size()),
+                           {},
+                           wanted_samples(rows, trajectory.size()),
+                           0};
   for (std::size_t i = 0; i < moved.size(); ++i) {
     if (!(std::isfinite(steps[i]) && steps[i] != 0.0)) {
       throw InvalidInput(detail::message("Simulator.run_sensitivities: step ", i, " is ", steps[i],

@@ -172,6 +172,12 @@ class Effect {
   /// branch of a supplied pressure: on one branch alone it cannot be told from the muscle's
   /// force scale, so a record with no venting rows cannot name it.
   virtual bool shows_between_branches() const { return false; }
+  /// Whether `apply_to_measurement` makes each sample's reading from that sample alone (an
+  /// offset, a gain), not from its neighbours (a lag, a skew): a caller that reads some samples
+  /// only may then leave the others unknown (Simulator::run_sensitivities' `rows`). By default,
+  /// whether the effect acts before the measurement, where the reading is untouched; an effect
+  /// that overrides `apply_to_measurement` says so for itself.
+  virtual bool reads_samples_alone() const { return stage() != EffectStage::measurement; }
   /// Whether the effect is an error of the instrument that reads a supplied pressure, so that
   /// in a supplied test (and a static table) it acts on the pressure that drives the model.
   virtual bool reads_supplied_pressure() const { return false; }

@@ -206,14 +206,22 @@ class Simulator {
   /// derivative's elongation_m is the motion's, (moved - nominal) / h_i). Empty: every moved
   /// model follows `trajectory`. CVODES restarts at `trajectory`'s corners, so a moved motion
   /// should keep them where they are (a step of 1e-6 moves a corner by less than a sample).
+  ///
+  /// `rows`: the samples (increasing trajectory indices) whose derivatives the caller reads, such
+  /// as a fit's training samples; the derivatives are NaN at the others, where neither the
+  /// sensitivities are interpolated nor the moved models evaluated (most of a long record's cost).
+  /// Empty: every sample. The nominal run is whole either way; at `rows` the derivatives are the
+  /// same to the braid closure's tolerance (a moved model's closure then starts from the last
+  /// sample read, not the one before).
   /// \throws InvalidInput if `moved` and `steps` differ in size, a step is zero or not finite,
   ///         `moved_motions` is neither empty nor one per moved model, a moved motion's times are
-  ///         not `trajectory`'s, or a moved model's motion leaves its braid's range; as `run`
-  ///         otherwise.
+  ///         not `trajectory`'s, a moved model's motion leaves its braid's range, or `rows` does not
+  ///         increase or passes the trajectory's end; as `run` otherwise.
   SensitivityResult run_sensitivities(const MuscleModel& model, const std::vector<MuscleModel>& moved,
                                       const std::vector<double>& steps, const ElongationTrajectory& trajectory,
                                       const ShapeTable* shapes = nullptr,
-                                      const std::vector<ElongationTrajectory>& moved_motions = {}) const;
+                                      const std::vector<ElongationTrajectory>& moved_motions = {},
+                                      const std::vector<std::size_t>& rows = {}) const;
 
   /// Runs every model of `models` along `trajectory`, as `run_blocks` runs each, on
   /// `request.threads` threads, and keeps of each run the request's channels at its rows and

@@ -1404,9 +1404,9 @@ class Simulator:
         """
         run_batch over the runs of a ParameterSets, each run's muscle made on the C++ thread that runs it (ParameterSets.at): a design sweep with no Python per run. A run whose parameters are refused is marked in BatchResult.failures as RunFailure.parameters.
         """
-    def run_sensitivities(self, model: MuscleModel, moved: collections.abc.Sequence[MuscleModel], steps: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], trajectory: ElongationTrajectory, shapes: ShapeTable = None, moved_motions: collections.abc.Sequence[ElongationTrajectory] = []) -> SensitivityResult:
+    def run_sensitivities(self, model: MuscleModel, moved: collections.abc.Sequence[MuscleModel], steps: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], trajectory: ElongationTrajectory, shapes: ShapeTable = None, moved_motions: collections.abc.Sequence[ElongationTrajectory] = [], rows: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex] = []) -> SensitivityResult:
         """
-        run, with the forward sensitivities of every output column to parameters integrated by CVODES beside the state (BDF, staggered corrector, on the state's own steps: outside the error test, so the run is the plain run's to rounding). Parameter i is given as moved[i], the model with it moved by steps[i] (signed; its own initial state follows); each sensitivity's right-hand side and output derivative is the directional difference quotient (f_i(y + h_i s_i) - f(y)) / h_i. Parameters should be of order one (the sensitivities share the state's absolute tolerances); steps near 1e-6 give derivatives to ~1e-6 relative. moved_motions: where a parameter moves the muscle's motion (a fixture's slack), moved model i's elongation on the trajectory's times (its derivative's elongation_m is the motion's); empty: every moved model follows the trajectory. Returns a SensitivityResult; releases the GIL. ValueError for mismatched sizes, a zero step, a moved motion on other times or a moved model whose motion leaves its braid's range.
+        run, with the forward sensitivities of every output column to parameters integrated by CVODES beside the state (BDF, staggered corrector, on the state's own steps: outside the error test, so the run is the plain run's to rounding). Parameter i is given as moved[i], the model with it moved by steps[i] (signed; its own initial state follows); each sensitivity's right-hand side and output derivative is the directional difference quotient (f_i(y + h_i s_i) - f(y)) / h_i. Parameters should be of order one (the sensitivities share the state's absolute tolerances); steps near 1e-6 give derivatives to ~1e-6 relative. moved_motions: where a parameter moves the muscle's motion (a fixture's slack), moved model i's elongation on the trajectory's times (its derivative's elongation_m is the motion's); empty: every moved model follows the trajectory. rows: the samples (increasing indices) whose derivatives are read, NaN at the others, which cost nothing (empty: every sample). Returns a SensitivityResult; releases the GIL. ValueError for mismatched sizes, a zero step, a moved motion on other times, a moved model whose motion leaves its braid's range, or rows that do not increase or pass the end.
         """
     @property
     def config(self) -> SimulatorConfig:
@@ -1794,6 +1794,10 @@ class Effect:
         ...
     def parameters(self) -> list[EffectParameter]:
         ...
+    def reads_samples_alone(self) -> bool:
+        """
+        whether what the instruments read at a sample depends on that sample alone (an offset, a gain), not on its neighbours (a lag, a skew)
+        """
     def reads_supplied_pressure(self) -> bool:
         """
         whether it is an error of the transducer whose reading drives a supplied test

@@ -49,6 +49,8 @@ def point_with(problem, names):
         # The baseline (inflation pressure, which moves the free length, friction and bladder
         # scales), a physical effect and an instrument.
         ["heat_transfer", "sensor_lag"],
+        # Effects that read each sample alone: the run's derivatives at the fitted rows only.
+        ["dead_volume", "load_cell"],
         # An effect that moves the muscle off the crosshead's motion: its sensitivity follows
         # its own moved motion.
         ["fixture_slack"],
@@ -72,6 +74,24 @@ def test_the_sensitivity_jacobian_is_central_differences_of_tight_runs(names):
         gap = np.linalg.norm(exact[:, j] - central[:, j]) / np.linalg.norm(central[:, j])
         # Measured: at most 3.2e-5 (heat_transfer's time constant, through the integrated temperature).
         assert gap < 1e-4, f"column {j}: {gap:.2e}"
+
+
+def test_the_run_reads_derivatives_at_the_fitted_rows_only_where_every_effect_reads_samples_alone():
+    problem = build_problem(load_experiment(EXAMPLE))
+
+    def rows(names):
+        return jacobian.rows_read(problem, [[catalog().make(n) for n in names]])
+
+    fitted = problem.predictor.motion.sample_rows[problem.fit_mask]
+    assert 0 < fitted.size < problem.predictor.motion.sample_rows.size
+    np.testing.assert_array_equal(rows(["dead_volume", "load_cell", "sensor_offset", "thermometer"]), fitted)
+    assert np.all(np.diff(fitted) > 0)  # as the simulator requires
+    # A lag or a skew reads the neighbours of a fitted row: every sample then.
+    for names in (["sensor_lag"], ["load_cell", "time_skew"]):
+        assert rows(names).size == 0, names
+    # A fixture's play moves the muscle along the played motion's finer knots, read at the motion's.
+    played = rows(["fixture_slack", "load_cell"])
+    assert played.size == fitted.size and np.all(np.diff(played) > 0) and played[-1] > fitted[-1]
 
 
 def test_a_fit_with_sensitivities_reaches_the_finite_difference_fits_optimum(monkeypatch):

@@ -175,6 +175,24 @@ def test_measurement_stage_shifts_the_reading_only(catalog, bench):
     assert python.temperature_K.tobytes() == (baseline.temperature_K + 0.5).tobytes()
 
 
+class PointwiseThermometerOffset(ThermometerOffset):
+    """The same offset, declaring that it reads each sample alone."""
+
+    def reads_samples_alone(self):
+        return True
+
+
+def test_which_effects_read_each_sample_alone(catalog):
+    # A fit asks the simulator for derivatives at its own rows only where every effect reads each
+    # sample alone (series/jacobian.py): a lag or a skew reads its neighbours, and a Python effect
+    # that edits the readings is taken to, unless it says otherwise.
+    alone = {name: catalog.make(name).reads_samples_alone() for name in catalog.names()}
+    assert not alone["time_skew"] and not alone["sensor_lag"] and not alone["thermometer_offset"]
+    assert alone["load_cell"] and alone["sensor_offset"] and alone["thermometer"]
+    assert alone["dead_volume"] and alone["fixture_slack"] and alone["hose_volume"] and alone["loose_pin"]
+    assert PointwiseThermometerOffset().reads_samples_alone()
+
+
 def test_all_three_stages_through_simulate_experiment(catalog, thesis_dir):
     experiment = load_experiment(thesis_dir / "pam2_207kPa_90pct.toml")
     specs = [

@@ -50,6 +50,7 @@ struct LoadCellParams {
 };
 class LoadCellEffect : public detail::ParametricEffect<LoadCellParams> {
  public:
+  bool reads_samples_alone() const override { return true; }
   /// reading = offset + F (1 + c F), c per newton.
   void apply_to_measurement(Measurement& m) const override {
     for (double& f : m.force_N) f = params_.offset_N + f * (1.0 + params_.nonlinearity_per_kN * 1e-3 * f);

@@ -48,6 +48,7 @@ class SensorOffsetEffect : public detail::ParametricEffect<SensorOffsetParams> {
   void apply_to_supplied_pressure(const std::vector<double>&, std::vector<double>& gauge_pressure_Pa) const override {
     for (double& p : gauge_pressure_Pa) p = (p - params_.offset_Pa) / params_.gain;
   }
+  bool reads_samples_alone() const override { return true; }
   void apply_to_measurement(Measurement& m) const override {
     for (double& p : m.gauge_pressure_Pa) p = params_.gain * p + params_.offset_Pa;
   }

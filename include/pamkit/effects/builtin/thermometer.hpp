@@ -36,6 +36,7 @@ struct ThermometerParams {
 };
 class ThermometerEffect : public detail::ParametricEffect<ThermometerParams> {
  public:
+  bool reads_samples_alone() const override { return true; }
   void apply_to_measurement(Measurement& m) const override {
     for (double& t : m.temperature_K) t += params_.offset_K;
   }

@@ -9,7 +9,9 @@ state (Simulator.run_sensitivities), on the run's own steps; the instruments, a 
 of the run's channels, are differenced at the first-order moved channels. A coordinate that only
 moves an instrument needs no sensitivity at all. A coordinate that moves the muscle off the
 crosshead's motion (a fixture's slack) gives its moved model that moved motion: the run follows
-the nominal motion, and each sensitivity its own.
+the nominal motion, and each sensitivity its own. Where every effect reads each sample alone (no
+lag, no skew), the run evaluates the moved models only at the fitted units' samples, where the
+Jacobian reads them (about half of a record's; the sensitivity runs take 10-30 % less).
 
 A supplied-pressure test has no ODE: its model is evaluated sample by sample, each braid closure
 solved to ~1e-14, so it is differenced with the sensitivities' small step (static tables do the
@@ -90,6 +92,15 @@ def _read(problem: Problem, m: Measurement, effects: list[Effect], mask: np.ndar
     return problem.chi(problem.predictor.select(m), mask)
 
 
+def rows_read(problem: Problem, effects: list[list[Effect]]) -> np.ndarray:
+    """The run's samples the fitted units read, where every effect (`effects`: the nominal
+    point's and each moved point's) reads each sample alone; else none, which asks for every
+    sample."""
+    if not all(x.reads_samples_alone() for e in effects for x in e):
+        return np.empty(0, dtype=np.uint64)
+    return problem.predictor.run_rows(problem.fit_mask, effects[0])
+
+
 def sensitivity_jacobian(problem: Problem, point: Point, u: np.ndarray) -> np.ndarray:
     """d chi / du at u on the fitted units, from one run with the sensitivities of every
     coordinate that moves the model. Each step is SENSITIVITY_STEP into the box. Raises
@@ -116,6 +127,7 @@ def sensitivity_jacobian(problem: Problem, point: Point, u: np.ndarray) -> np.nd
         motion,
         shapes,
         [m for m, moves in zip(moved_motions, moves_model) if moves] if any(moves_motion) else [],
+        rows_read(problem, [effects] + [e for _, e in moved_points]),
     )
     crosshead = np.asarray(predictor.trajectory.elongation_m)
     run, derivatives = result.run, result.derivatives

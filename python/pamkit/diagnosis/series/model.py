@@ -296,5 +296,11 @@ class Predictor:
             for name in self.channels
         }
 
+    def run_rows(self, mask: np.ndarray, effects: list[Effect]) -> np.ndarray:
+        """The samples of a run with `effects` that `select` reads for the data's rows `mask`: on
+        the motion's knots, or on the played motion's where an effect moves the muscle."""
+        rows = self.motion.sample_rows[mask]
+        return self._motion_rows[rows] if self.moves_muscle(effects) else rows
+
     def predict(self, x: np.ndarray, effects: list[Effect]) -> dict[str, np.ndarray]:
         return self.select(self.measurement(x, effects))
