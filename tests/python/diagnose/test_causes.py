@@ -149,7 +149,7 @@ def test_a_candidate_outdone_by_one_that_cannot_be_named_is_named_where_a_second
     monkeypatch.setattr(refused, "keeps_gain", lambda own: True)  # each gains beside the other
     monkeypatch.setattr(refused, "score", lambda problem, before, fit, rng, credit=None: None)
     monkeypatch.setattr(refused, "resolves", lambda problem, single, pair: True)
-    monkeypatch.setattr(refused, "_placed", lambda fit, effect: True)  # the dead volume fitted at 0.099
+    monkeypatch.setattr(refused, "placed", lambda fit, effect: True)  # the dead volume fitted at 0.099
     nothing = Decision("unexplained", [], transducer, {}, [PRESSURE])
 
     def decided(

@@ -11,7 +11,7 @@ from conftest import SOURCE_DIR
 from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis.coordinates import NO_COST_AT_BOUND, Finding
 from pamkit.diagnosis.series.calibrate import Fit
-from pamkit.diagnosis.series.causes import explains_more, resolves, second_holds
+from pamkit.diagnosis.series.causes import explains_more, placed, resolves, second_holds
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, gain_over, judge, marginal
 from pamkit.diagnosis.series.findings import sub_sample_play, unresolved, within_resolution
 from pamkit.diagnosis.series.instruments import (
@@ -647,6 +647,30 @@ def test_a_pair_displaces_a_lone_cause_only_by_a_cause_worth_more():
     assert 0.0 < gain_over(near, lone) < MIN_GAIN and not explains_more(near, lone)
     spread = candidate("dead_volume+load_cell", 0.648, 0.648 + SHARED + rng.normal(0, 0.08, SAMPLES))
     assert gain_over(spread, lone) >= MIN_GAIN and not explains_more(spread, lone)
+
+
+def test_a_second_cause_the_data_leave_at_its_neutral_value_is_not_named():
+    # bench_near_model load_cell strong seed 14: a dead volume of 0.15 % [0, 1.1 %] beside the load
+    # cell gained 0.20 of its own, all of it the bladder's modulus refitted to nothing beside it.
+    # Its interval holds 0, the volume that adds nothing: it is not there. Clear of it, it is.
+    p = problem(("force_N", "gauge_pressure_Pa"))
+    zeros = {c: np.zeros(ROWS) for c in p.channels}
+    s = candidate("load_cell+dead_volume", 0.4, 0.4 + SHARED, channels=p.channels).score
+    cell, volume, leak = (catalog().make(n) for n in ("load_cell", "dead_volume", "leak"))
+    first = fit("load_cell", zeros, [cell])
+    for band, there in (([0.0, 0.0113], False), ([0.001, 0.0113], True)):
+        pair_fit = fit("load_cell+dead_volume", zeros, [cell, volume])
+        pair_fit.intervals = {"load_cell.offset_N": [-24.1, -5.0], "dead_volume.volume_fraction": band}
+        assert placed(pair_fit, volume) is there and placed(pair_fit, cell)
+        assert second_holds(p, first, judge(p, pair_fit, s, fit("none", zeros, [])), s) is there
+    # A leak's neutral time constant is infinity: an interval reaching it holds a leak of nothing.
+    pair_fit = fit("load_cell+leak", zeros, [cell, leak])
+    pair_fit.intervals = {"leak.time_constant_s": [2e3, np.inf]}
+    assert not placed(pair_fit, leak)
+    pair_fit.intervals = {"leak.time_constant_s": [80.0, 130.0]}
+    assert placed(pair_fit, leak)
+    # Nothing to judge it by (no interval, or values with no neutral one): not held at nothing.
+    assert placed(fit("leak", zeros, [leak]), leak)
 
 
 def test_a_load_cell_needs_more_gain_on_the_force_than_it_takes_of_a_misfit_not_its_own():

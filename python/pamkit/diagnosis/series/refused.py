@@ -4,13 +4,12 @@ that, beside a second, explains as much with credible values. series/causes.py f
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 import numpy as np
 
 from pamkit.diagnosis.series.calibrate import Fit
-from pamkit.diagnosis.series.causes import add_cause, explains_more, pairs_beside, reads_explained, resolves
+from pamkit.diagnosis.series.causes import add_cause, explains_more, pairs_beside, placed, reads_explained, resolves
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Cause, Decision, Judgement, keeps_gain, outdone
 from pamkit.diagnosis.series.instruments import structured
 from pamkit.diagnosis.series.kinds import Problem
@@ -79,16 +78,6 @@ def tie_beside_a_second(
     return None
 
 
-def _placed(fit: Fit, effect) -> bool:
-    """Whether the data place one of `effect`'s values in `fit` off its neutral value (its 95 %
-    interval clear of EffectParameter.neutral): the effect is there, not fitted at nothing."""
-    for p in effect.parameters():
-        band = fit.intervals.get(f"{effect.name()}.{p.name}")
-        if band is not None and math.isfinite(p.neutral) and not band[0] <= p.neutral <= band[1]:
-            return True
-    return False
-
-
 def outdone_beside_a_second(
     problem: Problem, baseline: Fit, decision: Decision, judged: list[Judgement], factories, seed: int, threads, report
 ) -> Decision | None:
@@ -149,7 +138,7 @@ def outdone_beside_a_second(
         if pair.significant
         and not pair.unneeded
         and pair.score.combined_gain > better.score.combined_gain
-        and all(_placed(pair.fit, effect) for effect in pair.fit.effects)
+        and all(placed(pair.fit, effect) for effect in pair.fit.effects)
         and resolves(problem, alone.fit, pair.fit)
         and keeps_gain(own)
         and keeps_gain(score(problem, partner.fit, pair.fit, np.random.default_rng(seed), credit=alone.fit.effects))
