@@ -33,7 +33,7 @@ from pamkit.diagnosis.series.separate import separating_test
 from pamkit.diagnosis.significance import MIN_GAIN
 from pamkit.diagnosis.tables.engine import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
-from pamkit.io.columns import COLUMN_UNITS, OPTIONAL_COLUMNS
+from pamkit.io.columns import COLUMN_UNITS, OPTIONAL_COLUMNS, difference_from_si, file_name, file_unit
 from pamkit.io.experiment import Experiment, load_tests
 from pamkit.io.guards import ExperimentError
 
@@ -70,6 +70,22 @@ def thinned(experiment: Experiment, max_rows: int | None = None) -> tuple[Experi
     )
     note = {"thinned": message, "step": step, "rows_read": rows, "rows_diagnosed": int(kept.time_s.size)}
     return kept, note
+
+
+def zeroed(experiment: Experiment) -> dict | None:
+    """What the test's zero run (`[test] zero`) took off its channels, as a note for the report's
+    warnings and its sentence (None without one): the instruments' own reading with no air and no
+    load, which the zeroed data no longer show (a transducer reading 5 kPa there has that offset)."""
+    if not experiment.zeroed:
+        return None
+    read = ", ".join(
+        f"{file_name(c)} {difference_from_si(c, v):.3g} {file_unit(c) or COLUMN_UNITS.get(c, '')}"
+        for c, v in experiment.zeroed.items()
+    )
+    return {
+        "zeroed": f"its zero run read {read} with no air and no load, taken off the data first",
+        "offsets": dict(experiment.zeroed),
+    }
 
 
 def data_seed(problem: Problem) -> int:
@@ -283,7 +299,7 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     if len(tests) > 1:
         return _diagnose_series_campaign(tests, effect_catalog, progress, threads, seed)
     experiment, note = thinned(tests[0])
-    notes = [note] if note else []
+    notes = [n for n in (note, zeroed(experiment)) if n]
     if note:  # on stderr even with no progress shown (the command line prints warnings as one line)
         python_warnings.warn(note["thinned"], ThinningWarning, 2)
     report("finding the test's cycles and noise")
