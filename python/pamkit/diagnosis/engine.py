@@ -83,7 +83,7 @@ def zeroed(experiment: Experiment) -> dict | None:
         for c, v in experiment.zeroed.items()
     )
     return {
-        "zeroed": f"its zero run read {read} with no air and no load, taken off the data first",
+        "zeroed": f"its zero run (no air) found the instruments reading {read} at nothing, taken off the data first",
         "offsets": dict(experiment.zeroed),
     }
 
