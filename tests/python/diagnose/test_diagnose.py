@@ -65,14 +65,12 @@ def test_python_api_returns_the_diagnosis(leak_dataset):
     assert to_json(d)["cause"] == "leak"
 
 
-def test_a_zero_run_is_taken_off_and_its_reading_reported(leak_dataset, tmp_path):
-    # The leak's test as a rig logs it before zeroing: its load cell reads 7 N and its transducer
-    # 4 kPa with no air and no load. `[test] zero` takes the zero run's means off, so the diagnosis
-    # is the zeroed data's, and the report keeps what the zero run read: the instruments' own
-    # offsets, which the zeroed data no longer show.
-    source = leak_dataset.experiment
-    toml = source.read_text()
-    data = source.with_name(next(line.split('"')[1] for line in toml.splitlines() if line.startswith("data =")))
+def zeroed_copy(experiment: Path, folder: Path) -> Path:
+    """`experiment` as a rig logs it before zeroing, its load cell reading 7 N and its transducer
+    4 kPa with no air and no load, and the zero run that says so (`[test] zero`)."""
+    folder.mkdir()
+    toml = experiment.read_text()
+    data = experiment.with_name(next(line.split('"')[1] for line in toml.splitlines() if line.startswith("data =")))
     lines = data.read_text().splitlines()
     columns = lines[0].split(",")
     force, pressure = columns.index("force_N"), columns.index("pressure_kPa")
@@ -83,18 +81,29 @@ def test_a_zero_run_is_taken_off_and_its_reading_reported(leak_dataset, tmp_path
         values[pressure] = repr(float(values[pressure]) + 4.0)
         return ",".join(values)
 
-    (tmp_path / data.name).write_text("\n".join([lines[0], *map(offset, lines[1:])]) + "\n")
+    (folder / data.name).write_text("\n".join([lines[0], *map(offset, lines[1:])]) + "\n")
     zero = ["time_s,elongation_m,force_N,pressure_kPa", *(f"{t},0,{7 + 0.1 * (-1) ** t},4.0" for t in range(10))]
-    (tmp_path / "zero.csv").write_text("\n".join(zero) + "\n")
-    (tmp_path / "test.toml").write_text(
-        toml.replace(f'data = "{data.name}"', f'data = "{data.name}"\nzero = "zero.csv"')
-    )
-    d = diagnose(tmp_path / "test.toml")
+    (folder / "zero.csv").write_text("\n".join(zero) + "\n")
+    (folder / "test.toml").write_text(toml.replace(f'data = "{data.name}"', f'data = "{data.name}"\nzero = "zero.csv"'))
+    return folder / "test.toml"
+
+
+ZERO_READ = "its zero run (no air) found the instruments reading force_N 7 N, pressure_kPa 4 kPa at nothing"
+
+
+def test_a_zero_run_is_taken_off_and_its_reading_reported(leak_dataset, tmp_path):
+    # `[test] zero` takes the zero run's means off, so the diagnosis is the zeroed data's, and the
+    # report keeps what the zero run read: the instruments' own offsets, which the zeroed data no
+    # longer show. In a campaign, each test's line says what its own zero run read.
+    d = diagnose(zeroed_copy(leak_dataset.experiment, tmp_path / "a"))
     assert d.cause == "leak"
     notes = [n for n in to_json(d)["warnings"] if "zeroed" in n]
     assert len(notes) == 1 and notes[0]["offsets"] == pytest.approx({"force_N": 7.0, "gauge_pressure_Pa": 4e3})
-    said = "its zero run (no air) found the instruments reading force_N 7 N, pressure_kPa 4 kPa at nothing"
-    assert said in verdict(d)
+    assert ZERO_READ in verdict(d)
+    # The same test twice, each with its own zero run (a campaign's mechanics, not its evidence).
+    c = diagnose([tmp_path / "a" / "test.toml", zeroed_copy(leak_dataset.experiment, tmp_path / "b")])
+    assert sum(ZERO_READ in line for line in verdict(c).splitlines()) == 2
+    assert all(any("zeroed" in n for n in test["warnings"]) for test in to_json(c)["per_test"])
 
 
 def write(tmp_path, csv_text):

@@ -288,14 +288,13 @@ def verdict(c: SeriesCampaign) -> str:
     for name, d in zip(c.tests, c.diagnoses):
         s = d.separation
         told = f"; to tell them apart: {s.test_phrase()}" if s is not None and s.separates else ""
-        if s is None:
-            lines.append(f"  {name}: alone, {d.cause}")
+        zeroed = "".join(f"; {n['zeroed']}" for n in d.data_notes if "zeroed" in n)
+        if s is None or s.purpose == "check":
+            lines.append(f"  {name}: alone, {d.cause}{zeroed}")
         elif s.purpose == "tie":
-            lines.append(f"  {name}: alone, {d.cause} ({' and '.join(s.between)} tied{told})")
-        elif s.purpose == "check":
-            lines.append(f"  {name}: alone, {d.cause}")
+            lines.append(f"  {name}: alone, {d.cause} ({' and '.join(s.between)} tied{told}){zeroed}")
         else:
-            lines.append(f"  {name}: alone, {d.cause} ({s.between[1]} close behind{told})")
+            lines.append(f"  {name}: alone, {d.cause} ({s.between[1]} close behind{told}){zeroed}")
     for label, t in c.transfers.items():
         gains = ", ".join(f"{x.test} {x.gain:.2f} [{x.gain_ci95[0]:.2f}, {x.gain_ci95[1]:.2f}]" for x in t)
         lines.append(f"  {label} from the other tests: held-out gain {gains}")
