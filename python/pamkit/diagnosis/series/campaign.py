@@ -288,7 +288,7 @@ def verdict(c: SeriesCampaign) -> str:
     for name, d in zip(c.tests, c.diagnoses):
         s = d.separation
         told = f"; to tell them apart: {s.test_phrase()}" if s is not None and s.separates else ""
-        zeroed = "".join(f"; {n['zeroed']}" for n in d.data_notes if "zeroed" in n)
+        zeroed = d.zero_run_clause
         if s is None or s.purpose == "check":
             lines.append(f"  {name}: alone, {d.cause}{zeroed}")
         elif s.purpose == "tie":

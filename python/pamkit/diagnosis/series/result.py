@@ -26,9 +26,14 @@ class Diagnosis:
     warnings: list[Finding]  # baseline and extended parameters at a bound or implausible
     discovered: dict = field(default_factory=dict)
     seconds: dict[str, float] = field(default_factory=dict)
-    data_notes: list[dict] = field(default_factory=list)  # what was done to the data first (thinned)
+    data_notes: list[dict] = field(default_factory=list)  # what was done to the data first (thinned, zeroed)
     separation: Separation | None = None  # the test that would tell a tie apart (separate.py)
 
     @property
     def cause(self) -> str:
         return self.decision.cause
+
+    @property
+    def zero_run_clause(self) -> str:
+        """What the test's zero run read, as a verdict's closing clause ('' without one)."""
+        return "".join(f"; {n['zeroed']}" for n in self.data_notes if "zeroed" in n)
