@@ -55,6 +55,11 @@ JOINT_FTOL = 1e-6
 # fitted through anyway none was significant (the best gained 0.026); with the viscoelastic
 # bladder's two parameters stepped together, 224 of its 298 fits too, every cause the same.
 SCREEN_DROP = 0.02
+# An effect moves a channel where its fit's prediction differs from the model's without it by more
+# than this share of the channel's noise at some sample. A channel it cannot reach differs only by
+# the integrator's steps, which the effect's states change: at the diagnosis's rtol 1e-8, a few
+# millipascals of a gauge pressure near 2e5 Pa, 1e-5 of its noise.
+MOVES_CHANNEL = 1e-3
 # The error of a pair that a step showed could not lower the chi-square it was fitted to beat.
 SCREENED_OUT = "screened out"
 
@@ -259,6 +264,7 @@ def fit_candidate(
             fitted_space = base_space + space
         configure(effect, space, effect_x)
         predicted = predict(base_x, effect_x)
+        note_moved_channels(problem, effect, base_x, predicted)
         bands, undetermined = (
             cluster_intervals(fitted_space, u, result.jac, result.fun, problem.residual_units())
             if result is not None
@@ -277,6 +283,25 @@ def fit_candidate(
         return Fit(
             label, [effect], baseline.baseline_x, {}, baseline.predicted, {}, len(space), evaluations, error=str(error)
         )
+
+
+def note_moved_channels(problem: Problem, effect, base_x: np.ndarray, predicted: dict[str, np.ndarray]) -> None:
+    """Records in `problem.moved_channels` the channels an effect on the physics or the motion moves
+    in this test (`predicted`, its fit, against the model without it at the same baseline `base_x`:
+    one run), once per effect: a bladder's viscoelasticity moves the force of a muscle a tensile
+    machine stretches, not its gas, whose volume the braid alone sets. An effect that moved nothing
+    here (fitted at its neutral values) is left to a later fit."""
+    if effect.channels_changed() or effect.name() in problem.moved_channels:
+        return
+    without = problem.predictor.predict(base_x, [])
+    moved = [
+        c
+        for c in problem.channels
+        if np.max(np.abs(np.asarray(predicted[c]) - np.asarray(without[c])), initial=0.0)
+        > MOVES_CHANNEL * problem.sigma[c]
+    ]
+    if moved:
+        problem.moved_channels[effect.name()] = moved
 
 
 def _knowing(jac, at: np.ndarray, known: np.ndarray):
@@ -322,7 +347,9 @@ def _stepped(problem: Problem, label, effect, space, base_space, u, predict, eva
     """The candidate where its screening step landed: a model run there, no intervals."""
     n_base = len(base_space)
     base_x, effect_x = unit_to_x(base_space, u[:n_base]), unit_to_x(space, u[n_base:])
-    fit = _effect_fit(problem, label, effect, space, base_x, effect_x, predict(base_x, effect_x), True)
+    predicted = predict(base_x, effect_x)
+    note_moved_channels(problem, effect, base_x, predicted)
+    fit = _effect_fit(problem, label, effect, space, base_x, effect_x, predicted, True)
     fit.parameter_count, fit.evaluations, fit.screened = n_base + len(space), evaluations + 1, drop
     return fit
 

@@ -53,6 +53,9 @@ class Problem:
     # the rows of the fitted and held-out units and the data there, taken once: a diagnosis
     # evaluates chi some 10^3 times on the same two masks
     _masked: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    # the measured channels each effect on the physics or the motion moves in this test, as its fit
+    # found them (candidates.note_moved_channels): its gain is credited there (score.credited_channels)
+    moved_channels: dict[str, list[str]] = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def _rows_and_measured(self, mask: np.ndarray) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         kept = self._masked.get(id(mask))

@@ -36,11 +36,13 @@ def _gain(sse_fit: float, sse_base: float) -> float:
 
 def credited_channels(problem: Problem, fit: Fit, effects=None) -> list[str]:
     """The measured channels `fit`'s effects (or `effects`, some of them) change: its gain is
-    counted on these only."""
+    counted on these only. An instrument's are its own; an effect on the physics or the motion
+    changes the channels its fit was seen to move in this test (candidates.note_moved_channels), or
+    every channel where no fit of it has moved one."""
     effects = fit.effects if effects is None else effects
     changed = set()
     for effect in effects:
-        named = effect.channels_changed()
+        named = effect.channels_changed() or problem.moved_channels.get(effect.name())
         changed.update(named if named else problem.channels)
         if problem.experiment.gas == GasMode.supplied and effect.reads_supplied_pressure():
             changed.add("force_N")  # its reading drives the model, so it acts on the force
