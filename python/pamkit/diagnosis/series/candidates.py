@@ -290,10 +290,14 @@ def note_moved_channels(problem: Problem, effect, base_x: np.ndarray, predicted:
     in this test (`predicted`, its fit, against the model without it at the same baseline `base_x`:
     one run), once per effect: a bladder's viscoelasticity moves the force of a muscle a tensile
     machine stretches, not its gas, whose volume the braid alone sets. An effect that moved nothing
-    here (fitted at its neutral values) is left to a later fit."""
+    here (fitted at its neutral values), or whose baseline runs no further without it, is left to
+    a later fit: credited on every channel until one moves."""
     if effect.channels_changed() or effect.name() in problem.moved_channels:
         return
-    without = problem.predictor.predict(base_x, [])
+    try:
+        without = problem.predictor.predict(base_x, [])
+    except (ValueError, RuntimeError):
+        return  # the fit stands; what it moves is not known here
     moved = [
         c
         for c in problem.channels
