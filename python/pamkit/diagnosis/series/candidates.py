@@ -290,8 +290,8 @@ def note_moved_channels(problem: Problem, effect, base_x: np.ndarray, predicted:
     in this test (`predicted`, its fit, against the model without it at the same baseline `base_x`:
     one run), once per effect: a bladder's viscoelasticity moves the force of a muscle a tensile
     machine stretches, not its gas, whose volume the braid alone sets. An effect that moved nothing
-    here (fitted at its neutral values), or whose baseline runs no further without it, is left to
-    a later fit: credited on every channel until one moves."""
+    here (fitted at its neutral values), or without which the model cannot run at that baseline, is
+    left to a later fit: credited on every channel until one moves."""
     if effect.channels_changed() or effect.name() in problem.moved_channels:
         return
     try:
