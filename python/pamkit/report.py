@@ -235,6 +235,17 @@ class Report:
         return copy.deepcopy(value) if value else None
 
     @property
+    def declared_build(self) -> dict[str, Any] | None:
+        """Where a correction of a sealed test's pressure transducer is named, the baseline
+        calibrated again with the declared length and diameter free within what a rule and calipers
+        read, or None (a copy of the document's ``declared_build``): the fields ``freed`` and the
+        ``values`` they took [m], its held-out ``gain`` beside the causes' (``causes_gain``), and
+        ``explains_as_well``: the data then do not tell the transducer from the declared build. A
+        time series' report only."""
+        value = self._data.get("declared_build")
+        return copy.deepcopy(value) if value else None
+
+    @property
     def channels_summary(self) -> pd.DataFrame:
         """One row per channel: the noise, the calibrated baseline's and the extended model's
         held-out RMSE (in the channel's unit), the gain and its 95 % interval, where the

@@ -22,6 +22,7 @@ from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
 from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate
 from pamkit.diagnosis.series.causes import add_cause, reads_explained, rival_beside_a_second
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Decision, Judgement, decide, judge
+from pamkit.diagnosis.series.declared import declared_build
 from pamkit.diagnosis.series.findings import baseline_findings
 from pamkit.diagnosis.series.instruments import noise_ratios, structured
 from pamkit.diagnosis.series.joint import check_one_muscle
@@ -363,6 +364,10 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
         phase = clock.perf_counter()
         separation = separating_test(problem, first, second, purpose)
         seconds["separate"] = clock.perf_counter() - phase
+    phase = clock.perf_counter()
+    declared = declared_build(problem, baseline, decision, seed, report)
+    if declared is not None:
+        seconds["declared"] = clock.perf_counter() - phase
     discovered = {}
     if decision.cause == "unexplained" or decision.left_structure:
         report("looking for what the catalog lacks in the residual (sparse regression)")
@@ -376,7 +381,19 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
         + f" ({seconds['total']:.1f} s)"
     )
     return Diagnosis(
-        problem, baseline, judged, skipped, decision, extended, named, warnings, discovered, seconds, notes, separation
+        problem,
+        baseline,
+        judged,
+        skipped,
+        decision,
+        extended,
+        named,
+        warnings,
+        discovered,
+        seconds,
+        notes,
+        separation,
+        declared,
     )
 
 

@@ -141,6 +141,7 @@ def to_json(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> dict:
         "remainder": remainder_json(d),
         "discovered": d.discovered,
         "separation": d.separation.to_json() if d.separation else None,
+        "declared_build": d.declared_build.to_json() if d.declared_build else None,
         "warnings": [f.to_json() for f in d.warnings] + d.data_notes,
         "verdict": verdict(d),
         "timing_s": d.seconds,
@@ -363,7 +364,8 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
             f"; and {more['effect']}{_numbers(more['params'])} (its own held-out gain on {', '.join(more['channels'])} "
             f"{_gain_with_interval(more['gain_own_channels'], more['gain_own_channels_ci95'])})"
         )
-    return text + _untied_phrase(d) + _remainder_phrase(d) + _separation_phrase(d) + bounds
+    declared = d.declared_build.phrase() if d.declared_build else ""
+    return text + _untied_phrase(d) + _remainder_phrase(d) + declared + _separation_phrase(d) + bounds
 
 
 def _over_noise(ratios: dict[str, float], channels: list[str]) -> str:

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from pamkit.diagnosis.coordinates import Finding
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.decide import Decision, Judgement
+from pamkit.diagnosis.series.declared import DeclaredBuild
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.series.separate import Separation
 
@@ -28,6 +29,8 @@ class Diagnosis:
     seconds: dict[str, float] = field(default_factory=dict)
     data_notes: list[dict] = field(default_factory=list)  # what was done to the data first (thinned, zeroed)
     separation: Separation | None = None  # the test that would tell a tie apart (separate.py)
+    # a named transducer's gain beside the declared build with its lengths free (declared.py)
+    declared_build: DeclaredBuild | None = None
 
     @property
     def cause(self) -> str:
