@@ -58,9 +58,8 @@ class DeclaredBuild:
         tolerances = " and ".join(f"{name} ±{1e3 * t:g} mm" for name, t in self.freed.items())
         return (
             f"; the declared build with {tolerances} ({where}) explains the held-out units as well "
-            f"(combined gain {self.gain:.3f} against the causes' {self.causes_gain:.3f}): a reference gauge on the "
-            "transducer tells "
-            "the two apart, and [uncertain] says how well the build was measured"
+            f"(combined gain {self.gain:.3f} against the causes' {self.causes_gain:.3f}): a reference gauge on "
+            "the transducer tells the two apart, and [uncertain] says how well the build was measured"
         )
 
 
