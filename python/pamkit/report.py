@@ -238,10 +238,11 @@ class Report:
     def declared_build(self) -> dict[str, Any] | None:
         """Where a correction of a sealed test's pressure transducer is named, the baseline
         calibrated again with the declared length and diameter free within what a rule and calipers
-        read, or None (a copy of the document's ``declared_build``): the fields ``freed`` and the
-        ``values`` they took [m], its held-out ``gain`` beside the causes' (``causes_gain``), and
-        ``explains_as_well``: the data then do not tell the transducer from the declared build. A
-        time series' report only."""
+        read, or None (a copy of the document's ``declared_build``): the fields ``freed``, their
+        ``declared`` values and the ``values`` they took [m] (``at_tolerance``: those at the edge of
+        their tolerance), its held-out ``gain`` beside the causes' (``causes_gain``), and
+        ``explains_as_well``: the data then do not tell the transducer from the declared build, and
+        nothing is named. A time series' report only."""
         value = self._data.get("declared_build")
         return copy.deepcopy(value) if value else None
 

@@ -22,7 +22,7 @@ from pamkit.diagnosis.series.campaign import MIN_TESTS, campaign_of_series
 from pamkit.diagnosis.series.candidates import SCREEN_DROP, candidates, fit_candidate
 from pamkit.diagnosis.series.causes import add_cause, reads_explained, rival_beside_a_second
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Decision, Judgement, decide, judge
-from pamkit.diagnosis.series.declared import declared_build
+from pamkit.diagnosis.series.declared import declared_build, told_from_the_build
 from pamkit.diagnosis.series.findings import baseline_findings
 from pamkit.diagnosis.series.instruments import noise_ratios, structured
 from pamkit.diagnosis.series.joint import check_one_muscle
@@ -332,6 +332,11 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
 
     report("deciding on held-out units")
     decision = _decided(problem, baseline, judged, factories, seed, threads, report)
+    phase = clock.perf_counter()
+    declared = declared_build(problem, baseline, decision, seed, report)
+    if declared is not None:
+        seconds["declared"] = clock.perf_counter() - phase
+        decision = told_from_the_build(problem, baseline, decision, declared)
     named = decision.named
     extended = named.fit if named is not None else baseline
     # The base model's strain and the rejected best candidate's findings (why it is not a cause).
@@ -364,10 +369,6 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
         phase = clock.perf_counter()
         separation = separating_test(problem, first, second, purpose)
         seconds["separate"] = clock.perf_counter() - phase
-    phase = clock.perf_counter()
-    declared = declared_build(problem, baseline, decision, seed, report)
-    if declared is not None:
-        seconds["declared"] = clock.perf_counter() - phase
     discovered = {}
     if decision.cause == "unexplained" or decision.left_structure:
         report("looking for what the catalog lacks in the residual (sparse regression)")

@@ -364,8 +364,7 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
             f"; and {more['effect']}{_numbers(more['params'])} (its own held-out gain on {', '.join(more['channels'])} "
             f"{_gain_with_interval(more['gain_own_channels'], more['gain_own_channels_ci95'])})"
         )
-    declared = d.declared_build.phrase() if d.declared_build else ""
-    return text + _untied_phrase(d) + _remainder_phrase(d) + declared + _separation_phrase(d) + bounds
+    return text + _untied_phrase(d) + _remainder_phrase(d) + _separation_phrase(d) + bounds
 
 
 def _over_noise(ratios: dict[str, float], channels: list[str]) -> str:
