@@ -80,12 +80,13 @@ class PyEffect : public Effect {
   }
 };
 
+// Numbers in from any sequence numpy can read, copied once through its buffer.
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
 py::array_t<double> copy(const std::vector<double>& v) {
   return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
 }
-std::vector<double> vector(const py::array_t<double, py::array::c_style | py::array::forcecast>& a) {
-  return {a.data(), a.data() + a.size()};
-}
+std::vector<double> vector(const Array& a) { return {a.data(), a.data() + a.size()}; }
 
 }  // namespace
 
@@ -97,13 +98,10 @@ void bind_effects(py::module_& m) {
   py::class_<Measurement>(m, "Measurement",
                           "Channels of a bench test on one time base (numpy arrays, copied in and out).")
       .def(py::init<>())
-#define PAMKIT_CHANNEL(name, doc)                                                                   \
-  def_property(                                                                                     \
-      #name, [](const Measurement& s) { return copy(s.name); },                                     \
-      [](Measurement& s, const py::array_t<double, py::array::c_style | py::array::forcecast>& a) { \
-        s.name = vector(a);                                                                         \
-      },                                                                                            \
-      doc)
+#define PAMKIT_CHANNEL(name, doc)                               \
+  def_property(                                                 \
+      #name, [](const Measurement& s) { return copy(s.name); }, \
+      [](Measurement& s, const Array& a) { s.name = vector(a); }, doc)
       .PAMKIT_CHANNEL(time_s, "sample times [s]")
       .PAMKIT_CHANNEL(elongation_m, "the crosshead's elongation [m]")
       .PAMKIT_CHANNEL(force_N, "load cell [N]")
@@ -182,7 +180,7 @@ range and the search is linear over the realistic range widened by its width on 
 
 Subclass it in Python to add an effect: define name(), description(), parameters() (a list of
 EffectParameter), set(key, value), and any of apply_to_params(params) -> params,
-apply_to_elongation(time_s, crosshead_m) -> list, apply_to_measurement(measurement) -> measurement,
+apply_to_elongation(time_s, crosshead_m) -> elongation_m, apply_to_measurement(measurement) -> measurement,
 why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)doc")
       .def(py::init<>())
       .def("name", &Effect::name)
@@ -211,9 +209,10 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
            "whether it is an error of the transducer whose reading drives a supplied test")
       .def(
           "apply_to_supplied_pressure",
-          [](const Effect& e, const std::vector<double>& time_s, std::vector<double> gauge_pressure_Pa) {
-            e.apply_to_supplied_pressure(time_s, gauge_pressure_Pa);
-            return gauge_pressure_Pa;
+          [](const Effect& e, const Array& time_s, const Array& gauge_pressure_Pa) {
+            std::vector<double> pressure = vector(gauge_pressure_Pa);
+            e.apply_to_supplied_pressure(vector(time_s), pressure);
+            return copy(pressure);
           },
           py::arg("time_s"), py::arg("gauge_pressure_Pa"),
           "the gauge pressure [Pa] that drives a supplied test, from the reading (time_s empty: settled rows)")
@@ -222,7 +221,12 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
              e.apply_to_params(params);
              return params;
            })
-      .def("apply_to_elongation", &Effect::apply_to_elongation, py::arg("time_s"), py::arg("crosshead_m"))
+      .def(
+          "apply_to_elongation",
+          [](const Effect& e, const Array& time_s, const Array& crosshead_m) {
+            return copy(e.apply_to_elongation(vector(time_s), vector(crosshead_m)));
+          },
+          py::arg("time_s"), py::arg("crosshead_m"), "the muscle's elongation [m] along the crosshead's, at time_s [s]")
       .def("apply_to_measurement",
            [](const Effect& e, Measurement measurement) {
              e.apply_to_measurement(measurement);
@@ -315,8 +319,7 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
   m.def(
       "simulate_supplied_measurement",
       [](const MuscleParams& params, double length_m, const ElongationTrajectory& crosshead,
-         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressure_Pa,
-         const std::vector<EffectPtr>& effects) {
+         const Array& gauge_pressure_Pa, const std::vector<EffectPtr>& effects) {
         const std::vector<double> pressure = vector(gauge_pressure_Pa);
         py::gil_scoped_release release;
         return simulate_supplied_measurement(params, length_m, crosshead, pressure, effects);
@@ -327,8 +330,7 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
       "predicted. Releases the GIL.");
   m.def(
       "static_forces",
-      [](const MuscleParams& params, const py::array_t<double, py::array::c_style | py::array::forcecast>& lengths_m,
-         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_Pa,
+      [](const MuscleParams& params, const Array& lengths_m, const Array& gauge_pressures_Pa,
          const std::vector<EffectPtr>& effects) {
         const std::vector<double> lengths = vector(lengths_m);
         const std::vector<double> pressures = vector(gauge_pressures_Pa);
@@ -355,9 +357,8 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
           "whether each row's equilibrium lay beyond the range searched");
   m.def(
       "isotonic_lengths",
-      [](const MuscleParams& params,
-         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_Pa, double load_N,
-         double start_length_m, const std::vector<EffectPtr>& effects) {
+      [](const MuscleParams& params, const Array& gauge_pressures_Pa, double load_N, double start_length_m,
+         const std::vector<EffectPtr>& effects) {
         const std::vector<double> pressures = vector(gauge_pressures_Pa);
         py::gil_scoped_release release;
         return isotonic_lengths(params, pressures, load_N, start_length_m, effects);
@@ -386,8 +387,7 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
   motion.def_readonly("statistics", &IsotonicMotion::statistics);
   m.def(
       "isotonic_motion",
-      [](const MuscleParams& params, const py::array_t<double, py::array::c_style | py::array::forcecast>& time_s,
-         const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressures_Pa, double load_N,
+      [](const MuscleParams& params, const Array& time_s, const Array& gauge_pressures_Pa, double load_N,
          double mass_kg, std::optional<double> start_length_m, const std::vector<EffectPtr>& effects,
          const IsotonicMotionConfig& config) {
         const std::vector<double> time = vector(time_s);
@@ -404,7 +404,7 @@ why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.)do
       "equilibrium of the first sample). Length and velocity at each sample. Releases the GIL.");
   m.def(
       "pressure_branches",
-      [](const py::array_t<double, py::array::c_style | py::array::forcecast>& gauge_pressure_Pa, double play_Pa) {
+      [](const Array& gauge_pressure_Pa, double play_Pa) {
         const std::vector<double> branch = pressure_branches(vector(gauge_pressure_Pa), play_Pa);
         return py::array_t<double>(static_cast<py::ssize_t>(branch.size()), branch.data());
       },

@@ -93,3 +93,27 @@ def test_an_instrument_reads_a_measurement_into_a_new_one_and_leaves_it_as_it_wa
         read = parse_effects([spec])[0].apply_to_measurement(run)
         assert any(not np.array_equal(getattr(read, c), before[c]) for c in before), spec
         assert all(np.array_equal(getattr(run, c), before[c]) for c in before), spec
+
+
+def test_an_effects_motion_and_supplied_pressure_are_arrays_in_and_out():
+    # The diagnosis moves the muscle by a fixture's play once for every point of a fit's Jacobian:
+    # the arrays pass through their buffers, as every other run's do, and come back as arrays.
+    time_s = np.linspace(0.0, 20.0, 2001)
+    crosshead_m = 0.02 * np.sin(time_s)
+    (slack,) = parse_effects(["fixture_slack:slack_m=0.002"])
+    moved = slack.apply_to_elongation(time_s, crosshead_m)
+    assert isinstance(moved, np.ndarray) and moved.shape == time_s.shape
+    assert np.array_equal(moved, slack.apply_to_elongation(list(time_s), list(crosshead_m)))
+    # The play as a backlash written here: the muscle follows the crosshead's leading edge and
+    # rests within the play of it while the crosshead turns (from the crosshead's first value).
+    position, expected = crosshead_m[0], []
+    for x in crosshead_m:
+        position = min(max(position, x - 0.002), x)
+        expected.append(position)
+    assert np.array_equal(moved, expected)
+
+    (offset,) = parse_effects(["sensor_offset:offset_Pa=2000"])
+    reading_Pa = np.array([101e3, 150e3, 250e3])
+    driving = offset.apply_to_supplied_pressure([], reading_Pa)  # no times: a table's settled rows
+    assert isinstance(driving, np.ndarray)
+    np.testing.assert_allclose(driving, reading_Pa - 2000.0, rtol=0, atol=1e-9)

@@ -1761,7 +1761,7 @@ class Effect:
     
     Subclass it in Python to add an effect: define name(), description(), parameters() (a list of
     EffectParameter), set(key, value), and any of apply_to_params(params) -> params,
-    apply_to_elongation(time_s, crosshead_m) -> list, apply_to_measurement(measurement) -> measurement,
+    apply_to_elongation(time_s, crosshead_m) -> elongation_m, apply_to_measurement(measurement) -> measurement,
     why_not(mode) -> None or a reason it cannot act in "sealed"/"supplied" tests.
     """
     def __init__(self) -> None:
@@ -1772,13 +1772,15 @@ class Effect:
         """
         (True, None) or (False, reason)
         """
-    def apply_to_elongation(self, time_s: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], crosshead_m: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
-        ...
+    def apply_to_elongation(self, time_s: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], crosshead_m: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        the muscle's elongation [m] along the crosshead's, at time_s [s]
+        """
     def apply_to_measurement(self, arg0: Measurement) -> Measurement:
         ...
     def apply_to_params(self, arg0: MuscleParams) -> MuscleParams:
         ...
-    def apply_to_supplied_pressure(self, time_s: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], gauge_pressure_Pa: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> list[float]:
+    def apply_to_supplied_pressure(self, time_s: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], gauge_pressure_Pa: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
         """
         the gauge pressure [Pa] that drives a supplied test, from the reading (time_s empty: settled rows)
         """

@@ -25,8 +25,8 @@ def implied_vacuum(effects: Sequence[Effect], time_s, reading_Pa) -> tuple[int, 
     readers = [e for e in effects if e.reads_supplied_pressure()]
     if not readers or len(reading_Pa) == 0:
         return None
-    driving = list(np.asarray(reading_Pa, dtype=float))
+    driving = np.asarray(reading_Pa, dtype=float)
     for effect in readers:
-        driving = effect.apply_to_supplied_pressure(list(time_s), driving)
+        driving = effect.apply_to_supplied_pressure(time_s, driving)
     lowest = int(np.argmin(driving))
     return (lowest, float(driving[lowest])) if driving[lowest] < -VACUUM_TOLERANCE_PA else None

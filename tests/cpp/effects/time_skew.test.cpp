@@ -1,5 +1,6 @@
 // time_skew: the channel is the truth shifted in time, interpolated between samples.
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -45,5 +46,26 @@ TEST_CASE("time_skew: the channel is the truth shifted by the offset", "[effects
     }
     CHECK(identical(behind.force_N, truth.force_N));
     CHECK(identical(behind.temperature_K, truth.temperature_K));
+  }
+
+  SECTION("uneven samples, either way: a channel linear in time is read exactly, held at the ends") {
+    Measurement m;
+    double t = 0.0;
+    for (std::size_t k = 0; k < 400; ++k) {  // uneven steps of 0.01-0.3 s
+      m.time_s.push_back(t);
+      t += 0.01 + 0.29 * std::abs(std::sin(1.7 * static_cast<double>(k * k)));
+    }
+    for (const double offset : {0.37, -2.9, 12.0}) {
+      Measurement read = m;
+      read.force_N.clear();
+      for (const double time : m.time_s) read.force_N.push_back(3.0 * time + 1.0);
+      effect("time_skew:channel=force_N,offset_s=" + std::to_string(offset))->apply_to_measurement(read);
+      const double first = m.time_s.front(), last = m.time_s.back();
+      for (std::size_t k = 0; k < m.time_s.size(); ++k) {
+        const double when = std::clamp(m.time_s[k] - offset, first, last);
+        INFO("offset " << offset << " s, t = " << m.time_s[k] << " s");
+        CHECK(std::abs(read.force_N[k] - (3.0 * when + 1.0)) <= 1e-12 * (3.0 * last + 1.0));
+      }
+    }
   }
 }
