@@ -13,7 +13,7 @@ from pamkit.diagnosis.coordinates import NO_COST_AT_BOUND, Finding
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.causes import explains_more, placed, resolves, second_holds
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Judgement, decide, gain_over, judge, marginal
-from pamkit.diagnosis.series.findings import sub_sample_play, unresolved, within_resolution
+from pamkit.diagnosis.series.findings import moves_against, sub_sample_play, unresolved, within_resolution
 from pamkit.diagnosis.series.instruments import (
     MISREAD_GAIN,
     STANDS_OUT,
@@ -409,6 +409,38 @@ def test_a_play_shorter_than_a_sample_is_named_only_where_no_sub_sample_shift_ex
     assert sub_sample_play(p, pair.fit)
     pair.fit.params = {"fixture_slack.slack_m": 1.5e-3}
     assert not sub_sample_play(p, pair.fit)
+
+
+def test_a_play_that_makes_a_channel_it_moves_worse_is_no_play():
+    # A fixture's play moves the muscle, whose length drives the force and the gas alike: fitted to
+    # a pressure logged late, it improves the pressure and makes the force worse (bench_families
+    # subsample_skew seed 10: force -0.33, pressure 0.53); every play named right on the near-model
+    # bench's seeds 1-30 gained on both (force 0.02-0.90). An effect on the physics may trade the
+    # channels beside a baseline refitted with it (a heat exchange beside a transducer's offset).
+    channels = ("force_N", "gauge_pressure_Pa")
+    p = problem(channels)
+    p.moved_channels = {"fixture_slack": list(channels), "heat_transfer": list(channels)}
+
+    def judged(name, stage, force_gain, force_ci95):
+        j = candidate(name, 0.3, 0.3 + SHARED, channels=channels)
+        j.fit.effects = [effect(name, (), stage)]
+        j.score.gain = {"force_N": force_gain, "gauge_pressure_Pa": 0.53}
+        j.score.gain_ci95 = {"force_N": force_ci95, "gauge_pressure_Pa": [0.49, 0.57]}
+        return j
+
+    reasons = moves_against(p, judged("fixture_slack", EffectStage.motion, -0.33, [-0.39, -0.30]))
+    assert reasons == [
+        "it makes force_N worse (gain -0.33) for gauge_pressure_Pa (gain 0.53): the muscle's motion moves "
+        "every channel it drives alike, so what it explains is one channel's timing, not the muscle's"
+    ]
+    slack = judged("fixture_slack", EffectStage.motion, -0.33, [-0.39, -0.30])
+    baseline = fit("none", {c: np.full(ROWS, 5.0) for c in channels}, effects=[])
+    decision = decide(p, baseline, [slack])
+    assert decision.cause == "unexplained" and decision.rejected is slack
+    # a weak play's force gain within its noise, either side of zero, is no objection
+    assert moves_against(p, judged("fixture_slack", EffectStage.motion, 0.02, [-0.01, 0.05])) == []
+    assert moves_against(p, judged("fixture_slack", EffectStage.motion, -0.01, [-0.03, 0.01])) == []
+    assert moves_against(p, judged("heat_transfer", EffectStage.physics, -0.33, [-0.39, -0.30])) == []
 
 
 def test_a_shift_at_one_sample_is_a_rival_not_an_artefact():

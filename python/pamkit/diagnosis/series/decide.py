@@ -40,7 +40,13 @@ import numpy as np
 
 from pamkit.diagnosis.coordinates import Finding, findings
 from pamkit.diagnosis.series.calibrate import Fit
-from pamkit.diagnosis.series.findings import baseline_findings, mimicked_by_a_shift, unresolved, within_resolution
+from pamkit.diagnosis.series.findings import (
+    baseline_findings,
+    mimicked_by_a_shift,
+    moves_against,
+    unresolved,
+    within_resolution,
+)
 from pamkit.diagnosis.series.instruments import (
     INFLATION,
     corrects_output,
@@ -338,7 +344,9 @@ def decide(problem: Problem, baseline: Fit, judged: list[Judgement]) -> Decision
             margins["over_runner_up"] = best.score.combined_gain - runner.score.combined_gain
     present = [j for j in judged if j.significant and j.credible]
     for j in present:
-        j.objections += outdone(problem, j, judged) + mimicked_by_a_shift(problem, j, judged)
+        j.objections += (
+            outdone(problem, j, judged) + mimicked_by_a_shift(problem, j, judged) + moves_against(problem, j)
+        )
     present = [j for j in present if j.credible]
     lead = present[0] if present else None
     if lead is not None:

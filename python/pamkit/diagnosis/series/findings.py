@@ -1,17 +1,18 @@
 """What a time series' fit's parameters say of it: the calibrated baseline's at a bound of their
 search or outside their plausible range (coordinates.findings), and values below what one sample
 resolves (a lag shorter than 0.9 of the sample interval, a slack shorter than the crosshead's
-travel between samples)."""
+travel between samples), and a play that makes a channel it moves worse."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from pamkit._core import GasMode, Resolution
+from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis.coordinates import Finding, findings
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.series.model import PLAY_SUBDIVISIONS
+from pamkit.diagnosis.series.score import credited_channels
 
 
 def sample_interval(problem: Problem) -> float:
@@ -122,3 +123,26 @@ def mimicked_by_a_shift(problem: Problem, candidate, judged: list) -> list[str]:
                 f"({travel_per_sample(problem):.3g} m) is not told from it"
             ]
     return []
+
+
+def moves_against(problem: Problem, candidate) -> list[str]:
+    """Why an effect on the muscle's motion (a fixture's play) that makes a channel it moves worse
+    is no such effect: the muscle's length drives the force and the gas alike, so a play that is the
+    muscle's does not trade one channel it moves for another, and one that does is fitting one
+    channel's timing (a logger's skew of the pressure read as a play: bench_families subsample_skew
+    seed 10, the force's gain -0.33 for the pressure's 0.53). Over the near-model bench's seeds 1-30
+    every play named right gained on the force (0.02-0.90). A candidate is decide.py's Judgement."""
+    if not any(e.stage() == EffectStage.motion for e in candidate.fit.effects):
+        return []
+    s = candidate.score
+    moved = credited_channels(problem, candidate.fit)
+    worse = [c for c in moved if s.gain_ci95[c][1] < 0.0]
+    if not worse:
+        return []
+    better = [c for c in moved if c not in worse]
+    return [
+        f"it makes {', '.join(f'{c} worse (gain {s.gain[c]:.2f})' for c in worse)}"
+        + (f" for {', '.join(f'{c} (gain {s.gain[c]:.2f})' for c in better)}" if better else "")
+        + ": the muscle's motion moves every channel it drives alike, so what it explains is one "
+        "channel's timing, not the muscle's"
+    ]
