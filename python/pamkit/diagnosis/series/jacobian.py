@@ -55,7 +55,7 @@ def muscle_motion(problem: Problem, effects: list[Effect]) -> ElongationTrajecto
     time_s = np.asarray(trajectory.time_s)
     elongation = np.asarray(trajectory.elongation_m)
     for effect in effects:
-        elongation = effect.apply_to_elongation(time_s, elongation)
+        elongation = np.asarray(effect.apply_to_elongation(time_s, elongation))  # a Python effect may give a list
     return ElongationTrajectory(time_s, elongation)
 
 
