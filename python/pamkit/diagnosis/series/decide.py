@@ -54,6 +54,7 @@ from pamkit.diagnosis.series.instruments import (
     misread,
     noise_ratios,
     rereading,
+    shares_a_reading,
     structured,
     uncredited,
     unfounded,
@@ -149,7 +150,7 @@ def judge(problem: Problem, fit: Fit, s: Score, baseline: Fit) -> Judgement:
     )
     own, strain = [], []
     transducer = rereading(problem, fit)
-    shares_reading = {p.name for e in transducer for p in e.parameters()}
+    shares_reading = shares_a_reading(problem, fit)
     for finding in findings(fit):
         in_baseline = finding.parameter in baseline.coordinates
         if in_baseline and finding.parameter in fit.undetermined:

@@ -2,10 +2,13 @@
 leaves it (unfounded), gaining on the force more than an instrument takes of another misfit
 (misread), standing out from the base model's misfit on the coupled channels
 (stands_out), gaining on the channels it changes (uncredited), leaving its channel whole
-(reads_left), and no vacuum behind a supplied test's reading (holds_vacuum); and the channels'
+(reads_left), and no vacuum behind a supplied test's reading (holds_vacuum); the values that split
+one reading with a calibrated one, judged by their intervals (shares_a_reading); and the channels'
 held-out ratios to their noise that these rules read (docs/diagnosis.md, rules 3 and 6)."""
 
 from __future__ import annotations
+
+import math
 
 from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis import evidence
@@ -34,6 +37,8 @@ STRUCTURE_LEFT = 1.5
 COUPLED = frozenset({"force_N", "gauge_pressure_Pa"})
 PRESSURE = "gauge_pressure_Pa"
 FORCE = "force_N"
+MODULUS = "bladder_scale"  # the calibrated scale on the bladder's stress law
+OFFSET = "offset_N"  # a force instrument's reading at zero force
 # What an error of the force's instrument (a load cell's offset, and its share growing with the
 # force) takes of a force misfit it did not make: where a load cell was named but was not in the
 # data, it gained 0.045-0.085 on the force in 10 of 15 namings (bench_near_model seeds 1-24,
@@ -82,6 +87,57 @@ def rereading(problem: Problem, fit: Fit) -> list:
     if problem.experiment.gas != GasMode.sealed:
         return []
     return [e for e in fit.effects if corrects_output(problem, e) and list(e.channels_changed()) == [PRESSURE]]
+
+
+def shares_a_reading(problem: Problem, fit: Fit) -> set[str]:
+    """The values of `fit` (keyed as in its coordinates) that split one reading with a value
+    calibrated beside them, so that where along that reading the fit ended is not what the data
+    say, only how far its interval reaches: a sealed test's transducer correction, sharing the
+    pressure it read with the declared inflation pressure (rereading), and a load cell placed by
+    more than its offset, that offset sharing the force with the bladder's modulus (bladder_scale,
+    plausible where it ended), whose force changes little over a stretch (another base model's
+    membrane: a -10 N offset fitted beside a dead volume at -20.2 N, -23.0 to -17.5 N its interval,
+    the modulus at 0.49-0.70 of its declared value; near-model dead_volume+load_cell, strong seed
+    25)."""
+    prefix = (lambda e: f"{e.name()}.") if len(fit.effects) > 1 else (lambda e: "")
+    out = {prefix(e) + p.name for e in rereading(problem, fit) for p in e.parameters()}
+    if _plausible_at(fit, MODULUS):
+        out |= {
+            prefix(e) + OFFSET
+            for e in fit.effects
+            if reads_off(problem, e) and _on_force(e) and _placed_beyond_offset(fit, e, prefix(e))
+        }
+    return out
+
+
+def _placed_beyond_offset(fit: Fit, effect, prefix: str) -> bool:
+    """Whether the data place `effect` in `fit` by a value other than its offset: one whose 95 %
+    interval excludes its neutral value (a load cell's nonlinearity). An offset alone is the very
+    share of the force the modulus trades against; its value is then all the evidence for the cell
+    (a 20.04 N offset, its nonlinearity's interval holding zero, named for a pressure transducer's
+    weak offset: near-model sensor_offset, weak seed 25)."""
+    for p in effect.parameters():
+        band = fit.intervals.get(prefix + p.name)
+        if p.name == OFFSET or band is None or math.isnan(p.neutral):
+            continue
+        if not band[0] <= p.neutral <= band[1]:
+            return True
+    return False
+
+
+def _plausible_at(fit: Fit, name: str) -> bool:
+    """Whether baseline value `name` is calibrated in `fit` and ended inside its plausible range.
+    A share of one reading is given its interval once: an offset and a modulus both outside their
+    ranges would each be excused by the other's trade (a friction with memory on another team's
+    muscle read as a -24 N offset beside a modulus of 0.09: bench_families dahl, seed 2)."""
+    if name not in fit.coordinates:
+        return False
+    coordinate, x = fit.coordinates[name]
+    return not coordinate.implausible(float(coordinate.value(x)))
+
+
+def _on_force(effect) -> bool:
+    return list(effect.channels_changed()) == [FORCE]
 
 
 def stands_out(problem: Problem, before: Fit, s: Score, effects) -> list[str]:
@@ -161,7 +217,7 @@ def misread(problem: Problem, s: Score, effects) -> list[str]:
     before it): it gains less than MISREAD_GAIN on the force, which such an error takes of a misfit
     it did not make. Like an error where its channel was within the noise (unfounded), not named,
     but as good a reading of the data as a cause it ties with."""
-    load_cell = any(reads_off(problem, e) and list(e.channels_changed()) == [FORCE] for e in effects)
+    load_cell = any(reads_off(problem, e) and _on_force(e) for e in effects)
     if not load_cell or FORCE not in s.gain or s.gain[FORCE] >= MISREAD_GAIN:
         return []
     return [
