@@ -677,17 +677,22 @@ def offset_at(name: str, value: float, plausible: tuple[float, float]):
     return {name: (coordinate, 0.0)}
 
 
+def sealed_case(name: str, gain: float):
+    """A sealed test's force and pressure measured as zeros, its baseline predicting them, and a
+    score of `gain` on both for candidate `name`: (problem, zeros, baseline, score)."""
+    p = problem(("force_N", "gauge_pressure_Pa"))
+    p.experiment.time_s = np.arange(ROWS, dtype=float)
+    zeros = {c: np.zeros(ROWS) for c in p.channels}
+    return p, zeros, fit("none", zeros, []), candidate(name, gain, SHARED + gain, channels=p.channels).score
+
+
 def test_a_transducer_offset_beside_the_inflation_read_on_it_is_judged_by_its_interval():
     # A sealed test's pressure transducer reading 10 kPa high (bench_near_model, sensor_offset
     # strong, seed 3): the offset and the declared inflation pressure, read on that transducer,
     # share one reading, and the fit ended at 15.5 kPa with the inflation pressure 5 % low, beyond
     # the plausible 15 kPa but with 9.4-21.7 kPa its interval. Only an interval wholly outside says
     # the offset is implausible.
-    p = problem(("force_N", "gauge_pressure_Pa"))
-    p.experiment.time_s = np.arange(ROWS, dtype=float)
-    zeros = {c: np.zeros(ROWS) for c in p.channels}
-    baseline = fit("none", zeros, [])
-    score = candidate("offset", 0.9, SHARED + 0.9, channels=p.channels).score
+    p, zeros, baseline, score = sealed_case("offset", 0.9)
     cases = (
         ("gauge_pressure_Pa", "offset_Pa", 15.5e3, (-15e3, 15e3), (9.4e3, 21.7e3), True),
         ("gauge_pressure_Pa", "offset_Pa", 15.5e3, (-15e3, 15e3), (15.2e3, 16.0e3), False),
@@ -702,19 +707,6 @@ def test_a_transducer_offset_beside_the_inflation_read_on_it_is_judged_by_its_in
         assert held == ([] if credible else [name])
 
 
-def bladder_modulus_at(value: float):
-    """The baseline's bladder_scale as a coordinate found at `value`, inside its plausible range."""
-    coordinate = SimpleNamespace(
-        value=lambda x: value,
-        at_bound=lambda x: None,
-        implausible=lambda v: not 0.33 <= v <= 3.0,
-        bound_value=lambda side: None,
-        plausible=(0.33, 3.0),
-        source="test",
-    )
-    return {"bladder_scale": (coordinate, 0.0)}
-
-
 def test_a_load_cell_offset_beside_the_bladders_modulus_is_judged_by_its_interval():
     # A load cell's offset and the bladder's modulus, calibrated beside it, split the force: on
     # another base model's membrane a -10 N offset was fitted beside a dead volume at -20.2 N, -23.0
@@ -726,11 +718,7 @@ def test_a_load_cell_offset_beside_the_bladders_modulus_is_judged_by_its_interva
     # where nothing but the offset places the cell, its nonlinearity's interval holding zero (a
     # 20.04 N offset for a weak pressure offset: bench_near_model, sensor_offset weak, seed 25).
     # Alone or second in a pair, keyed as its fit keys it.
-    p = problem(("force_N", "gauge_pressure_Pa"))
-    p.experiment.time_s = np.arange(ROWS, dtype=float)
-    zeros = {c: np.zeros(ROWS) for c in p.channels}
-    baseline = fit("none", zeros, [])
-    score = candidate("load_cell", 0.5, SHARED + 0.5, channels=p.channels).score
+    p, zeros, baseline, score = sealed_case("load_cell", 0.5)
     placed, unplaced = (0.124, 0.134), (-0.021, 0.007)  # the nonlinearity's interval [1/kN]
     cases = (
         (-20.2, (-23.0, -17.5), 0.6, placed, True),
@@ -751,7 +739,7 @@ def test_a_load_cell_offset_beside_the_bladders_modulus_is_judged_by_its_interva
             offset = fit("load_cell", zeros, [*first, load_cell])
             offset.coordinates = offset_at(name, value, (-20.0, 20.0))
             if modulus is not None:
-                offset.coordinates |= bladder_modulus_at(modulus)
+                offset.coordinates |= offset_at("bladder_scale", modulus, (0.33, 3.0))
             offset.intervals = {name: interval, prefix + "nonlinearity_per_kN": nonlinearity}
             held = [f.parameter for f in judge(p, offset, score, baseline).findings if f.parameter == name]
             assert held == ([] if credible else [name]), (value, modulus, nonlinearity, first)
