@@ -6,7 +6,6 @@ has more than one thing wrong."""
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 import numpy as np
@@ -24,6 +23,7 @@ from pamkit.diagnosis.series.decide import (
     judge,
     keeps_gain,
 )
+from pamkit.diagnosis.series.findings import off_neutral
 from pamkit.diagnosis.series.instruments import (
     STRUCTURE_LEFT,
     misread,
@@ -108,19 +108,12 @@ def _step_beside(problem: Problem, single: Fit, left: np.ndarray, others: list[J
 
 
 def placed(fit: Fit, effect) -> bool:
-    """Whether the data place one of `effect`'s values in `fit` off its neutral value (its 95 %
-    interval clear of EffectParameter.neutral, a time constant's infinity too): the effect is
-    there, not fitted at nothing. An effect none of whose fitted values has a neutral value (a
-    band, a slip distance) cannot be at nothing."""
-    judged = False
-    for p in effect.parameters():
-        band = fit.intervals.get(f"{effect.name()}.{p.name}")
-        if band is None or math.isnan(p.neutral):
-            continue
-        if not band[0] <= p.neutral <= band[1]:
-            return True
-        judged = True
-    return not judged
+    """Whether the data place one of `effect`'s values in `fit` (a pair's, keyed by the effect's
+    name) off its neutral value (findings.off_neutral): the effect is there, not fitted at nothing.
+    An effect none of whose fitted values has a neutral value (a band, a slip distance) cannot be at
+    nothing."""
+    judged = off_neutral(fit, effect, f"{effect.name()}.")
+    return any(judged.values()) or not judged
 
 
 def second_holds(problem: Problem, first: Fit, pair: Judgement, own: Score) -> bool:

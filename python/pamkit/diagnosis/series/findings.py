@@ -1,9 +1,12 @@
 """What a time series' fit's parameters say of it: the calibrated baseline's at a bound of their
 search or outside their plausible range (coordinates.findings), and values below what one sample
 resolves (a lag shorter than 0.9 of the sample interval, a slack shorter than the crosshead's
-travel between samples), and a play that makes a channel it moves worse."""
+travel between samples), a play that makes a channel it moves worse, and the values the data
+place off their neutral ones."""
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -13,6 +16,18 @@ from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.series.model import PLAY_SUBDIVISIONS
 from pamkit.diagnosis.series.score import credited_channels
+
+
+def off_neutral(fit: Fit, effect, prefix: str) -> dict[str, bool]:
+    """For each of `effect`'s parameters that has a neutral value and an interval in `fit` (keyed
+    `prefix` + its name), whether that 95 % interval excludes the neutral value (a time constant's
+    infinity too): the data place the effect there, not at nothing."""
+    out = {}
+    for p in effect.parameters():
+        band = fit.intervals.get(prefix + p.name)
+        if band is not None and not math.isnan(p.neutral):
+            out[p.name] = not band[0] <= p.neutral <= band[1]
+    return out
 
 
 def sample_interval(problem: Problem) -> float:

@@ -8,12 +8,10 @@ held-out ratios to their noise that these rules read (docs/diagnosis.md, rules 3
 
 from __future__ import annotations
 
-import math
-
 from pamkit._core import EffectStage, GasMode, Resolution
 from pamkit.diagnosis import evidence
 from pamkit.diagnosis.series.calibrate import Fit
-from pamkit.diagnosis.series.findings import baseline_findings
+from pamkit.diagnosis.series.findings import baseline_findings, off_neutral
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.series.score import Score, credited_channels
 from pamkit.diagnosis.significance import MIN_GAIN, NONE_WITHIN_NOISE
@@ -111,18 +109,12 @@ def shares_a_reading(problem: Problem, fit: Fit) -> set[str]:
 
 
 def _placed_beyond_offset(fit: Fit, effect, prefix: str) -> bool:
-    """Whether the data place `effect` in `fit` by a value other than its offset: one whose 95 %
-    interval excludes its neutral value (a load cell's nonlinearity). An offset alone is the very
-    share of the force the modulus trades against; its value is then all the evidence for the cell
-    (a 20.04 N offset, its nonlinearity's interval holding zero, named for a pressure transducer's
-    weak offset: near-model sensor_offset, weak seed 25)."""
-    for p in effect.parameters():
-        band = fit.intervals.get(prefix + p.name)
-        if p.name == OFFSET or band is None or math.isnan(p.neutral):
-            continue
-        if not band[0] <= p.neutral <= band[1]:
-            return True
-    return False
+    """Whether the data place `effect` in `fit` by a value other than its offset (a load cell's
+    nonlinearity, findings.off_neutral). An offset alone is the very share of the force the modulus
+    trades against; its value is then all the evidence for the cell (a 20.04 N offset, its
+    nonlinearity's interval holding zero, named for a pressure transducer's weak offset: near-model
+    sensor_offset, weak seed 25)."""
+    return any(placed for name, placed in off_neutral(fit, effect, prefix).items() if name != OFFSET)
 
 
 def _plausible_at(fit: Fit, name: str) -> bool:
