@@ -14,7 +14,8 @@ simulate itself.
                                  one held length, friction with memory hidden (tests/independent/dmsp.py)
     data/experiments/tie/        a sealed cyclic test of a muscle with a dead volume (first/), which on
                                  its own ties with stretching fibres, and the same test inflated half
-                                 as high again (second/), the test the tie names; campaign.toml
+                                 as high again (second/), an inflation that tells them apart (the
+                                 tie's report names half the pressure, ahead by 6 %); campaign.toml
                                  diagnoses the two together (independent_dead_volume_two_inflations,
                                  seed 1)
 
@@ -103,7 +104,8 @@ def write(folder: Path) -> list[Path]:
     campaign = independent_dead_volume_two_inflations(TIE_SEED, tie).experiment
     campaign.write_text(
         "# validation/example_data.py: a dead volume the first test alone cannot tell from stretching fibres,\n"
-        "# and the test its diagnosis names to tell them, run on the same independent muscle.\n" + campaign.read_text()
+        "# and another inflation of it, which tells them apart, run on the same independent muscle.\n"
+        + campaign.read_text()
     )
     examples = [*isotonic.iterdir(), *isometric.parent.iterdir(), *supplied.iterdir(), *tie.rglob("*")]
     return sorted(p for p in examples if p.is_file())

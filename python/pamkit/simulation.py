@@ -91,16 +91,25 @@ def initial_length(experiment: Experiment, params: MuscleParams) -> float:
     return sealed_start(experiment, params).length_m
 
 
-def sealed_start(experiment: Experiment, params: MuscleParams, gauge_pressure_Pa: float | None = None) -> InitialState:
+def sealed_start(
+    experiment: Experiment,
+    params: MuscleParams,
+    gauge_pressure_Pa: float | None = None,
+    effects: Sequence[Effect] = (),
+) -> InitialState:
     """A sealed test's state at zero elongation: its gas at `gauge_pressure_Pa` (the file's
     inflation pressure unless given, as a calibration moves it), at the file's initial length if
     it gives one, else inflated freely to that pressure and sealed at the length it takes
-    (inflated_and_sealed, as the thesis's protocol does). The one place a sealed test's start is
-    made: a simulation, a diagnosis, a synthetic dataset and a sweep all start here."""
+    (inflated_and_sealed, as the thesis's protocol does). What inflates is the muscle with its
+    `effects`: compliant fibres stretch under the inflation and seal it longer. The one place a
+    sealed test's start is made: a simulation, a diagnosis, a synthetic dataset and a sweep all
+    start here."""
     if gauge_pressure_Pa is None:
         gauge_pressure_Pa = experiment.inflation_gauge_pressure_Pa
     if experiment.initial_length_m is not None:
         return InitialState(length_m=experiment.initial_length_m, gauge_pressure_Pa=gauge_pressure_Pa)
+    for effect in effects:
+        params = effect.apply_to_params(params)
     return inflated_and_sealed(params, gauge_pressure_Pa)
 
 
@@ -146,7 +155,7 @@ def _measurement(
     if mode == GasMode.supplied:
         length0 = initial_length(experiment, params)
     elif initial is None:
-        initial = sealed_start(experiment, params)
+        initial = sealed_start(experiment, params, effects=effects)
     crosshead = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
     try:
         if mode == GasMode.supplied:
@@ -219,7 +228,7 @@ def simulate_streamed(
     if why_not is not None:
         raise ExperimentError(f"{experiment.path}: cannot stream the simulation: {why_not}; simulate it whole")
     _checked_mode(experiment, effects)
-    initial = initial if initial is not None else sealed_start(experiment, params)
+    initial = initial if initial is not None else sealed_start(experiment, params, effects=effects)
     crosshead = ElongationTrajectory(experiment.time_s, experiment.elongation_m)
     simulator = Simulator(config if config is not None else SimulatorConfig())
 

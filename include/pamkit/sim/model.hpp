@@ -133,13 +133,12 @@ struct InitialState {
 };
 
 /// The thesis's protocol at the start of a sealed test: inflated freely (no force) to
-/// `gauge_pressure_Pa`, then sealed, at the free length that pressure gives (table 3.4).
+/// `gauge_pressure_Pa`, then sealed, at the free length that pressure gives (table 3.4). Compliant
+/// fibers (ModelExtensions::fiber_compliance_per_N) stretch under the tension the inflation puts
+/// in them: their free length is where the muscle, its fibers balanced at that pressure as
+/// MuscleModel seals them, carries no force.
 /// \throws InvalidInput if the muscle cannot inflate freely to that pressure.
-inline InitialState inflated_and_sealed(const MuscleParams& params, double gauge_pressure_Pa) {
-  const FreeInflation free = free_inflation(BraidGeometry(params.build), params.bladder,
-                                            params.gas.atmospheric_pressure_Pa, gauge_pressure_Pa);
-  return InitialState{free.length_m, gauge_pressure_Pa};
-}
+inline InitialState inflated_and_sealed(const MuscleParams& params, double gauge_pressure_Pa);
 
 /// The ODE state. The energy integrals ride along as states so that one right-hand side
 /// evaluation serves them and the physics alike.

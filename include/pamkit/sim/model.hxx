@@ -36,6 +36,44 @@ inline MuscleModel::MuscleModel(const MuscleParams& params, const InitialState& 
   rubber_volume_ = bladder_reference_volume(geometry_);
 }
 
+inline InitialState inflated_and_sealed(const MuscleParams& params, double gauge_pressure_Pa) {
+  const BraidGeometry geometry(params.build);
+  const FreeInflation free =
+      free_inflation(geometry, params.bladder, params.gas.atmospheric_pressure_Pa, gauge_pressure_Pa);
+  const InitialState rigid{free.length_m, gauge_pressure_Pa};
+  if (!(params.extensions.fiber_compliance_per_N > 0.0) || !free.contracted) return rigid;
+  // Sealed at the rigid braid's free length, stretched fibers would push (their braid is
+  // longer there): the force at rest rises with the length, so the free length lies beyond,
+  // where a bracket grows until the force turns.
+  const auto force_at_rest = [&](double length_m) {
+    const MuscleModel model(params, InitialState{length_m, gauge_pressure_Pa});
+    return model.evaluate(length_m, 0.0, model.initial()).forces.total;
+  };
+  double shorter = free.length_m;
+  double pushing = force_at_rest(shorter);
+  if (!(pushing < 0.0)) return rigid;  // fibers that the inflation leaves slack do not stretch
+  const double longest = geometry.max_length() * (1.0 - 1e-9);
+  double step = 1e-4 * free.length_m;
+  double longer = shorter;
+  double pulling = pushing;
+  while (pulling < 0.0) {
+    if (longer >= longest) {
+      PAMKIT_THROW(InvalidInput(detail::message("inflated freely to ", gauge_pressure_Pa,
+                                                " Pa, compliant fibers push at every length the braid allows up to ",
+                                                longest, " m: no free length")));
+    }
+    shorter = longer;
+    pushing = pulling;
+    longer = std::min(longer + step, longest);
+    step *= 2.0;
+    pulling = force_at_rest(longer);
+  }
+  std::uintmax_t iterations = 60;
+  const auto [a, b] = boost::math::tools::toms748_solve(force_at_rest, shorter, longer, pushing, pulling,
+                                                        boost::math::tools::eps_tolerance<double>(50), iterations);
+  return InitialState{0.5 * (a + b), gauge_pressure_Pa};
+}
+
 inline State MuscleModel::initial() const {
   State y;
   y[State::temperature_K] = initial_temperature();

@@ -418,7 +418,10 @@ def synthesize(
     moving = [name for name in LOGGER_CHANNELS if np.ptp(getattr(baseline, name)) > step[name]]
     effect, effect_info = configure_effect(effect_spec, effect_rng, effect_catalog, moving or LOGGER_CHANNELS)
     effects = [effect] if effect is not None else []
-    truth = simulate_measurement(params, initial, crosshead, effects, Simulator()) if effects else baseline
+    # Inflated freely, the muscle with the effect seals where it carries no force (compliant fibres
+    # stretch and seal it longer); the file declares no initial length, so its reader starts there too.
+    start = sealed_start(experiment, params, initial.gauge_pressure_Pa, effects)
+    truth = simulate_measurement(params, start, crosshead, effects, Simulator()) if effects else baseline
     effect_info["largest_change"] = {
         name: float(np.max(np.abs(np.asarray(getattr(truth, name)) - np.asarray(getattr(baseline, name)))))
         for name in OPTIONAL_COLUMNS

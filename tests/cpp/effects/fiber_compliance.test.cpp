@@ -178,6 +178,30 @@ TEST_CASE("fiber_compliance: stiff fibres are the inextensible model", "[effects
             Simulator().run(stiff_model, crosshead).force_N.back(), 1e-9);
 }
 
+TEST_CASE("fiber_compliance: inflated freely and sealed, the muscle carries no force at rest",
+          "[effects][fiber_compliance][physics]") {
+  // The thesis's protocol (table 3.4): inflated with no load, sealed where the force is zero.
+  // Compliant fibres stretch under the tension the inflation puts in them, so the muscle seals
+  // longer than the rigid braid does; sealed at the rigid braid's free length it would push.
+  const MuscleParams rigid;
+  for (const double stiffness_N : {60.0, 300.0}) {
+    for (const double gauge_Pa : {100e3, 300e3}) {
+      INFO("EA = " << stiffness_N << " N, " << gauge_Pa << " Pa");
+      MuscleParams p = compliant(stiffness_N);
+      const InitialState sealed = inflated_and_sealed(p, gauge_Pa);
+      const MuscleModel model(p, sealed);
+      CHECK(std::abs(model.evaluate(sealed.length_m, 0.0, model.initial()).forces.total) < 1e-6);
+      const InitialState inextensible = inflated_and_sealed(rigid, gauge_Pa);
+      CHECK(sealed.length_m > inextensible.length_m);
+      const MuscleModel at_rigid_length(p, inextensible);
+      CHECK(at_rigid_length.evaluate(inextensible.length_m, 0.0, at_rigid_length.initial()).forces.total < -1e-3);
+    }
+  }
+  // Fibres too stiff to stretch seal where the rigid braid does.
+  const InitialState stiff = inflated_and_sealed(compliant(1e17), 200e3);
+  CHECK_REL(stiff.length_m, inflated_and_sealed(rigid, 200e3).length_m, 1e-12);
+}
+
 TEST_CASE("fiber_compliance: the same crosshead travel gives less force and a lower pressure",
           "[effects][fiber_compliance]") {
   const MuscleParams rigid;

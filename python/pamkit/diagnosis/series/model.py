@@ -235,7 +235,7 @@ class Predictor:
                 self.experiment.columns["gauge_pressure_Pa"],
                 effects,
             )
-        initial = self.initial_state(params, pressure_Pa)
+        initial = self.initial_state(params, pressure_Pa, effects)
         extended = params
         for effect in effects:
             extended = effect.apply_to_params(extended)
@@ -261,7 +261,7 @@ class Predictor:
     def sealed_model(self, x: np.ndarray, effects: list[Effect]) -> MuscleModel:
         """The sealed test's model at baseline coordinates x, extended by `effects`' parameters."""
         params, pressure_Pa = self.baseline.model_params(x)
-        initial = self.initial_state(params, pressure_Pa)
+        initial = self.initial_state(params, pressure_Pa, effects)
         for effect in effects:
             params = effect.apply_to_params(params)
         return MuscleModel(params, initial)
@@ -285,9 +285,10 @@ class Predictor:
                     del self._shape_tables[next(iter(self._shape_tables))]
         return shapes
 
-    def initial_state(self, params: MuscleParams, gauge_pressure_Pa: float) -> InitialState:
-        """This test's sealed start (simulate.sealed_start) at inflation gauge pressure [Pa]."""
-        return sealed_start(self.experiment, params, gauge_pressure_Pa)
+    def initial_state(self, params: MuscleParams, gauge_pressure_Pa: float, effects=()) -> InitialState:
+        """This test's sealed start (simulate.sealed_start) at inflation gauge pressure [Pa], of
+        the muscle with `effects`."""
+        return sealed_start(self.experiment, params, gauge_pressure_Pa, effects)
 
     def select(self, m: Measurement) -> dict[str, np.ndarray]:
         """The measured channels of a simulated measurement, at the data's samples."""

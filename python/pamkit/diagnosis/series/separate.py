@@ -87,6 +87,9 @@ class Variant:
 AS_RUN = Variant("as_run")
 VARIANTS = (
     Variant("pressure_higher", pressure_share=0.5),
+    # Stretching fibres part from a dead volume by the tension the pressure puts in them: at half
+    # the pressure the fibres' share shrinks under the membrane's, whose law the model knows least.
+    Variant("pressure_double", pressure_share=1.0),
     Variant("pressure_lower", pressure_share=-0.5),
     Variant("slower", time_scale=10.0),
     Variant("faster", time_scale=0.2),
@@ -188,12 +191,20 @@ def _run(problem: Problem, fit: Fit, variant: Variant) -> Measurement:
         # The lab inflates until its transducer reads the new pressure: the reading moves by the
         # share of the declared pressure, and the gas by that through the fit's transducer.
         change = variant.pressure_share * experiment.inflation_gauge_pressure_Pa
+        _, top = experiment.reading_range(PRESSURE)
+        if experiment.inflation_gauge_pressure_Pa + change > top:
+            raise InvalidInput(
+                f"{experiment.inflation_gauge_pressure_Pa + change:.6g} Pa is beyond what the transducer reads"
+            )
         read = [_steady_reading(fit, p, ambient_K).gauge_pressure_Pa[0] for p in (inflation_Pa, inflation_Pa + change)]
         if not (read[1] - read[0]) / change > 0.0:
             raise InvalidInput(f"the fit's transducer reads {read[0]:.6g} Pa at both pressures")
-        start = inflated_and_sealed(params, inflation_Pa + change * change / (read[1] - read[0]))
+        extended = params
+        for effect in fit.effects:  # the muscle inflated is the muscle with its effects
+            extended = effect.apply_to_params(extended)
+        start = inflated_and_sealed(extended, inflation_Pa + change * change / (read[1] - read[0]))
     else:
-        start = predictor.initial_state(params, inflation_Pa)
+        start = predictor.initial_state(params, inflation_Pa, fit.effects)
     run = simulate_measurement(params, start, trajectory, fit.effects, predictor.simulator)
     return predictor.played_measurement(run) if played else run
 
