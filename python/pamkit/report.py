@@ -160,6 +160,33 @@ class Report:
 
         return plot(self._drawable(), path)  # type: ignore[arg-type]
 
+    def write_next_test(self, path: str | Path) -> list[Path]:
+        """Write the test this report asks for (:attr:`separation`: to tell a tie apart, confirm a
+        close cause, check for an instrument's error) as an experiment file to run: at `path` the
+        test's own sections with ``[test]`` changed as the variant says, beside it the motion to
+        run (its CSV, which the lab's data then replace) and what each of the two explanations
+        predicts it will measure (``.predictions.csv``); for a zero run, the predictions only.
+
+        Parameters
+        ----------
+        path : str or Path
+            The experiment TOML to write (``NEXT.toml``).
+
+        Returns
+        -------
+        list of Path
+            The files written.
+
+        Raises
+        ------
+        ValueError
+            Where the report asks for no test or none it could run separates the two (saying
+            why), for a campaign's or a table's report, and for a report read from JSON.
+        """
+        from pamkit.diagnosis.series.next_test import write_next_test  # imported here: see diagnose()
+
+        return write_next_test(self._drawable(), path)
+
     def figure(self) -> Figure:
         """The report's figure, as `plot` writes it, to look at where the session draws: a
         notebook shows it inline, a script with ``matplotlib.pyplot.show()``.

@@ -1,4 +1,5 @@
 """pamkit diagnose EXPERIMENT.toml [MORE.toml ...] [--json REPORT.json] [--plot REPORT.png] [--params-out PARAMS.toml]
+                [--next-test NEXT.toml]
 pamkit diagnose --batch DIR -o RESULTS.parquet [--workers N | --scheduler ADDRESS]"""
 
 from __future__ import annotations
@@ -33,6 +34,14 @@ def register(subparsers) -> None:
         "effects; one time series; static tables of one muscle; a campaign of time series: the muscle calibrated "
         "on all its tests): what `pamkit simulate --params` and the C++ pamkit::read_muscle_params load",
     )
+    parser.add_argument(
+        "--next-test",
+        metavar="NEXT.toml",
+        help="where the report asks for another test (to tell a tie apart, confirm a close cause, check for an "
+        "instrument's error), write it as an experiment file to run: this test's sections with [test] changed, "
+        "the motion to run (NEXT.csv, which the lab's data then replace) and what each explanation predicts it "
+        "will measure (NEXT.predictions.csv); one time series",
+    )
     parser.add_argument("--threads", type=int, default=None, help="fits in parallel (default: all cores)")
     batch = parser.add_argument_group(
         "batch", "diagnose every experiment TOML of a folder on its own, each a Dask task (pip install 'pamkit[scale]')"
@@ -48,6 +57,7 @@ def run(arguments: argparse.Namespace) -> int:
     from pamkit.diagnosis import diagnose, verdict
     from pamkit.diagnosis.params_out import write_params
     from pamkit.diagnosis.report import write
+    from pamkit.diagnosis.series.next_test import write_next_test
 
     def progress(message: str) -> None:
         if not arguments.quiet:
@@ -71,6 +81,14 @@ def run(arguments: argparse.Namespace) -> int:
     print(verdict(d))
     for path in outputs:
         print(f"wrote {path}")
+    if arguments.next_test:
+        try:
+            written = write_next_test(d, arguments.next_test)
+        except ValueError as why:  # the diagnosis stands; only the test it would ask for is missing
+            print(f"--next-test: nothing written: {why}", file=sys.stderr)
+        else:
+            for path in written:
+                print(f"wrote {path}")
     return 0
 
 
@@ -80,10 +98,11 @@ def run_batch(arguments: argparse.Namespace, progress) -> int:
 
     if arguments.experiment:
         raise ValueError("--batch DIR diagnoses the folder's files: name no experiment besides it")
-    for option in ("json", "plot", "threads", "params_out"):
+    for option in ("json", "plot", "threads", "params_out", "next_test"):
         if getattr(arguments, option) is not None:
+            flag = option.replace("_", "-")
             raise ValueError(
-                f"--{option} does not apply to --batch (one row per test; each diagnosis runs on one thread)"
+                f"--{flag} does not apply to --batch (one row per test; each diagnosis runs on one thread)"
             )
     if arguments.output is None:
         raise ValueError("--batch needs -o RESULTS.parquet (or .csv)")
