@@ -223,6 +223,27 @@ def test_spreadsheet_exports_load_a_bom_semicolons_and_decimal_commas(tmp_path):
         read_series(path)
 
 
+def test_a_trailing_delimiter_on_every_line_is_an_empty_column_left_unread(tmp_path):
+    # A spreadsheet saved with an empty last column: every line ends in a delimiter, the header
+    # too. The column has no name and holds nothing, so it is left out; one that holds a value
+    # is refused, naming its line and column.
+    path = tmp_path / "run.csv"
+    path.write_text("time_s,elongation_m,force_N\n0,0,1\n1,0.001,2\n")
+    expected = read_series(path)
+    for text in (
+        "time_s,elongation_m,force_N,\n0,0,1,\n1,0.001,2,\n",
+        "time_s;elongation_m;;force_N\n0;0;;1\n1;0,001;;2\n",
+    ):
+        path.write_text(text)
+        columns = read_series(path)
+        assert list(columns) == list(expected), text
+        for name in expected:
+            np.testing.assert_array_equal(columns[name], expected[name], err_msg=repr(text))
+    path.write_text("time_s,elongation_m,force_N,\n0,0,1,\n1,0.001,2,7\n")
+    with pytest.raises(ExperimentError, match=r"run.csv:3: column 4 has no name in the header but holds '7'"):
+        read_series(path)
+
+
 def test_comment_lines_are_skipped_and_lines_keep_their_numbers(tmp_path):
     # A logger's or a rig's notes: "#" lines before the header and between rows, in a file numpy
     # reads in blocks (comments only above the header) and one read row by row.

@@ -115,7 +115,10 @@ def read_columns(
             except StopIteration:
                 raise ExperimentError(f"{path}: empty file, expected a header row") from None
         width = len(cells)
-        kept = [number for number, cell in enumerate(cells) if cell.strip() not in ignore]
+        # A column with no name (a spreadsheet's trailing delimiter on every line) is read only to
+        # check that it holds nothing.
+        unnamed = [number for number, cell in enumerate(cells) if not cell.strip()]
+        kept = [number for number, cell in enumerate(cells) if cell.strip() and cell.strip() not in ignore]
         cells = [cells[number] for number in kept]
         header, factors = _checked_header(path, reader.line_num, cells, required, optional, numbers=kept)
         named = [cell.strip() for cell in cells]  # as the file names them, for its errors
@@ -131,6 +134,13 @@ def read_columns(
         try:
             if len(row) != width:
                 raise ExperimentError(f"{path}:{line}: {len(row)} values, the header has {width}")
+            for number in unnamed:
+                if row[number].strip():
+                    raise ExperimentError(
+                        f"{path}:{line}: column {number + 1} has no name in the header but holds "
+                        f"{_shown(row[number].strip())}: name it in the header (and in [test] ignore_columns to "
+                        "leave it out)"
+                    )
             row = [row[number] for number in kept]
             parsed = _parse_row(
                 path, line, named, [c.replace(",", ".") for c in row] if decimal_comma else row, numbers=kept
@@ -258,8 +268,8 @@ def _read_plain_csv(
                 header_number += 1
             delimiter = delimiter_of(header_text)
             cells = next(csv.reader([header_text[:-1]], delimiter=delimiter))
-            if any(cell.strip() in ignore for cell in cells):
-                return None  # a column not to read: row by row, which leaves it out
+            if any(cell.strip() in ignore or not cell.strip() for cell in cells):
+                return None  # a column not to read, or one with no name: row by row, which leaves it out
             # A first pass counts the lines, so that numpy's rows go straight into columns of their
             # final size: the numbers then stand in memory once, not in blocks and again in columns.
             counted = lines = 0
