@@ -15,9 +15,9 @@ simulate itself.
     data/experiments/tie/        a sealed cyclic test of a muscle with a dead volume (first/), which on
                                  its own ties with stretching fibres, and the same test inflated half
                                  as high again (second/), an inflation that tells them apart (the
-                                 tie's report names half the pressure, ahead by 6 %); campaign.toml
-                                 diagnoses the two together (independent_dead_volume_two_inflations,
-                                 seed 1)
+                                 tie's report names twice the pressure, which parts them more);
+                                 campaign.toml diagnoses the two together
+                                 (independent_dead_volume_two_inflations, seed 1)
 
 Run ``python validation/example_data.py [-o data/experiments]``; the committed files are what it
 writes (tests/python/test_example_data.py).
