@@ -223,22 +223,30 @@ def test_spreadsheet_exports_load_a_bom_semicolons_and_decimal_commas(tmp_path):
         read_series(path)
 
 
+def reads_as(path, plain: str, *texts: str) -> None:
+    """Each of `texts`, written to `path`, reads as the plain CSV `plain` does: the same columns,
+    the same values."""
+    path.write_text(plain)
+    expected = read_series(path)
+    for text in texts:
+        path.write_text(text)
+        columns = read_series(path)
+        assert list(columns) == list(expected), repr(text)
+        for name in expected:
+            np.testing.assert_array_equal(columns[name], expected[name], err_msg=repr(text))
+
+
 def test_a_trailing_delimiter_on_every_line_is_an_empty_column_left_unread(tmp_path):
     # A spreadsheet saved with an empty last column: every line ends in a delimiter, the header
     # too. The column has no name and holds nothing, so it is left out; one that holds a value
     # is refused, naming its line and column.
     path = tmp_path / "run.csv"
-    path.write_text("time_s,elongation_m,force_N\n0,0,1\n1,0.001,2\n")
-    expected = read_series(path)
-    for text in (
+    reads_as(
+        path,
+        "time_s,elongation_m,force_N\n0,0,1\n1,0.001,2\n",
         "time_s,elongation_m,force_N,\n0,0,1,\n1,0.001,2,\n",
         "time_s;elongation_m;;force_N\n0;0;;1\n1;0,001;;2\n",
-    ):
-        path.write_text(text)
-        columns = read_series(path)
-        assert list(columns) == list(expected), text
-        for name in expected:
-            np.testing.assert_array_equal(columns[name], expected[name], err_msg=repr(text))
+    )
     path.write_text("time_s,elongation_m,force_N,\n0,0,1,\n1,0.001,2,7\n")
     with pytest.raises(ExperimentError, match=r"run.csv:3: column 4 has no name in the header but holds '7'"):
         read_series(path)
@@ -248,17 +256,13 @@ def test_comment_lines_are_skipped_and_lines_keep_their_numbers(tmp_path):
     # A logger's or a rig's notes: "#" lines before the header and between rows, in a file numpy
     # reads in blocks (comments only above the header) and one read row by row.
     path = tmp_path / "run.csv"
-    path.write_text("time_s,elongation_m,force_N\n0,0,1\n1,0.001,2\n2,0.002,3\n")
-    expected = read_series(path)
-    for text in (
+    reads_as(
+        path,
+        "time_s,elongation_m,force_N\n0,0,1\n1,0.001,2\n2,0.002,3\n",
         "# rig B, 2026-11-27\n\n# operator JS\ntime_s,elongation_m,force_N\n0,0,1\n1,0.001,2\n2,0.002,3\n",
         "\ufeff# rig B\ntime_s,elongation_m,force_N\n0,0,1\n# valve opened\n1,0.001,2\n  # a note\n2,0.002,3\n",
         '# rig B\ntime_s;elongation_m;force_N\n0;0;1\n"1";0,001;2\n2;0,002;3\n',
-    ):
-        path.write_text(text)
-        columns = read_series(path)
-        for name in expected:
-            np.testing.assert_array_equal(columns[name], expected[name], err_msg=repr(text))
+    )
     # Errors name the file's own lines: the header's, a row's, after comments.
     path.write_text("# rig B\n# operator JS\ntime_s,elongation_m,force_lbf\n0,0,1\n1,0.001,2\n")
     with pytest.raises(ExperimentError, match=r"run.csv:3: column 3 'force_lbf' is not a known channel"):
