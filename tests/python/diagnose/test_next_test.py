@@ -133,3 +133,19 @@ def test_a_report_writes_its_next_test(tie, tmp_path):
     assert written == [tmp_path / "next.toml", tmp_path / "next.csv", tmp_path / "next.predictions.csv"]
     with pytest.raises(ValueError, match="read from JSON"):
         Report(to_json(d)).write_next_test(tmp_path / "again.toml")
+
+
+def test_a_supplied_tests_next_test_scales_the_pressure_it_supplies(thesis_dir, tmp_path):
+    path = thesis_dir.parent / "supplied" / "isometric_sweep.toml"
+    d = diagnose(path, threads=2)
+    higher = Variant("pressure_higher", pressure_share=0.5)
+    fits = [j.fit for j in d.candidates[:2]]
+    _, runs = _differences(d.problem, fits[0], fits[1], higher)
+    # As if the higher pressure told the two apart (the report asks for no test here), to write it.
+    d.separation = Separation(tuple(f.name for f in fits), higher, None, {"force_N": 3.0}, {}, {}, runs)
+    written, first = load_experiment(write_next_test(d, tmp_path / "next.toml")[0]), load_experiment(path)
+    assert written.gas == first.gas and written.initial_length_m == first.initial_length_m
+    np.testing.assert_allclose(
+        written.columns["gauge_pressure_Pa"], 1.5 * first.columns["gauge_pressure_Pa"], rtol=1e-9
+    )
+    np.testing.assert_allclose(written.time_s, first.time_s, rtol=1e-9)
