@@ -103,9 +103,10 @@ def test_a_bad_export_is_named_by_file_line_and_column(tmp_path, write_experimen
 
 
 def test_a_header_that_is_neither_pamkits_nor_a_machines_names_its_first_column(tmp_path, write_experiment):
-    # Time and extension, no load: not an export; pamkit's own header check names what is unknown.
+    # Time and extension, no load: not an export; pamkit's own header check names what is unknown,
+    # each name completed by the line of units under it ("Time" over "s" is time_s).
     toml = write_experiment(csv_text="Time;Extension\ns;mm\n0;0\n1;1\n")
-    with pytest.raises(ExperimentError, match=r"run.csv:1: column 1 'Time' is not a known channel"):
+    with pytest.raises(ExperimentError, match=r"run.csv:1: column 2 'Extension \[mm\]' is not a known channel"):
         load_experiment(toml)
     with pytest.raises(ExperimentError, match=r"run.csv: no row naming time, extension .* and load"):
         read_machine_export(toml.parent / "run.csv")

@@ -169,6 +169,7 @@ _FILE_NAMES = {
 # "Force (N)", "Temperature (°C)".
 _BRACKETED = re.compile(r"^(?P<name>[A-Za-z][A-Za-z ]*?)\s*(?:\[(?P<a>[^\]]+)\]|\((?P<b>[^)]+)\))$")
 _UNIT_SPELLINGS = {"sec": "s", "°c": "c", "degc": "c", "deg c": "c", "° c": "c", "%": "percent"}
+_KNOWN = frozenset(_FILE_NAMES.values())
 
 
 def pamkit_spelling(cell: str) -> str:
@@ -182,6 +183,31 @@ def pamkit_spelling(cell: str) -> str:
         unit = (match["a"] or match["b"]).strip().lower()
         stripped = f"{match['name'].strip().replace(' ', '_')}_{_UNIT_SPELLINGS.get(unit, unit)}"
     return _FILE_NAMES.get(stripped.lower(), cell)
+
+
+def with_units_row(names: list[str], units: list[str]) -> list[str] | None:
+    """A header of names completed by the line of units under it, as a logger writes "Time, Force"
+    over "s, N" (or "(s), (N)"): each name with its unit in brackets, for pamkit_spelling to read.
+    None where `units` is no such line: it has another width, holds a number or nothing, or names
+    no column pamkit reads that the names alone did not (or unnames one they did)."""
+    if len(units) != len(names) or not any(u.strip() for u in units) or any(_is_number(u) for u in units):
+        return None
+    merged = [
+        f"{name.strip()} [{unit.strip().strip('()[]').strip()}]" if unit.strip() and name.strip() else name
+        for name, unit in zip(names, units)
+    ]
+    known = [pamkit_spelling(cell) in _KNOWN for cell in names]
+    completed = [pamkit_spelling(cell) in _KNOWN for cell in merged]
+    gains = any(c and not k for k, c in zip(known, completed))
+    return merged if gains and all(c or not k for k, c in zip(known, completed)) else None
+
+
+def _is_number(cell: str) -> bool:
+    try:
+        float(cell.strip().replace(",", "."))
+    except ValueError:
+        return False
+    return True
 
 
 def to_gauge(columns: dict[str, np.ndarray], atmospheric_pressure_Pa: float) -> dict[str, np.ndarray]:

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pamkit.io.columns import in_pamkit_units, other_units_of, pamkit_spelling
+from pamkit.io.columns import in_pamkit_units, other_units_of, pamkit_spelling, with_units_row
 from pamkit.io.guards import (
     MAX_LINE_BYTES,
     ExperimentError,
@@ -43,7 +43,12 @@ def header_of(path: Path, ignore: tuple[str, ...] = ()) -> tuple[int, list[str]]
     except OSError:
         return 1, []
     line, header = header_line(head)
-    cells = next(csv.reader([header], delimiter=delimiter_of(header)), [])
+    delimiter = delimiter_of(header)
+    cells = next(csv.reader([header], delimiter=delimiter), [])
+    below = _LINE_END.split(head)[line:]
+    units = next((text for text in below if not _is_skipped(text)), None)
+    if units is not None:
+        cells = with_units_row(cells, next(csv.reader([units], delimiter=delimiter), [])) or cells
     return line, [in_pamkit_units(pamkit_spelling(name))[0] for name in cells if name.strip() not in ignore]
 
 
@@ -114,16 +119,28 @@ def read_columns(
                 cells = next(reader)
             except StopIteration:
                 raise ExperimentError(f"{path}: empty file, expected a header row") from None
+        header_number = reader.line_num
+        rows = [(reader.line_num, row) for row in reader]
+        # A line of units under the names (a logger's "Time, Force" over "s, N") completes them.
+        first = next((i for i, (_, row) in enumerate(rows) if any(cell.strip() for cell in row)), None)
+        merged = with_units_row(cells, rows[first][1]) if first is not None else None
+        names = cells  # as the file names them, without the units: what [test] ignore_columns may say
+        if merged is not None:
+            cells = merged
+            del rows[first]
         width = len(cells)
         # A column with no name (a spreadsheet's trailing delimiter on every line) is read only to
         # check that it holds nothing.
         unnamed = [number for number, cell in enumerate(cells) if not cell.strip()]
-        kept = [number for number, cell in enumerate(cells) if cell.strip() and cell.strip() not in ignore]
+        kept = [
+            number
+            for number, (cell, name) in enumerate(zip(cells, names))
+            if cell.strip() and cell.strip() not in ignore and name.strip() not in ignore
+        ]
         cells = [cells[number] for number in kept]
-        header, factors = _checked_header(path, reader.line_num, cells, required, optional, numbers=kept)
+        header, factors = _checked_header(path, header_number, cells, required, optional, numbers=kept)
         named = [cell.strip() for cell in cells]  # as the file names them, for its errors
         order = header.index(increasing) if increasing else None
-        rows = [(reader.line_num, row) for row in reader]
     cut_last_line = ends_unterminated(path)
     values: list[list[float]] = []
     merged: list[int] = []  # lines whose time stamp repeated the one before

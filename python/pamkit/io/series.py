@@ -21,7 +21,6 @@ from pamkit.io.columns import (
     file_name,
     in_pamkit_units,
     other_units_of,
-    pamkit_spelling,
     to_gauge,
     to_si,
     value_from_si,
@@ -148,9 +147,9 @@ def _is_machine_export(path: Path) -> bool:
         names = [in_pamkit_units(name.strip())[0] for name in cells]
         if any(name in REQUIRED_COLUMNS + FILE_OPTIONAL_COLUMNS for name in names):
             return False  # pamkit's CSV, right or wrong: its errors name what to fix, no column is dropped
-        spelled = [in_pamkit_units(pamkit_spelling(cell))[0] for cell in cells]
+        _, spelled = header_of(path)  # a line of units under the names completes them
         if all(name in (*REQUIRED_COLUMNS, *FILE_OPTIONAL_COLUMNS, ABSOLUTE_PRESSURE) for name in spelled):
-            return False  # pamkit's channels, spelled otherwise ("Pressure [kPa]"): every one is read
+            return False  # pamkit's channels, spelled otherwise ("Pressure [kPa]"; "Pressure" over "bar"): all read
         return looks_like_export(path)
     except OSError:
         return False
