@@ -47,9 +47,12 @@ def header_of(path: Path, ignore: tuple[str, ...] = ()) -> tuple[int, list[str]]
     cells = next(csv.reader([header], delimiter=delimiter), [])
     below = _LINE_END.split(head)[line:]
     units = next((text for text in below if not _is_skipped(text)), None)
-    if units is not None:
-        cells = with_units_row(cells, next(csv.reader([units], delimiter=delimiter), [])) or cells
-    return line, [in_pamkit_units(pamkit_spelling(name))[0] for name in cells if name.strip() not in ignore]
+    completed = with_units_row(cells, next(csv.reader([units], delimiter=delimiter), [])) if units else None
+    return line, [
+        in_pamkit_units(pamkit_spelling(spelled))[0]
+        for name, spelled in zip(cells, completed or cells)
+        if name.strip() not in ignore
+    ]
 
 
 #: Bytes read to find a file's header line past its comment lines.
@@ -123,10 +126,10 @@ def read_columns(
         rows = [(reader.line_num, row) for row in reader]
         # A line of units under the names (a logger's "Time, Force" over "s, N") completes them.
         first = next((i for i, (_, row) in enumerate(rows) if any(cell.strip() for cell in row)), None)
-        merged = with_units_row(cells, rows[first][1]) if first is not None else None
+        completed = with_units_row(cells, rows[first][1]) if first is not None else None
         names = cells  # as the file names them, without the units: what [test] ignore_columns may say
-        if merged is not None:
-            cells = merged
+        if completed is not None:
+            cells = completed
             del rows[first]
         width = len(cells)
         # A column with no name (a spreadsheet's trailing delimiter on every line) is read only to
