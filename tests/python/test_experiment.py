@@ -270,6 +270,9 @@ def test_a_line_of_units_under_the_names_completes_them(tmp_path):
     path.write_text("time_s,elongation_m\ns,m\n0,0\n1,0.001\n")
     with pytest.raises(ExperimentError, match=r"run.csv:2: column 1 \(time_s\) = 's' is not a number"):
         read_series(path)
+    # [test] ignore_columns names a column as the file's names row does, without its unit.
+    path.write_text("Time,Valve,Elongation\ns,V,mm\n0,1,0\n1,0,1\n")
+    assert list(read_series(path, ignore=("Valve",))) == ["time_s", "elongation_m"]
 
 
 def test_comment_lines_are_skipped_and_lines_keep_their_numbers(tmp_path):
