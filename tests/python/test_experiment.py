@@ -236,6 +236,13 @@ def reads_as(path, plain: str, *texts: str) -> None:
             np.testing.assert_array_equal(columns[name], expected[name], err_msg=repr(text))
 
 
+def refuses(path, text: str, message: str) -> None:
+    """`text`, written to `path`, is refused with an error matching `message`."""
+    path.write_text(text)
+    with pytest.raises(ExperimentError, match=message):
+        read_series(path)
+
+
 def test_a_trailing_delimiter_on_every_line_is_an_empty_column_left_unread(tmp_path):
     # A spreadsheet saved with an empty last column: every line ends in a delimiter, the header
     # too. The column has no name and holds nothing, so it is left out; one that holds a value
@@ -247,9 +254,11 @@ def test_a_trailing_delimiter_on_every_line_is_an_empty_column_left_unread(tmp_p
         "time_s,elongation_m,force_N,\n0,0,1,\n1,0.001,2,\n",
         "time_s;elongation_m;;force_N\n0;0;;1\n1;0,001;;2\n",
     )
-    path.write_text("time_s,elongation_m,force_N,\n0,0,1,\n1,0.001,2,7\n")
-    with pytest.raises(ExperimentError, match=r"run.csv:3: column 4 has no name in the header but holds '7'"):
-        read_series(path)
+    refuses(
+        path,
+        "time_s,elongation_m,force_N,\n0,0,1,\n1,0.001,2,7\n",
+        r"run.csv:3: column 4 has no name in the header but holds '7'",
+    )
 
 
 def test_a_line_of_units_under_the_names_completes_them(tmp_path):
@@ -264,12 +273,12 @@ def test_a_line_of_units_under_the_names_completes_them(tmp_path):
         "Time,Elongation,Force,Pressure\ns,mm,N,bar\n0,0,1,1.5\n1,1,2,1.6\n",
         "# logger 3\nTime;Elongation;Force;Pressure\n(s);(mm);(N);(kPa)\n0;0;1;150\n1;1;2;160\n",
     )
-    path.write_text("Time,Elongation,Force\ns,mm,N\n0,0,1\n1,abc,2\n")
-    with pytest.raises(ExperimentError, match=r"run.csv:4: column 2 \(Elongation \[mm\]\) = 'abc' is not a number"):
-        read_series(path)
-    path.write_text("time_s,elongation_m\ns,m\n0,0\n1,0.001\n")
-    with pytest.raises(ExperimentError, match=r"run.csv:2: column 1 \(time_s\) = 's' is not a number"):
-        read_series(path)
+    refuses(
+        path,
+        "Time,Elongation,Force\ns,mm,N\n0,0,1\n1,abc,2\n",
+        r"run.csv:4: column 2 \(Elongation \[mm\]\) = 'abc' is not a number",
+    )
+    refuses(path, "time_s,elongation_m\ns,m\n0,0\n1,0.001\n", r"run.csv:2: column 1 \(time_s\) = 's' is not a number")
     # [test] ignore_columns names a column as the file's names row does, without its unit.
     path.write_text("Time,Valve,Elongation\ns,V,mm\n0,1,0\n1,0,1\n")
     assert list(read_series(path, ignore=("Valve",))) == ["time_s", "elongation_m"]
@@ -287,18 +296,22 @@ def test_comment_lines_are_skipped_and_lines_keep_their_numbers(tmp_path):
         '# rig B\ntime_s;elongation_m;force_N\n0;0;1\n"1";0,001;2\n2;0,002;3\n',
     )
     # Errors name the file's own lines: the header's, a row's, after comments.
-    path.write_text("# rig B\n# operator JS\ntime_s,elongation_m,force_lbf\n0,0,1\n1,0.001,2\n")
-    with pytest.raises(ExperimentError, match=r"run.csv:3: column 3 'force_lbf' is not a known channel"):
-        read_series(path)
-    path.write_text("# rig B\ntime_s,elongation_m\n0,0\n# valve opened\n1,abc\n")
-    with pytest.raises(ExperimentError, match=r"run.csv:5: column 2 \(elongation_m\) = 'abc' is not a number"):
-        read_series(path)
-    path.write_text("# rig B\ntime_s,elongation_m\n0,0\n2,0.001\n1,0.002\n")  # read in blocks
-    with pytest.raises(ExperimentError, match=r"run.csv:5: column 1 \(time_s\) = 1.0 does not increase"):
-        read_series(path)
-    path.write_text("# only a note\n")
-    with pytest.raises(ExperimentError, match="empty file, expected a header row"):
-        read_series(path)
+    refuses(
+        path,
+        "# rig B\n# operator JS\ntime_s,elongation_m,force_lbf\n0,0,1\n1,0.001,2\n",
+        r"run.csv:3: column 3 'force_lbf' is not a known channel",
+    )
+    refuses(
+        path,
+        "# rig B\ntime_s,elongation_m\n0,0\n# valve opened\n1,abc\n",
+        r"run.csv:5: column 2 \(elongation_m\) = 'abc' is not a number",
+    )
+    refuses(
+        path,
+        "# rig B\ntime_s,elongation_m\n0,0\n2,0.001\n1,0.002\n",
+        r"run.csv:5: column 1 \(time_s\) = 1.0 does not increase",
+    )  # read in blocks
+    refuses(path, "# only a note\n", "empty file, expected a header row")
 
 
 def test_a_table_reads_its_rows_in_order_and_drops_what_its_kind_does_not_use(tmp_path):
