@@ -144,3 +144,9 @@ def test_pamkits_channels_headed_as_a_spreadsheet_heads_them_are_all_read(tmp_pa
         ):
             columns = read_series(export)
         assert list(columns) == ["time_s", "elongation_m", "force_N"]
+    # A logger's pressure named over its unit, as the machine's channels are: said too.
+    export.write_text("Time,Extension,Load,Pressure\ns,mm,N,kPa\n0,0,1,150\n1,2,9,160\n")
+    with pytest.warns(
+        ExperimentWarning, match=r"export.csv:1: read as a tensile machine's export.*'Pressure' not read"
+    ):
+        assert list(read_series(export)) == ["time_s", "elongation_m", "force_N"]

@@ -259,13 +259,26 @@ def _read_block(
     """One specimen's block: the names row at `header_index` of `lines`, its units row, its rows
     to the end of `lines`."""
     header = _cells(lines[header_index], delimiter)
+    units_row = None
+    if header_index + 1 < len(lines):
+        below = _cells(lines[header_index + 1], delimiter)
+        if below and any(c.strip() for c in below) and all(_UNIT_CELL.match(c) for c in below):
+            units_row = [c.strip().strip("()[]").strip() for c in below]
+
     # A channel of pamkit's beside the machine's (a logger's pressure merged in by hand) is not read
-    # here: said, not dropped unseen. The machine's own others (strain, cycle) are its derivatives.
+    # here: said, not dropped unseen, whether its name or its name with the unit under it spells it.
+    # The machine's own others (strain, cycle) are its derivatives.
+    def spells_a_channel(number: int, cell: str) -> bool:
+        unit = units_row[number] if units_row is not None and number < len(units_row) else ""
+        spellings = (cell, f"{cell.strip()} [{unit}]") if unit else (cell,)
+        return any(
+            in_pamkit_units(pamkit_spelling(c))[0] in (*LOGGER_FILE_COLUMNS, ABSOLUTE_PRESSURE) for c in spellings
+        )
+
     unread = [
         cell.strip()
         for number, cell in enumerate(header)
-        if number not in columns.values()
-        and in_pamkit_units(pamkit_spelling(cell))[0] in (*LOGGER_FILE_COLUMNS, ABSOLUTE_PRESSURE)
+        if number not in columns.values() and spells_a_channel(number, cell)
     ]
     if unread:
         warnings.warn(
@@ -276,11 +289,6 @@ def _read_block(
             ExperimentWarning,
             3,
         )
-    units_row = None
-    if header_index + 1 < len(lines):
-        below = _cells(lines[header_index + 1], delimiter)
-        if below and any(c.strip() for c in below) and all(_UNIT_CELL.match(c) for c in below):
-            units_row = [c.strip().strip("()[]").strip() for c in below]
     factors = {}
     for quantity, number in columns.items():
         unit = split_name(header[number])[1]
