@@ -264,21 +264,26 @@ def test_a_trailing_delimiter_on_every_line_is_an_empty_column_left_unread(tmp_p
 def test_a_line_of_units_under_the_names_completes_them(tmp_path):
     # A logger's header in two lines, names over units: each name takes its unit ("Time" over "s"
     # reads as time_s, "Elongation" over "(mm)" as elongation_mm), and the line is no data row;
-    # errors still name the file's own lines. A header pamkit already reads keeps a second line as
-    # data, and its error says so.
+    # errors still name the file's own lines. Under pamkit's own names the line may repeat their
+    # units; a unit that is not the name's keeps the line as data, and its error says so.
     path = tmp_path / "run.csv"
     reads_as(
         path,
         "time_s,elongation_m,force_N,pressure_kPa\n0,0,1,150\n1,0.001,2,160\n",
         "Time,Elongation,Force,Pressure\ns,mm,N,bar\n0,0,1,1.5\n1,1,2,1.6\n",
         "# logger 3\nTime;Elongation;Force;Pressure\n(s);(mm);(N);(kPa)\n0;0;1;150\n1;1;2;160\n",
+        "time_s,elongation_m,force_N,pressure_kPa\ns,m,N,kPa\n0,0,1,150\n1,0.001,2,160\n",
     )
     refuses(
         path,
         "Time,Elongation,Force\ns,mm,N\n0,0,1\n1,abc,2\n",
         r"run.csv:4: column 2 \(Elongation \[mm\]\) = 'abc' is not a number",
     )
-    refuses(path, "time_s,elongation_m\ns,m\n0,0\n1,0.001\n", r"run.csv:2: column 1 \(time_s\) = 's' is not a number")
+    refuses(
+        path,
+        "time_s,elongation_m,pressure_kPa\ns,m,bar\n0,0,1\n1,0.001,1\n",
+        r"run.csv:2: column 1 \(time_s\) = 's' is not a number",
+    )
     # [test] ignore_columns names a column as the file's names row does, without its unit.
     path.write_text("Time,Valve,Elongation\ns,V,mm\n0,1,0\n1,0,1\n")
     assert list(read_series(path, ignore=("Valve",))) == ["time_s", "elongation_m"]

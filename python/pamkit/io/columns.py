@@ -187,19 +187,31 @@ def pamkit_spelling(cell: str) -> str:
 
 def with_units_row(names: list[str], units: list[str]) -> list[str] | None:
     """A header of names completed by the line of units under it, as a logger writes "Time, Force"
-    over "s, N" (or "(s), (N)"): each name with its unit in brackets, for pamkit_spelling to read.
-    None where `units` is no such line: it has another width, holds a number or nothing, or names
-    no column pamkit reads that the names alone did not (or unnames one they did)."""
+    over "s, N" (or "(s), (N)"): each name with its unit in brackets, for pamkit_spelling to read;
+    a name pamkit already reads stays as it is where the unit under it is its own ("time_s" over
+    "s"). None where `units` is no such line: it has another width, holds a number or nothing,
+    gives a name pamkit reads another unit, or completes no name.
+    """
     if len(units) != len(names) or not any(u.strip() for u in units) or any(_is_number(u) for u in units):
         return None
-    merged = [
-        f"{name.strip()} [{unit.strip().strip('()[]').strip()}]" if unit.strip() and name.strip() else name
-        for name, unit in zip(names, units)
-    ]
-    known = [pamkit_spelling(cell) in _KNOWN for cell in names]
-    completed = [pamkit_spelling(cell) in _KNOWN for cell in merged]
-    gains = any(c and not k for k, c in zip(known, completed))
-    return merged if gains and all(c or not k for k, c in zip(known, completed)) else None
+    out = []
+    for name, cell in zip(names, units):
+        unit = cell.strip().strip("()[]").strip()
+        if not unit or not name.strip():
+            out.append(name)
+        elif pamkit_spelling(name) in _KNOWN:
+            if not _is_its_unit(pamkit_spelling(name), unit):
+                return None
+            out.append(name)
+        else:
+            out.append(f"{name.strip()} [{unit}]")
+    return out if any(pamkit_spelling(cell) in _KNOWN for cell in out) else None
+
+
+def _is_its_unit(known_name: str, unit: str) -> bool:
+    """Whether `unit` ("kPa", "°C") is the one a name of pamkit's files carries ("pressure_kPa")."""
+    suffix = known_name.rsplit("_", 1)[-1].lower()
+    return _UNIT_SPELLINGS.get(unit.lower(), unit.lower()) == suffix
 
 
 def _is_number(cell: str) -> bool:
