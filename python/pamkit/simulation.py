@@ -108,9 +108,15 @@ def sealed_start(
         gauge_pressure_Pa = experiment.inflation_gauge_pressure_Pa
     if experiment.initial_length_m is not None:
         return InitialState(length_m=experiment.initial_length_m, gauge_pressure_Pa=gauge_pressure_Pa)
+    return inflated_and_sealed(with_effects(params, effects), gauge_pressure_Pa)
+
+
+def with_effects(params: MuscleParams, effects: Sequence[Effect]) -> MuscleParams:
+    """`params` with each effect's own fields set (Effect.apply_to_params): the muscle the effects
+    make, as a run builds it."""
     for effect in effects:
         params = effect.apply_to_params(params)
-    return inflated_and_sealed(params, gauge_pressure_Pa)
+    return params
 
 
 def simulate_experiment(

@@ -12,10 +12,11 @@ import pytest
 from conftest import SOURCE_DIR
 
 from pamkit import Report
+from pamkit._core import GasMode
 from pamkit.diagnosis import diagnose, verdict
 from pamkit.diagnosis.report import to_json
 from pamkit.diagnosis.series.next_test import asked_for, write_next_test
-from pamkit.diagnosis.series.separate import Separation, Variant, _differences
+from pamkit.diagnosis.series.separate import SEPARATES, Separation, Variant, _differences
 from pamkit.io.columns import value_from_si
 from pamkit.io.experiment import load_experiment
 from pamkit.simulation import simulate_experiment
@@ -73,22 +74,28 @@ def test_the_tie_asks_for_another_inflation_and_the_file_is_that_test(tie, tmp_p
     assert np.all(np.abs(values[0, force]) < 1e-6)
 
 
-def test_a_slower_variant_scales_the_motions_times(tie, tmp_path):
-    path, d = tie
-    slower = Variant("slower", time_scale=10.0)
+def written_as_if_asked(d, variant, path) -> list:
+    """write_next_test for `d` as if its report asked for `variant` between its two leading
+    candidates, their predictions on it run as a report runs them: the variant need not part them
+    (a difference of SEPARATES, the least that does, is set), only be written. The report's own
+    separation is put back."""
     fits = [j.fit for j in d.candidates[:2]]
-    _, runs = _differences(d.problem, fits[0], fits[1], slower)
-    # As if the slower test told them apart (on the tie it does not: 0.5x the noise), to write it.
-    separation = d.separation
-    d.separation = Separation(
-        tuple(f.name for f in fits), slower, separation.declared_Pa, {"force_N": 3.0}, {}, {}, runs
-    )
+    _, runs = _differences(d.problem, fits[0], fits[1], variant)
+    experiment = d.problem.experiment
+    declared = experiment.inflation_gauge_pressure_Pa if experiment.gas == GasMode.sealed else None
+    kept = d.separation
+    d.separation = Separation(tuple(f.name for f in fits), variant, declared, {"force_N": SEPARATES}, {}, {}, runs)
     try:
-        written = write_next_test(d, tmp_path / "slow" / "next.toml")
+        return write_next_test(d, path)
     finally:
-        d.separation = separation
-    experiment = load_experiment(written[0])
-    first = load_experiment(path)
+        d.separation = kept
+
+
+def test_a_slower_variant_scales_the_motions_times(tie, tmp_path):
+    # On the tie the slower test does not part the two (0.5x the noise); written all the same.
+    path, d = tie
+    written = written_as_if_asked(d, Variant("slower", time_scale=10.0), tmp_path / "slow" / "next.toml")
+    experiment, first = load_experiment(written[0]), load_experiment(path)
     np.testing.assert_allclose(experiment.time_s, 10.0 * first.time_s, rtol=1e-9)
     assert experiment.initial_length_m == first.initial_length_m  # the same inflation: the same start
     assert experiment.inflation_gauge_pressure_Pa == first.inflation_gauge_pressure_Pa
@@ -96,15 +103,7 @@ def test_a_slower_variant_scales_the_motions_times(tie, tmp_path):
 
 def test_a_zero_run_writes_the_predictions_only(tie, tmp_path):
     _, d = tie
-    zero = Variant("zero_run", zero_reading=True)
-    fits = [j.fit for j in d.candidates[:2]]
-    _, runs = _differences(d.problem, fits[0], fits[1], zero)
-    separation = d.separation
-    d.separation = Separation(tuple(f.name for f in fits), zero, separation.declared_Pa, {"force_N": 3.0}, {}, {}, runs)
-    try:
-        written = write_next_test(d, tmp_path / "next.toml")
-    finally:
-        d.separation = separation
+    written = written_as_if_asked(d, Variant("zero_run", zero_reading=True), tmp_path / "next.toml")
     assert written == [tmp_path / "next.predictions.csv"]
     assert not (tmp_path / "next.toml").exists()
     header, values = read_predictions(written[0])
@@ -137,13 +136,10 @@ def test_a_report_writes_its_next_test(tie, tmp_path):
 
 def test_a_supplied_tests_next_test_scales_the_pressure_it_supplies(thesis_dir, tmp_path):
     path = thesis_dir.parent / "supplied" / "isometric_sweep.toml"
-    d = diagnose(path, threads=2)
+    d = diagnose(path, threads=2)  # its report asks for no test: written as if it asked for this one
     higher = Variant("pressure_higher", pressure_share=0.5)
-    fits = [j.fit for j in d.candidates[:2]]
-    _, runs = _differences(d.problem, fits[0], fits[1], higher)
-    # As if the higher pressure told the two apart (the report asks for no test here), to write it.
-    d.separation = Separation(tuple(f.name for f in fits), higher, None, {"force_N": 3.0}, {}, {}, runs)
-    written, first = load_experiment(write_next_test(d, tmp_path / "next.toml")[0]), load_experiment(path)
+    written = load_experiment(written_as_if_asked(d, higher, tmp_path / "next.toml")[0])
+    first = load_experiment(path)
     assert written.gas == first.gas and written.initial_length_m == first.initial_length_m
     np.testing.assert_allclose(
         written.columns["gauge_pressure_Pa"], 1.5 * first.columns["gauge_pressure_Pa"], rtol=1e-9

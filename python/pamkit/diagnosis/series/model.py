@@ -46,7 +46,7 @@ from pamkit.diagnosis.coordinates import (
 from pamkit.diagnosis.series.motion import measured_motion, programmed_motion, with_knots_after_turns
 from pamkit.io.columns import SERIES_COLUMNS
 from pamkit.io.experiment import Experiment
-from pamkit.simulation import initial_length, muscle_params, sealed_start
+from pamkit.simulation import initial_length, muscle_params, sealed_start, with_effects
 
 # A fixture's play is taken up within the first PLAY_REFINED_M of travel after each turn (the
 # largest plausible play, fixture_slack's): runs with it follow the crosshead there on knots
@@ -235,10 +235,8 @@ class Predictor:
                 self.experiment.columns["gauge_pressure_Pa"],
                 effects,
             )
-        initial = self.initial_state(params, pressure_Pa, effects)
-        extended = params
-        for effect in effects:
-            extended = effect.apply_to_params(extended)
+        extended = with_effects(params, effects)
+        initial = self.initial_state(extended, pressure_Pa)
         # A motion effect moves the muscle off the programmed lengths: no table applies.
         if self.moves_muscle(effects):
             run = simulate_measurement(params, initial, self.played_trajectory, effects, self.simulator)
@@ -261,10 +259,8 @@ class Predictor:
     def sealed_model(self, x: np.ndarray, effects: list[Effect]) -> MuscleModel:
         """The sealed test's model at baseline coordinates x, extended by `effects`' parameters."""
         params, pressure_Pa = self.baseline.model_params(x)
-        initial = self.initial_state(params, pressure_Pa, effects)
-        for effect in effects:
-            params = effect.apply_to_params(params)
-        return MuscleModel(params, initial)
+        extended = with_effects(params, effects)
+        return MuscleModel(extended, self.initial_state(extended, pressure_Pa))
 
     def shape_table(self, extended: MuscleParams, initial: InitialState) -> ShapeTable | None:
         """The braid's shapes along the programmed motion for `extended`'s build from `initial`'s
@@ -285,10 +281,10 @@ class Predictor:
                     del self._shape_tables[next(iter(self._shape_tables))]
         return shapes
 
-    def initial_state(self, params: MuscleParams, gauge_pressure_Pa: float, effects=()) -> InitialState:
-        """This test's sealed start (simulate.sealed_start) at inflation gauge pressure [Pa], of
-        the muscle with `effects`."""
-        return sealed_start(self.experiment, params, gauge_pressure_Pa, effects)
+    def initial_state(self, params: MuscleParams, gauge_pressure_Pa: float) -> InitialState:
+        """This test's sealed start (simulate.sealed_start) at inflation gauge pressure [Pa] of the
+        muscle `params` (with its effects' fields: with_effects)."""
+        return sealed_start(self.experiment, params, gauge_pressure_Pa)
 
     def select(self, m: Measurement) -> dict[str, np.ndarray]:
         """The measured channels of a simulated measurement, at the data's samples."""

@@ -46,7 +46,7 @@ from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.kinds import Problem
 from pamkit.diagnosis.significance import NONE_WITHIN_NOISE
 from pamkit.io.columns import file_unit, value_from_si
-from pamkit.simulation import initial_length
+from pamkit.simulation import initial_length, with_effects
 
 PRESSURE = "gauge_pressure_Pa"
 # What a variant the model cannot run raises: a length beyond the braid's range, a pressure it
@@ -199,12 +199,12 @@ def _run(problem: Problem, fit: Fit, variant: Variant) -> Measurement:
         read = [_steady_reading(fit, p, ambient_K).gauge_pressure_Pa[0] for p in (inflation_Pa, inflation_Pa + change)]
         if not (read[1] - read[0]) / change > 0.0:
             raise InvalidInput(f"the fit's transducer reads {read[0]:.6g} Pa at both pressures")
-        extended = params
-        for effect in fit.effects:  # the muscle inflated is the muscle with its effects
-            extended = effect.apply_to_params(extended)
-        start = inflated_and_sealed(extended, inflation_Pa + change * change / (read[1] - read[0]))
+        # The muscle inflated is the muscle with its effects.
+        start = inflated_and_sealed(
+            with_effects(params, fit.effects), inflation_Pa + change * change / (read[1] - read[0])
+        )
     else:
-        start = predictor.initial_state(params, inflation_Pa, fit.effects)
+        start = predictor.initial_state(with_effects(params, fit.effects), inflation_Pa)
     run = simulate_measurement(params, start, trajectory, fit.effects, predictor.simulator)
     return predictor.played_measurement(run) if played else run
 
