@@ -12,16 +12,20 @@ pamkit), diagnosed the same way, through files only. Where a report's `separatio
 that separates (`separates`: the two models differ there by twice the noise) and that test is
 another inflation or the same stretches faster or slower, the generator writes it on the same
 muscle, departures and causes (near_families.sealed_test's `variant`); a campaign TOML names the
-two, and `python -m pamkit diagnose` reads it. A zero run is another kind of test, and is counted
-as not run. Each dataset is scored as bench_near_model.py scores it (right / wrong / partial /
-honest), alone and in the campaign; printed: the outcomes before and after, by what the test was
-for, how many changed from what to what, and the upper strengths' right and all wrong names.
+two, and `python -m pamkit diagnose` reads it. A zero run is written beside the same test
+(`[test] zero`), which is diagnosed again, zeroed, alone; an instrument whose offset it read
+beyond one sample's noise (the zeroed report's estimate) counts as named, since the report says
+what it read and took off, and what it read is printed beside the hidden instruments' errors.
+Each dataset is scored as bench_near_model.py scores it (right / wrong / partial / honest), alone
+and with the test; printed: the outcomes before and after, by what the test was for, how many
+changed from what to what, and the upper strengths' right and all wrong names.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 import tempfile
 import time
@@ -35,16 +39,20 @@ from bench_near_model import (  # the same datasets, diagnosed and scored alike
     add_world_arguments,
     classify,
     diagnose,
+    named_causes,
+    outcome_of,
     work_list,
 )
 from independent.near_families import FAMILIES, variant_asked
 
 OUTCOMES = ("right", "partial", "honest", "wrong", "error")
+# the instruments whose offsets a zero run reads, and the channel each reads
+ZEROED_CAUSES = {"load_cell": "force_N", "sensor_offset": "gauge_pressure_Pa"}
 
 
 def variant_of(separation: dict | None) -> dict | None:
     """The generator's `variant` for the test a report's separation names, or None where it names
-    none, it does not separate, or it is a zero run."""
+    none or it does not separate."""
     if not separation or not separation.get("separates"):
         return None
     return variant_asked(separation.get("test"))
@@ -65,7 +73,26 @@ def follow_up(item, scratch: Path, arguments) -> dict:
     row["variant"] = variant
     if variant is None:
         return row
-    FAMILIES[name].make(seed, folder / "second", strength, variant)  # the test asked for, beside the first
+    second = FAMILIES[name].make(seed, folder / "second", strength, variant)  # the test asked for
+    if variant.get("zero_run"):
+        # The same test with its zero run: diagnosed alone, zeroed (a campaign would count it twice).
+        zeroed = diagnose(second.experiment, arguments.timeout, arguments.threads)
+        row["campaign"] = classify(dataset, zeroed)
+        row["instruments"] = {c: dataset.truth["cause"][c] for c in ZEROED_CAUSES if c in dataset.truth["cause"]}
+        if "report" in zeroed:
+            report = zeroed["report"]
+            row["zero_read"] = next((n["offsets"] for n in report["warnings"] if "offsets" in n), {})
+            # An offset the zero run read beyond one sample's noise is found: it took that off the data.
+            found = {
+                cause: None
+                for cause, channel in ZEROED_CAUSES.items()
+                if abs(row["zero_read"].get(channel, 0.0)) > report["evidence"]["noise"].get(channel, math.inf)
+            }
+            row["campaign"]["zero_found"] = sorted(found)
+            named = {**named_causes(report), **found}
+            row["campaign"]["outcome"] = outcome_of(dataset.hidden, dataset.present, named)
+        row["seconds"] += zeroed["seconds"]
+        return row
     campaign = folder / "campaign.toml"
     campaign.write_text('[campaign]\ntests = ["first/test.toml", "second/test.toml"]\n')
     both = diagnose(campaign, arguments.timeout, arguments.threads)
@@ -112,7 +139,7 @@ def main() -> int:
 
     asked = [r for r in rows if r["asked"]]
     run = [r for r in asked if "campaign" in r]
-    print(f"{len(rows)} sealed tests; {len(asked)} reports name a test; {len(run)} of those run (a zero run is not)")
+    print(f"{len(rows)} sealed tests; {len(asked)} reports name a test; {len(run)} of those run")
     table = {}
     for purpose in sorted({r["purpose"] for r in run}):
         group = [r for r in run if r["purpose"] == purpose]
@@ -129,6 +156,12 @@ def main() -> int:
     print(
         "changes, alone -> campaign: " + ", ".join(f"{a}->{b} {n}" for (a, b), n in sorted(changed.items()) if a != b)
     )
+    for r in (r for r in run if "zero_read" in r):
+        read = {c: round(v, 1) for c, v in (r["zero_read"] or {}).items()}
+        print(
+            f"  zero run, {r['family']} {r['strength']} seed {r['seed']}: read {read}, found "
+            f"{r['campaign'].get('zero_found')}; hidden {r['instruments']}"
+        )
     upper = [r for r in rows if r["strength"] in ("medium", "strong")]
     right_alone = sum(r["alone"]["outcome"] == "right" for r in upper)
     right_after = sum(r.get("campaign", r["alone"])["outcome"] == "right" for r in upper)

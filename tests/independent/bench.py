@@ -68,15 +68,20 @@ def temperature_logger(temperature_C, rng):
     return (_adc_volts(volts, rng) - TMP36_ZERO_V) / TMP36_V_PER_C
 
 
+def write_columns(path: Path, columns: dict[str, np.ndarray]) -> None:
+    """Writes `columns` as a CSV file with their names for a header."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    header = list(columns)
+    table = np.column_stack([np.asarray(columns[c], dtype=float) for c in header])
+    lines = [",".join(header)] + [",".join(f"{v:.10g}" for v in row) for row in table]
+    path.write_text("\n".join(lines) + "\n")
+
+
 def write_experiment(
     folder: Path, name: str, muscle: dict, test: dict, columns: dict[str, np.ndarray], comment: str
 ) -> Path:
     """Writes NAME.toml and NAME.csv into `folder`; returns the TOML's path."""
-    folder.mkdir(parents=True, exist_ok=True)
-    header = list(columns)
-    table = np.column_stack([np.asarray(columns[c], dtype=float) for c in header])
-    lines = [",".join(header)] + [",".join(f"{v:.10g}" for v in row) for row in table]
-    (folder / f"{name}.csv").write_text("\n".join(lines) + "\n")
+    write_columns(folder / f"{name}.csv", columns)
 
     def value(v):
         if isinstance(v, str):

@@ -56,6 +56,7 @@ DIAMETER_VARIATION_M = 0.1e-3
 FRICTION_LEVEL = (0.7, 1.4)  # log-uniform
 BLADDER_LEVEL = (0.8, 1.25)  # log-uniform
 LAG_GRID = 10  # a lagged channel is filtered on a grid this much finer than the samples
+ZERO_RUN_S = 10.0  # a zero run's length, at the test's sampling rate
 
 # Departures from the thesis's model: (low, high) of each dial's size as drawn (uniformly, the sign
 # at random where a dial has one) ...
@@ -309,8 +310,10 @@ def sealed_test(
     parameters, :func:`resolve` for those set relative to the test) in its physics, its fixture or
     its instruments. `variant` runs another test on the same muscle and rig: ``gauge_kPa`` inflates
     it freely to that pressure instead (and seals it at the length it takes there), ``time_scale``
-    multiplies the crosshead's times (10: the same stretches ten times slower); the muscle, its
-    departures and the causes are the test's as drawn."""
+    multiplies the crosshead's times (10: the same stretches ten times slower), ``zero_run`` writes
+    the same test with the instruments' zero run beside it (ZERO_RUN_S of the muscle vented and
+    unloaded, named by ``[test] zero``); the muscle, its departures and the causes are the test's as
+    drawn."""
     rng = draws(seed, family)
     build = draw_build(rng.protocol)
     plan = draw_sealed_plan(rng.protocol)
@@ -366,16 +369,34 @@ def sealed_test(
         "pressure_kPa": bench.pressure_logger(pressure, rng.noise),
         "temperature_C": bench.temperature_logger(temperature + instruments.temperature_offset_C, rng.noise),
     }
+    described = {
+        "description": "near-model world, sealed cyclic test",
+        "inflation_pressure_kPa": gauge_kPa,
+        "ambient_temperature_C": plan.ambient_C,
+        "initial_length_m": initial,
+    }
+    if (variant or {}).get("zero_run"):
+        # Vented and unloaded, at the room's temperature: the instruments read their own errors.
+        quiet = np.arange(int(round(ZERO_RUN_S * rate)) + 1) / rate
+        nothing = np.zeros_like(quiet)
+        bench.write_columns(
+            folder / "zero.csv",
+            {
+                "time_s": quiet,
+                "elongation_m": nothing,
+                "force_N": bench.load_cell(nothing + instruments.force_offset_N, rng.noise, plan.noise_N),
+                "pressure_kPa": bench.pressure_logger(nothing + instruments.pressure_offset_kPa, rng.noise),
+                "temperature_C": bench.temperature_logger(
+                    nothing + plan.ambient_C + instruments.temperature_offset_C, rng.noise
+                ),
+            },
+        )
+        described["zero"] = "zero.csv"
     path = bench.write_experiment(
         folder,
         "test",
         asdict(build),
-        {
-            "description": "near-model world, sealed cyclic test",
-            "inflation_pressure_kPa": gauge_kPa,
-            "ambient_temperature_C": plan.ambient_C,
-            "initial_length_m": initial,
-        },
+        described,
         columns,
         "Written by tests/independent (not pamkit): a sealed muscle stretched on a tensile machine.",
     )
@@ -401,10 +422,12 @@ def sealed_test(
 
 def variant_asked(test: dict | None) -> dict | None:
     """sealed_test's `variant` for the test a diagnosis report asks for (its `separation.test`, a
-    plain dict: another inflation in Pa, or the motion's times scaled); None for a zero run, which
-    is another kind of test, or for none."""
+    plain dict: another inflation in Pa, the motion's times scaled, or its key alone for a zero
+    run); None for none."""
     if not test:
         return None
+    if test.get("key") == "zero_run":
+        return {"zero_run": True}
     if "inflation_gauge_pressure_Pa" in test:
         return {"gauge_kPa": round(test["inflation_gauge_pressure_Pa"] / 1e3, 2)}
     if "time_scale" in test:

@@ -24,13 +24,13 @@ from pamkit.diagnosis.series.causes import add_cause, reads_explained, rival_bes
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Decision, Judgement, decide, judge
 from pamkit.diagnosis.series.declared import declared_build, told_from_the_build
 from pamkit.diagnosis.series.findings import baseline_findings
-from pamkit.diagnosis.series.instruments import noise_ratios, structured
+from pamkit.diagnosis.series.instruments import noise_ratios, reads_off, structured
 from pamkit.diagnosis.series.joint import check_one_muscle
 from pamkit.diagnosis.series.kinds import Problem, build_problem
 from pamkit.diagnosis.series.refused import outdone_beside_a_second, tie_beside_a_second
 from pamkit.diagnosis.series.result import Diagnosis
 from pamkit.diagnosis.series.score import score
-from pamkit.diagnosis.series.separate import separating_test
+from pamkit.diagnosis.series.separate import VARIANTS, ZERO_RUN, separating_test
 from pamkit.diagnosis.significance import MIN_GAIN
 from pamkit.diagnosis.tables.engine import TableDiagnosis, diagnose_table
 from pamkit.effects import catalog as builtin_catalog
@@ -354,20 +354,31 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     unneeded_only = (
         tied is not None and tied.unneeded and not (tied.findings or tied.objections or tied.below_resolution)
     )
+    # An instrument's error refused on its values (one at a bound or implausible, a share of another
+    # misfit taken): this test cannot tell what the instrument reads at nothing from what the muscle
+    # does, and a zero run reads it there, whatever the muscle.
+    misread = (
+        tied is not None
+        and not problem.experiment.zeroed
+        and not unneeded_only
+        and tied.tied_with is None
+        and all(reads_off(problem, e) for e in tied.fit.effects)
+    )
     pair = (
         (tied.fit, tied.tied_with.fit, "tie")
         if tied is not None and tied.tied_with is not None
         else (lead.fit, lead.close_rival.fit, "confirm")
         if lead is not None and lead.close_rival is not None
         else (tied.fit, baseline, "check")
-        if unneeded_only
+        if unneeded_only or misread
         else None
     )
     if pair is not None:
         first, second, purpose = pair
         report(f"looking for a test that tells {first.name} from {second.name}")
         phase = clock.perf_counter()
-        separation = separating_test(problem, first, second, purpose)
+        variants = (ZERO_RUN,) if misread and purpose == "check" else VARIANTS
+        separation = separating_test(problem, first, second, purpose, variants)
         seconds["separate"] = clock.perf_counter() - phase
     discovered = {}
     if decision.cause == "unexplained" or decision.left_structure:

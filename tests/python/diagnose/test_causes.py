@@ -9,7 +9,7 @@ import numpy as np
 
 import pamkit.diagnosis.series.causes as causes
 import pamkit.diagnosis.series.refused as refused
-from pamkit.diagnosis.coordinates import Finding
+from pamkit.diagnosis.coordinates import Finding, effect_space
 from pamkit.diagnosis.series.calibrate import Fit
 from pamkit.diagnosis.series.causes import _step_beside
 from pamkit.diagnosis.series.decide import Cause, Decision, Judgement, outdone
@@ -44,6 +44,7 @@ def test_the_partner_whose_step_beside_the_first_takes_its_remainder():
         sigma={PRESSURE: 1.0},
         measured={PRESSURE: -0.3 * TIME},
         predictor=SimpleNamespace(predict=lambda base_x, effects: shapes(effects)),
+        search_space=effect_space,  # no zero run: every coordinate searched
     )
     skew = Fit("time_skew", [], np.zeros(0), {"offset_s": 0.5}, {PRESSURE: np.zeros(ROWS)}, {PRESSURE: 0.0}, 1)
     names = ("time_skew", "leak", "sensor_offset", "sensor_lag")

@@ -14,6 +14,9 @@ from pamkit.diagnosis import diagnose, to_json, verdict
 from pamkit.diagnosis.cycles import find_cycles, split_cycles
 from pamkit.diagnosis.evidence import ljung_box_p, noise_scale
 from pamkit.diagnosis.figure import series_figure
+from pamkit.diagnosis.series.joint import calibrate_jointly
+from pamkit.diagnosis.series.separate import ZERO_RUN, separating_test
+from pamkit.effects import catalog
 from pamkit.io.columns import value_from_si
 from pamkit.io.guards import ExperimentError
 from pamkit.synth.dataset import synthesize
@@ -104,6 +107,34 @@ def test_a_zero_run_is_taken_off_and_its_reading_reported(leak_dataset, tmp_path
     c = diagnose([tmp_path / "a" / "test.toml", zeroed_copy(leak_dataset.experiment, tmp_path / "b")])
     assert sum(ZERO_READ in line for line in verdict(c).splitlines()) == 2
     assert all(any("zeroed" in n for n in test["warnings"]) for test in to_json(c)["per_test"])
+
+
+def test_a_zero_run_holds_the_offsets_it_measured(leak_dataset, tmp_path):
+    # The zero run read the load cell and the transducer at nothing and took that off the data: on
+    # the zeroed data their offsets are known to be zero. Fitted again, an offset could only take a
+    # share of another misfit (the near-model world's load cell, strong seed 9, zeroed of its true
+    # -10 N: refitted at -22.8 N beside the membrane's scale at its bound 0). Their other terms, a
+    # gain and a nonlinearity, which a zero run cannot read, stay free; and the test the report may
+    # ask for is never the zero run the test already has.
+    def searched(d, name):
+        return set(next(j.fit.params for j in d.candidates if j.fit.name == name))
+
+    plain = diagnose(leak_dataset.experiment)
+    zeroed = diagnose(zeroed_copy(leak_dataset.experiment, tmp_path / "a"))
+    assert searched(plain, "load_cell") == {"offset_N", "nonlinearity_per_kN"}
+    assert searched(plain, "sensor_offset") == {"offset_Pa", "gain"}
+    assert searched(zeroed, "load_cell") == {"nonlinearity_per_kN"}
+    assert searched(zeroed, "sensor_offset") == {"gain"}
+    transducer = next(j.fit for j in zeroed.candidates if j.fit.name == "sensor_offset")
+    check = separating_test(zeroed.problem, transducer, zeroed.baseline, "check", (ZERO_RUN,))
+    assert check.variant is None and check.tried == {"zero_run": "not run: the test has its zero run"}
+    # Fitted on two such tests at once (a campaign's one muscle), the offset stays held.
+    other = diagnose(zeroed_copy(leak_dataset.experiment, tmp_path / "b"))
+    cells = [next(j.fit for j in d.candidates if j.fit.name == "load_cell") for d in (zeroed, other)]
+    joint = calibrate_jointly(
+        [zeroed.problem, other.problem], cells, ["a", "b"], effect=("load_cell", lambda: catalog().make("load_cell"))
+    )
+    assert "nonlinearity_per_kN" in joint.params and "offset_N" not in joint.params
 
 
 def write(tmp_path, csv_text):

@@ -26,7 +26,7 @@ from scipy.optimize import lsq_linear
 
 from pamkit._core import EffectCatalog, EffectStage, GasMode, Resolution
 from pamkit.diagnosis import evidence
-from pamkit.diagnosis.coordinates import configure, effect_space
+from pamkit.diagnosis.coordinates import configure
 from pamkit.diagnosis.series.calibrate import (
     Fit,
     baseline_coordinates,
@@ -140,7 +140,7 @@ def fit_candidate(
     the same way, its step from `start` with the baseline free on the refit's own first Jacobian,
     returns `start` itself: the effect stays where its fit on the calibrated baseline put it."""
     effect = make_effect()
-    space = effect_space(effect)
+    space = problem.search_space(effect)
     base_space = problem.predictor.baseline.space
     measurement_only = effect.stage() == EffectStage.measurement and start is None
     # A transducer whose reading drives a supplied test changes the model's input: its fit runs
@@ -386,7 +386,7 @@ def fit_pair(problem: Problem, first: Fit, make_first, make_second, label: str, 
     where it lowers `beat` by less than SCREEN_DROP, the pair is not fitted further and comes back
     with an `error` that begins with SCREENED_OUT."""
     effects = [make_first(), make_second()]
-    spaces = [effect_space(e) for e in effects]
+    spaces = [problem.search_space(e) for e in effects]
     base_space = problem.predictor.baseline.space
     n_base, n_first = len(base_space), len(spaces[0])
     evaluations = 0

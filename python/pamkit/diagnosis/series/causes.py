@@ -10,7 +10,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from pamkit.diagnosis.coordinates import configure, effect_space
+from pamkit.diagnosis.coordinates import configure
 from pamkit.diagnosis.series.calibrate import Fit, thread_pool
 from pamkit.diagnosis.series.candidates import fit_pair
 from pamkit.diagnosis.series.decide import (
@@ -90,7 +90,7 @@ def _step_beside(problem: Problem, single: Fit, left: np.ndarray, others: list[J
     best, best_share = None, 0.0
     for j in others:
         first, second = factories[single.name](), factories[j.fit.name]()
-        first_space, second_space = effect_space(first), effect_space(second)
+        first_space, second_space = problem.search_space(first), problem.search_space(second)
         if not second_space:
             continue
         configure(first, first_space, np.array([c.of(single.params[c.name]) for c in first_space]))

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse
 
-from pamkit.diagnosis.coordinates import Coordinate, configure, effect_space
+from pamkit.diagnosis.coordinates import Coordinate, configure
 from pamkit.diagnosis.series.calibrate import (
     Fit,
     cluster_intervals,
@@ -99,6 +99,10 @@ def shared_space(problems: list[Problem]) -> list[Coordinate]:
     return [c for c in Baseline.coordinates(problems[0].experiment) if c.name not in PER_TEST]
 
 
+def searches(problem: Problem, effect, coordinate: Coordinate) -> bool:
+    return any(c.name == coordinate.name for c in problem.search_space(effect))
+
+
 def calibrate_jointly(
     problems: list[Problem], alone: list[Fit], names: list[str], threads: int = 2, effect=None
 ) -> JointFit:
@@ -108,7 +112,12 @@ def calibrate_jointly(
     and compare with."""
     label, make_effect = effect if effect is not None else (None, None)
     base_shared = shared_space(problems)
-    effect_coordinates = effect_space(make_effect()) if make_effect is not None else []
+    # the effect's coordinates every test searches (a test's zero run holds its offsets: Problem.search_space)
+    effect_coordinates = (
+        [c for c in problems[0].search_space(make_effect()) if all(searches(p, make_effect(), c) for p in problems)]
+        if make_effect is not None
+        else []
+    )
     shared = base_shared + effect_coordinates
     own = [[c for c in p.predictor.baseline.space if c.name in PER_TEST] for p in problems]
     offsets = np.cumsum([len(shared)] + [len(o) for o in own])

@@ -85,6 +85,7 @@ class Variant:
 
 
 AS_RUN = Variant("as_run")
+ZERO_RUN = Variant("zero_run", zero_reading=True)
 VARIANTS = (
     Variant("pressure_higher", pressure_share=0.5),
     # Stretching fibres part from a dead volume by the tension the pressure puts in them: at half
@@ -93,7 +94,7 @@ VARIANTS = (
     Variant("pressure_lower", pressure_share=-0.5),
     Variant("slower", time_scale=10.0),
     Variant("faster", time_scale=0.2),
-    Variant("zero_run", zero_reading=True),
+    ZERO_RUN,
 )
 
 
@@ -220,16 +221,21 @@ def _differences(problem: Problem, a: Fit, b: Fit, variant: Variant):
     return ratios, (ma, mb)
 
 
-def separating_test(problem: Problem, a: Fit, b: Fit, purpose: str = "tie") -> Separation:
-    """The variant of the test on which fits `a` and `b` differ most (see the module docstring),
-    for a tie, to confirm `a` against a close `b`, or to check for `a` against `b`, the model
-    without it (`purpose`)."""
+def separating_test(
+    problem: Problem, a: Fit, b: Fit, purpose: str = "tie", variants: tuple[Variant, ...] = VARIANTS
+) -> Separation:
+    """The variant among `variants` on which fits `a` and `b` differ most (see the module
+    docstring), for a tie, to confirm `a` against a close `b`, or to check for `a` against `b`, the
+    model without it (`purpose`)."""
     experiment = problem.experiment
     declared = experiment.inflation_gauge_pressure_Pa if experiment.gas == GasMode.sealed else None
     here, _ = _differences(problem, a, b, AS_RUN)
     best = None
     tried: dict[str, float | str] = {}
-    for variant in VARIANTS:
+    for variant in variants:
+        if variant.zero_reading and experiment.zeroed:
+            tried[variant.key] = "not run: the test has its zero run"
+            continue
         try:
             apart, runs = _differences(problem, a, b, variant)
         except RUN_FAILURES as error:
