@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 import tempfile
 import time
@@ -82,12 +81,10 @@ def follow_up(item, scratch: Path, arguments) -> dict:
         if "report" in zeroed:
             report = zeroed["report"]
             row["zero_read"] = next((n["offsets"] for n in report["warnings"] if "offsets" in n), {})
-            # An offset the zero run read beyond one sample's noise is found: it took that off the data.
-            found = {
-                cause: None
-                for cause, channel in ZEROED_CAUSES.items()
-                if abs(row["zero_read"].get(channel, 0.0)) > report["evidence"]["noise"].get(channel, math.inf)
-            }
+            # An offset the zero run read beyond one sample's noise is found: the report says so
+            # (`over_noise`) and took it off the data.
+            over = next((n["over_noise"] for n in report["warnings"] if "over_noise" in n), {})
+            found = {cause: None for cause, channel in ZEROED_CAUSES.items() if over.get(channel, 0.0) > 1.0}
             row["campaign"]["zero_found"] = sorted(found)
             named = {**named_causes(report), **found}
             row["campaign"]["outcome"] = outcome_of(dataset.hidden, dataset.present, named)

@@ -89,6 +89,12 @@ def run(arguments: argparse.Namespace) -> int:
         else:
             for path in written:
                 print(f"wrote {path}")
+            if d.separation.variant.zero_reading:
+                print(
+                    "the zero run: record the test's channels with the muscle vented and unloaded, save them beside "
+                    f'{d.problem.experiment.path.name} and name them in its [test] (zero = "zero.csv"), then '
+                    "diagnose it again"
+                )
     return 0
 
 

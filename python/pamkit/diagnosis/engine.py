@@ -73,19 +73,23 @@ def thinned(experiment: Experiment, max_rows: int | None = None) -> tuple[Experi
     return kept, note
 
 
-def zeroed(experiment: Experiment) -> dict | None:
+def zeroed(experiment: Experiment, sigma: dict[str, float]) -> dict | None:
     """What the test's zero run (`[test] zero`) took off its channels, as a note for the report's
     warnings and its sentence (None without one): the instruments' own reading with no air and no
-    load, which the zeroed data no longer show (a transducer reading 5 kPa there has that offset)."""
+    load, which the zeroed data no longer show (a transducer reading 5 kPa there has that offset),
+    each over the noise of one sample of its channel (`sigma`, where the channel is compared)."""
     if not experiment.zeroed:
         return None
+    over = {c: abs(v) / sigma[c] for c, v in experiment.zeroed.items() if sigma.get(c, 0.0) > 0.0}
     read = ", ".join(
         f"{file_name(c)} {difference_from_si(c, v):.3g} {file_unit(c) or COLUMN_UNITS.get(c, '')}"
+        + (f" ({over[c]:.1f}x its noise)" if c in over else "")
         for c, v in experiment.zeroed.items()
     )
     return {
         "zeroed": f"its zero run (no air) found the instruments reading {read} at nothing, taken off the data first",
         "offsets": dict(experiment.zeroed),
+        "over_noise": over,
     }
 
 
@@ -300,11 +304,11 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     if len(tests) > 1:
         return _diagnose_series_campaign(tests, effect_catalog, progress, threads, seed)
     experiment, note = thinned(tests[0])
-    notes = [n for n in (note, zeroed(experiment)) if n]
     if note:  # on stderr even with no progress shown (the command line prints warnings as one line)
         python_warnings.warn(note["thinned"], ThinningWarning, 2)
     report("finding the test's cycles and noise")
     problem = build_problem(experiment)
+    notes = [n for n in (note, zeroed(experiment, problem.sigma)) if n]
     seed = data_seed(problem) if seed is None else seed
     seconds = {"data": clock.perf_counter() - started}  # reading, thinning, finding the units
 

@@ -91,7 +91,7 @@ def zeroed_copy(experiment: Path, folder: Path) -> Path:
     return folder / "test.toml"
 
 
-ZERO_READ = "its zero run (no air) found the instruments reading force_N 7 N, pressure_kPa 4 kPa at nothing"
+ZERO_READ = "its zero run (no air) found the instruments reading force_N 7 N ("
 
 
 def test_a_zero_run_is_taken_off_and_its_reading_reported(leak_dataset, tmp_path):
@@ -102,7 +102,11 @@ def test_a_zero_run_is_taken_off_and_its_reading_reported(leak_dataset, tmp_path
     assert d.cause == "leak"
     notes = [n for n in to_json(d)["warnings"] if "zeroed" in n]
     assert len(notes) == 1 and notes[0]["offsets"] == pytest.approx({"force_N": 7.0, "gauge_pressure_Pa": 4e3})
-    assert ZERO_READ in verdict(d)
+    # each offset beside the noise of one sample of its channel, the scale of what it would have done
+    over = {c: v / d.problem.sigma[c] for c, v in notes[0]["offsets"].items()}
+    assert notes[0]["over_noise"] == pytest.approx(over)
+    read = f"force_N 7 N ({over['force_N']:.1f}x its noise), pressure_kPa 4 kPa ({over['gauge_pressure_Pa']:.1f}x"
+    assert ZERO_READ in verdict(d) and read in verdict(d)
     # The same test twice, each with its own zero run (a campaign's mechanics, not its evidence).
     c = diagnose([tmp_path / "a" / "test.toml", zeroed_copy(leak_dataset.experiment, tmp_path / "b")])
     assert sum(ZERO_READ in line for line in verdict(c).splitlines()) == 2

@@ -186,3 +186,17 @@ def test_a_cause_with_a_rival_close_behind_names_the_test_that_would_confirm_it(
     text = verdict(named)
     assert f"{second.fit.name} explains nearly as much" in text and f"to confirm {first.fit.name}" in text, text
     assert to_json(named)["separation"]["purpose"] == "confirm"
+
+
+def test_a_zero_run_asked_for_is_written_with_what_to_do_with_it(dead_volumes, tmp_path, run_pamkit):
+    # A report that asks for a zero run (to check for a transducer's offset: seed 3 of these) writes
+    # what each explanation expects the instruments to read, and says where the run goes: beside
+    # the test, named by its `[test] zero`.
+    asking = [(dataset, d) for dataset, d in dead_volumes if d.separation and d.separation.variant.zero_reading]
+    assert asking, [d.separation.to_json() if d.separation else None for _, d in dead_volumes]
+    dataset, d = asking[0]
+    done = run_pamkit("diagnose", dataset.experiment, "--quiet", "--next-test", tmp_path / "next.toml")
+    assert done.returncode == 0, done.stderr
+    assert f"wrote {tmp_path / 'next.predictions.csv'}" in done.stdout
+    assert f"save them beside {dataset.experiment.name} and name them in its [test] (zero = " in done.stdout
+    assert not (tmp_path / "next.toml").exists()
