@@ -18,6 +18,10 @@ simulate itself.
                                  tie's report names twice the pressure, which parts them more);
                                  campaign.toml diagnoses the two together
                                  (independent_dead_volume_two_inflations, seed 1)
+    data/experiments/zero_run/   a sealed cyclic test whose load cell reads 10 N low, on a muscle whose
+                                 membrane is not the model's (test.toml), and the same test with the
+                                 zero run its report asks for (zeroed.toml, zero.csv)
+                                 (tests/independent/near_families.py, load_cell strong, seed 9)
 
 Run ``python validation/example_data.py [-o data/experiments]``; the committed files are what it
 writes (tests/python/test_example_data.py).
@@ -38,6 +42,7 @@ sys.path.insert(0, str(ROOT / "tests"))  # tests/independent: a folder, not an i
 
 from independent.dmsp import DmspTruth, write_dmsp_isometric  # noqa: E402
 from independent.families import independent_dead_volume_two_inflations, isometric_sweep  # noqa: E402
+from independent.near_families import FAMILIES  # noqa: E402
 from independent.static_map import write_isotonic  # noqa: E402
 
 # A 10 mm muscle as the independent model builds it (Gaylord's braid, a neo-Hookean wall
@@ -54,6 +59,7 @@ ISOTONIC_LOAD_N = 100.0
 ISOTONIC_HYSTERESIS = 0.1
 SUPPLIED_SEED = 3
 TIE_SEED = 1
+ZERO_RUN_SEED = 9
 # A DMSP-10 cut to 10 cm: the braid and friction of tests/python/diagnose/test_dmsp.py's seed 21.
 ISOMETRIC_TRUTH = DmspTruth(
     rest_length_m=0.10, braid_angle_deg=23.0, end_zone_m=0.008, slip_force_N=150.0, slip_distance_m=0.02
@@ -107,7 +113,23 @@ def write(folder: Path) -> list[Path]:
         "# and another inflation of it, which tells them apart, run on the same independent muscle.\n"
         + campaign.read_text()
     )
-    examples = [*isotonic.iterdir(), *isometric.parent.iterdir(), *supplied.iterdir(), *tie.rglob("*")]
+    zero_run = folder / "zero_run"
+    FAMILIES["load_cell"].make(ZERO_RUN_SEED, zero_run, "strong", {"zero_run": True})
+    zeroed = (zero_run / "test.toml").read_text()
+    (zero_run / "test.toml").write_text(
+        "# validation/example_data.py: a sealed cyclic test whose load cell reads off, as first run (no zero run).\n"
+        + zeroed.replace('zero = "zero.csv"\n', "")
+    )
+    (zero_run / "zeroed.toml").write_text(
+        "# validation/example_data.py: the same test with the zero run its report asks for.\n" + zeroed
+    )
+    examples = [
+        *isotonic.iterdir(),
+        *isometric.parent.iterdir(),
+        *supplied.iterdir(),
+        *tie.rglob("*"),
+        *zero_run.iterdir(),
+    ]
     return sorted(p for p in examples if p.is_file())
 
 

@@ -1,4 +1,4 @@
-"""The example tests of data/experiments/isometric, isotonic, supplied and tie are what
+"""The example tests of data/experiments/isometric, isotonic, supplied, tie and zero_run are what
 validation/example_data.py writes with the independent model (tests/independent): regenerated here
 and compared file by file."""
 
@@ -31,6 +31,10 @@ def test_the_committed_examples_are_what_the_generator_writes(tmp_path):
         "tie/first/test.toml",
         "tie/second/test.csv",
         "tie/second/test.toml",
+        "zero_run/test.csv",
+        "zero_run/test.toml",
+        "zero_run/zero.csv",
+        "zero_run/zeroed.toml",
     ]
     for path in written:
         relative = path.relative_to(tmp_path)
