@@ -420,8 +420,10 @@ def synthesize(
     effects = [effect] if effect is not None else []
     # Inflated freely, the muscle with the effect seals where it carries no force (compliant fibres
     # stretch and seal it longer); the file declares no initial length, so its reader starts there too.
-    start = sealed_start(experiment, params, initial.gauge_pressure_Pa, effects)
-    truth = simulate_measurement(params, start, crosshead, effects, Simulator()) if effects else baseline
+    truth = baseline
+    if effects:
+        start = sealed_start(experiment, params, initial.gauge_pressure_Pa, effects)
+        truth = simulate_measurement(params, start, crosshead, effects, Simulator())
     effect_info["largest_change"] = {
         name: float(np.max(np.abs(np.asarray(getattr(truth, name)) - np.asarray(getattr(baseline, name)))))
         for name in OPTIONAL_COLUMNS
