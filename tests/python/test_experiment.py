@@ -73,7 +73,7 @@ def test_missing_required_key(write_experiment):
 @pytest.mark.parametrize(
     "csv_text, expected",
     [
-        ("time_s,elongation_m\n0,0\n1,nan\n", r"run.csv:3: column 2 \(elongation_m\) = 'nan' is not finite"),
+        ("time_s,elongation_m\n0,0\n1,inf\n", r"run.csv:3: column 2 \(elongation_m\) = 'inf' is not finite"),
         ("time_s,elongation_m\n0,0\n1,abc\n", r"run.csv:3: column 2 \(elongation_m\) = 'abc' is not a number"),
         ("time_s,elongation_m\n0,0\n2,0.001\n1.5,0.002\n", r"run.csv:4: column 1 \(time_s\) = 1.5 does not increase"),
         ("time_s,force_N\n0,0\n1,1\n", r"run.csv:1: required column 'elongation_m' is missing"),
@@ -206,7 +206,7 @@ def test_a_cut_last_line_is_dropped_with_a_warning_and_a_whole_one_kept(tmp_path
     assert list(columns["time_s"]) == [0, 1, 2]
     path.write_text("time_s,elongation_m\n0,0\n1,0.001\n2,0.002")  # no final line end, but whole
     assert list(read_series(path)["time_s"]) == [0, 1, 2]
-    path.write_text("time_s,elongation_m\n0,0\n1,\n2,0.002\n")  # inside the file it is an error
+    path.write_text("time_s,elongation_m\n0,0\n1,x\n2,0.002\n")  # inside the file it is an error
     with pytest.raises(ExperimentError, match="run.csv:3: column 2"):
         read_series(path)
 

@@ -18,6 +18,7 @@ from pamkit._core import Error, SolverError
 from pamkit.cluster import check_output, run_all, work_key
 from pamkit.diagnosis.engine import diagnose
 from pamkit.diagnosis.report import to_json
+from pamkit.io.guards import ExperimentWarning
 
 
 def batch_files(directory: str | Path) -> list[Path]:
@@ -52,7 +53,8 @@ def summary_row(path: Path, report: dict) -> dict:
 
 def diagnose_file(path: str | Path) -> dict:
     """One file's row; a file that cannot be read or diagnosed gives its message in `error`. The
-    warnings Python raises while reading (repaired data) are counted with the report's."""
+    warnings Python raises are counted with the report's, but those of reading the data
+    (ExperimentWarning: repaired data), which the report holds already."""
     path = Path(path)
     started = time.perf_counter()
     with warnings.catch_warnings(record=True) as raised:
@@ -62,7 +64,7 @@ def diagnose_file(path: str | Path) -> dict:
         except (ValueError, SolverError, Error) as error:  # the file's problem, kept in its row
             row = {"test": str(path), "error": str(error)}
     if "warnings" in row:
-        row["warnings"] += len(raised)
+        row["warnings"] += sum(not issubclass(w.category, ExperimentWarning) for w in raised)
     row["seconds"] = time.perf_counter() - started
     return row
 

@@ -309,6 +309,7 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
     report("finding the test's cycles and noise")
     problem = build_problem(experiment)
     notes = [n for n in (note, zeroed(experiment, problem.sigma)) if n]
+    notes += [{"reading": sentence} for sentence in experiment.data_warnings]  # what reading the data repaired
     seed = data_seed(problem) if seed is None else seed
     seconds = {"data": clock.perf_counter() - started}  # reading, thinning, finding the units
 

@@ -3,7 +3,7 @@ past comment lines (``#`` first) and blank ones, its names as pamkit's files spe
 unit's, or a spreadsheet's "Pressure [kPa]"), the delimiter and decimal mark from it. A plain file
 is read in blocks by numpy; anything else, or a file with an error to name, row by row with the
 csv module. Every problem is an :class:`~pamkit.io.guards.ExperimentError` naming the file, line
-and column; a repair (a cut last line, repeated time stamps) an
+and column; a repair (a cut last line, repeated time stamps, rows missing a value) an
 :class:`~pamkit.io.guards.ExperimentWarning` saying what was done. What each kind of test reads is
 series.py's."""
 
@@ -28,6 +28,7 @@ from pamkit.io.guards import (
     has_long_line,
     read_text,
 )
+from pamkit.io.missing import MISSING_CELLS, merged_sample, without_missing
 
 
 def header_of(path: Path, ignore: tuple[str, ...] = ()) -> tuple[int, list[str]]:
@@ -146,8 +147,9 @@ def read_columns(
         order = header.index(increasing) if increasing else None
     cut_last_line = ends_unterminated(path)
     values: list[list[float]] = []
+    lines: list[int] = []  # each value row's line
     merged: list[int] = []  # lines whose time stamp repeated the one before
-    weight: list[int] = []  # rows averaged into each value row
+    weight: list[list[int]] = []  # rows averaged into each value row, column by column (a missing value is not one)
     for position, (line, row) in enumerate(rows):
         if not row or all(not cell.strip() for cell in row):
             continue
@@ -165,18 +167,22 @@ def read_columns(
             parsed = _parse_row(
                 path, line, named, [c.replace(",", ".") for c in row] if decimal_comma else row, numbers=kept
             )
+            if cut_last_line and position == len(rows) - 1 and any(math.isnan(value) for value in parsed):
+                raise ExperimentError(f"{path}:{line}: a value is missing")
         except ExperimentError as error:
             if cut_last_line and position == len(rows) - 1:
                 # A recording cut mid-line (a killed logger, a pulled cable): keep what came whole.
                 warnings.warn(f"{path}:{line}: the last line is cut off ({error}); dropped", ExperimentWarning, 2)
                 continue
             raise
+        if order is not None and math.isnan(parsed[order]):
+            raise ExperimentError(
+                f"{path}:{line}: column {kept[order] + 1} ({named[order]}) has no value: every row needs its time"
+            )
         if order is not None and values and parsed[order] == values[-1][order]:
-            # A repeated stamp (a logger's clock resolution): one sample, the mean of the rows.
-            n = weight[-1]
-            values[-1] = [(n * old + new) / (n + 1) for old, new in zip(values[-1], parsed)]
+            # A repeated stamp (a logger's clock resolution): one sample, the mean of the rows' values.
+            values[-1], weight[-1] = merged_sample(values[-1], weight[-1], parsed)
             values[-1][order] = parsed[order]  # the mean of equal stamps, kept exact against the next one
-            weight[-1] += 1
             merged.append(line)
             continue
         if order is not None and values and parsed[order] < values[-1][order]:
@@ -184,7 +190,8 @@ def read_columns(
                 f"{path}:{line}: column {order + 1} ({named[order]}) = {parsed[order]} does not increase"
             )
         values.append(parsed)
-        weight.append(1)
+        lines.append(line)
+        weight.append([0 if math.isnan(value) else 1 for value in parsed])
     if merged:
         warnings.warn(
             f"{path}:{merged[0]}: {len(merged)} row(s) repeat the time stamp before them (first at line {merged[0]}); "
@@ -192,9 +199,10 @@ def read_columns(
             ExperimentWarning,
             2,
         )
-    if len(values) < 2:
-        raise ExperimentError(f"{path}: needs at least 2 data rows, found {len(values)}")
-    table = np.asarray(values)
+    table = np.asarray(values, dtype=float).reshape(len(values), len(header))
+    table, header, factors = without_missing(path, table, np.asarray(lines), header, factors, named, required, kept)
+    if len(table) < 2:
+        raise ExperimentError(f"{path}: needs at least 2 data rows, found {len(table)}")
     return _in_pamkit_units({name: table[:, index].copy() for index, name in enumerate(header)}, factors)
 
 
@@ -335,6 +343,8 @@ def _read_plain_csv(
         row = next(csv.reader([last], delimiter=delimiter))
         try:
             values = _parse_row(path, line, named, [c.replace(",", ".") for c in row] if delimiter != "," else row)
+            if any(math.isnan(value) for value in values):
+                raise ExperimentError(f"{path}:{line}: a value is missing")
         except ExperimentError as error:
             warnings.warn(f"{path}:{line}: the last line is cut off ({error}); dropped", ExperimentWarning, 3)
         else:
@@ -408,19 +418,25 @@ def _checked_columns(
 def _parse_row(
     path: Path, line: int, header: list[str], row: list[str], numbers: list[int] | None = None
 ) -> list[float]:
-    """A row's cells as numbers; `numbers`: each cell's column in the file, from 0 (where ignored
-    ones were taken out)."""
+    """A row's cells as numbers, NaN for a missing one (MISSING_CELLS); `numbers`: each cell's
+    column in the file, from 0 (where ignored ones were taken out)."""
     if len(row) != len(header):
         raise ExperimentError(f"{path}:{line}: {len(row)} values, the header has {len(header)}")
     parsed = []
     for index, (name, cell) in enumerate(zip(header, row)):
         column = (numbers[index] if numbers is not None else index) + 1
+        if cell.strip().lower() in MISSING_CELLS:
+            parsed.append(math.nan)
+            continue
         try:
             value = float(cell)
         except ValueError:
             raise ExperimentError(
                 f"{path}:{line}: column {column} ({name}) = {cell.strip()!r} is not a number"
             ) from None
+        if math.isnan(value):
+            parsed.append(math.nan)
+            continue
         if not math.isfinite(value):
             raise ExperimentError(f"{path}:{line}: column {column} ({name}) = {cell.strip()!r} is not finite")
         parsed.append(value)

@@ -23,7 +23,7 @@ import numpy as np
 
 from pamkit._core import BladderLaw, FrictionParams, GasMode, GasParams, MuscleBuild
 from pamkit.io.columns import COLUMN_UNITS, OPTIONAL_COLUMNS, file_name, other_units_of, si_name, value_to_si
-from pamkit.io.guards import check_keys, fail, named_file, number, read_toml
+from pamkit.io.guards import check_keys, experiment_warnings_kept, fail, named_file, number, read_toml
 from pamkit.io.schema import (
     CAMPAIGN_SECTIONS,
     EXPERIMENT_SECTIONS,
@@ -74,6 +74,7 @@ class Experiment:
     preload_N: float | None = None
     ranges: dict[str, tuple[float, float]] = field(default_factory=dict)  # what each instrument reads
     columns: dict[str, np.ndarray] = field(default_factory=dict)  # SI: time_s, elongation_m, gauge_pressure_Pa, ...
+    data_warnings: list[str] = field(default_factory=list)  # what reading the data repaired or doubted, as said
 
     @property
     def is_table(self) -> bool:
@@ -258,7 +259,8 @@ def load_experiment(path: str | Path, shared: dict | None = None) -> Experiment:
             raise fail(path, f"gives [{section}], which its campaign shares: give it in one place")
         document[section] = table
     experiment = _experiment_of(path, _checked_sections(path, document))
-    _read_data(experiment, document["test"])
+    with experiment_warnings_kept(experiment.data_warnings):
+        _read_data(experiment, document["test"])
     return experiment
 
 

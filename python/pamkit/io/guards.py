@@ -10,6 +10,9 @@ from __future__ import annotations
 
 import math
 import os
+import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -26,7 +29,21 @@ class ExperimentError(ValueError):
 
 class ExperimentWarning(UserWarning):
     """Data that can be used after a stated repair (a cut last line dropped, repeated time stamps
-    merged); the message says where and what was done."""
+    merged, rows missing a value left out); the message says where and what was done."""
+
+
+@contextmanager
+def experiment_warnings_kept(kept: list[str]) -> Iterator[None]:
+    """Appends to `kept` the message of every ExperimentWarning raised inside, then raises each
+    warning again as it was raised (a report keeps what reading the data repaired; a person
+    still sees it)."""
+    with warnings.catch_warnings(record=True) as raised:
+        warnings.simplefilter("always")
+        yield
+    for warning in raised:
+        if issubclass(warning.category, ExperimentWarning):
+            kept.append(str(warning.message))
+        warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
 
 
 # What a file pamkit reads may hold: a path to a device (data = "/dev/zero") would otherwise be

@@ -182,7 +182,8 @@ def diagnose_table(
                 )
     extended = chosen.fit if chosen else baseline
     warnings = (
-        beyond_reach(campaign)
+        [{"reading": sentence} for e in campaign.experiments for sentence in e.data_warnings]
+        + beyond_reach(campaign)
         + [dict(f, model="baseline") for f in findings_of(baseline)]
         + ([dict(f, model=chosen.fit.name) for f in chosen.findings] if chosen else [])
     )

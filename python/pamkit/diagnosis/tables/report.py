@@ -263,8 +263,8 @@ def verdict(d: TableDiagnosis) -> str:
         else:
             lines.append(f"discovered in {channel}: no term beats zero on held-out {d.campaign.group_name}s")
     for w in d.warnings:
-        if "message" in w:  # the data against the declared test
-            lines.append(f"warning: {w['message']}")
+        if "message" in w or "reading" in w:  # the data against the declared test, or as read
+            lines.append(f"warning: {w.get('message') or w['reading']}")
             continue
         where = f"at its bound {w['bound']:.4g}" if w["bound"] is not None else "outside its plausible range"
         finding = f"{w['parameter']} = {w['value']:.4g} {where} ({w['source']})"
