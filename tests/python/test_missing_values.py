@@ -10,6 +10,7 @@ import pytest
 from conftest import SOURCE_DIR
 
 import pamkit
+import pamkit.io.csv_reader as csv_reader
 from pamkit.diagnosis.batch import diagnose_file
 from pamkit.io.experiment import load_experiment
 from pamkit.io.guards import ExperimentError, ExperimentWarning
@@ -143,3 +144,36 @@ def test_a_batch_row_counts_what_reading_said_once(tmp_path):
         report = pamkit.diagnose(tmp_path / "experiment.toml", threads=1).to_dict()
     row = diagnose_file(tmp_path / "experiment.toml")
     assert row["warnings"] == len(report["warnings"]) == whole["warnings"] + 1
+
+
+@pytest.mark.parametrize("block", [100, 1 << 20])
+def test_a_plain_file_with_dropouts_reads_in_blocks_as_row_by_row(tmp_path, monkeypatch, block):
+    # A logger's rows with repeated stamps and 2 % of each channel's cells missing (empty or NaN),
+    # in blocks that end mid-row or in one; quoted names send the same rows to the row-by-row
+    # reader, the reference: the same columns and the same warnings.
+    rng = np.random.default_rng(5)
+    count = 2000
+    stamps = np.cumsum(rng.choice([0, 1, 1, 1], size=count)) * 1e-3
+    table = np.column_stack([stamps, rng.uniform(0, 0.05, count), rng.normal(100, 30, (count, 2))])
+    cells = [[f"{v:.10g}" for v in row] for row in table]
+    for row in cells:
+        for column in (1, 2, 3):
+            if rng.random() < 0.02:
+                row[column] = "" if rng.random() < 0.5 else "NaN"
+    body = "".join(",".join(row) + "\n" for row in cells)
+    plain, quoted = tmp_path / "plain.csv", tmp_path / "quoted.csv"
+    plain.write_text("time_s,elongation_m,force_N,pressure_kPa\n" + body)
+    quoted.write_text('"time_s","elongation_m","force_N","pressure_kPa"\n' + body)
+    with pytest.warns(ExperimentWarning) as whole:
+        reference = read_series(quoted)
+    monkeypatch.setattr(csv_reader, "READ_BLOCK_BYTES", block)
+    monkeypatch.setattr(csv_reader, "read_text", lambda *_: pytest.fail("the plain file was read row by row"))
+    with pytest.warns(ExperimentWarning) as in_blocks:
+        blocks = read_series(plain)
+    assert [str(w.message).replace("plain.csv", "quoted.csv") for w in in_blocks] == [str(w.message) for w in whole]
+    assert any("miss a value" in str(w.message) for w in whole) and any("repeat" in str(w.message) for w in whole)
+    assert list(blocks) == list(reference)
+    for name in blocks:
+        # Merged samples are means: a running mean row by row, one sum in blocks (rounding only).
+        np.testing.assert_allclose(blocks[name], reference[name], rtol=1e-13, atol=0)
+    assert not any(np.isnan(values).any() for values in blocks.values())

@@ -200,10 +200,16 @@ def read_columns(
             2,
         )
     table = np.asarray(values, dtype=float).reshape(len(values), len(header))
-    table, header, factors = without_missing(path, table, np.asarray(lines), header, factors, named, required, kept)
-    if len(table) < 2:
-        raise ExperimentError(f"{path}: needs at least 2 data rows, found {len(table)}")
-    return _in_pamkit_units({name: table[:, index].copy() for index, name in enumerate(header)}, factors)
+    columns = {name: table[:, index].copy() for index, name in enumerate(header)}
+    columns = without_missing(path, columns, lines.__getitem__, named, required, kept)
+    _check_rows(path, columns)
+    return _in_pamkit_units(columns, dict(zip(header, factors)))
+
+
+def _check_rows(path: Path, columns: dict[str, np.ndarray]) -> None:
+    rows = len(next(iter(columns.values())))
+    if rows < 2:
+        raise ExperimentError(f"{path}: needs at least 2 data rows, found {rows}")
 
 
 def _shown(cell: str, limit: int = 40) -> str:
@@ -252,9 +258,9 @@ def _checked_header(
     return header, factors
 
 
-def _in_pamkit_units(columns: dict[str, np.ndarray], factors: list[float]) -> dict[str, np.ndarray]:
+def _in_pamkit_units(columns: dict[str, np.ndarray], factors: dict[str, float]) -> dict[str, np.ndarray]:
     """Each column times its factor from _checked_header, where it is not 1."""
-    return {name: values * f if f != 1.0 else values for (name, values), f in zip(columns.items(), factors)}
+    return {name: values * factors[name] if factors[name] != 1.0 else values for name, values in columns.items()}
 
 
 #: Bytes of a data file numpy parses at a time (then to the end of the line): the file's text
@@ -273,7 +279,8 @@ def _read_plain_csv(
     file (108 MB) in 80 MB, its numbers, where its bytes, text and numbers at once took 4.5 times
     the file. None when the file is not plain throughout: a quoted cell, a bare carriage return,
     a blank line (numpy skips it, and rows would no longer be lines), a cell numpy does not read
-    as a finite number, a row of another width, text that is not UTF-8, a line over
+    as a finite number or a missing one (NaN, or empty), a row of empty cells, a row of another
+    width, text that is not UTF-8, a line over
     MAX_LINE_BYTES, no data row, or a file that cannot be opened. The caller then reads its
     whole text row by row, which names the first problem's line and column. A cut last line
     (no line end: a killed logger) is parsed on its own and, as row by row, dropped with a
@@ -353,8 +360,8 @@ def _read_plain_csv(
             rows_read += 1
     for column in columns:
         column.resize(rows_read, refcheck=False)  # in place: nothing else refers to it
-    checked = _checked_columns(path, dict(zip(header, columns)), header_number + 1, increasing, named)
-    return _in_pamkit_units(checked, factors)
+    checked = _checked_columns(path, dict(zip(header, columns)), header_number + 1, increasing, named, required)
+    return _in_pamkit_units(checked, dict(zip(header, factors)))
 
 
 def _is_plain(text: str) -> bool:
@@ -364,9 +371,12 @@ def _is_plain(text: str) -> bool:
 
 def _parse_block(text: str, delimiter: str, width: int) -> np.ndarray | None:
     """Whole lines of numbers parsed by numpy (10^6 rows in about 1.5 s of CPU, where the csv
-    module and float() take ten times that): one row a line, `width` finite numbers each, or None."""
+    module and float() take ten times that): one row a line, `width` numbers each, finite or
+    missing (NaN, or an empty cell: read as NaN), or None."""
     if delimiter != ",":  # decimal commas
         text = text.replace(",", ".")
+    if _has_empty_cell(text, delimiter):
+        text = re.sub(rf"(?m)(^|{re.escape(delimiter)})[ \t]*(?={re.escape(delimiter)}|\r?\n)", r"\1nan", text)
     try:
         # Bytes, not a StringIO: numpy reads them in chunks, a StringIO would hold 4 bytes a character.
         rows = np.loadtxt(
@@ -374,25 +384,45 @@ def _parse_block(text: str, delimiter: str, width: int) -> np.ndarray | None:
         )
     except ValueError:
         return None
-    if rows.shape != (text.count("\n"), width) or not np.isfinite(rows).all():
-        return None
+    if rows.shape != (text.count("\n"), width) or np.isinf(rows).any() or np.isnan(rows).all(axis=1).any():
+        return None  # a row of empty cells is a blank line to the row-by-row reader
     return rows
 
 
+def _has_empty_cell(text: str, delimiter: str) -> bool:
+    """Whether a line of `text` (whole lines) has an empty cell: substring scans, which a block
+    without one costs next to nothing."""
+    return text.startswith(delimiter) or any(
+        pair in text for pair in (delimiter * 2, "\n" + delimiter, delimiter + "\n", delimiter + "\r")
+    )
+
+
 def _checked_columns(
-    path: Path, columns: dict[str, np.ndarray], first_line: int, increasing: str | None, named: list[str]
+    path: Path,
+    columns: dict[str, np.ndarray],
+    first_line: int,
+    increasing: str | None,
+    named: list[str],
+    required: tuple[str, ...],
 ) -> dict[str, np.ndarray]:
     """The columns of rows read at once, with what the row-by-row reader checks and repairs:
-    `increasing` must not decrease, and rows repeating its value before them are merged into
-    one sample (their mean) with a warning. Row i is on line first_line + i; `named`: the
-    columns as the file names them."""
+    `increasing` must not decrease, nor be missing, and rows repeating its value before them are
+    merged into one sample (each column the mean of the values it has) with a warning; rows
+    missing a value are left out (missing.without_missing). Row i is on line first_line + i;
+    `named`: the columns as the file names them."""
+    starts = None  # the rows that begin each sample, where rows were merged
     if increasing is not None:
         stamps = columns[increasing]
+        order = list(columns).index(increasing)
+        if np.isnan(stamps).any():
+            line = first_line + int(np.argmax(np.isnan(stamps)))
+            raise ExperimentError(
+                f"{path}:{line}: column {order + 1} ({named[order]}) has no value: every row needs its time"
+            )
         step = np.diff(stamps)
         back = np.flatnonzero(step < 0)
         if back.size:
             row = int(back[0]) + 1
-            order = list(columns).index(increasing)
             raise ExperimentError(
                 f"{path}:{first_line + row}: column {order + 1} ({named[order]}) = {float(stamps[row])} "
                 "does not increase"
@@ -400,8 +430,7 @@ def _checked_columns(
         repeats = np.flatnonzero(step == 0) + 1
         if repeats.size:
             starts = np.flatnonzero(np.concatenate([[True], step != 0]))
-            counts = np.diff(np.append(starts, stamps.size))
-            columns = {name: np.add.reduceat(column, starts) / counts for name, column in columns.items()}
+            columns = {name: _means_at(column, starts) for name, column in columns.items()}
             first = first_line + int(repeats[0])
             warnings.warn(
                 f"{path}:{first}: {repeats.size} row(s) repeat the time stamp before them (first at line {first}); "
@@ -409,10 +438,22 @@ def _checked_columns(
                 ExperimentWarning,
                 4,
             )
-    rows = len(next(iter(columns.values())))
-    if rows < 2:
-        raise ExperimentError(f"{path}: needs at least 2 data rows, found {rows}")
+    columns = without_missing(
+        path, columns, lambda row: first_line + (row if starts is None else int(starts[row])), named, required
+    )
+    _check_rows(path, columns)
     return columns
+
+
+def _means_at(column: np.ndarray, starts: np.ndarray) -> np.ndarray:
+    """The means of the column's runs that begin at `starts`, of the values each has (NaN where
+    it has none)."""
+    missing = np.isnan(column)
+    if not missing.any():
+        return np.add.reduceat(column, starts) / np.diff(np.append(starts, column.size))
+    sums = np.add.reduceat(np.where(missing, 0.0, column), starts)
+    counts = np.add.reduceat(~missing, starts)
+    return np.divide(sums, counts, out=np.full(sums.shape, np.nan), where=counts > 0)
 
 
 def _parse_row(

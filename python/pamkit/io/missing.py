@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -38,50 +39,51 @@ MOST_ROWS_MISSING = 0.5
 
 def without_missing(
     path: Path,
-    table: np.ndarray,
-    lines: np.ndarray,
-    header: list[str],
-    factors: list[float],
+    columns: dict[str, np.ndarray],
+    line_of: Callable[[int], int],
     named: list[str],
     required: tuple[str, ...],
-    numbers: list[int],
-) -> tuple[np.ndarray, list[str], list[float]]:
-    """The table without its missing values (MISSING_CELLS, NaN in `table`): a column missing in
-    every row is not measured (an error if `required`), a row missing a value is left out whole
-    (pamkit compares every channel at each sample) with a warning naming the lines, and a column
-    missing in more than MOST_ROWS_MISSING of the rows is an error. `lines`: each row's line;
-    `named`: the columns as the file names them, `numbers` their columns in the file, from 0."""
-    missing = np.isnan(table)
-    if not missing.any():
-        return table, header, factors
-    empty = [index for index in range(len(header)) if missing[:, index].all()]
-    for index in empty:
-        where = f"column {numbers[index] + 1} ({named[index]})"
-        if header[index] in required:
-            raise ExperimentError(f"{path}: {where} has no value in any row")
-        warnings.warn(f"{path}: {where} has no value in any row: read as not measured", ExperimentWarning, 3)
-    kept = [index for index in range(len(header)) if index not in empty]
-    table, missing = table[:, kept], missing[:, kept]
-    header, factors = [header[i] for i in kept], [factors[i] for i in kept]
-    named, numbers = [named[i] for i in kept], [numbers[i] for i in kept]
-    gaps = missing.any(axis=1)
-    if not gaps.any():
-        return table, header, factors
-    counts = missing.sum(axis=0)
-    worst = int(np.argmax(counts))
-    if counts[worst] > MOST_ROWS_MISSING * len(table):
-        hint = "" if header[worst] in required else ", or leave it out with [test] ignore_columns"
+    numbers: list[int] | None = None,
+) -> dict[str, np.ndarray]:
+    """The columns without their missing values (NaN): a column missing in every row is not
+    measured (an error if `required`), a row missing a value is left out whole (pamkit compares
+    every channel at each sample) with a warning naming its first line and each column's count,
+    and a column missing in more than MOST_ROWS_MISSING of the rows is an error. `line_of`: a
+    row's line in the file; `named`: the columns as the file names them, in `columns`' order,
+    `numbers` their columns in the file, from 0 (by default their order). A large file's columns
+    are copied only where rows are left out, and looked at one at a time."""
+    gappy = [name for name, values in columns.items() if np.isnan(values).any()]
+    if not gappy:
+        return columns
+    file_name = dict(zip(columns, named))
+    where = {
+        name: f"column {(numbers[index] if numbers is not None else index) + 1} ({file_name[name]})"
+        for index, name in enumerate(columns)
+    }
+    for name in [name for name in gappy if np.isnan(columns[name]).all()]:
+        if name in required:
+            raise ExperimentError(f"{path}: {where[name]} has no value in any row")
+        warnings.warn(f"{path}: {where[name]} has no value in any row: read as not measured", ExperimentWarning, 3)
+        del columns[name]
+    counts = {name: int(np.isnan(columns[name]).sum()) for name in gappy if name in columns}
+    if not counts:
+        return columns
+    rows = len(next(iter(columns.values())))
+    worst = max(counts, key=lambda name: counts[name])
+    if counts[worst] > MOST_ROWS_MISSING * rows:
+        hint = "" if worst in required else ", or leave it out with [test] ignore_columns"
         raise ExperimentError(
-            f"{path}:{int(lines[np.argmax(missing[:, worst])])}: column {numbers[worst] + 1} ({named[worst]}) has no "
-            f"value in {int(counts[worst])} of {len(table)} rows (a channel logged at another rate?): pamkit compares "
-            f"every channel at each sample; give it a value in every row{hint}"
+            f"{path}:{line_of(int(np.argmax(np.isnan(columns[worst]))))}: {where[worst]} has no value in "
+            f"{counts[worst]} of {rows} rows (a channel logged at another rate?): pamkit compares every channel at "
+            f"each sample; give it a value in every row{hint}"
         )
-    first = int(lines[np.argmax(gaps)])
-    each = ", ".join(f"{named[i]} in {int(counts[i])}" for i in np.flatnonzero(counts))
+    gaps = np.logical_or.reduce([np.isnan(columns[name]) for name in counts])
+    first = line_of(int(np.argmax(gaps)))
+    each = ", ".join(f"{file_name[name]} in {count}" for name, count in counts.items())
     warnings.warn(
         f"{path}:{first}: {int(gaps.sum())} row(s) miss a value (first at line {first}; {each}); each is left out "
         "whole, its other values unused (pamkit compares every channel at each sample)",
         ExperimentWarning,
         3,
     )
-    return table[~gaps], header, factors
+    return {name: values[~gaps] for name, values in columns.items()}
