@@ -190,7 +190,7 @@ def test_units_that_cannot_be_right_are_named(tmp_path):
 def test_cli_reports_bad_input_without_traceback(tmp_path, run_pamkit):
     done = run_pamkit("diagnose", write(tmp_path, triangle_csv(5).replace("0.50,", "nan,", 1)))
     assert done.returncode == 2
-    assert "run.csv:3: column 1 (time_s) = 'nan' is not finite" in done.stderr
+    assert "run.csv:3: column 1 (time_s) has no value: every row needs its time" in done.stderr
     assert "Traceback" not in done.stderr
 
 
