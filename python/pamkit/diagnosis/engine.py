@@ -24,6 +24,7 @@ from pamkit.diagnosis.series.causes import add_cause, reads_explained, rival_bes
 from pamkit.diagnosis.series.decide import PAIR_TRIGGER, Decision, Judgement, decide, judge
 from pamkit.diagnosis.series.declared import declared_build, told_from_the_build
 from pamkit.diagnosis.series.findings import baseline_findings
+from pamkit.diagnosis.series.glitches import GlitchWarning, without_glitches
 from pamkit.diagnosis.series.instruments import noise_ratios, reads_off, structured
 from pamkit.diagnosis.series.joint import check_one_muscle
 from pamkit.diagnosis.series.kinds import Problem, build_problem
@@ -303,12 +304,15 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
         return diagnose_table(tests, effect_catalog, progress=progress, threads=threads)
     if len(tests) > 1:
         return _diagnose_series_campaign(tests, effect_catalog, progress, threads, seed)
-    experiment, note = thinned(tests[0])
+    experiment, glitches = without_glitches(tests[0])
+    if glitches:  # on stderr even with no progress shown, as a thinned test's
+        python_warnings.warn(f"{experiment.data_path}: {glitches['glitches']}", GlitchWarning, 2)
+    experiment, note = thinned(experiment)
     if note:  # on stderr even with no progress shown (the command line prints warnings as one line)
         python_warnings.warn(note["thinned"], ThinningWarning, 2)
     report("finding the test's cycles and noise")
     problem = build_problem(experiment)
-    notes = [n for n in (note, zeroed(experiment, problem.sigma)) if n]
+    notes = [n for n in (glitches, note, zeroed(experiment, problem.sigma)) if n]
     notes += [{"reading": sentence} for sentence in experiment.data_warnings]  # what reading the data repaired
     seed = data_seed(problem) if seed is None else seed
     seconds = {"data": clock.perf_counter() - started}  # reading, thinning, finding the units

@@ -304,7 +304,7 @@ def verdict(d: Diagnosis | TableDiagnosis | SeriesCampaign) -> str:
     unknowns = [name for name in [*p.experiment.uncertain, *p.experiment.calibrate] if name in d.baseline.intervals]
     if unknowns:
         bounds += "; calibrated " + ", ".join(interval_phrase(d.baseline, name) for name in unknowns)
-    bounds += d.zero_run_clause
+    bounds += d.data_clause
     if decision.cause == "none":
         best = d.candidates[0] if d.candidates else None
         if decision.rejected is not None:

@@ -288,13 +288,13 @@ def verdict(c: SeriesCampaign) -> str:
     for name, d in zip(c.tests, c.diagnoses):
         s = d.separation
         told = f"; to tell them apart: {s.test_phrase()}" if s is not None and s.separates else ""
-        zeroed = d.zero_run_clause
+        done_to_data = d.data_clause
         if s is None or s.purpose == "check":
-            lines.append(f"  {name}: alone, {d.cause}{zeroed}")
+            lines.append(f"  {name}: alone, {d.cause}{done_to_data}")
         elif s.purpose == "tie":
-            lines.append(f"  {name}: alone, {d.cause} ({' and '.join(s.between)} tied{told}){zeroed}")
+            lines.append(f"  {name}: alone, {d.cause} ({' and '.join(s.between)} tied{told}){done_to_data}")
         else:
-            lines.append(f"  {name}: alone, {d.cause} ({s.between[1]} close behind{told}){zeroed}")
+            lines.append(f"  {name}: alone, {d.cause} ({s.between[1]} close behind{told}){done_to_data}")
     for label, t in c.transfers.items():
         gains = ", ".join(f"{x.test} {x.gain:.2f} [{x.gain_ci95[0]:.2f}, {x.gain_ci95[1]:.2f}]" for x in t)
         lines.append(f"  {label} from the other tests: held-out gain {gains}")

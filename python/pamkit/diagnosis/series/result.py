@@ -27,7 +27,7 @@ class Diagnosis:
     warnings: list[Finding]  # baseline and extended parameters at a bound or implausible
     discovered: dict = field(default_factory=dict)
     seconds: dict[str, float] = field(default_factory=dict)
-    data_notes: list[dict] = field(default_factory=list)  # what was done to the data first (thinned, zeroed)
+    data_notes: list[dict] = field(default_factory=list)  # what was done to the data first (glitches, thinned, zeroed)
     separation: Separation | None = None  # the test that would tell a tie apart (separate.py)
     # a named transducer's gain beside the declared build with its lengths free (declared.py)
     declared_build: DeclaredBuild | None = None
@@ -37,6 +37,7 @@ class Diagnosis:
         return self.decision.cause
 
     @property
-    def zero_run_clause(self) -> str:
-        """What the test's zero run read, as a verdict's closing clause ('' without one)."""
-        return "".join(f"; {n['zeroed']}" for n in self.data_notes if "zeroed" in n)
+    def data_clause(self) -> str:
+        """What was done to the data before the diagnosis (glitches left out, the zero run's
+        offsets taken off), as a verdict's closing clauses ('' when nothing was)."""
+        return "".join(f"; {n[key]}" for n in self.data_notes for key in ("glitches", "zeroed") if key in n)
