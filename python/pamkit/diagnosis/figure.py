@@ -52,6 +52,9 @@ def series_figure(d: Diagnosis, title: str):
         signal.plot(time, baseline, color="C3", lw=0.9, label="baseline")
         if d.extended is not d.baseline:
             signal.plot(time, extended, color="C0", lw=0.9, label=f"extended ({d.extended.name})")
+        for note in (n for n in d.data_notes if c in n.get("values", {})):
+            glitched = value_from_si(c, np.asarray(note["values"][c]))
+            signal.plot(note["time_s"][c], glitched, "x", color="C1", ms=7, label="glitch, left out")
         residual = figure.add_subplot(grid[i, 1], sharex=signal)
         residual.plot(time, measured - baseline, color="C3", lw=0.8, label="baseline")
         if d.extended is not d.baseline:

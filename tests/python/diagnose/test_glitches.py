@@ -100,5 +100,10 @@ def test_a_diagnosis_with_glitches_names_what_it_names_without(series):
             report = to_json(diagnose(glitched, threads=2))
         notes = [w for w in report["warnings"] if "glitches" in w]
         assert len(notes) == 1 and notes[0]["glitches"] in report["verdict"]
+        times = {t for channel in notes[0]["time_s"].values() for t in channel}
+        assert times <= {float(experiment.time_s[row]) for row in rows}
+        for channel, values in notes[0]["values"].items():  # what the channel read there, thrown off
+            at = np.searchsorted(experiment.time_s, notes[0]["time_s"][channel])
+            np.testing.assert_array_equal(values, glitched.columns[channel][at])
         same += report["cause"] == clean["cause"]
     assert same >= 5

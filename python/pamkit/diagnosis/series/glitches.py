@@ -121,6 +121,7 @@ def without_glitches(experiment: Experiment) -> tuple[Experiment, dict | None]:
         "glitches": sentence,
         "rows_left_out": int(glitched.sum()),
         "time_s": {channel: [float(experiment.time_s[r]) for r in rows] for channel, rows in found.items()},
+        "values": {channel: [float(columns[channel][r]) for r in rows] for channel, rows in found.items()},
         "glitch_over_noise": {channel: [float(v) for v in ratio] for channel, ratio in zip(found, ratios)},
     }
     return kept, note
