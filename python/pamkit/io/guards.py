@@ -35,15 +35,18 @@ class ExperimentWarning(UserWarning):
 @contextmanager
 def experiment_warnings_kept(kept: list[str]) -> Iterator[None]:
     """Appends to `kept` the message of every ExperimentWarning raised inside, then raises each
-    warning again as it was raised (a report keeps what reading the data repaired; a person
-    still sees it)."""
-    with warnings.catch_warnings(record=True) as raised:
-        warnings.simplefilter("always")
-        yield
-    for warning in raised:
-        if issubclass(warning.category, ExperimentWarning):
-            kept.append(str(warning.message))
-        warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
+    warning again as it was raised, also when what is inside fails (a report keeps what reading
+    the data repaired; a person still sees it)."""
+    raised: list[warnings.WarningMessage] = []
+    try:
+        with warnings.catch_warnings(record=True) as raised:
+            warnings.simplefilter("always")
+            yield
+    finally:
+        for warning in raised:
+            if issubclass(warning.category, ExperimentWarning):
+                kept.append(str(warning.message))
+            warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
 
 
 # What a file pamkit reads may hold: a path to a device (data = "/dev/zero") would otherwise be
