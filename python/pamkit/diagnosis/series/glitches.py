@@ -11,6 +11,8 @@ channel's noise. A turning point (a force peaking where the crosshead turns, the
 with its friction) stays on one side's line, a step between its neighbours; neither is a glitch.
 Samples where an input turns (the crosshead's elongation, a supplied test's pressure) and their
 neighbours are never one: a friction's step there can leave the turning sample off both lines.
+A supplied test's pressure drives the model: its glitch is a sample off its course by the same
+rule where the force does not follow it.
 """
 
 from __future__ import annotations
@@ -31,7 +33,7 @@ from pamkit.io.experiment import Experiment
 GLITCH_SIGMAS = 12.0
 
 #: The channels searched: what the model predicts and the data measure (a supplied test's pressure
-#: drives the model: an input, searched for its turns only).
+#: drives the model: an input, whose glitch is one the force does not follow: supplied_glitches).
 SEARCHED = ("force_N", "gauge_pressure_Pa", "temperature_K")
 
 
@@ -84,6 +86,23 @@ def turning(values: np.ndarray) -> np.ndarray:
     return turns | np.roll(turns, 1) | np.roll(turns, -1)
 
 
+#: How far off its course, in its noise, the force stands where it follows a supplied pressure's
+#: jump: a pressure that really jumped moves the force by its area, some tenths of a newton a
+#: kilopascal, several times the force's noise wherever the pressure's jump is a glitch's size.
+FOLLOWS_SIGMAS = 3.0
+
+
+def supplied_glitches(columns: dict[str, np.ndarray]) -> np.ndarray:
+    """How far a supplied test's pressure (an input, which drives the model) stands off its
+    course where the force does not follow it (ratios as off_course's, zero elsewhere): a
+    transducer's glitch, which would drive the model to a force the muscle never made."""
+    pressure, force = columns["gauge_pressure_Pa"], columns["force_N"]
+    ratio = off_course(pressure, noise_scale(pressure))
+    ratio[turning(columns["elongation_m"])] = 0.0
+    ratio[off_course(force, noise_scale(force)) > FOLLOWS_SIGMAS] = 0.0
+    return ratio
+
+
 def without_glitches(experiment: Experiment) -> tuple[Experiment, dict | None]:
     """The time series without its glitches' rows (the module docstring's rule), and a note of
     them for the report's warnings and its verdict (None when there is none)."""
@@ -101,6 +120,12 @@ def without_glitches(experiment: Experiment) -> tuple[Experiment, dict | None]:
         rows = np.flatnonzero(ratio > GLITCH_SIGMAS)
         if rows.size:
             found[channel] = rows
+            ratios.append(ratio[rows])
+    if supplied and "gauge_pressure_Pa" in columns and "force_N" in columns:
+        ratio = supplied_glitches(columns)
+        rows = np.flatnonzero(ratio > GLITCH_SIGMAS)
+        if rows.size:
+            found["gauge_pressure_Pa"] = rows
             ratios.append(ratio[rows])
     if not found:
         return experiment, None
