@@ -30,7 +30,7 @@ from pamkit._core import (
     MuscleBuild,
 )
 from pamkit.io.columns import FILE_OPTIONAL_COLUMNS, REQUIRED_COLUMNS, si_name
-from pamkit.io.experiment import GAS_MODES
+from pamkit.io.experiment import GAS_MODES, GLITCH_CHOICES
 from pamkit.io.schema import CAMPAIGN_SECTIONS, TABLE_COLUMNS, TABLE_DEFAULTS, TEST_CONDITIONS, TEST_KEYS
 from pamkit.io.sections import (
     BLADDER_LAWS,
@@ -176,6 +176,8 @@ TEST_KEY_MEANINGS = {
     "specimen": "in a tensile machine's export of several specimens: the one this test is (its Specimen Number)",
     "ignore_columns": "data columns not to read, as the file names them (a logger's valve state, a note); any other "
     "column pamkit does not know is an error, so that a misspelt channel is not left unread",
+    "glitches": "a time series' isolated glitches (samples far off their channel's course): left out before the "
+    "diagnosis, which says where (warnings[].glitches), or kept",
 }
 
 
@@ -188,6 +190,7 @@ def _test_keys() -> list[Key]:
         "preload_N": (SUPPLIED,),
         "zero": SERIES_KINDS,
         "specimen": SERIES_KINDS,
+        "glitches": SERIES_KINDS,
     }
     defaults = {
         "kind": '"series"',
@@ -197,6 +200,7 @@ def _test_keys() -> list[Key]:
         "force_range_N": "no clipping",
         "pressure_range_kPa": "no clipping",
         "ignore_columns": "[] (every column read)",
+        "glitches": f'"{GLITCH_CHOICES[0]}"',
     }
     allowed = {
         "kind": ", ".join(f'"{k}"' for k in ("series", *TABLE_KINDS)),
@@ -209,6 +213,7 @@ def _test_keys() -> list[Key]:
         "force_range_N": "[lowest, highest]",
         "pressure_range_kPa": "[lowest, highest]",
         "ignore_columns": '["name", ...]',
+        "glitches": ", ".join(f'"{choice}"' for choice in GLITCH_CHOICES),
     }
     keys = []
     for name, (series_required, _) in TEST_KEYS.items():

@@ -56,6 +56,7 @@ VALUES = {
     "pressure_range_kPa": [-10.0, 1000.0],
     "specimen": "1",
     "ignore_columns": ["note"],
+    "glitches": "keep",
     "data": "run.csv",
 }
 

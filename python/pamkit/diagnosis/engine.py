@@ -304,7 +304,7 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
         return diagnose_table(tests, effect_catalog, progress=progress, threads=threads)
     if len(tests) > 1:
         return _diagnose_series_campaign(tests, effect_catalog, progress, threads, seed)
-    experiment, glitches = without_glitches(tests[0])
+    experiment, glitches = (tests[0], None) if tests[0].keep_glitches else without_glitches(tests[0])
     if glitches:  # on stderr even with no progress shown, as a thinned test's
         python_warnings.warn(f"{experiment.data_path}: {glitches['glitches']}", GlitchWarning, 2)
     experiment, note = thinned(experiment)

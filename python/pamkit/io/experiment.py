@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from pamkit._core import BladderLaw, FrictionParams, GasMode, GasParams, MuscleBuild
-from pamkit.io.columns import COLUMN_UNITS, OPTIONAL_COLUMNS, file_name, other_units_of, si_name, value_to_si
+from pamkit.io.columns import COLUMN_UNITS, OPTIONAL_COLUMNS, other_units_of, si_name, value_to_si
 from pamkit.io.guards import check_keys, experiment_warnings_kept, fail, named_file, number, read_toml
 from pamkit.io.schema import (
     CAMPAIGN_SECTIONS,
@@ -38,10 +38,12 @@ from pamkit.io.schema import (
 from pamkit.io.sections import read_bladder, read_build, read_calibrate, read_friction, read_gas, read_uncertain
 from pamkit.io.series import check_force_sign, check_units, read_isotonic, read_series, read_table
 from pamkit.io.writers import write_experiment
+from pamkit.io.zero_run import zero
 from pamkit.units import NEWTON_PER_KILOGRAM_FORCE
 
 # [test] gas: how the muscle's gas is held, by the name a file gives it.
 GAS_MODES = dict(GasMode.__members__)
+GLITCH_CHOICES = ("leave_out", "keep")  # [test] glitches: what a diagnosis does with them, the default first
 SERIES_COMPLIANCE = "series_compliance_m_per_N"  # the build field only settled rows and samples model
 
 if TYPE_CHECKING:
@@ -75,6 +77,7 @@ class Experiment:
     ranges: dict[str, tuple[float, float]] = field(default_factory=dict)  # what each instrument reads
     columns: dict[str, np.ndarray] = field(default_factory=dict)  # SI: time_s, elongation_m, gauge_pressure_Pa, ...
     data_warnings: list[str] = field(default_factory=list)  # what reading the data repaired or doubted, as said
+    keep_glitches: bool = False  # [test] glitches = "keep": a time series' diagnosis keeps every sample
 
     @property
     def is_table(self) -> bool:
@@ -369,6 +372,7 @@ def _experiment_of(path: Path, document: dict) -> Experiment:
         preload_N=preload,
         ranges=ranges,
         load_mass_kg=mass,
+        keep_glitches=test.get("glitches") == "keep",
     )
 
 
@@ -384,12 +388,18 @@ def _test_table(path: Path, table: dict) -> dict:
             raise fail(
                 path, f"[test] zero: a {kind} table is zeroed before it is tabulated; zero runs apply to time series"
             )
+        if "glitches" in test:
+            raise fail(
+                path, f"[test] glitches: a table's rows ({kind}) are settled states; glitches are a time series'"
+            )
         # A table of settled rows at supplied pressures: no inflation to seal, no gas to warm.
         for key, default in TABLE_DEFAULTS.items():
             test.setdefault(key, default)
         if test.get("gas", "supplied") != "supplied":
             raise fail(path, f"[test] gas = {test['gas']!r}: a {kind} table is measured at supplied pressures")
         test["gas"] = "supplied"
+    if test.get("glitches", GLITCH_CHOICES[0]) not in GLITCH_CHOICES:
+        raise fail(path, f"[test] glitches = {test['glitches']!r} must be one of {', '.join(GLITCH_CHOICES)}")
     for key, (required, meaning) in TEST_KEYS.items():
         if required and key not in test:
             raise fail(path, f"missing key [test] {key} ({meaning})")
@@ -463,31 +473,7 @@ def _read_data(experiment: Experiment, test: dict) -> None:
     experiment.columns = read_series(data_path, None if specimen is None else str(specimen), ignore, atmosphere)
     check_units(data_path, experiment.columns)
     if "zero" in test:
-        _zero(experiment, path, test["zero"], ignore, atmosphere)
+        zero(experiment, path, test["zero"], ignore, atmosphere)
     check_force_sign(data_path, experiment.columns)
     if experiment.gas == GasMode.supplied and "gauge_pressure_Pa" not in experiment.columns:
         raise fail(data_path, 'a "supplied" test drives the model with pressure_kPa: the column is missing')
-
-
-ZEROED_CHANNELS = ("force_N", "gauge_pressure_Pa")  # not temperature: with no air, the TMP36 reads the room
-
-
-def _zero(experiment: Experiment, path: Path, name, ignore: tuple[str, ...], atmosphere_Pa: float) -> None:
-    """Takes the means of a run with no air (the rig's offset run) off the load cell's and the
-    transducer's channels, as a lab zeroes its sensors; records what it took. The offset run of
-    a preloaded mount is recorded on the mounted muscle: its force holds the preload, which is
-    the muscle's, not the cell's, and stays in the data."""
-    run = read_series(named_file(path, "[test] zero", name), ignore=ignore, atmospheric_pressure_Pa=atmosphere_Pa)
-    shared = [c for c in ZEROED_CHANNELS if c in run and c in experiment.columns]
-    if not shared:
-        raise fail(
-            path,
-            f"[test] zero = {name!r} has none of the channels it could zero "
-            f"({', '.join(file_name(channel) for channel in ZEROED_CHANNELS)})",
-        )
-    for channel in shared:
-        offset = float(np.mean(run[channel]))
-        if channel == "force_N" and experiment.preload_N is not None:
-            offset -= experiment.preload_N
-        experiment.columns[channel] = experiment.columns[channel] - offset
-        experiment.zeroed[channel] = offset

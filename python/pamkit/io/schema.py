@@ -29,6 +29,7 @@ TEST_KEYS = {
     "pressure_range_kPa": (False, "[lowest, highest] gauge pressure the transducer reads; it clips beyond [kPa]"),
     "specimen": (False, "a tensile machine's export of several specimens: the one this test is (its Specimen Number)"),
     "ignore_columns": (False, "data columns not to read, as the file names them (a valve's state, a note)"),
+    "glitches": (False, 'a time series\' isolated glitches: "leave_out" (default) before the diagnosis, or "keep"'),
 }
 # [test] ranges of the instruments, by the channel they read (its file column's unit).
 RANGE_KEYS = {"force_N": "force_range_N", "pressure_kPa": "pressure_range_kPa"}

@@ -14,6 +14,7 @@ from pamkit.diagnosis import diagnose, to_json
 from pamkit.diagnosis.evidence import noise_scale
 from pamkit.diagnosis.series.glitches import GLITCH_SIGMAS, SEARCHED, GlitchWarning, off_course, without_glitches
 from pamkit.io.experiment import load_experiment
+from pamkit.io.guards import ExperimentError
 
 sys.path.insert(0, str(SOURCE_DIR / "tests"))  # tests/independent: a folder, not an installed package
 from independent.near_families import FAMILIES  # noqa: E402 (needs the path above)
@@ -133,3 +134,36 @@ def test_a_supplied_pressures_glitch_is_left_out_where_the_force_does_not_follow
                 same += to_json(diagnose(glitched, threads=2))["cause"] == clean["cause"]
     assert found >= 16
     assert same >= 5
+
+
+def test_a_test_that_keeps_its_glitches_is_diagnosed_on_every_sample(tmp_path):
+    # [test] glitches = "keep": a rig whose single-sample events are real. The same thrown samples
+    # are then kept (no note, every row diagnosed); a value that is not a choice, or the key on a
+    # table, is refused naming it.
+    source = SOURCE_DIR / "data" / "experiments" / "example"
+    lines = (source / "experiment.csv").read_text().splitlines()
+    for row in (400, 1400, 2400):
+        cells = lines[row].split(",")
+        cells[2] = f"{float(cells[2]) + 150.0:.4f}"  # force_N, some hundred times its noise
+        lines[row] = ",".join(cells)
+    (tmp_path / "experiment.csv").write_text("\n".join(lines) + "\n")
+    toml = (source / "experiment.toml").read_text()
+    (tmp_path / "leave.toml").write_text(toml)
+    (tmp_path / "keep.toml").write_text(toml.replace("[test]\n", '[test]\nglitches = "keep"\n'))
+    with pytest.warns(GlitchWarning, match="isolated sample"):
+        left = to_json(diagnose(load_experiment(tmp_path / "leave.toml"), threads=2))
+    kept = load_experiment(tmp_path / "keep.toml")
+    assert kept.keep_glitches and not load_experiment(tmp_path / "leave.toml").keep_glitches
+    report = to_json(diagnose(kept, threads=2))
+    assert [w for w in report["warnings"] if "glitches" in w] == []
+    assert any("glitches" in w for w in left["warnings"])
+    (tmp_path / "bad.toml").write_text(toml.replace("[test]\n", '[test]\nglitches = "drop"\n'))
+    with pytest.raises(ExperimentError, match=r"bad.toml: \[test\] glitches = 'drop' must be one of leave_out, keep"):
+        load_experiment(tmp_path / "bad.toml")
+    table = SOURCE_DIR / "data" / "experiments" / "isotonic"
+    (tmp_path / "isotonic.csv").write_text((table / "isotonic.csv").read_text())
+    (tmp_path / "table.toml").write_text(
+        (table / "isotonic.toml").read_text().replace("[test]\n", '[test]\nglitches = "keep"\n')
+    )
+    with pytest.raises(ExperimentError, match=r"\[test\] glitches: a table's rows \(isotonic\) are settled"):
+        load_experiment(tmp_path / "table.toml")
