@@ -32,6 +32,13 @@ the seconds per diagnosis, wall and CPU (user + system of the diagnosing process
 machine the wall time says how busy the others were). ``--quick``: the fixed subset
 near_families.QUICK (every family once at medium strength, four nulls), a fast loop. Datasets are
 written into a temporary directory and deleted.
+
+``--glitches N`` throws N glitches into each measured channel of every dataset's file before it is
+diagnosed, as a real rig's line noise would: samples drawn among all but the first and last ten,
+each moved 30-100 times the channel's noise (the median second difference's, a robust scale no
+ramp moves) up or down. ``--keep-glitches`` declares them kept (``[test] glitches = "keep"``):
+the diagnosis as it was before it searched for them. Compared with the clean world's JSON
+(bench/decision_diff.py), the decisions the glitches change.
 """
 
 from __future__ import annotations
@@ -46,9 +53,12 @@ import subprocess
 import sys
 import tempfile
 import time
+import zlib
 from collections import Counter
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
+
+import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
@@ -62,6 +72,28 @@ HONEST_CAUSES = ("none", "unexplained")
 # What a cause must gain: a hidden cause whose own fit gains less is not shown by the data to
 # pamkit's model, whatever the rules.
 VISIBLE_GAIN = MIN_GAIN
+
+
+GLITCHED_COLUMNS = ("force_N", "pressure_kPa", "temperature_C")
+GLITCH_SIZES = (30.0, 100.0)  # times the channel's noise
+
+
+def throw_glitches(toml: Path, count: int, seed: list[int], keep: bool) -> None:
+    """Moves `count` samples of each measured channel of the test's CSV off by GLITCH_SIZES times
+    its noise (the module docstring); with `keep`, declares them kept in its [test]."""
+    text = toml.read_text()
+    data = toml.parent / re.search(r'^data\s*=\s*"([^"]+)"', text, re.M).group(1)
+    lines = data.read_text().splitlines()
+    header = lines[0].split(",")
+    table = np.array([[float(cell) for cell in line.split(",")] for line in lines[1:]])
+    rng = np.random.default_rng(seed)
+    for column in (header.index(name) for name in GLITCHED_COLUMNS if name in header):
+        noise = 1.4826 * float(np.median(np.abs(np.diff(table[:, column], 2)))) / math.sqrt(6.0)
+        rows = rng.choice(np.arange(10, len(table) - 10), count, replace=False)
+        table[rows, column] += rng.choice([-1.0, 1.0], count) * rng.uniform(*GLITCH_SIZES, count) * max(noise, 1e-9)
+    data.write_text(",".join(header) + "\n" + "".join(",".join(f"{v:.10g}" for v in row) + "\n" for row in table))
+    if keep:
+        toml.write_text(text.replace("[test]\n", '[test]\nglitches = "keep"\n', 1))
 
 
 def diagnose(toml: Path, timeout_s: float, threads: int) -> dict:
@@ -344,6 +376,8 @@ def main() -> int:
     add_world_arguments(parser)
     parser.add_argument("--quick", action="store_true", help="the fixed fast subset (near_families.QUICK)")
     parser.add_argument("--json", help="write every dataset's row and the tables")
+    parser.add_argument("--glitches", type=int, default=0, help="glitches thrown into each measured channel")
+    parser.add_argument("--keep-glitches", action="store_true", help='declare them kept ([test] glitches = "keep")')
     arguments = parser.parse_args()
     items = work_list(arguments)
     started = time.perf_counter()
@@ -354,6 +388,10 @@ def main() -> int:
             name, seed, strength = item
             started = time.perf_counter()
             dataset = FAMILIES[name].make(seed, Path(scratch) / f"{name}-{strength}-{seed}", strength)
+            if arguments.glitches:
+                throw_glitches(
+                    dataset.experiment, arguments.glitches, [seed, zlib.crc32(name.encode())], arguments.keep_glitches
+                )
             generated = time.perf_counter() - started
             outcome = diagnose(dataset.experiment, arguments.timeout, arguments.threads)
             row = {
