@@ -50,10 +50,9 @@ def off_course(values: np.ndarray, sigma: float) -> np.ndarray:
     ratio = np.zeros(x.size)
     if x.size < 9:
         return ratio
-    rows = np.arange(4, x.size - 4)
 
-    def at(offset: int) -> np.ndarray:
-        return x[rows + offset]
+    def at(offset: int) -> np.ndarray:  # each sample's neighbour `offset` away, as a view
+        return x[4 + offset : x.size - 4 + offset]
 
     centre = at(0)
     beyond = np.abs(centre - np.clip(centre, np.minimum(at(-1), at(1)), np.maximum(at(-1), at(1))))
