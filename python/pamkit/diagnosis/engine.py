@@ -304,12 +304,13 @@ def _diagnose(experiment, effect_catalog, progress, threads, seed) -> Diagnosis 
         return diagnose_table(tests, effect_catalog, progress=progress, threads=threads)
     if len(tests) > 1:
         return _diagnose_series_campaign(tests, effect_catalog, progress, threads, seed)
-    experiment, glitches = (tests[0], None) if tests[0].keep_glitches else without_glitches(tests[0])
-    if glitches:  # on stderr even with no progress shown, as a thinned test's
-        python_warnings.warn(f"{experiment.data_path}: {glitches['glitches']}", GlitchWarning, 2)
-    experiment, note = thinned(experiment)
+    experiment, note = thinned(tests[0])
     if note:  # on stderr even with no progress shown (the command line prints warnings as one line)
         python_warnings.warn(note["thinned"], ThinningWarning, 2)
+    # Searched in the rows diagnosed: a glitch in a row thinning left out is no glitch of theirs.
+    experiment, glitches = (experiment, None) if experiment.keep_glitches else without_glitches(experiment)
+    if glitches:  # on stderr too, as a thinned test's
+        python_warnings.warn(f"{experiment.data_path}: {glitches['glitches']}", GlitchWarning, 2)
     report("finding the test's cycles and noise")
     problem = build_problem(experiment)
     notes = [n for n in (glitches, note, zeroed(experiment, problem.sigma)) if n]
