@@ -166,8 +166,8 @@ TEST_KEY_MEANINGS = {
     "load_mass_kg": "the hanging load's mass: the length then follows the load's motion, integrated in time, "
     "instead of the quasi-static path",
     "description": "free text: where the test comes from",
-    "zero": "a run with no air (a CSV, relative to this file), whose means are taken off the load cell and the "
-    "transducer",
+    "zero": "a run with no air (a CSV, relative to this file), whose means (its glitches left out) are taken off "
+    "the load cell and the transducer",
     "preload_N": "the force the deflated muscle was mounted with; it sets the mounted length (not with "
     "initial_length_m)",
     "force_range_N": "[lowest, highest] force the load cell reads: it clips beyond, and so does the prediction",

@@ -471,6 +471,29 @@ def test_an_offset_run_zeroes_the_load_cell_and_the_transducer(write_experiment,
         load_experiment(path)
 
 
+def test_a_zero_runs_glitch_is_left_out_of_its_mean(write_experiment, tmp_path):
+    # A zero run of 200 samples, the load cell's noise 0.5 N around 20 N and the transducer's
+    # ADC toggling between two counts: a stray read of 170 N would move the force's mean by
+    # 0.75 N. Left out (it stands hundreds of times the noise off the median), the offset is the
+    # clean run's mean; the two counts are no glitch; the warning is kept with the experiment.
+    rng = np.random.default_rng(3)
+    force = 20.0 + rng.normal(0.0, 0.5, 200)
+    pressure = np.where(rng.random(200) < 0.7, 9.0, 9.5)  # kPa, two counts
+    glitched = force.copy()
+    glitched[120] += 150.0
+    rows = "".join(f"{k * 0.05:.2f},0,{f:.6f},{p},22\n" for k, (f, p) in enumerate(zip(glitched, pressure)))
+    (tmp_path / "offset.csv").write_text("time_s,elongation_m,force_N,pressure_kPa,temperature_C\n" + rows)
+    path = write_experiment(
+        csv_text="time_s,elongation_m,force_N,pressure_kPa,temperature_C\n0,0,25,245,23\n1,0.001,30,250,23\n",
+        toml_test_extra='zero = "offset.csv"',
+    )
+    with pytest.warns(ExperimentWarning, match=r"1 sample\(s\) of force_N stand over 12 times the run's noise"):
+        experiment = load_experiment(path)
+    assert experiment.zeroed["force_N"] == pytest.approx(float(np.mean(np.round(np.delete(force, 120), 6))))
+    assert experiment.zeroed["gauge_pressure_Pa"] == pytest.approx(1e3 * float(np.mean(pressure)))
+    assert len(experiment.data_warnings) == 1 and "offset.csv" in experiment.data_warnings[0]
+
+
 # --- the one writer -------------------------------------------------------------------------------
 
 

@@ -3,13 +3,14 @@ whose means are taken off the load cell's and the transducer's channels."""
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from pamkit.io.columns import file_name
-from pamkit.io.guards import fail, named_file
+from pamkit.io.guards import ExperimentWarning, fail, named_file
 from pamkit.io.series import read_series
 
 if TYPE_CHECKING:
@@ -17,10 +18,29 @@ if TYPE_CHECKING:
 
 ZEROED_CHANNELS = ("force_N", "gauge_pressure_Pa")  # not temperature: with no air, the TMP36 reads the room
 
+#: How far off the run's median, in the run's noise, a zero run's sample stands when it is a
+#: glitch (as a time series' glitches, pamkit.diagnosis.series.glitches): one 150 N stray read in
+#: a run of 200 samples would move the offset taken off the whole test by 0.75 N.
+ZERO_RUN_GLITCH_SIGMAS = 12.0
+
+
+def steady_mean(values: np.ndarray) -> tuple[float, int]:
+    """The mean of a run that holds still, without its glitches (samples off its median by more
+    than ZERO_RUN_GLITCH_SIGMAS times its noise: the median absolute deviation's, or a quantised
+    channel's smallest step where most samples read alike), and how many were left out."""
+    median = float(np.median(values))
+    steps = np.abs(np.diff(values))
+    noise = max(1.4826 * float(np.median(np.abs(values - median))), float(steps[steps > 0].min(initial=np.inf)))
+    if not np.isfinite(noise):  # every sample alike
+        return median, 0
+    kept = np.abs(values - median) <= ZERO_RUN_GLITCH_SIGMAS * noise
+    return float(np.mean(values[kept])), int(values.size - kept.sum())
+
 
 def zero(experiment: Experiment, path: Path, name, ignore: tuple[str, ...], atmosphere_Pa: float) -> None:
     """Takes the means of a run with no air (the rig's offset run) off the load cell's and the
-    transducer's channels, as a lab zeroes its sensors; records what it took. The offset run of
+    transducer's channels, as a lab zeroes its sensors, its glitches left out (steady_mean);
+    records what it took. The offset run of
     a preloaded mount is recorded on the mounted muscle: its force holds the preload, which is
     the muscle's, not the cell's, and stays in the data."""
     run = read_series(named_file(path, "[test] zero", name), ignore=ignore, atmospheric_pressure_Pa=atmosphere_Pa)
@@ -32,7 +52,14 @@ def zero(experiment: Experiment, path: Path, name, ignore: tuple[str, ...], atmo
             f"({', '.join(file_name(channel) for channel in ZEROED_CHANNELS)})",
         )
     for channel in shared:
-        offset = float(np.mean(run[channel]))
+        offset, glitches = steady_mean(run[channel])
+        if glitches:
+            warnings.warn(
+                f"{path}: [test] zero = {name!r}: {glitches} sample(s) of {file_name(channel)} stand over "
+                f"{ZERO_RUN_GLITCH_SIGMAS:g} times the run's noise off its median: left out of its mean, as glitches",
+                ExperimentWarning,
+                3,
+            )
         if channel == "force_N" and experiment.preload_N is not None:
             offset -= experiment.preload_N
         experiment.columns[channel] = experiment.columns[channel] - offset
