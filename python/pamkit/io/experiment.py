@@ -38,7 +38,7 @@ from pamkit.io.schema import (
 from pamkit.io.sections import read_bladder, read_build, read_calibrate, read_friction, read_gas, read_uncertain
 from pamkit.io.series import check_force_sign, check_units, read_isotonic, read_series, read_table
 from pamkit.io.writers import write_experiment
-from pamkit.io.zero_run import zero
+from pamkit.io.zero_run import zero_offsets
 from pamkit.units import NEWTON_PER_KILOGRAM_FORCE
 
 # [test] gas: how the muscle's gas is held, by the name a file gives it.
@@ -473,7 +473,10 @@ def _read_data(experiment: Experiment, test: dict) -> None:
     experiment.columns = read_series(data_path, None if specimen is None else str(specimen), ignore, atmosphere)
     check_units(data_path, experiment.columns)
     if "zero" in test:
-        zero(experiment, path, test["zero"], ignore, atmosphere)
+        offsets = zero_offsets(path, test["zero"], list(experiment.columns), experiment.preload_N, ignore, atmosphere)
+        for channel, offset in offsets.items():  # taken off, and recorded
+            experiment.columns[channel] = experiment.columns[channel] - offset
+        experiment.zeroed.update(offsets)
     check_force_sign(data_path, experiment.columns)
     if experiment.gas == GasMode.supplied and "gauge_pressure_Pa" not in experiment.columns:
         raise fail(data_path, 'a "supplied" test drives the model with pressure_kPa: the column is missing')

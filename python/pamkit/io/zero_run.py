@@ -5,16 +5,12 @@ from __future__ import annotations
 
 import warnings
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from pamkit.io.columns import file_name
 from pamkit.io.guards import ExperimentWarning, fail, named_file
 from pamkit.io.series import read_series
-
-if TYPE_CHECKING:
-    from pamkit.io.experiment import Experiment
 
 ZEROED_CHANNELS = ("force_N", "gauge_pressure_Pa")  # not temperature: with no air, the TMP36 reads the room
 
@@ -37,20 +33,24 @@ def steady_mean(values: np.ndarray) -> tuple[float, int]:
     return float(np.mean(values[kept])), int(values.size - kept.sum())
 
 
-def zero(experiment: Experiment, path: Path, name, ignore: tuple[str, ...], atmosphere_Pa: float) -> None:
-    """Takes the means of a run with no air (the rig's offset run) off the load cell's and the
-    transducer's channels, as a lab zeroes its sensors, its glitches left out (steady_mean);
-    records what it took. The offset run of
-    a preloaded mount is recorded on the mounted muscle: its force holds the preload, which is
-    the muscle's, not the cell's, and stays in the data."""
+def zero_offsets(
+    path: Path, name, channels: list[str], preload_N: float | None, ignore: tuple[str, ...], atmosphere_Pa: float
+) -> dict[str, float]:
+    """What a run with no air (the rig's offset run, `name` relative to the experiment file
+    `path`) reads on each of the load cell's and the transducer's channels the test has
+    (`channels`): its means, its glitches left out (steady_mean), for a lab to take off as it
+    zeroes its sensors. The offset run of a preloaded mount is read on the mounted muscle: its
+    force holds the preload (`preload_N`), which is the muscle's, not the cell's, and stays in the
+    data."""
     run = read_series(named_file(path, "[test] zero", name), ignore=ignore, atmospheric_pressure_Pa=atmosphere_Pa)
-    shared = [c for c in ZEROED_CHANNELS if c in run and c in experiment.columns]
+    shared = [c for c in ZEROED_CHANNELS if c in run and c in channels]
     if not shared:
         raise fail(
             path,
             f"[test] zero = {name!r} has none of the channels it could zero "
             f"({', '.join(file_name(channel) for channel in ZEROED_CHANNELS)})",
         )
+    offsets = {}
     for channel in shared:
         offset, glitches = steady_mean(run[channel])
         if glitches:
@@ -60,7 +60,5 @@ def zero(experiment: Experiment, path: Path, name, ignore: tuple[str, ...], atmo
                 ExperimentWarning,
                 3,
             )
-        if channel == "force_N" and experiment.preload_N is not None:
-            offset -= experiment.preload_N
-        experiment.columns[channel] = experiment.columns[channel] - offset
-        experiment.zeroed[channel] = offset
+        offsets[channel] = offset - preload_N if channel == "force_N" and preload_N is not None else offset
+    return offsets
