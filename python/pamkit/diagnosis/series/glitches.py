@@ -33,7 +33,7 @@ from pamkit.io.experiment import Experiment
 GLITCH_SIGMAS = 12.0
 
 #: The channels searched: what the model predicts and the data measure (a supplied test's pressure
-#: drives the model: an input, whose glitch is one the force does not follow: supplied_glitches).
+#: drives the model: an input, whose glitch is one the force does not follow).
 SEARCHED = ("force_N", "gauge_pressure_Pa", "temperature_K")
 
 
@@ -91,48 +91,31 @@ def turning(values: np.ndarray) -> np.ndarray:
 FOLLOWS_SIGMAS = 3.0
 
 
-def supplied_glitches(columns: dict[str, np.ndarray]) -> np.ndarray:
-    """How far a supplied test's pressure (an input, which drives the model) stands off its
-    course where the force does not follow it (ratios as off_course's, zero elsewhere): a
-    transducer's glitch, which would drive the model to a force the muscle never made."""
-    pressure, force = columns["gauge_pressure_Pa"], columns["force_N"]
-    ratio = off_course(pressure, noise_scale(pressure))
-    ratio[turning(columns["elongation_m"])] = 0.0
-    ratio[off_course(force, noise_scale(force)) > FOLLOWS_SIGMAS] = 0.0
-    return ratio
-
-
 def without_glitches(experiment: Experiment) -> tuple[Experiment, dict | None]:
     """The time series without its glitches' rows (the module docstring's rule), and a note of
     them for the report's warnings and its verdict (None when there is none)."""
     columns = experiment.columns
-    supplied = experiment.gas == GasMode.supplied
-    inputs = ["elongation_m"] + (["gauge_pressure_Pa"] if supplied else [])
-    turns = np.logical_or.reduce([turning(columns[name]) for name in inputs if name in columns])
-    found: dict[str, np.ndarray] = {}
-    ratios: list[np.ndarray] = []
-    for channel in SEARCHED:
-        if channel not in columns or channel in inputs:
-            continue
-        ratio = off_course(columns[channel], noise_scale(columns[channel]))
-        ratio[turns] = 0.0
-        rows = np.flatnonzero(ratio > GLITCH_SIGMAS)
-        if rows.size:
-            found[channel] = rows
-            ratios.append(ratio[rows])
-    if supplied and "gauge_pressure_Pa" in columns and "force_N" in columns:
-        ratio = supplied_glitches(columns)
-        rows = np.flatnonzero(ratio > GLITCH_SIGMAS)
-        if rows.size:
-            found["gauge_pressure_Pa"] = rows
-            ratios.append(ratio[rows])
+    course = {c: off_course(columns[c], noise_scale(columns[c])) for c in SEARCHED if c in columns}
+    crosshead = turning(columns["elongation_m"])
+    ratios: dict[str, np.ndarray]
+    if experiment.gas == GasMode.supplied:
+        turns = crosshead | turning(columns["gauge_pressure_Pa"])
+        ratios = {c: np.where(turns, 0.0, r) for c, r in course.items() if c != "gauge_pressure_Pa"}
+        if "force_N" in course:
+            # The pressure drives the model: its glitch is a sample the force does not follow,
+            # a transducer's, which would drive the model to a force the muscle never made.
+            followed = crosshead | (course["force_N"] > FOLLOWS_SIGMAS)
+            ratios["gauge_pressure_Pa"] = np.where(followed, 0.0, course["gauge_pressure_Pa"])
+    else:
+        ratios = {c: np.where(crosshead, 0.0, r) for c, r in course.items()}
+    found = {c: rows for c, ratio in ratios.items() if (rows := np.flatnonzero(ratio > GLITCH_SIGMAS)).size}
     if not found:
         return experiment, None
     glitched = np.zeros(experiment.time_s.size, dtype=bool)
     for rows in found.values():
         glitched[rows] = True
     kept = replace(experiment, columns={name: values[~glitched].copy() for name, values in columns.items()})
-    sizes = np.concatenate(ratios)
+    sizes = np.concatenate([ratios[channel][rows] for channel, rows in found.items()])
     where = "; ".join(
         f"{file_name(channel)} at {', '.join(f'{experiment.time_s[r]:.6g}' for r in rows)} s"
         for channel, rows in found.items()
@@ -146,6 +129,6 @@ def without_glitches(experiment: Experiment) -> tuple[Experiment, dict | None]:
         "rows_left_out": int(glitched.sum()),
         "time_s": {channel: [float(experiment.time_s[r]) for r in rows] for channel, rows in found.items()},
         "values": {channel: [float(columns[channel][r]) for r in rows] for channel, rows in found.items()},
-        "glitch_over_noise": {channel: [float(v) for v in ratio] for channel, ratio in zip(found, ratios)},
+        "glitch_over_noise": {channel: [float(v) for v in ratios[channel][rows]] for channel, rows in found.items()},
     }
     return kept, note

@@ -99,10 +99,6 @@ def shared_space(problems: list[Problem]) -> list[Coordinate]:
     return [c for c in Baseline.coordinates(problems[0].experiment) if c.name not in PER_TEST]
 
 
-def searches(problem: Problem, effect, coordinate: Coordinate) -> bool:
-    return any(c.name == coordinate.name for c in problem.search_space(effect))
-
-
 def calibrate_jointly(
     problems: list[Problem], alone: list[Fit], names: list[str], threads: int = 2, effect=None
 ) -> JointFit:
@@ -113,11 +109,8 @@ def calibrate_jointly(
     label, make_effect = effect if effect is not None else (None, None)
     base_shared = shared_space(problems)
     # the effect's coordinates every test searches (a test's zero run holds its offsets: Problem.search_space)
-    effect_coordinates = (
-        [c for c in problems[0].search_space(make_effect()) if all(searches(p, make_effect(), c) for p in problems)]
-        if make_effect is not None
-        else []
-    )
+    searched = [p.search_space(make_effect()) for p in problems] if make_effect is not None else [[]]
+    effect_coordinates = [c for c in searched[0] if all(any(s.name == c.name for s in space) for space in searched)]
     shared = base_shared + effect_coordinates
     own = [[c for c in p.predictor.baseline.space if c.name in PER_TEST] for p in problems]
     offsets = np.cumsum([len(shared)] + [len(o) for o in own])
